@@ -1,0 +1,273 @@
+"""Continuation over wheel travel: the public entry points of the kinematics core.
+
+    Continuation(scene, method='fast').solve(travel_mm) -> Solution   (stateful; the node)
+    sweep(scene, travels_mm, method='fast') -> Sweep                   (a table of positions)
+
+Each position starts from the previous one (the paper's continuation), which keeps the
+carrier on the assembly branch of the design position. Steps longer than max_step are
+walked in substeps; a step whose Newton iteration fails, or whose answer lands farther from
+the tangent prediction than a branch change allows, is halved and retried; when the step
+falls below min_step, the travel is out of reach and the reachable limit found is reported.
+Nothing here raises for numerics: a Solution or Sweep carries success and a message.
+"""
+
+from dataclasses import dataclass, field
+import math
+
+import numpy as np
+
+from . import paper_method, pose_newton
+from .geometry import camber_toe, quaternion_from_matrix
+from .mechanism import carrier_points, compile_scene, length_errors, linearize
+
+METHODS = ('paper', 'fast')
+
+
+@dataclass(frozen=True)
+class Settings:
+    """Solver settings. Lengths in mm."""
+
+    method: str = 'fast'
+    tol: float = 1e-10        # eqs. 11-12: largest coordinate change of the last iteration
+    max_iter: int = 25        # Newton iterations per step
+    max_step: float = 5.0     # longest continuation step
+    min_step: float = 0.005   # below this a failing step means out of reach (limit to 0.01)
+    knot_step: float = 10.0   # fast sweeps: spacing of the sequential knots of a batch
+
+
+@dataclass(frozen=True)
+class Solution:
+    """One solved position, vehicle frame, mm and rad. On failure the pose fields are None."""
+
+    travel: float                # imposed wheel-centre z change, + = bump (mm)
+    success: bool
+    message: str
+    wheel_center: np.ndarray = None   # (3,) mm
+    rotation: np.ndarray = None       # (3, 3) carrier orientation relative to design
+    camber: float = math.nan     # rad, + = top of the wheel outboard
+    toe: float = math.nan        # rad, + = toe-in
+    iterations: int = 0          # Newton iterations of the last step
+    residual: float = math.nan   # largest constraint violation (mm)
+    substeps: int = 0            # continuation steps walked for this position
+    condition: float = math.nan  # condition number of the Jacobian at the solution
+    reachable: tuple = (0.0, 0.0)   # travel range (mm) known to be reachable so far
+
+    @property
+    def quaternion(self):
+        """(x, y, z, w) of the carrier rotation relative to design."""
+        return quaternion_from_matrix(self.rotation)
+
+
+@dataclass(frozen=True)
+class Sweep:
+    """A table of solved positions, in the order asked for. Arrays over n positions."""
+
+    travel: np.ndarray           # (n,) mm
+    wheel_center: np.ndarray     # (n, 3) mm
+    rotation: np.ndarray         # (n, 3, 3)
+    camber: np.ndarray           # (n,) rad
+    toe: np.ndarray              # (n,) rad
+    iterations: np.ndarray       # (n,)
+    residual: np.ndarray         # (n,) mm
+    success: bool = True
+    message: str = ''
+    joints: np.ndarray = field(default=None, repr=False)   # (n, m, 3) carrier points, mm
+
+    @property
+    def quaternion(self):
+        return np.array([quaternion_from_matrix(r) for r in self.rotation]).reshape(-1, 4)
+
+
+class Continuation:
+    """Solves wheel travels one after another, each from the last good pose."""
+
+    def __init__(self, scene, settings=None, **overrides):
+        self.scene = scene
+        self.settings = settings or Settings(**overrides)
+        if self.settings.method not in METHODS:
+            raise ValueError(f"method: unknown value {self.settings.method!r} "
+                             f"(expected one of: {', '.join(METHODS)})")
+        self.mech = compile_scene(scene)
+        if self.settings.method == 'paper':
+            model = paper_method.build(scene, self.mech)
+            self._correct = lambda *args: paper_method.correct(model, *args)
+        else:
+            self._correct = lambda *args: pose_newton.correct(self.mech, *args)
+        self.reset()
+
+    def reset(self):
+        """Back to the design position (travel 0), the paper's eq. 9 initial solution."""
+        self.travel = 0.0
+        self.center = self.mech.design_center.copy()
+        self.rotation = np.eye(3)
+        self.reachable = [0.0, 0.0]
+
+    def solve(self, travel):
+        """Solve the pose at travel (mm) from the current state; commit it if it succeeds."""
+        if not isinstance(travel, (int, float, np.floating)) or not math.isfinite(travel):
+            return self._failure(travel, f'travel {travel!r} is not a finite number', 0)
+        travel = float(travel)
+        state = (self.travel, self.center, self.rotation)
+        steps, iterations, error = self._walk(travel)
+        if error:
+            self.travel, self.center, self.rotation = state
+            return self._failure(travel, error, steps)
+        return self._solution(iterations, steps)
+
+    def _walk(self, target):
+        """Advance the state to target; returns (steps, iterations, error message or '')."""
+        cfg = self.settings
+        steps, iterations = 0, 0
+        step = min(cfg.max_step, abs(target - self.travel))
+        while self.travel != target:
+            direction = math.copysign(1.0, target - self.travel)
+            step = min(step, abs(target - self.travel))
+            nxt = target if step == abs(target - self.travel) else self.travel + direction * step
+            ok, iterations = self._step(nxt)
+            if ok:
+                steps += 1
+                self.reachable[0] = min(self.reachable[0], self.travel)
+                self.reachable[1] = max(self.reachable[1], self.travel)
+                step = min(2 * step, cfg.max_step)
+            else:
+                step /= 2
+                if step < cfg.min_step:
+                    return steps, iterations, self._out_of_reach(target, direction)
+        return steps, iterations, ''
+
+    def _step(self, travel):
+        """One continuation step: tangent prediction, Newton correction, branch check."""
+        cfg = self.settings
+        h = travel - self.travel
+        slope = pose_newton.tangent(self.mech, self.center, self.rotation)
+        guess = pose_newton.predict(self.center, self.rotation, slope, h)
+        start = guess if cfg.method == 'fast' else (self.center, self.rotation)
+        center, rotation, iterations, ok = self._correct(travel, *start, cfg.tol, cfg.max_iter)
+        if not ok or not on_branch(self.mech, guess, (center, rotation), h, cfg.tol):
+            return False, iterations
+        self.travel, self.center, self.rotation = travel, center, rotation
+        return True, iterations
+
+    def _out_of_reach(self, target, direction):
+        limit = self.travel
+        low, high = self.reachable
+        return (f'travel {target:g} mm is out of reach: continuation from {0:g} mm stops at '
+                f'{limit:.3f} mm ({"bump" if direction > 0 else "rebound"} limit within '
+                f'{2 * self.settings.min_step:g} mm); reachable range found: '
+                f'[{low:.3f}, {high:.3f}] mm')
+
+    def _solution(self, iterations, steps):
+        camber, toe = camber_toe(self.rotation @ self.mech.spin_axis, self.scene.side_sign)
+        _, jac = linearize(self.mech, self.center, self.rotation)
+        return Solution(
+            travel=self.travel, success=True, message='ok', wheel_center=self.center.copy(),
+            rotation=self.rotation.copy(), camber=float(camber), toe=float(toe),
+            iterations=iterations, residual=float(length_errors(self.mech, self.center,
+                                                                self.rotation)),
+            substeps=steps, condition=float(np.linalg.cond(jac[:, pose_newton.FREE])),
+            reachable=tuple(self.reachable))
+
+    def _failure(self, travel, message, steps):
+        return Solution(travel=travel, success=False, message=message, substeps=steps,
+                        reachable=tuple(self.reachable))
+
+    def joints(self, solution):
+        """Carrier joint positions {name: (3,) mm} of a solved position."""
+        pts = carrier_points(self.mech, solution.wheel_center, solution.rotation)
+        return dict(zip(self.mech.point_names, pts))
+
+
+def on_branch(mech, guess, found, travel_step, tol):
+    """True if the converged pose is where continuation along the branch predicts it.
+
+    A tangent prediction misses by O(step^2); a jump to another assembly branch moves the
+    carrier by a link-length scale. Half the step (plus the tolerance) separates the two.
+    """
+    moved = carrier_points(mech, *found) - carrier_points(mech, *guess)
+    return float(np.max(np.abs(moved))) <= 0.5 * abs(travel_step) + 10 * tol
+
+
+def sweep(scene, travels, method='fast', **settings):
+    """Solve the travels (mm, in the given order) by continuation; returns a Sweep.
+
+    The paper method walks the positions one after another. The fast method solves knots
+    every knot_step mm by continuation and then every position at once by batched Newton,
+    each from the tangent at its nearest knot; a position that fails there is walked.
+    """
+    travels = np.asarray(travels, dtype=float).ravel()
+    cont = Continuation(scene, method=method, **settings)
+    if method == 'fast' and len(travels) > 2 and np.all(np.isfinite(travels)):
+        batch = _batched(cont, travels)
+        if batch is not None:
+            return batch
+    return _sequential(cont, travels)
+
+
+def _sequential(cont, travels):
+    rows = []
+    for travel in travels:
+        sol = cont.solve(travel)
+        if not sol.success:
+            return _table(cont, rows, success=False, message=sol.message)
+        rows.append(sol)
+    return _table(cont, rows)
+
+
+def _table(cont, rows, success=True, message='ok'):
+    n = len(rows)
+    center = np.array([r.wheel_center for r in rows]).reshape(n, 3)
+    rotation = np.array([r.rotation for r in rows]).reshape(n, 3, 3)
+    return _sweep_of(cont, np.array([r.travel for r in rows]), center, rotation,
+                     np.array([r.iterations for r in rows], dtype=int), success, message)
+
+
+def _sweep_of(cont, travel, center, rotation, iterations, success=True, message='ok'):
+    mech = cont.mech
+    camber, toe = camber_toe(rotation @ mech.spin_axis, cont.scene.side_sign)
+    return Sweep(travel=travel, wheel_center=center, rotation=rotation, camber=camber, toe=toe,
+                 iterations=iterations, residual=length_errors(mech, center, rotation),
+                 success=success, message=message,
+                 joints=carrier_points(mech, center, rotation))
+
+
+def _batched(cont, travels):
+    """Fast sweep: sequential knots, then all positions in one batched Newton solve."""
+    cfg, mech = cont.settings, cont.mech
+    low, high = min(travels.min(), 0.0), max(travels.max(), 0.0)
+    knots = [0.0]
+    poses = [(cont.center, cont.rotation)]
+    for direction, end in ((1, high), (-1, low)):
+        cont.reset()
+        travel = 0.0
+        while travel != end:
+            travel = end if abs(end - travel) <= cfg.knot_step else travel + direction * cfg.knot_step
+            if not cont.solve(travel).success:
+                return None     # the walk finds and reports the limit
+            knots.append(travel)
+            poses.append((cont.center, cont.rotation))
+    knots = np.array(knots)
+    nearest = np.argmin(np.abs(travels[:, None] - knots[None, :]), axis=1)
+    slopes = [pose_newton.tangent(mech, *pose) for pose in poses]
+    guesses = [pose_newton.predict(*poses[k], slopes[k], t - knots[k])
+               for t, k in zip(travels, nearest)]
+    guess_center = np.array([g[0] for g in guesses])
+    guess_rotation = np.array([g[1] for g in guesses])
+    center, rotation, iterations, converged = pose_newton.correct_batch(
+        mech, travels, guess_center, guess_rotation, cfg.tol, cfg.max_iter)
+    moved = np.abs(carrier_points(mech, center, rotation)
+                   - carrier_points(mech, guess_center, guess_rotation)).max(axis=(1, 2))
+    good = converged & (moved <= 0.5 * np.abs(travels - knots[nearest]) + 10 * cfg.tol)
+    for i in np.flatnonzero(~good):    # rare: walk it from its knot
+        cont.reset()
+        sol = cont.solve(travels[i])
+        if not sol.success:
+            return None
+        center[i], rotation[i], iterations[i] = sol.wheel_center, sol.rotation, sol.iterations
+    return _sweep_of(cont, travels, center, rotation, iterations)
+
+
+def travel_range(start, stop, step):
+    """Travels from start to stop (mm) inclusive at step, either direction."""
+    count = int(math.floor(abs(stop - start) / step + 1e-9))
+    values = start + math.copysign(step, stop - start) * np.arange(count + 1)
+    return values if values[-1] == stop else np.append(values, stop)

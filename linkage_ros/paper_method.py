@@ -1,0 +1,175 @@
+"""The paper's method as written (Alexandru 2018): three points, Newton-Kantorovich, Gauss-Jordan.
+
+The carrier ("rod") is located by M (wheel centre), N (inboard spin-axis point) and P (third
+point). With Z_M imposed the unknowns are
+    x = [X_M, Y_M, X_N, Y_N, Z_N, X_P, Y_P, Z_P].
+Equations: the rigid-body distances F1-F3 (eq. 1) and 5 guidance equations in squared
+form (eqs. 2-4, 13; a strut line gives two, see mechanism.py). The carrier joints enter
+through eqs. 5-7 (trilateration from M, N, P) and the Jacobian (eq. 10) follows them by the
+chain rule. Each Newton step is solved by Gauss-Jordan elimination and iteration stops by
+the step test of eqs. 11-12.
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .geometry import frame_from_points, local_coordinates, trilaterate
+
+
+@dataclass(frozen=True)
+class PaperModel:
+    """Design data of the paper's formulation, built once per scene (mm)."""
+
+    m0: np.ndarray
+    n0: np.ndarray
+    p0: np.ndarray
+    rigid: np.ndarray      # |PN|, |PM|, |NM| (eq. 1')
+    radii: np.ndarray      # (j, 3): |BM|, |BN|, |BP| per carrier joint (eq. 5')
+    signs: np.ndarray      # (j,): side of the M-N-P plane at design
+    equations: tuple       # ('sphere', joint, base, length) or ('line', joint, aux, base)
+    frame0: np.ndarray     # design frame of M, N, P
+
+
+def build(scene, mech):
+    """The paper's model of a scene: joints, their eq. 5' distances, the equations."""
+    m0, n0, p0 = scene.wheel_center, scene.spin_axis_point, scene.third_point
+    joints, equations = [], []
+
+    def add_joint(point):
+        joints.append(point)
+        return len(joints) - 1
+
+    for c in scene.constraints:
+        b = add_joint(c.carrier)
+        if c.type in ('sphere', 'circle'):
+            for base in c.base:
+                equations.append(('sphere', b, base, np.linalg.norm(c.carrier - base)))
+    for i, point in enumerate(mech.line_point):
+        # A strut line: T stays in the carrier plane through C spanned by the line and normal
+        # i; the normal is carried by an auxiliary carrier point E = C + L n (a joint too).
+        carrier = joints[point]   # joints 0..k-1 are the constraints' carrier points
+        length = np.linalg.norm(mech.line_base[i] - carrier)
+        aux = add_joint(carrier + length * mech.line_normal[i])
+        equations.append(('line', int(point), aux, mech.line_base[i]))
+    joints = np.array(joints)
+    radii = np.linalg.norm(joints[:, None, :] - np.array([m0, n0, p0])[None], axis=2)
+    signs = np.array([np.sign(local_coordinates(m0, n0, p0, j)[2]) for j in joints])
+    return PaperModel(m0=m0, n0=n0, p0=p0,
+                      rigid=np.array([np.linalg.norm(p0 - n0), np.linalg.norm(p0 - m0),
+                                      np.linalg.norm(n0 - m0)]),
+                      radii=radii, signs=signs, equations=tuple(equations),
+                      frame0=frame_from_points(m0, n0, p0))
+
+
+def points_of_pose(model, center, rotation):
+    """M, N, P of a pose (center, rotation relative to design)."""
+    return (center, center + rotation @ (model.n0 - model.m0),
+            center + rotation @ (model.p0 - model.m0))
+
+
+def pose_of_points(model, m, n, p):
+    """Pose (center, rotation) of M, N, P: the rotation carries the design frame onto theirs."""
+    return m.copy(), frame_from_points(m, n, p) @ model.frame0.T
+
+
+def unpack(x, z_m):
+    """M, N, P from the unknown vector x and the imposed Z_M."""
+    return np.array([x[0], x[1], z_m]), x[2:5], x[5:8]
+
+
+def joints_of(model, m, n, p):
+    """Joint positions by eqs. 5-7, or None where the spheres do not meet."""
+    out = []
+    for radii, sign in zip(model.radii, model.signs):
+        point, _ = trilaterate(m, n, p, radii, sign)
+        if point is None:
+            return None
+        out.append(point)
+    return np.array(out)
+
+
+def system(model, x, z_m):
+    """F (8,) and Jacobian (8, 8) of eqs. 1-4 at x; (None, None) if a joint cannot be placed."""
+    m, n, p = unpack(x, z_m)
+    joints = joints_of(model, m, n, p)
+    if joints is None:
+        return None, None
+    f = np.empty(8)
+    jac = np.zeros((8, 9))   # columns: M (3), N (3), P (3); Z_M dropped at the end
+    # eq. 1: rigid-body distances
+    f[0] = (p - n) @ (p - n) - model.rigid[0]**2
+    jac[0, 6:9], jac[0, 3:6] = 2 * (p - n), -2 * (p - n)
+    f[1] = (p - m) @ (p - m) - model.rigid[1]**2
+    jac[1, 6:9], jac[1, 0:3] = 2 * (p - m), -2 * (p - m)
+    f[2] = (n - m) @ (n - m) - model.rigid[2]**2
+    jac[2, 3:6], jac[2, 0:3] = 2 * (n - m), -2 * (n - m)
+    for row, eq in enumerate(model.equations, start=3):
+        if eq[0] == 'sphere':   # eqs. 2-4, 13
+            _, b, base, length = eq
+            d = joints[b] - base
+            f[row] = d @ d - length**2
+            grads = {b: 2 * d}
+        else:                   # strut line: (T - C) . (E - C) = 0
+            _, c, e, top = eq
+            to_top, normal = top - joints[c], joints[e] - joints[c]
+            f[row] = to_top @ normal
+            grads = {c: -(to_top + normal), e: to_top}
+        for j, grad in grads.items():
+            jac[row] += _chain(joints[j], m, n, p, grad)
+    return f, np.delete(jac, 2, axis=1)
+
+
+def _chain(joint, m, n, p, grad):
+    """d(F)/d(M, N, P) (9,) of an equation with gradient grad (3,) at a trilaterated joint.
+
+    Differentiating |B - Q_i|^2 = r_i^2 (eq. 5) gives G dB = [(B - Q_i) . dQ_i] with rows
+    G_i = (B - Q_i); so dF = sum_i lambda_i (B - Q_i) . dQ_i where G^T lambda = grad.
+    """
+    arms = joint - np.array([m, n, p])
+    lam = np.linalg.solve(arms.T, grad)
+    return (lam[:, None] * arms).ravel()
+
+
+def gauss_jordan(a, b):
+    """Solve a x = b by Gauss-Jordan elimination with partial pivoting (reduced row echelon)."""
+    aug = np.column_stack((np.array(a, dtype=float), np.array(b, dtype=float)))
+    size = len(aug)
+    for col in range(size):
+        pivot = col + int(np.argmax(np.abs(aug[col:, col])))
+        if aug[pivot, col] == 0.0:
+            raise np.linalg.LinAlgError('singular matrix')
+        aug[[col, pivot]] = aug[[pivot, col]]
+        aug[col] /= aug[col, col]
+        others = np.arange(size) != col
+        aug[others] -= np.outer(aug[others, col], aug[col])
+    return aug[:, -1]
+
+
+def correct(model, travel, center, rotation, tol, max_iter):
+    """Newton-Kantorovich from the pose (center, rotation) to the pose at travel (mm).
+
+    Same contract as pose_newton.correct: returns (center, rotation, iterations, converged).
+    """
+    m, n, p = points_of_pose(model, center, rotation)
+    x = np.concatenate((m[:2], n, p))
+    z_m = model.m0[2] + travel
+    for iteration in range(1, max_iter + 1):
+        f, jac = system(model, x, z_m)
+        if f is None:
+            return center, rotation, iteration, False
+        try:
+            dx = gauss_jordan(jac, -f)
+        except np.linalg.LinAlgError:
+            return center, rotation, iteration, False
+        x = x + dx
+        step = np.max(np.abs(dx))        # eqs. 11-12
+        if not np.isfinite(step):
+            return center, rotation, iteration, False
+        if step <= tol:
+            m, n, p = unpack(x, z_m)
+            if joints_of(model, m, n, p) is None:
+                return center, rotation, iteration, False
+            new_center, new_rotation = pose_of_points(model, m, n, p)
+            return new_center, new_rotation, iteration, True
+    return center, rotation, max_iter, False

@@ -1,0 +1,83 @@
+"""The fast variant: Newton on the carrier pose, LU solves, tangent predictor, batched sweeps.
+
+Unknowns: the wheel-centre x, y and a rotation increment omega (5 in all; Z_M is imposed).
+The carrier is rigid by construction, so the paper's eq. 1 and eqs. 5-7 drop out and the
+system is the 5 guidance equations of mechanism.py. It converges to the same poses as the
+paper's method (same equations on the same mechanism), in fewer and cheaper iterations.
+"""
+
+import numpy as np
+
+from .geometry import exp_so3
+from .mechanism import linearize
+
+FREE = [0, 1, 3, 4, 5]   # Jacobian columns of the unknowns; column 2 is dZ_M (travel)
+
+
+def correct(mech, travel, center, rotation, tol, max_iter):
+    """Newton iterations from (center, rotation) to the pose at travel (mm).
+
+    Stops when the largest change of a carrier coordinate in one iteration is <= tol (mm),
+    the test of the paper's eqs. 11-12. Returns (center, rotation, iterations, converged).
+    """
+    center = np.array(center, dtype=float)
+    center[2] = mech.design_center[2] + travel
+    for iteration in range(1, max_iter + 1):
+        f, jac = linearize(mech, center, rotation)
+        try:
+            dx = np.linalg.solve(jac[:, FREE], -f)
+        except np.linalg.LinAlgError:
+            return center, rotation, iteration, False
+        center[:2] += dx[:2]
+        rotation = exp_so3(dx[2:]) @ rotation
+        step = max(abs(dx[0]), abs(dx[1]), mech.lever * np.sqrt(dx[2:] @ dx[2:]))
+        if not np.isfinite(step):
+            return center, rotation, iteration, False
+        if step <= tol:
+            return center, rotation, iteration, True
+    return center, rotation, max_iter, False
+
+
+def tangent(mech, center, rotation):
+    """d(center)/d(travel) (3,) and d(omega)/d(travel) (3,) by the implicit function theorem."""
+    _, jac = linearize(mech, center, rotation)
+    dx = np.linalg.solve(jac[:, FREE], -jac[:, 2])
+    return np.array([dx[0], dx[1], 1.0]), dx[2:]
+
+
+def predict(center, rotation, slope, travel_step):
+    """First-order (tangent) guess of the pose travel_step (mm) further on."""
+    d_center, d_omega = slope
+    return center + d_center * travel_step, exp_so3(d_omega * travel_step) @ rotation
+
+
+def correct_batch(mech, travel, center, rotation, tol, max_iter):
+    """correct() for n poses at once: travel (n,), center (n, 3), rotation (n, 3, 3).
+
+    Returns (center, rotation, iterations (n,), converged (n,)); poses that converged are
+    frozen while the others iterate.
+    """
+    center = np.array(center, dtype=float)
+    rotation = np.array(rotation, dtype=float)
+    center[:, 2] = mech.design_center[2] + travel
+    iterations = np.zeros(len(travel), dtype=int)
+    active = np.ones(len(travel), dtype=bool)
+    for _ in range(max_iter):
+        idx = np.flatnonzero(active)
+        if not len(idx):
+            break
+        f, jac = linearize(mech, center[idx], rotation[idx])
+        try:
+            dx = np.linalg.solve(jac[:, :, FREE], -f[..., None])[..., 0]
+        except np.linalg.LinAlgError:
+            break
+        center[idx, :2] += dx[:, :2]
+        rotation[idx] = exp_so3(dx[:, 2:]) @ rotation[idx]
+        iterations[idx] += 1
+        step = np.maximum(np.abs(dx[:, :2]).max(axis=1),
+                          mech.lever * np.linalg.norm(dx[:, 2:], axis=1))
+        active[idx[step <= tol]] = False
+        active[idx[~np.isfinite(step)]] = False
+        iterations[idx[~np.isfinite(step)]] = -1
+    converged = ~active & (iterations > 0)
+    return center, rotation, iterations, converged

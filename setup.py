@@ -1,0 +1,40 @@
+"""ament_python package: installs with pip (pip install -e '.[test]') or builds with colcon."""
+
+from glob import glob
+
+from setuptools import find_packages, setup
+
+package_name = 'linkage_ros'
+
+setup(
+    name=package_name,
+    version='0.1.0',
+    packages=find_packages(exclude=['test']),
+    data_files=[
+        ('share/ament_index/resource_index/packages', ['resource/' + package_name]),
+        ('share/' + package_name, ['package.xml']),
+        ('share/' + package_name + '/config', glob('config/*.yaml')),
+        ('share/' + package_name + '/config/scenes', glob('config/scenes/*.yaml')),
+    ],
+    python_requires='>=3.10',
+    install_requires=['setuptools', 'numpy', 'scipy', 'PyYAML'],
+    extras_require={
+        'ros': ['ros-jazzy-rclpy[fastrtps]', 'ros-jazzy-common-interfaces'],
+        'record': ['mcap'],
+        'view': ['rerun-sdk'],
+        'plot': ['matplotlib'],
+        'test': ['ros-jazzy-rclpy[fastrtps]', 'ros-jazzy-common-interfaces', 'mcap',
+                 'rerun-sdk', 'matplotlib', 'pytest', 'hypothesis', 'mcap-ros2-support',
+                 'rosbags'],
+    },
+    zip_safe=True,
+    maintainer='linkage_ros developers',
+    maintainer_email='dev@linkage-ros.invalid',
+    description='Spatial multi-link suspension kinematics (Alexandru 2018) as a ROS 2 node',
+    license='Apache-2.0',
+    entry_points={
+        'console_scripts': [
+            'linkage-sweep = linkage_ros.sweep_cli:main',
+        ],
+    },
+)
