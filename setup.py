@@ -35,6 +35,11 @@ setup(
     entry_points={
         'console_scripts': [
             'linkage-sweep = linkage_ros.sweep_cli:main',
+            'suspension_node = linkage_ros.node:main',
+            'linkage-node-bench = linkage_ros.node_bench:main',
+            'linkage-replay = linkage_ros.replay:main',
+            'linkage-rerun = linkage_ros.rerun_cli:main',
+            'linkage-bench = linkage_ros.bench:main',
         ],
     },
 )
