@@ -3,6 +3,8 @@
 Units are whatever the caller passes (the package uses mm); angles in radians.
 """
 
+import math
+
 import numpy as np
 
 
@@ -14,27 +16,49 @@ def unit(v):
 
 def cross(a, b):
     """Cross product along the last axis; faster than np.cross for small arrays."""
-    a1, a2, a3 = a[..., 0], a[..., 1], a[..., 2]
-    b1, b2, b3 = b[..., 0], b[..., 1], b[..., 2]
-    return np.stack((a2 * b3 - a3 * b2, a3 * b1 - a1 * b3, a1 * b2 - a2 * b1), axis=-1)
+    out = np.empty(a.shape if a.shape == b.shape else np.broadcast_shapes(a.shape, b.shape))
+    out[..., 0] = a[..., 1] * b[..., 2] - a[..., 2] * b[..., 1]
+    out[..., 1] = a[..., 2] * b[..., 0] - a[..., 0] * b[..., 2]
+    out[..., 2] = a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
+    return out
 
 
 def exp_so3(omega):
     """Rotation matrix of the rotation vector omega (Rodrigues), shape (..., 3) -> (..., 3, 3).
 
-    >>> np.allclose(exp_so3(np.array([0, 0, np.pi / 2])) @ [1, 0, 0], [0, 1, 0])
+    R = I + a K + b (w w^T - |w|^2 I) with K = [w]x, a = sin t / t, b = (1 - cos t) / t^2.
+
+    >>> bool(np.allclose(exp_so3(np.array([0, 0, np.pi / 2])) @ [1, 0, 0], [0, 1, 0]))
     True
     """
     omega = np.asarray(omega, dtype=float)
-    theta = np.linalg.norm(omega, axis=-1)[..., None, None]
+    if omega.ndim == 1:
+        return _exp_so3_one(*omega)
+    t2 = np.einsum('...i,...i->...', omega, omega)
+    t = np.sqrt(t2)
+    small = t2 < 1e-16
+    safe = np.where(small, 1.0, t)
+    a = np.where(small, 1.0 - t2 / 6.0, np.sin(safe) / safe)[..., None, None]
+    b = np.where(small, 0.5 - t2 / 24.0, (1.0 - np.cos(safe)) / safe**2)[..., None, None]
+    x, y, z = omega[..., 0], omega[..., 1], omega[..., 2]
     k = np.zeros(omega.shape[:-1] + (3, 3))
-    k[..., 0, 1], k[..., 0, 2], k[..., 1, 2] = -omega[..., 2], omega[..., 1], -omega[..., 0]
-    k[..., 1, 0], k[..., 2, 0], k[..., 2, 1] = omega[..., 2], -omega[..., 1], omega[..., 0]
-    small = theta < 1e-8
-    safe = np.where(small, 1.0, theta)
-    a = np.where(small, 1.0 - theta**2 / 6.0, np.sin(safe) / safe)
-    b = np.where(small, 0.5 - theta**2 / 24.0, (1.0 - np.cos(safe)) / safe**2)
-    return np.eye(3) + a * k + b * (k @ k)
+    k[..., 0, 1], k[..., 0, 2], k[..., 1, 2] = -z, y, -x
+    k[..., 1, 0], k[..., 2, 0], k[..., 2, 1] = z, -y, x
+    outer = omega[..., :, None] * omega[..., None, :] - t2[..., None, None] * np.eye(3)
+    return np.eye(3) + a * k + b * outer
+
+
+def _exp_so3_one(x, y, z):
+    """exp_so3 of one rotation vector, in scalar arithmetic (the hot path of a single solve)."""
+    t2 = x * x + y * y + z * z
+    if t2 < 1e-16:
+        a, b = 1.0 - t2 / 6.0, 0.5 - t2 / 24.0
+    else:
+        t = math.sqrt(t2)
+        a, b = math.sin(t) / t, (1.0 - math.cos(t)) / t2
+    return np.array([[1.0 - b * (y * y + z * z), b * x * y - a * z, b * x * z + a * y],
+                     [b * x * y + a * z, 1.0 - b * (x * x + z * z), b * y * z - a * x],
+                     [b * x * z - a * y, b * y * z + a * x, 1.0 - b * (x * x + y * y)]])
 
 
 def quaternion_from_matrix(rot):

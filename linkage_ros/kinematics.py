@@ -11,7 +11,7 @@ falls below min_step, the travel is out of reach and the reachable limit found i
 Nothing here raises for numerics: a Solution or Sweep carries success and a message.
 """
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 import math
 
 import numpy as np
@@ -32,7 +32,8 @@ class Settings:
     max_iter: int = 25        # Newton iterations per step
     max_step: float = 5.0     # longest continuation step
     min_step: float = 0.005   # below this a failing step means out of reach (limit to 0.01)
-    knot_step: float = 10.0   # fast sweeps: spacing of the sequential knots of a batch
+    knot_step: float = 20.0   # fast sweeps: continuation step between the knots of a batch
+    knot_tol: float = 1e-6    # fast sweeps: knots only start the batch, which converges to tol
 
 
 @dataclass(frozen=True)
@@ -114,8 +115,11 @@ class Continuation:
             return self._failure(travel, error, steps)
         return self._solution(iterations, steps)
 
-    def _walk(self, target):
-        """Advance the state to target; returns (steps, iterations, error message or '')."""
+    def _walk(self, target, trace=None):
+        """Advance the state to target; returns (steps, iterations, error message or '').
+
+        trace, if a list, receives (travel, center, rotation) of every accepted step.
+        """
         cfg = self.settings
         steps, iterations = 0, 0
         step = min(cfg.max_step, abs(target - self.travel))
@@ -126,6 +130,8 @@ class Continuation:
             ok, iterations = self._step(nxt)
             if ok:
                 steps += 1
+                if trace is not None:
+                    trace.append((self.travel, self.center, self.rotation))
                 self.reachable[0] = min(self.reachable[0], self.travel)
                 self.reachable[1] = max(self.reachable[1], self.travel)
                 step = min(2 * step, cfg.max_step)
@@ -231,39 +237,51 @@ def _sweep_of(cont, travel, center, rotation, iterations, success=True, message=
 
 
 def _batched(cont, travels):
-    """Fast sweep: sequential knots, then all positions in one batched Newton solve."""
+    """Fast sweep: knots by continuation from design, then all positions in one batched solve.
+
+    Returns None when a knot cannot be reached (the sequential walk then finds the limit).
+    """
     cfg, mech = cont.settings, cont.mech
-    low, high = min(travels.min(), 0.0), max(travels.max(), 0.0)
-    knots = [0.0]
-    poses = [(cont.center, cont.rotation)]
-    for direction, end in ((1, high), (-1, low)):
-        cont.reset()
-        travel = 0.0
-        while travel != end:
-            travel = end if abs(end - travel) <= cfg.knot_step else travel + direction * cfg.knot_step
-            if not cont.solve(travel).success:
-                return None     # the walk finds and reports the limit
-            knots.append(travel)
-            poses.append((cont.center, cont.rotation))
-    knots = np.array(knots)
-    nearest = np.argmin(np.abs(travels[:, None] - knots[None, :]), axis=1)
-    slopes = [pose_newton.tangent(mech, *pose) for pose in poses]
-    guesses = [pose_newton.predict(*poses[k], slopes[k], t - knots[k])
-               for t, k in zip(travels, nearest)]
-    guess_center = np.array([g[0] for g in guesses])
-    guess_rotation = np.array([g[1] for g in guesses])
+    knots = _knots(cont, min(travels.min(), 0.0), max(travels.max(), 0.0))
+    if knots is None:
+        return None
+    knot_travel, knot_center, knot_rotation = knots
+    nearest = np.argmin(np.abs(travels[:, None] - knot_travel[None, :]), axis=1)
+    h = travels - knot_travel[nearest]
+    guess_center, guess_rotation = pose_newton.predict(
+        knot_center[nearest], knot_rotation[nearest],
+        [s[nearest] for s in pose_newton.tangent(mech, knot_center, knot_rotation)], h)
     center, rotation, iterations, converged = pose_newton.correct_batch(
         mech, travels, guess_center, guess_rotation, cfg.tol, cfg.max_iter)
     moved = np.abs(carrier_points(mech, center, rotation)
                    - carrier_points(mech, guess_center, guess_rotation)).max(axis=(1, 2))
-    good = converged & (moved <= 0.5 * np.abs(travels - knots[nearest]) + 10 * cfg.tol)
-    for i in np.flatnonzero(~good):    # rare: walk it from its knot
+    good = converged & (moved <= 0.5 * np.abs(h) + 10 * cfg.tol)
+    for i in np.flatnonzero(~good):    # rare: walk it from design
         cont.reset()
         sol = cont.solve(travels[i])
         if not sol.success:
             return None
         center[i], rotation[i], iterations[i] = sol.wheel_center, sol.rotation, sol.iterations
     return _sweep_of(cont, travels, center, rotation, iterations)
+
+
+def _knots(cont, low, high):
+    """Poses at every continuation step from design to low and to high (mm), steps of
+    knot_step, converged to knot_tol only (they are starting points of the batched solve):
+    arrays (k,), (k, 3), (k, 3, 3); None if an end is out of reach."""
+    settings = cont.settings
+    cont.settings = replace(settings, max_step=settings.knot_step, tol=settings.knot_tol)
+    trace = [(0.0, cont.mech.design_center, np.eye(3))]
+    try:
+        for end in (high, low):
+            cont.reset()
+            if cont._walk(end, trace)[2]:
+                return None
+    finally:
+        cont.settings = settings
+        cont.reset()
+    return (np.array([t[0] for t in trace]), np.array([t[1] for t in trace]),
+            np.array([t[2] for t in trace]))
 
 
 def travel_range(start, stop, step):

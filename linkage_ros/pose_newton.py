@@ -39,16 +39,20 @@ def correct(mech, travel, center, rotation, tol, max_iter):
 
 
 def tangent(mech, center, rotation):
-    """d(center)/d(travel) (3,) and d(omega)/d(travel) (3,) by the implicit function theorem."""
+    """d(center)/d(travel) (..., 3) and d(omega)/d(travel) (..., 3) by the implicit function
+    theorem: J_free dx = -J_travel. Batched over leading axes."""
     _, jac = linearize(mech, center, rotation)
-    dx = np.linalg.solve(jac[:, FREE], -jac[:, 2])
-    return np.array([dx[0], dx[1], 1.0]), dx[2:]
+    dx = np.linalg.solve(jac[..., FREE], -jac[..., 2:3])[..., 0]
+    d_center = np.concatenate((dx[..., :2], np.ones(dx.shape[:-1] + (1,))), axis=-1)
+    return d_center, dx[..., 2:]
 
 
 def predict(center, rotation, slope, travel_step):
-    """First-order (tangent) guess of the pose travel_step (mm) further on."""
+    """First-order (tangent) guess of the pose travel_step (mm) further on. Batched: travel_step
+    (n,) with center (n, 3), rotation (n, 3, 3) and slope arrays (n, 3)."""
     d_center, d_omega = slope
-    return center + d_center * travel_step, exp_so3(d_omega * travel_step) @ rotation
+    h = np.asarray(travel_step, dtype=float)[..., None]
+    return center + d_center * h, exp_so3(d_omega * h) @ rotation
 
 
 def correct_batch(mech, travel, center, rotation, tol, max_iter):

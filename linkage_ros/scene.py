@@ -336,3 +336,18 @@ class _Checker:
             if not math.isfinite(v):
                 self.fail(where, f'coordinate {v!r} is not finite')
         return np.array(value, dtype=float)
+
+
+def mirror(scene):
+    """The scene of the opposite wheel: every point mirrored in the x-z plane (y -> -y)."""
+    flip = np.array([1.0, -1.0, 1.0])
+    constraints = tuple(Constraint(name=c.name, type=c.type, base=c.base * flip,
+                                   carrier=c.carrier * flip, steer=c.steer)
+                        for c in scene.constraints)
+    side = 'right' if scene.side == 'left' else 'left'
+    return Scene(name=f'{scene.name}_{side}', source=scene.source, side=side, units=scene.units,
+                 wheel_center=scene.wheel_center * flip,
+                 spin_axis_point=scene.spin_axis_point * flip,
+                 third_point=scene.third_point * flip, constraints=constraints,
+                 travel=scene.travel, wheel_radius=scene.wheel_radius,
+                 description=scene.description, extras=scene.extras)

@@ -1,0 +1,73 @@
+"""linkage-sweep: CSV columns, units, defaults from the scene, clear errors."""
+
+import csv
+import io
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from linkage_ros.sweep_cli import COLUMNS, main
+
+LEADING = ('travel_mm,camber_deg,toe_deg,wheel_center_x_mm,wheel_center_y_mm,'
+           'wheel_center_z_mm,qx,qy,qz,qw,residual_mm,iterations')
+
+
+def run(capsys, *argv):
+    code = main(list(argv))
+    out, err = capsys.readouterr()
+    return code, list(csv.DictReader(io.StringIO(out))), out, err
+
+
+def test_columns_are_exactly_the_documented_ones():
+    assert ','.join(COLUMNS) == LEADING
+
+
+def test_defaults_come_from_the_scene_travel_block(capsys):
+    code, rows, out, _ = run(capsys, 'five_link')
+    assert code == 0 and out.splitlines()[0] == LEADING
+    assert len(rows) == 161
+    assert float(rows[0]['travel_mm']) == -80.0 and float(rows[-1]['travel_mm']) == 80.0
+
+
+def test_table_is_in_mm_and_degrees(capsys):
+    # Reference: ../shared/refdata/five_link_test.yaml, camber -2.9175 deg at +80 mm.
+    _, rows, _, _ = run(capsys, 'five_link', '--from', '80', '--to', '80', '--step', '1')
+    assert float(rows[0]['camber_deg']) == pytest.approx(-2.9175, abs=1e-4)
+    assert float(rows[0]['wheel_center_z_mm']) == pytest.approx(380.0)
+    assert float(rows[0]['residual_mm']) <= 1e-9
+
+
+def test_metre_scene_is_tabulated_in_mm(capsys):
+    _, rows, _, _ = run(capsys, 'macpherson', '--from', '0', '--to', '10', '--step', '10')
+    assert float(rows[0]['wheel_center_y_mm']) == pytest.approx(1099.99965)
+    assert float(rows[1]['wheel_center_z_mm']) - float(rows[0]['wheel_center_z_mm']) \
+        == pytest.approx(10.0)
+
+
+def test_csv_option_writes_the_file_and_paper_method_matches(tmp_path, capsys):
+    path = tmp_path / 'out.csv'
+    assert main(['double_wishbone', '--step', '40', '--method', 'paper', '--csv', str(path)]) == 0
+    paper = np.loadtxt(path, delimiter=',', skiprows=1)
+    _, rows, _, _ = run(capsys, 'double_wishbone', '--step', '40')
+    fast = np.array([[float(r[c]) for c in COLUMNS] for r in rows])
+    assert paper[:, 3:6] == pytest.approx(fast[:, 3:6], abs=1e-9)
+
+
+def test_bad_scene_exits_2_with_the_loader_message(tmp_path, capsys):
+    path = tmp_path / 'bad.yaml'
+    path.write_text('units: furlong\n')
+    code, _, _, err = run(capsys, str(path))
+    assert code == 2 and 'units' in err and 'furlong' in err and 'Traceback' not in err
+
+
+def test_unreachable_range_exits_1_after_writing_the_rows_it_solved(capsys):
+    code, rows, _, err = run(capsys, 'five_link', '--from', '0', '--to', '1000', '--step', '100')
+    assert code == 1 and 'out of reach' in err and len(rows) >= 2
+
+
+def test_console_script_runs_as_a_module():
+    out = subprocess.run([sys.executable, '-m', 'linkage_ros.sweep_cli', 'five_link', '--step',
+                          '80'], capture_output=True, text=True, check=True)
+    assert out.stdout.splitlines()[0] == LEADING and len(out.stdout.splitlines()) == 4
