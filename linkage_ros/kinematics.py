@@ -28,7 +28,8 @@ class Settings:
     """Solver settings. Lengths in mm."""
 
     method: str = 'fast'
-    tol: float = 1e-10        # eqs. 11-12: largest coordinate change of the last iteration
+    tol: float = 1e-10        # paper: largest coordinate change in the last iteration (eqs.
+                              # 11-12); fast: largest constraint residual (a length)
     max_iter: int = 25        # Newton iterations per step
     max_step: float = 5.0     # longest continuation step
     min_step: float = 0.005   # below this a failing step means out of reach (limit to 0.01)
@@ -101,6 +102,7 @@ class Continuation:
         self.travel = 0.0
         self.center = self.mech.design_center.copy()
         self.rotation = np.eye(3)
+        self._jac = linearize(self.mech, self.center, self.rotation)[1]
         self.reachable = [0.0, 0.0]
 
     def solve(self, travel):
@@ -108,10 +110,10 @@ class Continuation:
         if not isinstance(travel, (int, float, np.floating)) or not math.isfinite(travel):
             return self._failure(travel, f'travel {travel!r} is not a finite number', 0)
         travel = float(travel)
-        state = (self.travel, self.center, self.rotation)
+        state = (self.travel, self.center, self.rotation, self._jac)
         steps, iterations, error = self._walk(travel)
         if error:
-            self.travel, self.center, self.rotation = state
+            self.travel, self.center, self.rotation, self._jac = state
             return self._failure(travel, error, steps)
         return self._solution(iterations, steps)
 
@@ -121,7 +123,7 @@ class Continuation:
         trace, if a list, receives (travel, center, rotation) of every accepted step.
         """
         cfg = self.settings
-        steps, iterations = 0, 0
+        start, steps, iterations = self.travel, 0, 0
         step = min(cfg.max_step, abs(target - self.travel))
         while self.travel != target:
             direction = math.copysign(1.0, target - self.travel)
@@ -138,39 +140,40 @@ class Continuation:
             else:
                 step /= 2
                 if step < cfg.min_step:
-                    return steps, iterations, self._out_of_reach(target, direction)
+                    return steps, iterations, self._out_of_reach(start, target, direction)
         return steps, iterations, ''
 
     def _step(self, travel):
         """One continuation step: tangent prediction, Newton correction, branch check."""
         cfg = self.settings
         h = travel - self.travel
-        slope = pose_newton.tangent(self.mech, self.center, self.rotation)
+        slope = pose_newton.slope_of(self._jac)
         guess = pose_newton.predict(self.center, self.rotation, slope, h)
         start = guess if cfg.method == 'fast' else (self.center, self.rotation)
-        center, rotation, iterations, ok = self._correct(travel, *start, cfg.tol, cfg.max_iter)
+        center, rotation, iterations, ok, jac = self._correct(travel, *start, cfg.tol,
+                                                              cfg.max_iter)
         if not ok or not on_branch(self.mech, guess, (center, rotation), h, cfg.tol):
             return False, iterations
-        self.travel, self.center, self.rotation = travel, center, rotation
+        if jac is None:
+            jac = linearize(self.mech, center, rotation)[1]
+        self.travel, self.center, self.rotation, self._jac = travel, center, rotation, jac
         return True, iterations
 
-    def _out_of_reach(self, target, direction):
-        limit = self.travel
+    def _out_of_reach(self, start, target, direction):
         low, high = self.reachable
-        return (f'travel {target:g} mm is out of reach: continuation from {0:g} mm stops at '
-                f'{limit:.3f} mm ({"bump" if direction > 0 else "rebound"} limit within '
-                f'{2 * self.settings.min_step:g} mm); reachable range found: '
+        return (f'travel {target:g} mm is out of reach: continuation from {start:g} mm stops '
+                f'at {self.travel:.3f} mm ({"bump" if direction > 0 else "rebound"} limit '
+                f'within {2 * self.settings.min_step:g} mm); reachable range found: '
                 f'[{low:.3f}, {high:.3f}] mm')
 
     def _solution(self, iterations, steps):
         camber, toe = camber_toe(self.rotation @ self.mech.spin_axis, self.scene.side_sign)
-        _, jac = linearize(self.mech, self.center, self.rotation)
         return Solution(
             travel=self.travel, success=True, message='ok', wheel_center=self.center.copy(),
             rotation=self.rotation.copy(), camber=float(camber), toe=float(toe),
             iterations=iterations, residual=float(length_errors(self.mech, self.center,
                                                                 self.rotation)),
-            substeps=steps, condition=float(np.linalg.cond(jac[:, pose_newton.FREE])),
+            substeps=steps, condition=float(np.linalg.cond(self._jac[:, pose_newton.FREE])),
             reachable=tuple(self.reachable))
 
     def _failure(self, travel, message, steps):
@@ -250,12 +253,14 @@ def _batched(cont, travels):
     h = travels - knot_travel[nearest]
     guess_center, guess_rotation = pose_newton.predict(
         knot_center[nearest], knot_rotation[nearest],
-        [s[nearest] for s in pose_newton.tangent(mech, knot_center, knot_rotation)], h)
+        [s[nearest] for s in pose_newton.slope_of(linearize(mech, knot_center, knot_rotation)[1])],
+        h)
     center, rotation, iterations, converged = pose_newton.correct_batch(
         mech, travels, guess_center, guess_rotation, cfg.tol, cfg.max_iter)
     moved = np.abs(carrier_points(mech, center, rotation)
                    - carrier_points(mech, guess_center, guess_rotation)).max(axis=(1, 2))
-    good = converged & (moved <= 0.5 * np.abs(h) + 10 * cfg.tol)
+    # Knots hold to knot_tol only, so a position at a knot may move by about that much.
+    good = converged & (moved <= 0.5 * np.abs(h) + 1e3 * cfg.knot_tol)
     for i in np.flatnonzero(~good):    # rare: walk it from design
         cont.reset()
         sol = cont.solve(travels[i])

@@ -149,7 +149,8 @@ def gauss_jordan(a, b):
 def correct(model, travel, center, rotation, tol, max_iter):
     """Newton-Kantorovich from the pose (center, rotation) to the pose at travel (mm).
 
-    Same contract as pose_newton.correct: returns (center, rotation, iterations, converged).
+    Same contract as pose_newton.correct: returns (center, rotation, iterations, converged,
+    jacobian); the jacobian is None (the paper's is not the pose Jacobian).
     """
     m, n, p = points_of_pose(model, center, rotation)
     x = np.concatenate((m[:2], n, p))
@@ -157,19 +158,19 @@ def correct(model, travel, center, rotation, tol, max_iter):
     for iteration in range(1, max_iter + 1):
         f, jac = system(model, x, z_m)
         if f is None:
-            return center, rotation, iteration, False
+            return center, rotation, iteration, False, None
         try:
             dx = gauss_jordan(jac, -f)
         except np.linalg.LinAlgError:
-            return center, rotation, iteration, False
+            return center, rotation, iteration, False, None
         x = x + dx
         step = np.max(np.abs(dx))        # eqs. 11-12
         if not np.isfinite(step):
-            return center, rotation, iteration, False
+            return center, rotation, iteration, False, None
         if step <= tol:
             m, n, p = unpack(x, z_m)
             if joints_of(model, m, n, p) is None:
-                return center, rotation, iteration, False
+                return center, rotation, iteration, False, None
             new_center, new_rotation = pose_of_points(model, m, n, p)
-            return new_center, new_rotation, iteration, True
-    return center, rotation, max_iter, False
+            return new_center, new_rotation, iteration, True, None
+    return center, rotation, max_iter, False, None

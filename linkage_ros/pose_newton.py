@@ -17,34 +17,39 @@ FREE = [0, 1, 3, 4, 5]   # Jacobian columns of the unknowns; column 2 is dZ_M (t
 def correct(mech, travel, center, rotation, tol, max_iter):
     """Newton iterations from (center, rotation) to the pose at travel (mm).
 
-    Stops when the largest change of a carrier coordinate in one iteration is <= tol (mm),
-    the test of the paper's eqs. 11-12. Returns (center, rotation, iterations, converged).
+    Stops when every guidance equation holds to tol (mm, a length). Returns (center,
+    rotation, iterations, converged, jacobian at the returned pose): the Jacobian serves
+    the next tangent and the condition number without another linearization.
     """
     center = np.array(center, dtype=float)
     center[2] = mech.design_center[2] + travel
-    for iteration in range(1, max_iter + 1):
+    for iteration in range(max_iter + 1):
         f, jac = linearize(mech, center, rotation)
+        worst = np.abs(f).max()
+        if worst <= tol:
+            return center, rotation, iteration, True, jac
+        if iteration == max_iter or not np.isfinite(worst):
+            break
         try:
             dx = np.linalg.solve(jac[:, FREE], -f)
         except np.linalg.LinAlgError:
-            return center, rotation, iteration, False
+            break
         center[:2] += dx[:2]
         rotation = exp_so3(dx[2:]) @ rotation
-        step = max(abs(dx[0]), abs(dx[1]), mech.lever * np.sqrt(dx[2:] @ dx[2:]))
-        if not np.isfinite(step):
-            return center, rotation, iteration, False
-        if step <= tol:
-            return center, rotation, iteration, True
-    return center, rotation, max_iter, False
+    return center, rotation, iteration, False, None
 
 
-def tangent(mech, center, rotation):
-    """d(center)/d(travel) (..., 3) and d(omega)/d(travel) (..., 3) by the implicit function
-    theorem: J_free dx = -J_travel. Batched over leading axes."""
-    _, jac = linearize(mech, center, rotation)
+def slope_of(jac):
+    """d(center)/d(travel) (..., 3) and d(omega)/d(travel) (..., 3) from the Jacobian at a
+    solution, by the implicit function theorem: J_free dx = -J_travel. Batched."""
     dx = np.linalg.solve(jac[..., FREE], -jac[..., 2:3])[..., 0]
     d_center = np.concatenate((dx[..., :2], np.ones(dx.shape[:-1] + (1,))), axis=-1)
     return d_center, dx[..., 2:]
+
+
+def tangent(mech, center, rotation):
+    """slope_of() at the pose (center, rotation)."""
+    return slope_of(linearize(mech, center, rotation)[1])
 
 
 def predict(center, rotation, slope, travel_step):
@@ -65,23 +70,23 @@ def correct_batch(mech, travel, center, rotation, tol, max_iter):
     rotation = np.array(rotation, dtype=float)
     center[:, 2] = mech.design_center[2] + travel
     iterations = np.zeros(len(travel), dtype=int)
-    active = np.ones(len(travel), dtype=bool)
-    for _ in range(max_iter):
-        idx = np.flatnonzero(active)
-        if not len(idx):
-            break
+    converged = np.zeros(len(travel), dtype=bool)
+    idx = np.arange(len(travel))
+    for iteration in range(max_iter + 1):
         f, jac = linearize(mech, center[idx], rotation[idx])
+        worst = np.abs(f).max(axis=1)
+        done = worst <= tol
+        converged[idx[done]] = True
+        iterations[idx[done]] = iteration
+        keep = ~done & np.isfinite(worst)
+        idx, f, jac = idx[keep], f[keep], jac[keep]
+        if not len(idx) or iteration == max_iter:
+            break
         try:
             dx = np.linalg.solve(jac[:, :, FREE], -f[..., None])[..., 0]
         except np.linalg.LinAlgError:
             break
         center[idx, :2] += dx[:, :2]
         rotation[idx] = exp_so3(dx[:, 2:]) @ rotation[idx]
-        iterations[idx] += 1
-        step = np.maximum(np.abs(dx[:, :2]).max(axis=1),
-                          mech.lever * np.linalg.norm(dx[:, 2:], axis=1))
-        active[idx[step <= tol]] = False
-        active[idx[~np.isfinite(step)]] = False
-        iterations[idx[~np.isfinite(step)]] = -1
-    converged = ~active & (iterations > 0)
+    iterations[~converged] = max_iter
     return center, rotation, iterations, converged
