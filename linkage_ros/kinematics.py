@@ -16,11 +16,12 @@ import math
 
 import numpy as np
 
-from . import paper_method, pose_newton
+from . import arclength, paper_method, pose_newton
 from .geometry import camber_toe, quaternion_from_matrix
 from .mechanism import carrier_points, compile_scene, length_errors, linearize
 
 METHODS = ('paper', 'fast')
+ARC_TOL = 1e-9   # mm: residual tolerance on the arclength path to a travel limit
 
 
 @dataclass(frozen=True)
@@ -134,14 +135,47 @@ class Continuation:
                 steps += 1
                 if trace is not None:
                     trace.append((self.travel, self.center, self.rotation))
-                self.reachable[0] = min(self.reachable[0], self.travel)
-                self.reachable[1] = max(self.reachable[1], self.travel)
+                self._extend_reachable(self.travel)
                 step = min(2 * step, cfg.max_step)
             else:
                 step /= 2
                 if step < cfg.min_step:
-                    return steps, iterations, self._out_of_reach(start, target, direction)
+                    return self._walk_arclength(start, target, steps)
         return steps, iterations, ''
+
+    def _walk_arclength(self, start, target, steps):
+        """Continuation in travel stalled: follow the curve by arclength to the target, or
+        to the travel limit (turning point) that comes first."""
+        cfg = self.settings
+        status, found = arclength.walk(self.mech, self.center, self.rotation, self.travel,
+                                       target, ARC_TOL, cfg.max_iter)
+        if status == 'reached':
+            (near_center, near_rotation, _), length = found
+            center, rotation, iterations, ok, jac = pose_newton.correct(
+                self.mech, target, near_center, near_rotation, min(cfg.tol, ARC_TOL),
+                cfg.max_iter)
+            moved = carrier_points(self.mech, center, rotation) - carrier_points(
+                self.mech, near_center, near_rotation)
+            if ok and np.abs(moved).max() <= 2 * length:   # within the last arc step
+                self.travel, self.center, self.rotation, self._jac = (target, center,
+                                                                      rotation, jac)
+                self._extend_reachable(target)
+                return steps + 1, iterations, ''
+            found = self.travel
+        direction = math.copysign(1.0, target - start)
+        limit = found if status == 'limit' else self.travel
+        self._extend_reachable(limit)
+        low, high = self.reachable
+        what = ('a turning point, located to 0.01 mm' if status == 'limit'
+                else 'the solution curve could not be followed further')
+        return steps, 0, (f'travel {target:g} mm is out of reach: continuation from {start:g} mm '
+                          f'ends at the {"bump" if direction > 0 else "rebound"} limit '
+                          f'{limit:.3f} mm ({what}); reachable range found: '
+                          f'[{low:.3f}, {high:.3f}] mm')
+
+    def _extend_reachable(self, travel):
+        self.reachable[0] = min(self.reachable[0], travel)
+        self.reachable[1] = max(self.reachable[1], travel)
 
     def _step(self, travel):
         """One continuation step: tangent prediction, Newton correction, branch check."""
@@ -158,13 +192,6 @@ class Continuation:
             jac = linearize(self.mech, center, rotation)[1]
         self.travel, self.center, self.rotation, self._jac = travel, center, rotation, jac
         return True, iterations
-
-    def _out_of_reach(self, start, target, direction):
-        low, high = self.reachable
-        return (f'travel {target:g} mm is out of reach: continuation from {start:g} mm stops '
-                f'at {self.travel:.3f} mm ({"bump" if direction > 0 else "rebound"} limit '
-                f'within {2 * self.settings.min_step:g} mm); reachable range found: '
-                f'[{low:.3f}, {high:.3f}] mm')
 
     def _solution(self, iterations, steps):
         camber, toe = camber_toe(self.rotation @ self.mech.spin_axis, self.scene.side_sign)
