@@ -18,10 +18,10 @@ from .geometry import exp_so3
 from .mechanism import linearize
 
 
-def curve_system(mech, center, rotation):
+def curve_system(mech, center, rotation, rack=0.0):
     """Residuals (5,) and the (5, 6) Jacobian in curve coordinates at a pose."""
-    f, jac = linearize(mech, center, rotation)
-    return f, np.column_stack((jac[:, :2], jac[:, 3:] / mech.lever, jac[:, 2]))
+    f, jac = linearize(mech, center, rotation, rack)
+    return f, np.column_stack((jac[:, :2], jac[:, 3:6] / mech.lever, jac[:, 2]))
 
 
 def curve_tangent(jac, previous):
@@ -39,7 +39,7 @@ def move(mech, center, rotation, travel, dy):
     return center, exp_so3(dy[2:5] / mech.lever) @ rotation, travel
 
 
-def arc_step(mech, point, tangent, dsigma, tol, max_iter):
+def arc_step(mech, point, tangent, dsigma, tol, max_iter, rack=0.0):
     """One predictor-corrector step of length dsigma along tangent from point.
 
     point = (center, rotation, travel). The corrector stays on the hyperplane square to the
@@ -48,7 +48,7 @@ def arc_step(mech, point, tangent, dsigma, tol, max_iter):
     center, rotation, travel = move(mech, *point, dsigma * tangent)
     offset = 0.0   # tangent . (y - y_predicted), kept at 0
     for _ in range(max_iter + 1):
-        f, jac = curve_system(mech, center, rotation)
+        f, jac = curve_system(mech, center, rotation, rack)
         if np.abs(f).max() <= tol and abs(offset) <= tol:
             return (center, rotation, travel), jac
         dy = np.linalg.solve(np.vstack((jac, tangent)), -np.append(f, offset))
@@ -59,9 +59,9 @@ def arc_step(mech, point, tangent, dsigma, tol, max_iter):
     return None
 
 
-def walk(mech, center, rotation, travel, target, tol, max_iter, start_step=0.05,
+def walk(mech, center, rotation, travel, target, tol, max_iter, rack=0.0, start_step=0.05,
          max_step=2.0, resolution=0.02, max_steps=2000):
-    """Follow the solution curve from the pose at travel towards target (mm).
+    """Follow the solution curve from the pose at travel towards target (mm), rack fixed.
 
     Returns ('reached', ((center, rotation, travel), step)) with the curve point just beyond
     target and the arclength of the last step (the pose at target lies on the curve within
@@ -70,11 +70,11 @@ def walk(mech, center, rotation, travel, target, tol, max_iter, start_step=0.05,
     """
     direction = math.copysign(1.0, target - travel)
     point = (center, rotation, travel)
-    _, jac = curve_system(mech, center, rotation)
+    _, jac = curve_system(mech, center, rotation, rack)
     tangent = curve_tangent(jac, np.eye(6)[5] * direction)
     step = start_step
     for _ in range(max_steps):
-        found = arc_step(mech, point, tangent, step, tol, max_iter)
+        found = arc_step(mech, point, tangent, step, tol, max_iter, rack)
         if found is None:
             step /= 2
             if step < 1e-6:

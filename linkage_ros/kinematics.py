@@ -18,7 +18,7 @@ import numpy as np
 
 from . import arclength, paper_method, pose_newton
 from .geometry import camber_toe, quaternion_from_matrix
-from .mechanism import carrier_points, compile_scene, length_errors, linearize
+from .mechanism import carrier_points, compile_scene, length_errors, linearize, rack_derivative
 
 METHODS = ('paper', 'fast')
 ARC_TOL = 1e-9   # mm: residual tolerance on the arclength path to a travel limit
@@ -54,6 +54,7 @@ class Solution:
     substeps: int = 0            # continuation steps walked for this position
     condition: float = math.nan  # condition number of the Jacobian at the solution
     reachable: tuple = (0.0, 0.0)   # travel range (mm) known to be reachable so far
+    rack: float = 0.0            # steering rack travel (mm), + = rack to the left
 
     @property
     def quaternion(self):
@@ -75,6 +76,7 @@ class Sweep:
     success: bool = True
     message: str = ''
     joints: np.ndarray = field(default=None, repr=False)   # (n, m, 3) carrier points, mm
+    rack: float = 0.0            # steering rack travel of the sweep (mm)
 
     @property
     def quaternion(self):
@@ -99,40 +101,54 @@ class Continuation:
         self.reset()
 
     def reset(self):
-        """Back to the design position (travel 0), the paper's eq. 9 initial solution."""
-        self.travel = 0.0
+        """Back to the design position (travel 0, rack 0), the paper's eq. 9 initial solution."""
+        self.travel, self.rack = 0.0, 0.0
         self.center = self.mech.design_center.copy()
         self.rotation = np.eye(3)
         self._jac = linearize(self.mech, self.center, self.rotation)[1]
         self.reachable = [0.0, 0.0]
 
-    def solve(self, travel):
-        """Solve the pose at travel (mm) from the current state; commit it if it succeeds."""
-        if not isinstance(travel, (int, float, np.floating)) or not math.isfinite(travel):
-            return self._failure(travel, f'travel {travel!r} is not a finite number', 0)
-        travel = float(travel)
-        state = (self.travel, self.center, self.rotation, self._jac)
-        steps, iterations, error = self._walk(travel)
+    def solve(self, travel, rack=None):
+        """Solve the pose at travel (mm) and steering rack (mm; None = unchanged) from the
+        current state; commit it if it succeeds."""
+        rack = self.rack if rack is None else rack
+        for name, value in (('travel', travel), ('rack', rack)):
+            if not isinstance(value, (int, float, np.floating)) or not math.isfinite(value):
+                return self._failure(travel, f'{name} {value!r} is not a finite number', 0)
+        state = (self.travel, self.rack, self.center, self.rotation, self._jac,
+                 list(self.reachable))
+        if rack != self.rack:
+            self.reachable = [self.travel, self.travel]   # the range explored at this rack
+        steps, iterations, error = self._walk(float(travel), float(rack))
         if error:
-            self.travel, self.center, self.rotation, self._jac = state
-            return self._failure(travel, error, steps)
+            explored = tuple(self.reachable)
+            (self.travel, self.rack, self.center, self.rotation, self._jac,
+             self.reachable) = state
+            if rack == self.rack:      # what was explored still holds at this rack
+                self.reachable = list(explored)
+            return self._failure(travel, error, steps, explored)
         return self._solution(iterations, steps)
 
-    def _walk(self, target, trace=None):
-        """Advance the state to target; returns (steps, iterations, error message or '').
+    def _walk(self, target, rack=None, trace=None):
+        """Advance the state to (target travel, rack) along a straight line; returns (steps,
+        iterations, error message or '').
 
         trace, if a list, receives (travel, center, rotation) of every accepted step.
         """
         cfg = self.settings
-        start, steps, iterations = self.travel, 0, 0
-        step = min(cfg.max_step, abs(target - self.travel))
-        while self.travel != target:
-            direction = math.copysign(1.0, target - self.travel)
-            step = min(step, abs(target - self.travel))
-            nxt = target if step == abs(target - self.travel) else self.travel + direction * step
-            ok, iterations = self._step(nxt)
+        rack = self.rack if rack is None else rack
+        start, start_rack, steps, iterations = self.travel, self.rack, 0, 0
+        length = max(abs(target - start), abs(rack - start_rack))
+        done = 0.0          # distance walked along the line (mm)
+        step = min(cfg.max_step, length)
+        while done < length:
+            step = min(step, length - done)
+            fraction = 1.0 if step == length - done else (done + step) / length
+            ok, iterations = self._step(start + fraction * (target - start),
+                                        start_rack + fraction * (rack - start_rack))
             if ok:
                 steps += 1
+                done = length if fraction == 1.0 else done + step
                 if trace is not None:
                     trace.append((self.travel, self.center, self.rotation))
                 self._extend_reachable(self.travel)
@@ -140,7 +156,12 @@ class Continuation:
             else:
                 step /= 2
                 if step < cfg.min_step:
-                    return self._walk_arclength(start, target, steps)
+                    if rack == start_rack:
+                        return self._walk_arclength(start, target, steps)
+                    return steps, iterations, (
+                        f'travel {target:g} mm at rack {rack:g} mm is out of reach: '
+                        f'continuation from travel {start:g} mm, rack {start_rack:g} mm stops '
+                        f'at travel {self.travel:.3f} mm, rack {self.rack:.3f} mm')
         return steps, iterations, ''
 
     def _walk_arclength(self, start, target, steps):
@@ -148,12 +169,12 @@ class Continuation:
         to the travel limit (turning point) that comes first."""
         cfg = self.settings
         status, found = arclength.walk(self.mech, self.center, self.rotation, self.travel,
-                                       target, ARC_TOL, cfg.max_iter)
+                                       target, ARC_TOL, cfg.max_iter, rack=self.rack)
         if status == 'reached':
             (near_center, near_rotation, _), length = found
             center, rotation, iterations, ok, jac = pose_newton.correct(
                 self.mech, target, near_center, near_rotation, min(cfg.tol, ARC_TOL),
-                cfg.max_iter)
+                cfg.max_iter, self.rack)
             moved = carrier_points(self.mech, center, rotation) - carrier_points(
                 self.mech, near_center, near_rotation)
             if ok and np.abs(moved).max() <= 2 * length:   # within the last arc step
@@ -177,20 +198,27 @@ class Continuation:
         self.reachable[0] = min(self.reachable[0], travel)
         self.reachable[1] = max(self.reachable[1], travel)
 
-    def _step(self, travel):
+    def _step(self, travel, rack):
         """One continuation step: tangent prediction, Newton correction, branch check."""
         cfg = self.settings
-        h = travel - self.travel
-        slope = pose_newton.slope_of(self._jac)
-        guess = pose_newton.predict(self.center, self.rotation, slope, h)
+        h, h_rack = travel - self.travel, rack - self.rack
+        d_center, d_omega = pose_newton.slope_of(self._jac)
+        d_center, d_omega = d_center * h, d_omega * h
+        if h_rack:
+            column = rack_derivative(self.mech, self.center, self.rotation, self.rack)
+            r_center, r_omega = pose_newton.rack_slope_of(self._jac, column)
+            d_center, d_omega = d_center + r_center * h_rack, d_omega + r_omega * h_rack
+        guess = pose_newton.predict(self.center, self.rotation, (d_center, d_omega), 1.0)
         start = guess if cfg.method == 'fast' else (self.center, self.rotation)
         center, rotation, iterations, ok, jac = self._correct(travel, *start, cfg.tol,
-                                                              cfg.max_iter)
-        if not ok or not on_branch(self.mech, guess, (center, rotation), h, cfg.tol):
+                                                              cfg.max_iter, rack)
+        if not ok or not on_branch(self.mech, guess, (center, rotation),
+                                   max(abs(h), abs(h_rack)), cfg.tol):
             return False, iterations
         if jac is None:
-            jac = linearize(self.mech, center, rotation)[1]
-        self.travel, self.center, self.rotation, self._jac = travel, center, rotation, jac
+            jac = linearize(self.mech, center, rotation, rack)[1]
+        self.travel, self.rack, self.center, self.rotation, self._jac = (travel, rack, center,
+                                                                         rotation, jac)
         return True, iterations
 
     def _solution(self, iterations, steps):
@@ -199,13 +227,14 @@ class Continuation:
             travel=self.travel, success=True, message='ok', wheel_center=self.center.copy(),
             rotation=self.rotation.copy(), camber=float(camber), toe=float(toe),
             iterations=iterations, residual=float(length_errors(self.mech, self.center,
-                                                                self.rotation)),
+                                                                self.rotation, self.rack)),
+            rack=self.rack,
             substeps=steps, condition=float(np.linalg.cond(self._jac[:, pose_newton.FREE])),
             reachable=tuple(self.reachable))
 
-    def _failure(self, travel, message, steps):
+    def _failure(self, travel, message, steps, reachable=None):
         return Solution(travel=travel, success=False, message=message, substeps=steps,
-                        reachable=tuple(self.reachable))
+                        reachable=reachable or tuple(self.reachable), rack=self.rack)
 
     def joints(self, solution):
         """Carrier joint positions {name: (3,) mm} of a solved position."""
@@ -223,8 +252,9 @@ def on_branch(mech, guess, found, travel_step, tol):
     return float(np.max(np.abs(moved))) <= 0.5 * abs(travel_step) + 10 * tol
 
 
-def sweep(scene, travels, method='fast', **settings):
-    """Solve the travels (mm, in the given order) by continuation; returns a Sweep.
+def sweep(scene, travels, method='fast', rack=0.0, **settings):
+    """Solve the travels (mm, in the given order) at a steering rack position (mm) by
+    continuation; returns a Sweep.
 
     The paper method walks the positions one after another. The fast method solves knots
     every knot_step mm by continuation and then every position at once by batched Newton,
@@ -232,6 +262,10 @@ def sweep(scene, travels, method='fast', **settings):
     """
     travels = np.asarray(travels, dtype=float).ravel()
     cont = Continuation(scene, method=method, **settings)
+    if rack:
+        first = cont.solve(0.0, rack)   # steer at design travel first, then sweep
+        if not first.success:
+            return _table(cont, [], rack, success=False, message=first.message)
     if method == 'fast' and len(travels) > 2 and np.all(np.isfinite(travels)):
         batch = _batched(cont, travels)
         if batch is not None:
@@ -244,74 +278,75 @@ def _sequential(cont, travels):
     for travel in travels:
         sol = cont.solve(travel)
         if not sol.success:
-            return _table(cont, rows, success=False, message=sol.message)
+            return _table(cont, rows, cont.rack, success=False, message=sol.message)
         rows.append(sol)
-    return _table(cont, rows)
+    return _table(cont, rows, cont.rack)
 
 
-def _table(cont, rows, success=True, message='ok'):
+def _table(cont, rows, rack, success=True, message='ok'):
     n = len(rows)
     center = np.array([r.wheel_center for r in rows]).reshape(n, 3)
     rotation = np.array([r.rotation for r in rows]).reshape(n, 3, 3)
     return _sweep_of(cont, np.array([r.travel for r in rows]), center, rotation,
-                     np.array([r.iterations for r in rows], dtype=int), success, message)
+                     np.array([r.iterations for r in rows], dtype=int), rack, success, message)
 
 
-def _sweep_of(cont, travel, center, rotation, iterations, success=True, message='ok'):
+def _sweep_of(cont, travel, center, rotation, iterations, rack, success=True, message='ok'):
     mech = cont.mech
     camber, toe = camber_toe(rotation @ mech.spin_axis, cont.scene.side_sign)
     return Sweep(travel=travel, wheel_center=center, rotation=rotation, camber=camber, toe=toe,
-                 iterations=iterations, residual=length_errors(mech, center, rotation),
-                 success=success, message=message,
+                 iterations=iterations, residual=length_errors(mech, center, rotation, rack),
+                 success=success, message=message, rack=rack,
                  joints=carrier_points(mech, center, rotation))
 
 
 def _batched(cont, travels):
-    """Fast sweep: knots by continuation from design, then all positions in one batched solve.
-
-    Returns None when a knot cannot be reached (the sequential walk then finds the limit).
+    """Fast sweep: knots by continuation from the state at travel 0, then all positions in
+    one batched solve. Returns None when a knot cannot be reached (the sequential walk then
+    finds the limit).
     """
-    cfg, mech = cont.settings, cont.mech
+    cfg, mech, rack = cont.settings, cont.mech, cont.rack
     knots = _knots(cont, min(travels.min(), 0.0), max(travels.max(), 0.0))
     if knots is None:
         return None
     knot_travel, knot_center, knot_rotation = knots
     nearest = np.argmin(np.abs(travels[:, None] - knot_travel[None, :]), axis=1)
     h = travels - knot_travel[nearest]
+    slopes = pose_newton.slope_of(linearize(mech, knot_center, knot_rotation, rack)[1])
     guess_center, guess_rotation = pose_newton.predict(
-        knot_center[nearest], knot_rotation[nearest],
-        [s[nearest] for s in pose_newton.slope_of(linearize(mech, knot_center, knot_rotation)[1])],
-        h)
+        knot_center[nearest], knot_rotation[nearest], [s[nearest] for s in slopes], h)
     center, rotation, iterations, converged = pose_newton.correct_batch(
-        mech, travels, guess_center, guess_rotation, cfg.tol, cfg.max_iter)
+        mech, travels, guess_center, guess_rotation, cfg.tol, cfg.max_iter, rack)
     moved = np.abs(carrier_points(mech, center, rotation)
                    - carrier_points(mech, guess_center, guess_rotation)).max(axis=(1, 2))
     # Knots hold to knot_tol only, so a position at a knot may move by about that much.
     good = converged & (moved <= 0.5 * np.abs(h) + 1e3 * cfg.knot_tol)
-    for i in np.flatnonzero(~good):    # rare: walk it from design
-        cont.reset()
+    origin = (cont.travel, cont.rack, cont.center, cont.rotation, cont._jac)
+    for i in np.flatnonzero(~good):    # rare: walk it from travel 0
+        cont.travel, cont.rack, cont.center, cont.rotation, cont._jac = origin
         sol = cont.solve(travels[i])
         if not sol.success:
             return None
         center[i], rotation[i], iterations[i] = sol.wheel_center, sol.rotation, sol.iterations
-    return _sweep_of(cont, travels, center, rotation, iterations)
+    return _sweep_of(cont, travels, center, rotation, iterations, rack)
 
 
 def _knots(cont, low, high):
-    """Poses at every continuation step from design to low and to high (mm), steps of
-    knot_step, converged to knot_tol only (they are starting points of the batched solve):
-    arrays (k,), (k, 3), (k, 3, 3); None if an end is out of reach."""
+    """Poses at every continuation step from the current state (travel 0) to low and to high
+    (mm), steps of knot_step, converged to knot_tol only (they are starting points of the
+    batched solve): arrays (k,), (k, 3), (k, 3, 3); None if an end is out of reach."""
     settings = cont.settings
+    origin = (cont.travel, cont.rack, cont.center, cont.rotation, cont._jac)
     cont.settings = replace(settings, max_step=settings.knot_step, tol=settings.knot_tol)
-    trace = [(0.0, cont.mech.design_center, np.eye(3))]
+    trace = [(cont.travel, cont.center, cont.rotation)]
     try:
         for end in (high, low):
-            cont.reset()
-            if cont._walk(end, trace)[2]:
+            cont.travel, cont.rack, cont.center, cont.rotation, cont._jac = origin
+            if cont._walk(end, trace=trace)[2]:
                 return None
     finally:
         cont.settings = settings
-        cont.reset()
+        cont.travel, cont.rack, cont.center, cont.rotation, cont._jac = origin
     return (np.array([t[0] for t in trace]), np.array([t[1] for t in trace]),
             np.array([t[2] for t in trace]))
 

@@ -26,6 +26,7 @@ class Mechanism:
     dist_point: np.ndarray       # (k,) index into offsets
     dist_base: np.ndarray        # (k, 3)
     dist_length: np.ndarray      # (k,)
+    dist_steer: np.ndarray       # (k,) 1.0 where the base point moves with the steering rack
     line_point: np.ndarray       # (q,) index into offsets
     line_base: np.ndarray        # (q, 3) top mount T
     line_normal: np.ndarray      # (q, 3) carrier-fixed unit normals of the strut line
@@ -50,7 +51,7 @@ def compile_scene(scene):
     """Build the Mechanism of a validated Scene."""
     m0 = scene.wheel_center
     names, offsets = [], []
-    dist_point, dist_base, dist_length, eq_names = [], [], [], []
+    dist_point, dist_base, dist_length, dist_steer, eq_names = [], [], [], [], []
     line_point, line_base, line_normal, line_names = [], [], [], []
     for c in scene.constraints:
         idx = len(offsets)
@@ -61,6 +62,7 @@ def compile_scene(scene):
                 dist_point.append(idx)
                 dist_base.append(base)
                 dist_length.append(np.linalg.norm(c.carrier - base))
+                dist_steer.append(1.0 if c.steer == 'rack' else 0.0)
                 eq_names.append(c.name if len(c.base) == 1 else f'{c.name}[{j}]')
         else:
             for j, normal in enumerate(line_normals(c.base[0] - c.carrier, scene.wheel_center
@@ -73,7 +75,8 @@ def compile_scene(scene):
     return Mechanism(
         design_center=m0.copy(), offsets=offsets, point_names=tuple(names),
         dist_point=np.array(dist_point, dtype=int), dist_base=np.array(dist_base).reshape(-1, 3),
-        dist_length=np.array(dist_length), line_point=np.array(line_point, dtype=int),
+        dist_length=np.array(dist_length), dist_steer=np.array(dist_steer),
+        line_point=np.array(line_point, dtype=int),
         line_base=np.array(line_base).reshape(-1, 3),
         line_normal=np.array(line_normal).reshape(-1, 3),
         equation_names=tuple(eq_names + line_names),
@@ -94,15 +97,26 @@ def carrier_points(mech, center, rotation):
     return center[..., None, :] + mech.offsets @ np.swapaxes(rotation, -1, -2)
 
 
-def residuals(mech, center, rotation):
+def residuals(mech, center, rotation, rack=0.0):
     """The guidance equations (mm), shape (..., 5); zero on the mechanism."""
-    return linearize(mech, center, rotation)[0]
+    return linearize(mech, center, rotation, rack)[0]
 
 
-def length_errors(mech, center, rotation):
+def rack_derivative(mech, center, rotation, rack=0.0):
+    """d(residuals)/d(rack) (..., 5): the steer rows' base points move along +y."""
+    r = mech.offsets[mech.dist_point] @ np.swapaxes(rotation, -1, -2)
+    d_y = r[..., 1] + (center[..., None, 1] - mech.dist_base[:, 1]) \
+        - np.asarray(rack)[..., None] * mech.dist_steer
+    out = np.zeros(center.shape[:-1] + (mech.n_equations,))
+    out[..., :len(mech.dist_length)] = -d_y / mech.dist_length * mech.dist_steer
+    return out
+
+
+def length_errors(mech, center, rotation, rack=0.0):
     """Largest constraint violation (mm) as a true length: link length error or strut offset."""
     pts = carrier_points(mech, center, rotation)
     d = pts[..., mech.dist_point, :] - mech.dist_base
+    d[..., 1] -= np.asarray(rack)[..., None] * mech.dist_steer
     dist = np.abs(np.linalg.norm(d, axis=-1) - mech.dist_length)
     normals = mech.line_normal @ np.swapaxes(rotation, -1, -2)
     line = np.abs(np.einsum('...i,...i->...', mech.line_base - pts[..., mech.line_point, :],
@@ -110,11 +124,13 @@ def length_errors(mech, center, rotation):
     return np.max(np.concatenate((dist, line), axis=-1), axis=-1)
 
 
-def linearize(mech, center, rotation):
+def linearize(mech, center, rotation, rack=0.0):
     """Residuals (..., 5) and their Jacobian d/d(M, omega) (..., 5, 6).
 
     omega is a small rotation applied in the vehicle frame (R <- exp(omega) R); Jacobian
     column 2 (dZ_M) is the travel direction, columns 0, 1, 3, 4, 5 the unknowns.
+    rack (mm, scalar or (...,)): steering rack travel, + = to the left, moving the base
+    points of steer: rack constraints along y.
     Written for speed: it is the inner loop of every solve.
     """
     rt = np.swapaxes(rotation, -1, -2)
@@ -124,6 +140,8 @@ def linearize(mech, center, rotation):
     # sphere rows: F = (|d|^2 - l^2) / 2l, dF = (d / l) . (dM + omega x r)
     r = mech.offsets[mech.dist_point] @ rt
     d = r + (center[..., None, :] - mech.dist_base)
+    if np.any(rack):
+        d[..., 1] -= np.asarray(rack)[..., None] * mech.dist_steer
     f[..., :k] = (np.einsum('...i,...i->...', d, d) - mech.dist_length**2) * mech.half_inv_length
     d *= mech.inv_length
     jac[..., :k, :3] = d

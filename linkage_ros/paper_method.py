@@ -27,7 +27,7 @@ class PaperModel:
     rigid: np.ndarray      # |PN|, |PM|, |NM| (eq. 1')
     radii: np.ndarray      # (j, 3): |BM|, |BN|, |BP| per carrier joint (eq. 5')
     signs: np.ndarray      # (j,): side of the M-N-P plane at design
-    equations: tuple       # ('sphere', joint, base, length) or ('line', joint, aux, base)
+    equations: tuple       # ('sphere', joint, base, length, steers) or ('line', joint, aux, top)
     frame0: np.ndarray     # design frame of M, N, P
 
 
@@ -44,7 +44,8 @@ def build(scene, mech):
         b = add_joint(c.carrier)
         if c.type in ('sphere', 'circle'):
             for base in c.base:
-                equations.append(('sphere', b, base, np.linalg.norm(c.carrier - base)))
+                equations.append(('sphere', b, base, np.linalg.norm(c.carrier - base),
+                                  1.0 if c.steer == 'rack' else 0.0))
     for i, point in enumerate(mech.line_point):
         # A strut line: T stays in the carrier plane through C spanned by the line and normal
         # i; the normal is carried by an auxiliary carrier point E = C + L n (a joint too).
@@ -89,8 +90,10 @@ def joints_of(model, m, n, p):
     return np.array(out)
 
 
-def system(model, x, z_m):
-    """F (8,) and Jacobian (8, 8) of eqs. 1-4 at x; (None, None) if a joint cannot be placed."""
+def system(model, x, z_m, rack=0.0):
+    """F (8,) and Jacobian (8, 8) of eqs. 1-4 at x; (None, None) if a joint cannot be placed.
+
+    rack (mm) moves the base points of steer: rack links along +y."""
     m, n, p = unpack(x, z_m)
     joints = joints_of(model, m, n, p)
     if joints is None:
@@ -106,8 +109,9 @@ def system(model, x, z_m):
     jac[2, 3:6], jac[2, 0:3] = 2 * (n - m), -2 * (n - m)
     for row, eq in enumerate(model.equations, start=3):
         if eq[0] == 'sphere':   # eqs. 2-4, 13
-            _, b, base, length = eq
+            _, b, base, length, steers = eq
             d = joints[b] - base
+            d[1] -= rack * steers
             f[row] = d @ d - length**2
             grads = {b: 2 * d}
         else:                   # strut line: (T - C) . (E - C) = 0
@@ -146,7 +150,7 @@ def gauss_jordan(a, b):
     return aug[:, -1]
 
 
-def correct(model, travel, center, rotation, tol, max_iter):
+def correct(model, travel, center, rotation, tol, max_iter, rack=0.0):
     """Newton-Kantorovich from the pose (center, rotation) to the pose at travel (mm).
 
     Same contract as pose_newton.correct: returns (center, rotation, iterations, converged,
@@ -156,7 +160,7 @@ def correct(model, travel, center, rotation, tol, max_iter):
     x = np.concatenate((m[:2], n, p))
     z_m = model.m0[2] + travel
     for iteration in range(1, max_iter + 1):
-        f, jac = system(model, x, z_m)
+        f, jac = system(model, x, z_m, rack)
         if f is None:
             return center, rotation, iteration, False, None
         try:

@@ -14,8 +14,8 @@ from .mechanism import linearize
 FREE = [0, 1, 3, 4, 5]   # Jacobian columns of the unknowns; column 2 is dZ_M (travel)
 
 
-def correct(mech, travel, center, rotation, tol, max_iter):
-    """Newton iterations from (center, rotation) to the pose at travel (mm).
+def correct(mech, travel, center, rotation, tol, max_iter, rack=0.0):
+    """Newton iterations from (center, rotation) to the pose at travel and rack (mm).
 
     Stops when every guidance equation holds to tol (mm, a length). Returns (center,
     rotation, iterations, converged, jacobian at the returned pose): the Jacobian serves
@@ -24,7 +24,7 @@ def correct(mech, travel, center, rotation, tol, max_iter):
     center = np.array(center, dtype=float)
     center[2] = mech.design_center[2] + travel
     for iteration in range(max_iter + 1):
-        f, jac = linearize(mech, center, rotation)
+        f, jac = linearize(mech, center, rotation, rack)
         worst = np.abs(f).max()
         if worst <= tol:
             return center, rotation, iteration, True, jac
@@ -47,9 +47,17 @@ def slope_of(jac):
     return d_center, dx[..., 2:]
 
 
-def tangent(mech, center, rotation):
+def tangent(mech, center, rotation, rack=0.0):
     """slope_of() at the pose (center, rotation)."""
-    return slope_of(linearize(mech, center, rotation)[1])
+    return slope_of(linearize(mech, center, rotation, rack)[1])
+
+
+def rack_slope_of(jac, rack_column):
+    """d(center)/d(rack) (..., 3) and d(omega)/d(rack) (..., 3) at fixed travel, from the
+    Jacobian and the rack column (mechanism.rack_derivative) at a solution."""
+    dx = np.linalg.solve(jac[..., FREE], -rack_column[..., None])[..., 0]
+    d_center = np.concatenate((dx[..., :2], np.zeros(dx.shape[:-1] + (1,))), axis=-1)
+    return d_center, dx[..., 2:]
 
 
 def predict(center, rotation, slope, travel_step):
@@ -60,7 +68,7 @@ def predict(center, rotation, slope, travel_step):
     return center + d_center * h, exp_so3(d_omega * h) @ rotation
 
 
-def correct_batch(mech, travel, center, rotation, tol, max_iter):
+def correct_batch(mech, travel, center, rotation, tol, max_iter, rack=0.0):
     """correct() for n poses at once: travel (n,), center (n, 3), rotation (n, 3, 3).
 
     Returns (center, rotation, iterations (n,), converged (n,)); poses that converged are
@@ -73,7 +81,7 @@ def correct_batch(mech, travel, center, rotation, tol, max_iter):
     converged = np.zeros(len(travel), dtype=bool)
     idx = np.arange(len(travel))
     for iteration in range(max_iter + 1):
-        f, jac = linearize(mech, center[idx], rotation[idx])
+        f, jac = linearize(mech, center[idx], rotation[idx], rack)
         worst = np.abs(f).max(axis=1)
         done = worst <= tol
         converged[idx[done]] = True
