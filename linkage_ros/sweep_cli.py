@@ -17,19 +17,52 @@ COLUMNS = ['travel_mm', 'camber_deg', 'toe_deg', 'wheel_center_x_mm', 'wheel_cen
            'wheel_center_z_mm', 'qx', 'qy', 'qz', 'qw', 'residual_mm', 'iterations']
 
 
-def table_rows(result):
-    """CSV rows (mm, deg) of a Sweep, in COLUMNS order."""
+# Extra columns, written only when asked for (--rack/--grid, --alignment).
+RACK_COLUMNS = ['rack_mm']
+ALIGNMENT_COLUMNS = [
+    'camber_gain_deg_per_mm', 'bump_steer_deg_per_mm', 'wheel_center_vx_per_travel',
+    'wheel_center_vy_per_travel', 'caster_deg', 'kingpin_inclination_deg', 'scrub_radius_mm',
+    'mechanical_trail_mm', 'track_change_mm', 'wheelbase_change_mm',
+    'wheel_center_lateral_shift_mm', 'wheel_center_longitudinal_shift_mm', 'svic_x_mm',
+    'svic_z_mm', 'fvic_y_mm', 'fvic_z_mm', 'screw_axis_x', 'screw_axis_y', 'screw_axis_z',
+    'screw_pitch_mm_per_rad']
+
+
+def table_rows(result, scene=None, with_rack=False):
+    """CSV rows (mm, deg) of a Sweep: COLUMNS, then rack_mm if with_rack, then the
+    alignment columns if a scene is given."""
+    extra = np.empty((len(result.travel), 0))
+    if scene is not None:
+        extra = alignment_table(scene, result)
     for i in range(len(result.travel)):
         yield ([result.travel[i], np.degrees(result.camber[i]), np.degrees(result.toe[i]),
                 *result.wheel_center[i], *result.quaternion[i], result.residual[i],
-                int(result.iterations[i])])
+                int(result.iterations[i])] + ([result.rack] if with_rack else [])
+               + list(extra[i]))
 
 
-def write_csv(result, stream):
+def alignment_table(scene, result):
+    """The ALIGNMENT_COLUMNS of a Sweep, shape (n, len(ALIGNMENT_COLUMNS))."""
+    from .alignment import alignment
+    from .mechanism import compile_scene
+    a = alignment(scene, compile_scene(scene), result.wheel_center, result.rotation,
+                  result.rack)
+    deg = np.degrees
+    return np.column_stack((
+        deg(a.camber_gain), deg(a.bump_steer), a.wheel_center_velocity[:, :2], deg(a.caster),
+        deg(a.kingpin_inclination), a.scrub_radius, a.mechanical_trail, a.track_change,
+        a.wheelbase_change, a.lateral_shift, a.longitudinal_shift, a.side_view_ic,
+        a.front_view_ic, a.screw_axis, a.screw_pitch))
+
+
+def write_csv(results, stream, scene=None, with_rack=False):
+    """Write Sweeps (one or several, e.g. a rack grid) as one CSV table."""
     writer = csv.writer(stream, lineterminator='\n')
-    writer.writerow(COLUMNS)
-    for row in table_rows(result):
-        writer.writerow([f'{v:.10g}' if isinstance(v, float) else v for v in row])
+    writer.writerow(COLUMNS + (RACK_COLUMNS if with_rack else [])
+                    + (ALIGNMENT_COLUMNS if scene is not None else []))
+    for result in results:
+        for row in table_rows(result, scene, with_rack):
+            writer.writerow([f'{v + 0.0:.10g}' if isinstance(v, float) else v for v in row])
 
 
 def parse_args(argv):
@@ -40,6 +73,13 @@ def parse_args(argv):
     parser.add_argument('--step', type=float, help='travel step, mm (> 0)')
     parser.add_argument('--method', choices=METHODS, default='fast')
     parser.add_argument('--csv', help='write the table here instead of stdout')
+    parser.add_argument('--rack', type=float, default=None,
+                        help='steering rack travel, mm (+ = rack to the left); adds rack_mm')
+    parser.add_argument('--grid', metavar='FROM:TO:STEP',
+                        help='solve a travel x rack grid: rack from FROM to TO at STEP, mm')
+    parser.add_argument('--alignment', action='store_true',
+                        help='add the alignment columns (gains, steer axis, scrub, trail, '
+                        'instant centres, screw axis)')
     parser.add_argument('--benchmark', type=int, metavar='ROUNDS', default=0,
                         help='instead of a table, time paper and fast sweeps side by side '
                         'over ROUNDS interleaved rounds and print the median per position')
@@ -97,19 +137,53 @@ def main(argv=None):
         return 0
     print(f'linkage-sweep: {scene.name}: {len(travels)} positions from {start:g} to '
           f'{stop:g} mm, method {args.method}', file=sys.stderr)
-    result = sweep(scene, travels, method=args.method)
+    try:
+        racks = rack_values(args)
+    except ValueError as exc:
+        print(f'linkage-sweep: {exc}', file=sys.stderr)
+        return 2
+    if racks != [0.0] and not any(c.steer == 'rack' for c in scene.constraints):
+        print(f'linkage-sweep: {scene.name}: no constraint is marked steer: rack, so a rack '
+              'input moves nothing', file=sys.stderr)
+        return 2
+    results = []
+    for i, rack in enumerate(racks):
+        results.append(sweep(scene, travels, method=args.method, rack=rack))
+        if len(racks) > 1:
+            print(f'linkage-sweep: rack {rack:g} mm ({i + 1}/{len(racks)})', file=sys.stderr)
+        if not results[-1].success:
+            break
+    table = dict(scene=scene if args.alignment else None,
+                 with_rack=args.rack is not None or args.grid is not None)
     if args.csv:
         with open(args.csv, 'w') as stream:
-            write_csv(result, stream)
+            write_csv(results, stream, **table)
     else:
-        write_csv(result, sys.stdout)
-    if not result.success:
-        print(f'linkage-sweep: {result.message} ({len(result.travel)} positions written)',
-              file=sys.stderr)
+        write_csv(results, sys.stdout, **table)
+    failed = [r for r in results if not r.success]
+    if failed:
+        print(f'linkage-sweep: {failed[0].message} '
+              f'({sum(len(r.travel) for r in results)} positions written)', file=sys.stderr)
         return 1
-    print(f'linkage-sweep: done, largest residual {result.residual.max():.2g} mm',
-          file=sys.stderr)
+    worst = max(r.residual.max() for r in results if len(r.travel))
+    print(f'linkage-sweep: done, largest residual {worst:.2g} mm', file=sys.stderr)
     return 0
+
+
+def rack_values(args):
+    """Rack positions (mm) to solve: --grid FROM:TO:STEP, --rack MM, or 0."""
+    if args.grid is None:
+        rack = 0.0 if args.rack is None else args.rack
+        if not np.isfinite(rack):
+            raise ValueError(f'--rack must be finite, got {rack}')
+        return [rack]
+    try:
+        start, stop, step = (float(v) for v in args.grid.split(':'))
+    except ValueError:
+        raise ValueError(f'--grid: expected FROM:TO:STEP in mm, got {args.grid!r}') from None
+    if not (step > 0 and np.isfinite([start, stop, step]).all()):
+        raise ValueError(f'--grid: FROM, TO, STEP must be finite and STEP > 0, got {args.grid!r}')
+    return list(travel_range(start, stop, step))
 
 
 if __name__ == '__main__':

@@ -71,3 +71,27 @@ def test_console_script_runs_as_a_module():
     out = subprocess.run([sys.executable, '-m', 'linkage_ros.sweep_cli', 'five_link', '--step',
                           '80'], capture_output=True, text=True, check=True)
     assert out.stdout.splitlines()[0] == LEADING and len(out.stdout.splitlines()) == 4
+
+
+def test_rack_option_adds_the_rack_column_and_steers(capsys):
+    _, rows, out, _ = run(capsys, 'double_wishbone', '--from', '0', '--to', '0', '--step', '1',
+                          '--rack', '10')
+    assert out.splitlines()[0] == LEADING + ',rack_mm'
+    assert float(rows[0]['rack_mm']) == 10.0 and float(rows[0]['toe_deg']) > 3.0
+
+
+def test_grid_mode_solves_every_travel_at_every_rack(capsys):
+    code, rows, _, _ = run(capsys, 'double_wishbone', '--step', '80', '--grid=-10:10:10')
+    assert code == 0 and len(rows) == 9
+    assert sorted({float(r['rack_mm']) for r in rows}) == [-10.0, 0.0, 10.0]
+
+
+def test_rack_on_a_scene_without_steer_link_is_refused(capsys):
+    code, _, _, err = run(capsys, 'five_link', '--rack', '5')
+    assert code == 2 and 'steer: rack' in err
+
+
+def test_alignment_option_adds_its_columns(capsys):
+    _, rows, _, _ = run(capsys, 'double_wishbone', '--step', '80', '--alignment')
+    assert float(rows[1]['kingpin_inclination_deg']) == pytest.approx(10.66, abs=0.05)
+    assert float(rows[1]['scrub_radius_mm']) > 0
