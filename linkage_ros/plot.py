@@ -1,6 +1,6 @@
 """Camber and toe against wheel travel for scenes, as a PNG (needs matplotlib: the plot extra).
 
-    python -m linkage_ros.plot OUT.png [SCENE ...]      (default: every bundled scene)
+    python -m linkage_ros.plot OUT.png [SCENE ...]   (default: five_link, double_wishbone, macpherson)
 """
 
 import sys
@@ -8,7 +8,7 @@ import sys
 import numpy as np
 
 from .kinematics import sweep, travel_range
-from .scene import bundled_scenes, load_scene
+from .scene import load_scene
 
 
 def plot_camber_toe(scenes, path):
@@ -45,7 +45,7 @@ def main(argv=None):
     if not argv:
         print(__doc__, file=sys.stderr)
         return 2
-    names = argv[1:] or bundled_scenes()
+    names = argv[1:] or ['five_link', 'double_wishbone', 'macpherson']
     plot_camber_toe([load_scene(n) for n in names], argv[0])
     print(f'wrote {argv[0]}', file=sys.stderr)
     return 0

@@ -12,7 +12,7 @@ from linkage_ros import paper_method, pose_newton
 from linkage_ros.geometry import camber_toe, exp_so3, trilaterate
 from linkage_ros.kinematics import Continuation, sweep, travel_range
 from linkage_ros.mechanism import carrier_points, compile_scene, linearize
-from linkage_ros.scene import load_scene, mirror
+from linkage_ros.scene import bundled_scenes, load_scene, mirror
 
 SCENES = ['five_link', 'double_wishbone', 'macpherson']
 FULL = travel_range(-80.0, 80.0, 1.0)
@@ -220,3 +220,21 @@ def test_core_imports_nothing_of_ros_mcap_or_rerun():
             'print(sorted(m for m in ("rclpy", "mcap", "rerun") if m in sys.modules))')
     out = subprocess.run([sys.executable, '-c', code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == '[]'
+
+
+@pytest.mark.parametrize('name', [n for n in bundled_scenes() if n.startswith('chrono_')])
+def test_chrono_reference_scene_sweeps_with_paper_and_fast_agreeing(name):
+    # ../shared/refdata Chrono hardpoint sets: no published curves, so the checks are the
+    # residual bound and agreement of two formulations over the scene's travel block.
+    scene = load_scene(name)
+    fast = sweep(scene, FULL)
+    paper = sweep(scene, FULL[::8], method='paper')
+    assert fast.success and paper.success
+    assert fast.residual.max() <= 1e-9 and paper.residual.max() <= 1e-9
+    assert np.abs(paper.joints - fast.joints[::8]).max() <= 1e-9
+
+
+def test_bmw_front_keeps_its_static_camber_of_minus_2_deg():
+    # refdata: chrono_bmw_e90_macpherson_front static_alignment camber_deg -2 (Chrono header).
+    sol = Continuation(load_scene('chrono_bmw_e90_macpherson_front')).solve(0.0)
+    assert np.degrees(sol.camber) == pytest.approx(-2.0, abs=1e-6)
