@@ -15,6 +15,7 @@ setup(
         ('share/' + package_name, ['package.xml']),
         ('share/' + package_name + '/config', glob('config/*.yaml')),
         ('share/' + package_name + '/config/scenes', glob('config/scenes/*.yaml')),
+        ('share/' + package_name + '/config/vehicles', glob('config/vehicles/*.yaml')),
     ],
     python_requires='>=3.10',
     install_requires=['setuptools', 'numpy', 'scipy', 'PyYAML'],

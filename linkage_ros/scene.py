@@ -5,7 +5,7 @@ Everything is converted to millimetres on load; the rest of the package works in
 A malformed scene raises SceneError naming the file, the field and the problem.
 """
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 import math
 from pathlib import Path
 
@@ -351,3 +351,14 @@ def mirror(scene):
                  third_point=scene.third_point * flip, constraints=constraints,
                  travel=scene.travel, wheel_radius=scene.wheel_radius,
                  description=scene.description, extras=scene.extras)
+
+
+def translate(scene, offset):
+    """The scene moved by offset (3,) mm: a corner placed on the vehicle."""
+    offset = np.asarray(offset, dtype=float)
+    constraints = tuple(Constraint(name=c.name, type=c.type, base=c.base + offset,
+                                   carrier=c.carrier + offset, steer=c.steer)
+                        for c in scene.constraints)
+    return replace(scene, wheel_center=scene.wheel_center + offset,
+                   spin_axis_point=scene.spin_axis_point + offset,
+                   third_point=scene.third_point + offset, constraints=constraints)

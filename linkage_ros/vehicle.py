@@ -1,0 +1,80 @@
+"""Vehicle files: a scene per corner, placed on the vehicle, right corners by mirroring.
+
+    name: demo_vehicle
+    units: mm                    # of the offsets: mm | m
+    corners:
+      front_left:  {scene: double_wishbone, offset: [1400, 0, 0]}
+      front_right: {scene: double_wishbone, offset: [1400, 0, 0], mirror: true}
+
+A corner's scene is a bundled name or a path (relative paths from the vehicle file's
+folder). mirror: true mirrors the scene in y (a left scene becomes the right corner) before
+the offset is added. Errors raise SceneError naming the vehicle file and the field.
+"""
+
+from dataclasses import dataclass, replace
+from pathlib import Path
+import re
+
+import yaml
+
+from .scene import (load_scene, mirror, resolve_scene_path, scene_dir, SceneError, translate,
+                    UNITS_TO_MM)
+
+CORNER_NAME = re.compile(r'^[a-z][a-z0-9_]*$')   # becomes a ROS namespace
+
+
+@dataclass(frozen=True)
+class Vehicle:
+    name: str
+    source: str
+    corners: dict      # corner name -> Scene, in vehicle coordinates (mm)
+
+
+def vehicle_dir():
+    return scene_dir().parent / 'vehicles'
+
+
+def load_vehicle(name_or_path):
+    """Load a vehicle file (bundled name under config/vehicles, or a path)."""
+    path = Path(name_or_path)
+    if not path.exists() and path.suffix not in ('.yaml', '.yml'):
+        path = vehicle_dir() / f'{name_or_path}.yaml'
+    try:
+        data = yaml.safe_load(path.read_text())
+    except OSError as exc:
+        raise SceneError(path, 'file', f'cannot read ({exc.strerror or exc})') from None
+    except yaml.YAMLError as exc:
+        raise SceneError(path, 'file', f'not valid YAML ({exc})') from None
+    if not isinstance(data, dict) or not isinstance(data.get('corners'), dict) \
+            or not data['corners']:
+        raise SceneError(path, 'corners', 'expected a mapping of corner names to '
+                         '{scene, offset, mirror}')
+    units = data.get('units', 'mm')
+    if units not in UNITS_TO_MM:
+        raise SceneError(path, 'units', f'unknown value {units!r} (expected one of: mm, m)')
+    corners = {}
+    for corner, spec in data['corners'].items():
+        corners[corner] = _corner(path, corner, spec, UNITS_TO_MM[units])
+    return Vehicle(name=str(data.get('name') or path.stem), source=str(path), corners=corners)
+
+
+def _corner(path, corner, spec, scale):
+    where = f'corners.{corner}'
+    if not isinstance(corner, str) or not CORNER_NAME.match(corner):
+        raise SceneError(path, where, 'corner names are lower-case ROS names '
+                         '(letters, digits, underscores), e.g. front_left')
+    if not isinstance(spec, dict) or not isinstance(spec.get('scene'), str):
+        raise SceneError(path, f'{where}.scene', 'missing (required): a scene name or path')
+    scene_ref = spec['scene']
+    local = path.parent / scene_ref
+    scene = load_scene(local if local.suffix in ('.yaml', '.yml') and local.exists()
+                       else resolve_scene_path(scene_ref))
+    if spec.get('mirror', False) is True:
+        scene = mirror(scene)
+    elif spec.get('mirror', False) is not False:
+        raise SceneError(path, f'{where}.mirror', f"expected true or false, got {spec['mirror']!r}")
+    offset = spec.get('offset', [0.0, 0.0, 0.0])
+    if (not isinstance(offset, list) or len(offset) != 3
+            or not all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in offset)):
+        raise SceneError(path, f'{where}.offset', f'expected [x, y, z], got {offset!r}')
+    return replace(translate(scene, [v * scale for v in offset]), name=corner)

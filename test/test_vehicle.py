@@ -1,0 +1,41 @@
+"""Vehicle files: four corners, right-hand side by mirroring, placed by offsets."""
+
+import numpy as np
+import pytest
+
+from linkage_ros.kinematics import sweep
+from linkage_ros.scene import SceneError
+from linkage_ros.vehicle import load_vehicle
+
+
+def test_demo_vehicle_has_four_corners_with_mirrored_right_side():
+    vehicle = load_vehicle('demo_vehicle')
+    assert list(vehicle.corners) == ['front_left', 'front_right', 'rear_left', 'rear_right']
+    left, right = vehicle.corners['front_left'], vehicle.corners['front_right']
+    assert left.side == 'left' and right.side == 'right'
+    assert right.wheel_center == pytest.approx(left.wheel_center * [1, -1, 1])
+    assert left.wheel_center == pytest.approx([1400.0, 760.0, 300.0])   # offset applied
+
+
+def test_mirrored_corners_solve_to_the_same_camber_and_toe():
+    vehicle = load_vehicle('demo_vehicle')
+    travels = [-40.0, 0.0, 40.0]
+    left = sweep(vehicle.corners['rear_left'], travels)
+    right = sweep(vehicle.corners['rear_right'], travels)
+    assert right.camber == pytest.approx(left.camber, abs=1e-12)
+    assert right.toe == pytest.approx(left.toe, abs=1e-12)
+    assert np.max(right.residual) <= 1e-9
+
+
+def test_vehicle_corner_with_bad_offset_names_the_field(tmp_path):
+    path = tmp_path / 'car.yaml'
+    path.write_text('corners:\n  front_left: {scene: five_link, offset: [1, 2]}\n')
+    with pytest.raises(SceneError, match=r'corners\.front_left\.offset'):
+        load_vehicle(path)
+
+
+def test_vehicle_corner_name_must_be_a_ros_name(tmp_path):
+    path = tmp_path / 'car.yaml'
+    path.write_text('corners:\n  Front-Left: {scene: five_link}\n')
+    with pytest.raises(SceneError, match='lower-case ROS names'):
+        load_vehicle(path)
