@@ -34,7 +34,7 @@ class Settings:
     max_iter: int = 25        # Newton iterations per step
     max_step: float = 5.0     # longest continuation step
     min_step: float = 0.005   # below this a failing step means out of reach (limit to 0.01)
-    knot_step: float = 20.0   # fast sweeps: continuation step between the knots of a batch
+    knot_step: float = 40.0   # fast sweeps: continuation step between the knots of a batch
     knot_tol: float = 1e-6    # fast sweeps: knots only start the batch, which converges to tol
 
 
@@ -332,21 +332,32 @@ def _batched(cont, travels):
 
 
 def _knots(cont, low, high):
-    """Poses at every continuation step from the current state (travel 0) to low and to high
-    (mm), steps of knot_step, converged to knot_tol only (they are starting points of the
-    batched solve): arrays (k,), (k, 3), (k, 3, 3); None if an end is out of reach."""
-    settings = cont.settings
-    origin = (cont.travel, cont.rack, cont.center, cont.rotation, cont._jac)
-    cont.settings = replace(settings, max_step=settings.knot_step, tol=settings.knot_tol)
+    """Poses every knot_step mm from the current state (travel 0) to low and to high (mm):
+    the bump and rebound continuation chains, walked side by side as one batch, each step
+    from its tangent prediction and checked for a branch change. Knots hold to knot_tol only
+    (they start the batched solve). Returns arrays (k,), (k, 3), (k, 3, 3), or None if a
+    step fails (the caller then walks, halving steps, and finds any limit)."""
+    cfg, mech = cont.settings, cont.mech
+    ends = np.array([end for end in (high, low) if end != cont.travel])
+    travel = np.full(len(ends), cont.travel)
+    center = np.repeat(cont.center[None], len(ends), axis=0)
+    rotation = np.repeat(cont.rotation[None], len(ends), axis=0)
+    jac = np.repeat(cont._jac[None], len(ends), axis=0)
     trace = [(cont.travel, cont.center, cont.rotation)]
-    try:
-        for end in (high, low):
-            cont.travel, cont.rack, cont.center, cont.rotation, cont._jac = origin
-            if cont._walk(end, trace=trace)[2]:
-                return None
-    finally:
-        cont.settings = settings
-        cont.travel, cont.rack, cont.center, cont.rotation, cont._jac = origin
+    while len(ends):
+        h = np.clip(ends - travel, -cfg.knot_step, cfg.knot_step)
+        guess = pose_newton.predict(center, rotation, pose_newton.slope_of(jac), h)
+        center, rotation, _, converged = pose_newton.correct_batch(
+            mech, travel + h, *guess, cfg.knot_tol, cfg.max_iter, cont.rack)
+        moved = np.abs(carrier_points(mech, center, rotation)
+                       - carrier_points(mech, *guess)).max(axis=(1, 2))
+        if not np.all(converged & (moved <= 0.5 * np.abs(h) + 1e3 * cfg.knot_tol)):
+            return None
+        travel = np.where(np.abs(ends - travel) <= cfg.knot_step, ends, travel + h)
+        trace += list(zip(travel, center, rotation))
+        going = travel != ends
+        ends, travel, center, rotation = ends[going], travel[going], center[going], rotation[going]
+        jac = linearize(mech, center, rotation, cont.rack)[1]
     return (np.array([t[0] for t in trace]), np.array([t[1] for t in trace]),
             np.array([t[2] for t in trace]))
 
