@@ -1,0 +1,322 @@
+"""linkage-replay: solve the wheel-travel commands of a recorded run, or republish them on ROS.
+
+    linkage-replay BAG.mcap -o OUT.mcap          solve the commands, write commands + outputs
+    linkage-replay BAG.mcap --publish --rate 2   republish the commands at twice the recorded pace
+    linkage-replay --sweep -o OUT.mcap           commands of a travel sweep (scene's range)
+    linkage-replay BAG.mcap --copy -o OUT.mcap   copy every readable message into a complete file
+
+The commands are std_msgs/msg/Float64 wheel travel in m on --topic (default /wheel_travel),
+from any MCAP with the ROS 2 profile (ours, rosbag2's, Foxglove's). Outputs are what the node
+publishes, in the command topic's namespace: wheel_carrier_pose (geometry_msgs/PoseStamped,
+m), camber and toe (std_msgs/Float64, rad), and /diagnostics (diagnostic_msgs/DiagnosticArray)
+for a command that cannot be solved. Each output is stamped with its command's receive time,
+so the new bag keeps the recorded timeline. A truncated bag (recording cut by a hard kill)
+gives a warning and its readable messages are used. Progress goes to stderr.
+"""
+
+import argparse
+from dataclasses import dataclass
+import math
+from pathlib import Path
+import sys
+import time
+
+import numpy as np
+
+from .kinematics import Continuation, METHODS, travel_range
+from .recording import decode, McapRecorder, qualified, read_bag, RecordingError
+from .scene import load_scene, SceneError
+
+PROG = 'linkage-replay'
+FLOAT64 = 'std_msgs/msg/Float64'
+POSE_STAMPED = 'geometry_msgs/msg/PoseStamped'
+DIAGNOSTIC_ARRAY = 'diagnostic_msgs/msg/DiagnosticArray'
+DIAGNOSTICS_TOPIC = '/diagnostics'
+FRAME_ID = 'base_link'
+DEFAULT_TOPIC = '/wheel_travel'
+SWEEP_HZ = 50.0
+PROGRESS_PERIOD = 1.0   # s between progress lines
+
+
+class ReplayError(ValueError):
+    """A bag cannot be replayed; the message names the file, the topic and why."""
+
+
+@dataclass(frozen=True)
+class Command:
+    """One wheel-travel command: receive (log) and publish time in ns, travel in m."""
+
+    log_time: int
+    publish_time: int
+    travel: float
+
+
+# --- reading commands ----------------------------------------------------------------------
+
+def read_commands(path, topic=DEFAULT_TOPIC):
+    """Commands on topic in a bag, in file order; returns (commands, bag).
+
+    Raises ReplayError if the topic is missing or is not std_msgs/msg/Float64 in CDR.
+    """
+    bag = read_bag(path)
+    name = qualified(topic)
+    if name not in bag.topics:
+        cut = f'; {truncation(bag)}' if bag.truncated else ''
+        raise ReplayError(f'{path}: no topic {name} (topics present: {topic_list(bag)}{cut}); '
+                          'choose the wheel-travel topic with --topic')
+    if bag.topics[name] != FLOAT64 or bag.encodings.get(name) != 'cdr':
+        raise ReplayError(f'{path}: topic {name} carries {bag.topics[name] or "no schema"} '
+                          f"('{bag.encodings.get(name)}' encoding), but wheel-travel commands "
+                          f'must be {FLOAT64} in cdr (topics present: {topic_list(bag)})')
+    commands = [Command(m.log_time, m.publish_time, float(decode(m).data))
+                for m in bag.messages if m.topic == name]
+    return commands, bag
+
+
+def topic_list(bag):
+    return ', '.join(f'{t} ({kind})' for t, kind in bag.topics.items()) or 'none'
+
+
+def truncation(bag):
+    return (f'bag truncated after {len(bag.messages)} messages ({bag.problem})')
+
+
+def sweep_commands(scene, start=None, stop=None, step=None, hz=SWEEP_HZ, t0=None):
+    """Commands of a travel sweep (mm arguments; scene.travel by default) at hz from t0 (ns)."""
+    low, high, default_step = scene.travel
+    start = low if start is None else start
+    stop = high if stop is None else stop
+    step = default_step if step is None else step
+    if not (step > 0 and hz > 0 and np.isfinite([start, stop, step, hz]).all()):
+        raise ReplayError(f'--from, --to, --step and --hz must be finite, --step and --hz > 0 '
+                          f'(got {start}, {stop}, {step}, {hz})')
+    t0 = time.time_ns() if t0 is None else t0
+    period = int(round(1e9 / hz))
+    return [Command(t0 + i * period, t0 + i * period, float(travel) / 1000.0)
+            for i, travel in enumerate(travel_range(start, stop, step))]
+
+
+# --- output messages (what the node publishes) ---------------------------------------------
+
+def stamp_of(time_ns):
+    from builtin_interfaces.msg import Time
+    return Time(sec=int(time_ns // 10**9), nanosec=int(time_ns % 10**9))
+
+
+def pose_message(solution, stamp, frame_id=FRAME_ID):
+    """PoseStamped of a solved position: wheel centre (m) and carrier rotation from design."""
+    from geometry_msgs.msg import PoseStamped
+    msg = PoseStamped()
+    msg.header.stamp, msg.header.frame_id = stamp, frame_id
+    p, q = msg.pose.position, msg.pose.orientation
+    p.x, p.y, p.z = (float(v) / 1000.0 for v in solution.wheel_center)
+    q.x, q.y, q.z, q.w = (float(v) for v in solution.quaternion)
+    return msg
+
+
+def float_message(value):
+    from std_msgs.msg import Float64
+    return Float64(data=float(value))
+
+
+def failure_message(solution, stamp, node_name='suspension_node'):
+    """DiagnosticArray with one ERROR status saying why a command was not solved."""
+    from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
+    status = DiagnosticStatus(level=DiagnosticStatus.ERROR, name=f'{node_name}: kinematics',
+                              message=solution.message, hardware_id='',
+                              values=[KeyValue(key='travel_mm', value=f'{solution.travel}')])
+    msg = DiagnosticArray(status=[status])
+    msg.header.stamp = stamp
+    return msg
+
+
+# --- solving -------------------------------------------------------------------------------
+
+def solve_commands(commands, scene, method, recorder, topic=DEFAULT_TOPIC, progress=None):
+    """Solve each command by continuation (as the node does) and record command and outputs.
+
+    Returns the number of commands that could not be solved.
+    """
+    topic = qualified(topic)
+    namespace = topic.rsplit('/', 1)[0]
+    outputs = {name: f'{namespace}/{name}' for name in ('wheel_carrier_pose', 'camber', 'toe')}
+    cont = Continuation(scene, method=method)
+    failures = 0
+    for i, command in enumerate(commands):
+        t = command.log_time
+        recorder.record(topic, FLOAT64, float_message(command.travel), t, command.publish_time)
+        solution = cont.solve(command.travel * 1000.0)
+        stamp = stamp_of(t)
+        if solution.success:
+            recorder.record(outputs['wheel_carrier_pose'], POSE_STAMPED,
+                            pose_message(solution, stamp), t, t)
+            recorder.record(outputs['camber'], FLOAT64, float_message(solution.camber), t, t)
+            recorder.record(outputs['toe'], FLOAT64, float_message(solution.toe), t, t)
+        else:
+            failures += 1
+            recorder.record(DIAGNOSTICS_TOPIC, DIAGNOSTIC_ARRAY,
+                            failure_message(solution, stamp), t, t)
+        if progress:
+            progress.update(i + 1)
+    return failures
+
+
+def copy_messages(bag, recorder, progress=None):
+    """Copy every message read from bag (CDR bytes, times, QoS) into recorder."""
+    for i, m in enumerate(bag.messages):
+        recorder.record_serialized(m.topic, m.type_name, m.data, m.log_time, m.publish_time)
+        if progress:
+            progress.update(i + 1)
+
+
+class Progress:
+    """'linkage-replay: 120/161 commands (75%)' on stderr, at most every period s, and at the
+    end."""
+
+    def __init__(self, total, what, stream=sys.stderr, period=PROGRESS_PERIOD):
+        self.total, self.what, self.stream, self.period = total, what, stream, period
+        self._last = time.monotonic()
+
+    def update(self, done):
+        now = time.monotonic()
+        if done == self.total or now - self._last >= self.period:
+            self._last = now
+            percent = 100.0 * done / self.total if self.total else 100.0
+            print(f'{PROG}: {done}/{self.total} {self.what} ({percent:.0f}%)', file=self.stream,
+                  flush=True)
+
+
+# --- republishing --------------------------------------------------------------------------
+
+def publish_commands(commands, topic, rate=1.0, wait=10.0, progress=None):
+    """Publish the commands as std_msgs/Float64 on topic at the recorded pace / rate.
+
+    rate > 0 (2 = twice as fast). Waits up to wait s for a subscriber first.
+    Returns the number of commands published.
+    """
+    import rclpy
+    from rclpy.qos import QoSProfile
+    from std_msgs.msg import Float64
+    rclpy.init()
+    node = rclpy.create_node('linkage_replay', start_parameter_services=False)
+    published = 0
+    try:
+        # Reliable, keep last 1000: a burst is never overwritten before it is acknowledged.
+        publisher = node.create_publisher(Float64, qualified(topic), QoSProfile(depth=1000))
+        deadline = time.monotonic() + wait
+        while publisher.get_subscription_count() == 0 and time.monotonic() < deadline:
+            time.sleep(0.01)
+        if publisher.get_subscription_count() == 0:
+            print(f'{PROG}: no subscriber on {qualified(topic)} after {wait:g} s; publishing '
+                  'anyway', file=sys.stderr)
+        start, first = time.monotonic(), commands[0].log_time if commands else 0
+        for command in commands:
+            delay = start + (command.log_time - first) / 1e9 / rate - time.monotonic()
+            if delay > 0:
+                time.sleep(delay)
+            publisher.publish(Float64(data=command.travel))
+            published += 1
+            if progress:
+                progress.update(published)
+        # Reliable delivery of the last commands before the process goes away.
+        from rclpy.duration import Duration
+        publisher.wait_for_all_acked(Duration(seconds=min(wait, 5.0)))
+    except KeyboardInterrupt:
+        print(f'{PROG}: interrupted after {published} commands', file=sys.stderr)
+    finally:
+        node.destroy_node()
+        rclpy.try_shutdown()
+    return published
+
+
+# --- command line --------------------------------------------------------------------------
+
+def parse_args(argv):
+    parser = argparse.ArgumentParser(prog=PROG, description=__doc__.split('\n')[0],
+                                     formatter_class=argparse.RawDescriptionHelpFormatter,
+                                     epilog='\n'.join(__doc__.split('\n')[1:]))
+    parser.add_argument('bag', nargs='?', help='recorded run (.mcap)')
+    parser.add_argument('-o', '--output', help='MCAP to write (default: BAG_solved.mcap)')
+    parser.add_argument('--topic', default=DEFAULT_TOPIC,
+                        help=f'wheel-travel topic, std_msgs/msg/Float64 in m (default '
+                        f'{DEFAULT_TOPIC})')
+    parser.add_argument('--scene', default='five_link',
+                        help='bundled scene name or YAML path (default five_link)')
+    parser.add_argument('--method', choices=METHODS, default='fast')
+    mode = parser.add_mutually_exclusive_group()
+    mode.add_argument('--publish', action='store_true',
+                      help='republish the commands on ROS at the recorded timing')
+    mode.add_argument('--copy', action='store_true',
+                      help='copy every readable message into a complete MCAP (recovers a '
+                      'recording cut by a hard kill)')
+    parser.add_argument('--rate', type=float, default=1.0,
+                        help='--publish: playback speed factor, > 0 (2 = twice as fast)')
+    parser.add_argument('--wait', type=float, default=10.0,
+                        help='--publish: seconds to wait for a subscriber (default 10)')
+    parser.add_argument('--sweep', action='store_true',
+                        help="no BAG: commands of a travel sweep (scene's travel range)")
+    parser.add_argument('--from', dest='start', type=float, help='--sweep: first travel, mm')
+    parser.add_argument('--to', dest='stop', type=float, help='--sweep: last travel, mm')
+    parser.add_argument('--step', type=float, help='--sweep: travel step, mm')
+    parser.add_argument('--hz', type=float, default=SWEEP_HZ,
+                        help=f'--sweep: command rate, Hz (default {SWEEP_HZ:g})')
+    args = parser.parse_args(argv)
+    if args.sweep == bool(args.bag):
+        parser.error('give a BAG or --sweep (one of them)')
+    if args.sweep and args.copy:
+        parser.error('--copy needs a BAG')
+    if not (args.rate > 0 and math.isfinite(args.rate)):
+        # No 'as fast as possible': a burst overflows the subscriber's queue (keep last N).
+        parser.error(f'--rate must be a positive number, got {args.rate}')
+    return args
+
+
+def main(argv=None):
+    args = parse_args(argv)
+    try:
+        scene = None if args.copy else load_scene(args.scene)
+        if args.sweep:
+            commands, bag = sweep_commands(scene, args.start, args.stop, args.step, args.hz), None
+        elif args.copy:
+            bag, commands = read_bag(args.bag), []
+        else:
+            commands, bag = read_commands(args.bag, args.topic)
+    except (SceneError, RecordingError, ReplayError) as exc:
+        print(f'{PROG}: {exc}', file=sys.stderr)
+        return 2
+    source = args.bag or 'sweep'
+    if bag is not None and bag.truncated:
+        what = 'copied' if args.copy else 'using'
+        count = len(bag.messages) if args.copy else len(commands)
+        print(f'{PROG}: warning: {args.bag}: {truncation(bag)}; {what} the {count} '
+              f'{"messages" if args.copy else "commands"} read', file=sys.stderr)
+    if args.publish:
+        print(f'{PROG}: publishing {len(commands)} commands from {source} on '
+              f'{qualified(args.topic)} at rate {args.rate:g}', file=sys.stderr)
+        published = publish_commands(commands, args.topic, args.rate, args.wait,
+                                     Progress(len(commands), 'commands published'))
+        return 0 if published == len(commands) else 130
+    output = args.output or str(Path(args.bag).with_name(Path(args.bag).stem + '_solved.mcap'))
+    try:
+        if args.copy:
+            with McapRecorder(output, custom_data=bag.custom_data) as recorder:
+                copy_messages(bag, recorder, Progress(len(bag.messages), 'messages copied'))
+            print(f'{PROG}: wrote {len(bag.messages)} messages to {output}', file=sys.stderr)
+            return 1 if bag.truncated else 0
+        print(f'{PROG}: {scene.name}: solving {len(commands)} commands from {source} on '
+              f'{qualified(args.topic)}, method {args.method}', file=sys.stderr)
+        custom = {'scene': scene.name, 'method': args.method, 'source': Path(source).name}
+        with McapRecorder(output, custom_data=custom) as recorder:
+            failures = solve_commands(commands, scene, args.method, recorder, args.topic,
+                                      Progress(len(commands), 'commands solved'))
+            written = recorder.message_count
+    except RecordingError as exc:
+        print(f'{PROG}: {exc}', file=sys.stderr)
+        return 2
+    print(f'{PROG}: wrote {written} messages to {output}; {len(commands) - failures} commands '
+          f'solved, {failures} not (see /diagnostics)', file=sys.stderr)
+    return 1 if bag is not None and bag.truncated else 0
+
+
+if __name__ == '__main__':
+    sys.exit(main())

@@ -1,0 +1,224 @@
+"""linkage-replay: solves the commands of a bag into a new bag, republishes them, recovers cuts.
+
+Bags are read back with mcap's make_reader + mcap_ros2's decoder or rosbags (not project code).
+Expected values: the scene file's reference rows (refdata) and the recorded outputs.
+"""
+
+import math
+import os
+from pathlib import Path
+import random
+import subprocess
+import sys
+import time
+
+from mcap.reader import make_reader
+from mcap_ros2.decoder import DecoderFactory
+import pytest
+from rosbags.highlevel import AnyReader
+import yaml
+
+from linkage_ros.recording import McapRecorder
+from linkage_ros.replay import main
+
+ROOT = Path(__file__).resolve().parent.parent
+EXAMPLE = ROOT / 'bags' / 'five_link_sweep.mcap'
+T0 = 1_700_000_000_000_000_000
+OUTPUTS = ('/wheel_carrier_pose', '/camber', '/toe')
+
+
+def decoded(path):
+    """[(topic, log time, decoded message)] in file order, by mcap + mcap_ros2."""
+    with open(path, 'rb') as stream:
+        reader = make_reader(stream, decoder_factories=[DecoderFactory()])
+        return [(c.topic, m.log_time, d) for _, c, m, d in reader.iter_decoded_messages(
+            log_time_order=False)]
+
+
+def by_topic(messages, topic):
+    return [msg for t, _, msg in messages if t == topic]
+
+
+def write_commands(path, travels_m, topic='/wheel_travel', chunk_size=64 * 1024, extra=()):
+    """A bag of Float64 commands at 100 Hz (plus extra (topic, type, msg) at the start)."""
+    from std_msgs.msg import Float64
+    with McapRecorder(path, chunk_size=chunk_size) as rec:
+        for topic_name, type_name, msg in extra:
+            rec.record(topic_name, type_name, msg, T0 - 1, T0 - 1)
+        for i, value in enumerate(travels_m):
+            rec.record(topic, 'std_msgs/msg/Float64', Float64(data=value), T0 + i * 10**7,
+                       T0 + i * 10**7)
+
+
+def test_example_bag_is_small_complete_and_a_sweep_of_the_default_scene():
+    assert EXAMPLE.stat().st_size < 1_000_000
+    messages = decoded(EXAMPLE)
+    travels = [round(m.data * 1000.0, 9) for m in by_topic(messages, '/wheel_travel')]
+    assert travels == list(range(-80, 81))
+    assert [len(by_topic(messages, t)) for t in OUTPUTS] == [161, 161, 161]
+
+
+def test_example_bag_outputs_match_the_reference_data_of_the_scene():
+    scene_file = yaml.safe_load((ROOT / 'config' / 'scenes' / 'five_link.yaml').read_text())
+    messages = decoded(EXAMPLE)
+    travels = [round(m.data * 1000.0, 6) for m in by_topic(messages, '/wheel_travel')]
+    camber = dict(zip(travels, (math.degrees(m.data) for m in by_topic(messages, '/camber'))))
+    toe = dict(zip(travels, (math.degrees(m.data) for m in by_topic(messages, '/toe'))))
+    rows = scene_file['reference']['rows']       # travel_mm, camber_deg, toe_deg (4 decimals)
+    assert len(rows) == 3
+    for travel, camber_deg, toe_deg in rows:
+        assert camber[travel] == pytest.approx(camber_deg, abs=1e-4)
+        assert toe[travel] == pytest.approx(toe_deg, abs=1e-4)
+
+
+def test_replaying_the_example_bag_reproduces_its_outputs(tmp_path):
+    out = tmp_path / 'again.mcap'
+    assert main([str(EXAMPLE), '-o', str(out)]) == 0
+    recorded, replayed = decoded(EXAMPLE), decoded(out)
+    assert [(t, time) for t, time, _ in replayed] == [(t, time) for t, time, _ in recorded]
+    for (_, _, a), (topic, _, b) in zip(recorded, replayed):
+        if topic == '/wheel_carrier_pose':
+            assert b.header.frame_id == a.header.frame_id
+            for field in ('x', 'y', 'z'):
+                assert getattr(b.pose.position, field) == pytest.approx(
+                    getattr(a.pose.position, field), abs=1e-12)
+            for field in ('x', 'y', 'z', 'w'):
+                assert getattr(b.pose.orientation, field) == pytest.approx(
+                    getattr(a.pose.orientation, field), abs=1e-12)
+        else:
+            assert b.data == pytest.approx(a.data, abs=1e-12)
+
+
+def test_each_command_is_followed_by_pose_camber_and_toe_stamped_with_its_receive_time(
+        tmp_path):
+    out = tmp_path / 'sweep.mcap'
+    assert main(['--sweep', '--from', '-2', '--to', '2', '--step', '1', '--hz', '10', '-o',
+                 str(out)]) == 0
+    with AnyReader([out]) as reader:
+        rows = [(c.topic, t, reader.deserialize(raw, c.msgtype))
+                for c, t, raw in reader.messages()]
+    assert [r[0] for r in rows] == ['/wheel_travel', *OUTPUTS] * 5
+    for i in range(5):
+        command = rows[4 * i]
+        assert command[2].data == pytest.approx((i - 2) / 1000.0)
+        assert {t for _, t, _ in rows[4 * i:4 * i + 4]} == {command[1]}
+        stamp = rows[4 * i + 1][2].header.stamp
+        assert stamp.sec * 10**9 + stamp.nanosec == command[1]
+    assert rows[4][1] - rows[0][1] == 100_000_000        # 10 Hz
+
+
+def test_a_command_out_of_reach_gives_an_error_diagnostic_and_no_pose(tmp_path):
+    bag, out = tmp_path / 'in.mcap', tmp_path / 'out.mcap'
+    write_commands(bag, [0.01, 0.5, 0.02])                 # 500 mm: beyond the bump stop
+    assert main([str(bag), '-o', str(out)]) == 0
+    messages = decoded(out)
+    assert [t for t, _, _ in messages] == ['/wheel_travel', *OUTPUTS, '/wheel_travel',
+                                           '/diagnostics', '/wheel_travel', *OUTPUTS]
+    status = by_topic(messages, '/diagnostics')[0].status[0]
+    assert status.level == 2 and 'out of reach' in status.message
+    assert by_topic(messages, '/wheel_carrier_pose')[1].pose.position.z == pytest.approx(
+        0.32, abs=0.01)                                     # 300 mm + 20 mm, after the failure
+
+
+def test_a_topic_of_another_type_is_refused_naming_its_type_and_the_topics(tmp_path, capsys):
+    assert main([str(EXAMPLE), '--topic', '/wheel_carrier_pose']) == 2
+    err = capsys.readouterr().err
+    assert 'topic /wheel_carrier_pose carries geometry_msgs/msg/PoseStamped' in err
+    assert '/wheel_travel (std_msgs/msg/Float64)' in err
+
+
+def test_a_missing_topic_is_refused_listing_the_topics_present(capsys):
+    assert main([str(EXAMPLE), '--topic', 'travel']) == 2
+    err = capsys.readouterr().err
+    assert 'no topic /travel' in err and '/camber (std_msgs/msg/Float64)' in err
+
+
+def test_another_topic_name_is_solved_and_answered_in_its_namespace(tmp_path):
+    bag, out = tmp_path / 'in.mcap', tmp_path / 'out.mcap'
+    write_commands(bag, [0.0, 0.01], topic='/car/front_left/bump')
+    assert main([str(bag), '--topic', '/car/front_left/bump', '-o', str(out)]) == 0
+    topics = [t for t, _, _ in decoded(out)]
+    assert topics[:4] == ['/car/front_left/bump', '/car/front_left/wheel_carrier_pose',
+                          '/car/front_left/camber', '/car/front_left/toe']
+
+
+def test_a_foreign_file_is_refused_clearly(tmp_path, capsys):
+    path = tmp_path / 'run.mcap'
+    path.write_bytes(b'PK\x03\x04 a zip file, not a recording')
+    assert main([str(path)]) == 2
+    assert 'not an MCAP file' in capsys.readouterr().err
+
+
+def cut_bag(tmp_path, n=300):
+    """A bag of n commands in small chunks, cut in the middle; returns (path, commands kept)."""
+    bag = tmp_path / 'full.mcap'
+    write_commands(bag, [i / 10000.0 for i in range(n)], chunk_size=1024)
+    data = bag.read_bytes()
+    cut = tmp_path / 'cut.mcap'
+    cut.write_bytes(data[:len(data) // 2])
+    with open(cut, 'rb') as stream:   # mcap's stream reader: what it yields before the cut
+        kept = 0
+        try:
+            from mcap.stream_reader import StreamReader
+            for record in StreamReader(stream).records:
+                kept += type(record).__name__ == 'Message'
+        except Exception:
+            pass
+    return cut, kept
+
+
+def test_a_truncated_bag_is_solved_up_to_the_cut_with_a_warning(tmp_path, capsys):
+    cut, kept = cut_bag(tmp_path)
+    assert 0 < kept < 300
+    out = tmp_path / 'out.mcap'
+    assert main([str(cut), '-o', str(out)]) == 1
+    assert f'bag truncated after {kept} messages' in capsys.readouterr().err
+    messages = decoded(out)
+    assert len(by_topic(messages, '/wheel_travel')) == kept
+    assert len(by_topic(messages, '/camber')) == kept
+
+
+def test_copy_turns_a_truncated_recording_into_a_complete_one(tmp_path, capsys):
+    cut, kept = cut_bag(tmp_path)
+    out = tmp_path / 'recovered.mcap'
+    assert main([str(cut), '--copy', '-o', str(out)]) == 1
+    assert 'copied the' in capsys.readouterr().err
+    with AnyReader([out]) as reader:       # needs the summary: the file is complete again
+        values = [reader.deserialize(raw, c.msgtype).data for c, _, raw in reader.messages()]
+    assert values == pytest.approx([i / 10000.0 for i in range(kept)])
+
+
+def test_publish_republishes_the_commands_in_order_at_the_recorded_pace(tmp_path):
+    import rclpy
+    from rclpy.context import Context
+    from rclpy.executors import SingleThreadedExecutor
+    from std_msgs.msg import Float64
+    bag = tmp_path / 'in.mcap'
+    travels = [i / 1000.0 for i in range(20)]          # 20 commands, 0.19 s apart end to end
+    write_commands(bag, travels)
+    domain = random.randint(60, 100)
+    env = dict(os.environ, ROS_DOMAIN_ID=str(domain), ROS_LOG_DIR=str(tmp_path),
+               ROS_AUTOMATIC_DISCOVERY_RANGE='LOCALHOST')
+    ctx = Context()
+    rclpy.init(context=ctx, domain_id=domain)
+    received = []
+    try:
+        node = rclpy.create_node('probe', context=ctx)
+        node.create_subscription(Float64, '/wheel_travel',
+                                 lambda msg: received.append((time.monotonic(), msg.data)), 100)
+        executor = SingleThreadedExecutor(context=ctx)
+        executor.add_node(node)
+        proc = subprocess.Popen([sys.executable, '-m', 'linkage_ros.replay', str(bag),
+                                 '--publish', '--rate', '0.5', '--wait', '20'], env=env,
+                                stderr=subprocess.PIPE, text=True)
+        deadline = time.monotonic() + 40
+        while len(received) < len(travels) and time.monotonic() < deadline:
+            executor.spin_once(timeout_sec=0.01)
+        _, err = proc.communicate(timeout=30)
+        assert proc.returncode == 0, err
+    finally:
+        rclpy.try_shutdown(context=ctx)
+    assert [v for _, v in received] == travels
+    # rate 0.5: the 0.19 s of the recording take 0.38 s (a lower bound: never faster)
+    assert received[-1][0] - received[0][0] >= 0.9 * 0.38
+    assert '20/20 commands published' in err
