@@ -132,8 +132,9 @@ def failure_message(solution, stamp, node_name='suspension_node'):
 
 # --- solving -------------------------------------------------------------------------------
 
-def solve_commands(commands, scene, method, recorder, topic=DEFAULT_TOPIC, progress=None):
-    """Solve each command by continuation (as the node does) and record command and outputs.
+def solve_commands(commands, scene, method, sinks, topic=DEFAULT_TOPIC, progress=None):
+    """Solve each command by continuation (as the node does) and hand the command and the
+    outputs to each sink (McapRecorder, RerunRecorder: .record(topic, type, msg, t, t_pub)).
 
     Returns the number of commands that could not be solved.
     """
@@ -142,23 +143,59 @@ def solve_commands(commands, scene, method, recorder, topic=DEFAULT_TOPIC, progr
     outputs = {name: f'{namespace}/{name}' for name in ('wheel_carrier_pose', 'camber', 'toe')}
     cont = Continuation(scene, method=method)
     failures = 0
+
+    def emit(name, type_name, msg, t, t_pub):
+        for sink in sinks:
+            sink.record(name, type_name, msg, t, t_pub)
+
     for i, command in enumerate(commands):
         t = command.log_time
-        recorder.record(topic, FLOAT64, float_message(command.travel), t, command.publish_time)
+        emit(topic, FLOAT64, float_message(command.travel), t, command.publish_time)
         solution = cont.solve(command.travel * 1000.0)
         stamp = stamp_of(t)
         if solution.success:
-            recorder.record(outputs['wheel_carrier_pose'], POSE_STAMPED,
-                            pose_message(solution, stamp), t, t)
-            recorder.record(outputs['camber'], FLOAT64, float_message(solution.camber), t, t)
-            recorder.record(outputs['toe'], FLOAT64, float_message(solution.toe), t, t)
+            emit(outputs['wheel_carrier_pose'], POSE_STAMPED, pose_message(solution, stamp), t, t)
+            emit(outputs['camber'], FLOAT64, float_message(solution.camber), t, t)
+            emit(outputs['toe'], FLOAT64, float_message(solution.toe), t, t)
         else:
             failures += 1
-            recorder.record(DIAGNOSTICS_TOPIC, DIAGNOSTIC_ARRAY,
-                            failure_message(solution, stamp), t, t)
+            emit(DIAGNOSTICS_TOPIC, DIAGNOSTIC_ARRAY, failure_message(solution, stamp), t, t)
         if progress:
             progress.update(i + 1)
     return failures
+
+
+def benchmark(commands, scene, method, repeat=3, stream=sys.stdout):
+    """Time solving the commands alone and with each sink; print a table (us per command).
+
+    'no recording' solves and builds the messages (as the node does to publish them); the
+    other rows add McapRecorder, RerunRecorder or both, file closing included. Best of repeat.
+    """
+    import tempfile
+    from .rerun_view import RerunRecorder
+    modes = {'no recording': lambda d: [],
+             'McapRecorder': lambda d: [McapRecorder(d / 'bench.mcap')],
+             'RerunRecorder': lambda d: [RerunRecorder(d / 'bench.rrd', scene)],
+             'both': lambda d: [McapRecorder(d / 'bench.mcap'),
+                                RerunRecorder(d / 'bench.rrd', scene)]}
+    messages = 4 * len(commands)
+    print('mode,commands,us_per_command,ratio,extra_us_per_message', file=stream)
+    base = None
+    for mode, make in modes.items():
+        best = math.inf
+        for _ in range(repeat):
+            with tempfile.TemporaryDirectory() as folder:
+                start = time.perf_counter()
+                sinks = make(Path(folder))
+                solve_commands(commands, scene, method, sinks)
+                for sink in sinks:
+                    sink.close()
+                best = min(best, time.perf_counter() - start)
+        per_command = 1e6 * best / len(commands)
+        base = per_command if base is None else base
+        extra = 1e6 * best / messages - base * len(commands) / messages
+        print(f'{mode},{len(commands)},{per_command:.1f},{per_command / base:.3f},{extra:.1f}',
+              file=stream)
 
 
 def copy_messages(bag, recorder, progress=None):
@@ -258,6 +295,9 @@ def parse_args(argv):
     parser.add_argument('--from', dest='start', type=float, help='--sweep: first travel, mm')
     parser.add_argument('--to', dest='stop', type=float, help='--sweep: last travel, mm')
     parser.add_argument('--step', type=float, help='--sweep: travel step, mm')
+    mode.add_argument('--benchmark', action='store_true',
+                      help='time solving the commands with no recording, McapRecorder, '
+                      'RerunRecorder and both; print a CSV table (us per command)')
     parser.add_argument('--hz', type=float, default=SWEEP_HZ,
                         help=f'--sweep: command rate, Hz (default {SWEEP_HZ:g})')
     args = parser.parse_args(argv)
@@ -290,6 +330,11 @@ def main(argv=None):
         count = len(bag.messages) if args.copy else len(commands)
         print(f'{PROG}: warning: {args.bag}: {truncation(bag)}; {what} the {count} '
               f'{"messages" if args.copy else "commands"} read', file=sys.stderr)
+    if args.benchmark:
+        print(f'{PROG}: {scene.name}: timing {len(commands)} commands, method {args.method}, '
+              'best of 3', file=sys.stderr)
+        benchmark(commands, scene, args.method)
+        return 0
     if args.publish:
         print(f'{PROG}: publishing {len(commands)} commands from {source} on '
               f'{qualified(args.topic)} at rate {args.rate:g}', file=sys.stderr)
@@ -307,7 +352,7 @@ def main(argv=None):
               f'{qualified(args.topic)}, method {args.method}', file=sys.stderr)
         custom = {'scene': scene.name, 'method': args.method, 'source': Path(source).name}
         with McapRecorder(output, custom_data=custom) as recorder:
-            failures = solve_commands(commands, scene, args.method, recorder, args.topic,
+            failures = solve_commands(commands, scene, args.method, [recorder], args.topic,
                                       Progress(len(commands), 'commands solved'))
             written = recorder.message_count
     except RecordingError as exc:

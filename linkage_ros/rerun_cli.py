@@ -10,6 +10,7 @@ gives a warning and its readable messages are converted. Progress goes to stderr
 """
 
 import argparse
+import math
 from pathlib import Path
 import sys
 
@@ -27,8 +28,8 @@ def convert(bag, scene, output, recording_id=None):
     Returns {role: samples logged}.
     """
     counts = {}
-    with RerunRecorder(output, scene, recording_id=recording_id, batch_rows=1 << 62,
-                       batch_delay_ns=1 << 62) as viewer:
+    with RerunRecorder(output, scene, recording_id=recording_id, batch_rows=math.inf,
+                       batch_delay=math.inf) as viewer:
         for m in bag.messages:
             role = topic_role(m.topic)
             if role is None:

@@ -18,7 +18,7 @@ import yaml
 
 from linkage_ros.kinematics import sweep, travel_range
 from linkage_ros.rerun_cli import main
-from linkage_ros.rerun_view import (carrier_points, link_strips, RerunRecorder,
+from linkage_ros.rerun_view import (carrier_points, link_points, link_strips, RerunRecorder,
                                     rotation_from_quaternion, wheel_circle)
 from linkage_ros.scene import load_scene
 
@@ -88,6 +88,15 @@ def test_each_constraint_is_one_line_strip_from_the_body_to_the_carrier(name, sh
         assert np.array_equal(strip[0], c.base[0]) and np.array_equal(strip[1], joint)
         if c.type == 'circle':
             assert np.array_equal(strip[2], c.base[1])
+
+
+@pytest.mark.parametrize('name', SCENES)
+def test_batched_link_points_are_the_strips_of_each_pose_end_to_end(name):
+    scene = load_scene(name)
+    result = sweep(scene, travel_range(-20, 20, 10))
+    points = link_points(scene, result.joints)
+    for pose, joints in zip(points, result.joints):
+        assert np.array_equal(pose, np.vstack(link_strips(scene, joints)))
 
 
 def test_the_wheel_is_a_circle_of_the_scene_radius_square_to_the_spin_axis():
