@@ -165,7 +165,7 @@ def solve_commands(commands, scene, method, sinks, topic=DEFAULT_TOPIC, progress
     return failures
 
 
-def benchmark(commands, scene, method, repeat=3, stream=sys.stdout):
+def benchmark(commands, scene, method, repeat=3, stream=None):
     """Time solving the commands alone and with each sink; print a table (us per command).
 
     'no recording' solves and builds the messages (as the node does to publish them); the
@@ -173,6 +173,7 @@ def benchmark(commands, scene, method, repeat=3, stream=sys.stdout):
     """
     import tempfile
     from .rerun_view import RerunRecorder
+    stream = stream or sys.stdout
     modes = {'no recording': lambda d: [],
              'McapRecorder': lambda d: [McapRecorder(d / 'bench.mcap')],
              'RerunRecorder': lambda d: [RerunRecorder(d / 'bench.rrd', scene)],
@@ -210,8 +211,9 @@ class Progress:
     """'linkage-replay: 120/161 commands (75%)' on stderr, at most every period s, and at the
     end."""
 
-    def __init__(self, total, what, stream=sys.stderr, period=PROGRESS_PERIOD):
-        self.total, self.what, self.stream, self.period = total, what, stream, period
+    def __init__(self, total, what, stream=None, period=PROGRESS_PERIOD):
+        self.total, self.what, self.period = total, what, period
+        self.stream = stream or sys.stderr
         self._last = time.monotonic()
 
     def update(self, done):
