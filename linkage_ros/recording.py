@@ -389,11 +389,13 @@ class Bag:
 def read_bag(path, topics=None):
     """Read every readable message of an MCAP file (ROS 2 profile), tolerating truncation.
 
+    path: an .mcap file, or a rosbag2 bag folder holding one.
+
     A complete file is read to its end. A file cut short (hard kill) or damaged is read up to
     the last intact chunk; Bag.truncated and Bag.problem say so. topics: keep only these.
     Raises RecordingError if the file cannot be opened or is not MCAP at all.
     """
-    path = str(path)
+    path = str(_bag_file(Path(path)))
     try:
         stream = open(path, 'rb')
     except OSError as exc:
@@ -435,6 +437,18 @@ def read_bag(path, topics=None):
             bag.truncated = True
             bag.problem = _describe(exc)
     return bag
+
+
+def _bag_file(path):
+    """The .mcap of a rosbag2 bag folder (metadata.yaml beside one .mcap), or path itself."""
+    if not path.is_dir():
+        return path
+    files = sorted(path.glob('*.mcap'))
+    if len(files) != 1:
+        found = ', '.join(f.name for f in files) or 'none'
+        raise RecordingError(f'{path}: a bag folder must hold exactly one .mcap file (found: '
+                             f'{found})')
+    return files[0]
 
 
 def _offered_qos(text):

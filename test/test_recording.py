@@ -9,6 +9,7 @@ mcap_storage.cpp (channels, 'rosbag2' metadata record) and message_definition_ca
 import json
 import os
 from pathlib import Path
+import re
 import signal
 import subprocess
 import sys
@@ -170,6 +171,19 @@ def test_rosbags_reads_types_counts_order_and_values(run):
     assert qos['/wheel_travel'].reliability.name.lower() == 'reliable'
 
 
+def test_the_rerun_binary_checks_the_recording_and_decodes_its_ros2_stamps(run):
+    path, expected = run
+    rerun = Path(sys.executable).parent / 'rerun'
+    result = subprocess.run([str(rerun), 'mcap', 'check', '--full', str(path)],
+                            capture_output=True, text=True, timeout=60,
+                            env=dict(os.environ, RERUN_ANALYTICS='0'))
+    assert result.returncode == 0, result.stderr
+    report = result.stdout + result.stderr
+    assert 'ros2_timestamp' in report            # it decoded the ROS 2 message headers
+    for topic in TYPES:
+        assert re.search(rf'^ok\s+\d+\s+\d+\s+{topic}\s', report, re.MULTILINE), report
+
+
 def test_schema_is_msg_text_then_each_dependency_once_depth_first_in_sorted_order():
     text = message_definition('geometry_msgs/msg/PoseStamped')
     share = Path(sys.prefix) / 'share'
@@ -180,8 +194,8 @@ def test_schema_is_msg_text_then_each_dependency_once_depth_first_in_sorted_orde
     assert names == ['MSG: geometry_msgs/Pose', 'MSG: geometry_msgs/Point',
                      'MSG: geometry_msgs/Quaternion', 'MSG: std_msgs/Header',
                      'MSG: builtin_interfaces/Time']
-    assert parts[-1].split('\n', 1)[1] == (share / 'builtin_interfaces' / 'msg' / 'Time.msg'
-                                            ).read_text()
+    time_msg = share / 'builtin_interfaces' / 'msg' / 'Time.msg'
+    assert parts[-1].split('\n', 1)[1] == time_msg.read_text()
 
 
 def test_message_definitions_are_found_through_ament_prefix_path(monkeypatch):
@@ -260,7 +274,7 @@ def test_hard_kill_loses_only_the_chunk_being_built(tmp_path):
     """A process killed with SIGKILL: the messages of chunks written before stay readable,
     by mcap's own stream reader, and by read_bag (linkage-replay's reader)."""
     path = tmp_path / 'killed.mcap'
-    script = textwrap.dedent(f'''
+    script = textwrap.dedent(f"""
         import os, signal, time
         from std_msgs.msg import Float64
         from linkage_ros.recording import McapRecorder
@@ -271,7 +285,7 @@ def test_hard_kill_loses_only_the_chunk_being_built(tmp_path):
         for i in range(100, 110):
             rec.record('/wheel_travel', 'std_msgs/msg/Float64', Float64(data=i), i + 1, i + 1)
         os.kill(os.getpid(), signal.SIGKILL)
-    ''')
+    """)
     proc = subprocess.run([sys.executable, '-c', script], timeout=60)
     assert proc.returncode == -signal.SIGKILL
     independent = []
@@ -284,6 +298,16 @@ def test_hard_kill_loses_only_the_chunk_being_built(tmp_path):
     assert bag.truncated
     assert len(independent) >= 100 and len(bag.messages) == len(independent)
     assert [m.log_time for m in bag.messages] == list(range(1, len(independent) + 1))
+
+
+def test_a_rosbag2_bag_folder_is_read_through_its_mcap_file(tmp_path):
+    folder = tmp_path / 'run'
+    expected = write_run(folder / 'run_0.mcap', n=3)
+    (folder / 'metadata.yaml').write_text('rosbag2_bagfile_information: {}\n')
+    assert len(read_bag(folder).messages) == len(expected)
+    (folder / 'run_1.mcap').write_bytes(b'')
+    with pytest.raises(RecordingError, match='exactly one .mcap file'):
+        read_bag(folder)
 
 
 def test_reading_a_foreign_file_says_it_is_not_mcap(tmp_path):
