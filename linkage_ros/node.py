@@ -1,0 +1,217 @@
+"""suspension_node: wheel travel in; wheel-carrier pose, camber, toe and solver health out.
+
+A thin adapter over the kinematics core (linkage_ros.kinematics.Continuation): each command
+is solved from the last good pose (large jumps walked in substeps of max_step_mm), converted
+to SI messages by linkage_ros.messages, and published. A bad command (NaN, inf, out of reach)
+publishes no pose, only an ERROR diagnostic saying why; the core keeps the last good state.
+
+Topics (names relative to the node's namespace, /diagnostics absolute):
+    sub wheel_travel        std_msgs/Float64            m, + = bump
+    pub wheel_carrier_pose  geometry_msgs/PoseStamped   wheel centre (m) in frame_id, carrier
+                                                        orientation relative to design
+    pub camber, toe         std_msgs/Float64            rad (+ = top outboard, + = toe-in)
+    pub /diagnostics        diagnostic_msgs/DiagnosticArray
+All reliable, keep-last QOS_DEPTH (1000), so a burst of 1000 commands is not lost.
+
+Sinks (recorders, viewers) receive every command and every published message; the MCAP and
+Rerun modules are imported only when record_mcap or rerun_rrd is set.
+"""
+
+import math
+import sys
+
+from diagnostic_msgs.msg import DiagnosticArray
+from geometry_msgs.msg import PoseStamped
+from rcl_interfaces.msg import ParameterDescriptor
+import rclpy
+from rclpy.exceptions import ParameterException
+from rclpy.executors import ExternalShutdownException
+from rclpy.experimental import EventsExecutor
+from rclpy.node import Node
+from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
+from std_msgs.msg import Float64
+
+from . import messages
+from .kinematics import Continuation
+from .scene import load_scene
+
+NODE_NAME = 'suspension_kinematics'
+QOS_DEPTH = 1000
+QOS = QoSProfile(history=HistoryPolicy.KEEP_LAST, depth=QOS_DEPTH,
+                 reliability=ReliabilityPolicy.RELIABLE, durability=DurabilityPolicy.VOLATILE)
+
+# name: (default, description). Numbers accept integers too (a YAML 5 means 5.0).
+PARAMETERS = {
+    'scene': ('five_link', 'bundled scene name or path to a scene YAML file'),
+    'frame_id': ('base_link', 'frame of wheel_carrier_pose (the scene\'s vehicle frame)'),
+    'method': ('fast', 'solver: fast (pose Newton) or paper (Gauss-Jordan, Alexandru 2018)'),
+    'max_step_mm': (5.0, 'longest continuation substep, mm (> 0)'),
+    'condition_warn': (1e4, 'Jacobian condition number above which diagnostics say WARN'),
+    'record_mcap': ('', 'path of an MCAP file recording commands and outputs; empty = off'),
+    'rerun_rrd': ('', 'path of a Rerun .rrd file mirroring the poses; empty = off'),
+}
+
+
+class SuspensionNode(Node):
+    """Wheel travel (m) in, wheel-carrier pose (m), camber and toe (rad), diagnostics out."""
+
+    def __init__(self, sinks=(), **kwargs):
+        """sinks: extra objects with record(topic, type_name, msg, receive_ns, publish_ns)
+        and close(), after those the parameters turn on. kwargs go to rclpy Node."""
+        super().__init__(NODE_NAME, **kwargs)
+        self._sinks = []
+        try:
+            params = self._declare_parameters()
+            self.scene = load_scene(params['scene'])
+            self.solver = Continuation(self.scene, method=params['method'],
+                                       max_step=params['max_step_mm'])
+            self._sinks = open_sinks(params, self.scene, self._offered_qos()) + list(sinks)
+        except BaseException:
+            super().destroy_node()
+            raise
+        self._frame_id = params['frame_id']
+        self._method = params['method']
+        self._condition_warn = params['condition_warn']
+        self._status_name = f'{self.get_name()}: {self.scene.name}'
+        self._pose_pub = self.create_publisher(PoseStamped, 'wheel_carrier_pose', QOS)
+        self._camber_pub = self.create_publisher(Float64, 'camber', QOS)
+        self._toe_pub = self.create_publisher(Float64, 'toe', QOS)
+        self._diag_pub = self.create_publisher(DiagnosticArray, '/diagnostics', QOS)
+        self._travel_sub = self.create_subscription(Float64, 'wheel_travel', self._on_travel,
+                                                    QOS)
+        self.get_logger().info(
+            f'scene {self.scene.name} ({self.scene.source}), method {self._method}, '
+            f'frame {self._frame_id}; waiting on {self._travel_sub.topic_name} (m)')
+
+    def _on_travel(self, msg):
+        received = self.get_clock().now()
+        solution = self.solver.solve(messages.travel_mm(msg))
+        stamp = received.to_msg()
+        if self._sinks:   # Float64 has no publish time, EventsExecutor gives no message info
+            self._record(self._travel_sub.topic_name, msg, received.nanoseconds,
+                         received.nanoseconds)
+        if solution.success:   # the pose first: it is what a controller waits for
+            self._publish(self._pose_pub,
+                          messages.pose_stamped(solution, stamp, self._frame_id))
+            self._publish(self._camber_pub, messages.camber(solution))
+            self._publish(self._toe_pub, messages.toe(solution))
+        self._publish(self._diag_pub, messages.diagnostics(
+            solution, stamp, self._status_name, self.scene.name, self._method,
+            self._condition_warn))
+
+    def _publish(self, publisher, msg):
+        publisher.publish(msg)
+        if self._sinks:   # a sink sees an output when it is published
+            published = self.get_clock().now().nanoseconds
+            self._record(publisher.topic_name, msg, published, published)
+
+    def _record(self, topic, msg, receive_ns, publish_ns):
+        for sink in list(self._sinks):
+            try:
+                sink.record(topic, messages.type_name(msg), msg, receive_ns, publish_ns)
+            except Exception as exc:  # a broken recorder must not stop the node
+                self.get_logger().error(f'{type(sink).__name__} failed ({exc}); dropped')
+                self._sinks.remove(sink)
+                self._close(sink)
+
+    def close_sinks(self):
+        """Close every sink once (files are finished here); later calls do nothing."""
+        sinks, self._sinks = self._sinks, []
+        for sink in sinks:
+            self._close(sink)
+
+    def _close(self, sink):
+        try:
+            sink.close()
+        except Exception as exc:  # one failing sink must not keep the others open
+            self.get_logger().error(f'closing {type(sink).__name__}: {exc}')
+
+    def destroy_node(self):
+        self.close_sinks()
+        super().destroy_node()
+
+    def _offered_qos(self):
+        """{resolved topic: QoS} of every topic, for the recording's metadata."""
+        names = ('wheel_travel', 'wheel_carrier_pose', 'camber', 'toe', '/diagnostics')
+        return {self.resolve_topic_name(name): QOS for name in names}
+
+    def _declare_parameters(self):
+        values = {}
+        for name, (default, description) in PARAMETERS.items():
+            numeric = isinstance(default, float)
+            descriptor = ParameterDescriptor(description=description, read_only=True,
+                                             dynamic_typing=numeric)
+            value = self.declare_parameter(name, default, descriptor).value
+            values[name] = positive_number(name, value) if numeric else value
+        return values
+
+
+def positive_number(name, value):
+    """value as a float if it is a finite number > 0, else ValueError naming the parameter."""
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise ValueError(f'{name}: expected a number, got {value!r}')
+    if not (math.isfinite(value) and value > 0):
+        raise ValueError(f'{name}: must be a finite number above 0, got {value!r}')
+    return float(value)
+
+
+def open_sinks(params, scene, qos):
+    """The sinks the parameters turn on; their modules are imported only then.
+
+    qos: {topic: QoSProfile} the node offers, stored in the MCAP channel metadata.
+    """
+    sinks = []
+    try:
+        if params['record_mcap']:
+            try:
+                from .recording import McapRecorder
+            except ImportError as exc:
+                raise ImportError(f'record_mcap: cannot record ({exc}); install the record '
+                                  'extra: pip install "linkage_ros[record]"') from exc
+            about = {k: str(params[k]) for k in ('scene', 'method', 'frame_id', 'max_step_mm')}
+            sinks.append(McapRecorder(params['record_mcap'], qos=qos, custom_data=about))
+        if params['rerun_rrd']:
+            try:
+                from .rerun_view import RerunRecorder
+            except ImportError as exc:
+                raise ImportError(f'rerun_rrd: cannot mirror to Rerun ({exc}); install the '
+                                  'view extra: pip install "linkage_ros[view]"') from exc
+            sinks.append(RerunRecorder(params['rerun_rrd'], scene))
+    except BaseException:
+        for sink in sinks:
+            sink.close()
+        raise
+    return sinks
+
+
+def spin_until_shutdown(executor):
+    """Spin until SIGINT (KeyboardInterrupt) or SIGTERM (ExternalShutdownException)."""
+    # Finite timeouts on purpose: with rclpy 7.1.6, EventsExecutor.spin() and spin_once()
+    # without a timeout busy-wait holding the GIL and never run a callback.
+    while True:
+        executor.spin_once(timeout_sec=3600.0)
+
+
+def main(args=None):
+    rclpy.init(args=args)
+    try:
+        node = SuspensionNode()
+    except (ValueError, OSError, ImportError, ParameterException) as exc:
+        # SceneError is a ValueError: its message names the file, field and problem.
+        print(f'suspension_node: {exc}', file=sys.stderr)
+        rclpy.try_shutdown()
+        return 2
+    executor = EventsExecutor()
+    executor.add_node(node)
+    try:
+        spin_until_shutdown(executor)
+    except (KeyboardInterrupt, ExternalShutdownException):
+        pass
+    finally:
+        node.destroy_node()
+        rclpy.try_shutdown()
+    return 0
+
+
+if __name__ == '__main__':
+    sys.exit(main())

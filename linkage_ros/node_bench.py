@@ -1,0 +1,293 @@
+"""linkage-node-bench: suspension_node against a bare rclpy echo node, across processes.
+
+Each node runs in its own process (one after the other, on a fresh ROS domain, discovery kept
+to this machine) and is driven from this process over the same topics and QoS (reliable,
+keep-last 1000):
+
+- latency: one command at a time, time from publishing wheel_travel to receiving
+  wheel_carrier_pose (median, p99);
+- rate: commands paced at each rate of a ladder for --duration seconds; the highest rate
+  with no command lost, and whether the node kept up (its last answer within --lag-ms of the
+  last command).
+
+The echo node answers each Float64 with a PoseStamped and nothing else: the transport and
+executor cost. The table goes to stdout, progress to stderr.
+"""
+
+import argparse
+import os
+from pathlib import Path
+import signal
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+
+from geometry_msgs.msg import PoseStamped
+import numpy as np
+import rclpy
+from rclpy.executors import ExternalShutdownException
+from rclpy.experimental import EventsExecutor
+from rclpy.node import Node
+from std_msgs.msg import Float64
+
+from .node import QOS, spin_until_shutdown
+
+DEFAULT_RATES = (250, 500, 1000, 2000, 4000, 8000)
+
+
+class EchoNode(Node):
+    """The bare reference: wheel_travel (Float64) in, a PoseStamped with z = travel out."""
+
+    def __init__(self, **kwargs):
+        super().__init__('echo', **kwargs)
+        self._pub = self.create_publisher(PoseStamped, 'wheel_carrier_pose', QOS)
+        self.create_subscription(Float64, 'wheel_travel', self._on_travel, QOS)
+
+    def _on_travel(self, msg):
+        out = PoseStamped()
+        out.header.stamp = self.get_clock().now().to_msg()
+        out.header.frame_id = 'base_link'
+        out.pose.position.z = msg.data
+        self._pub.publish(out)
+
+
+def echo_main(args=None):
+    """The echo node process: same executor and spin loop as suspension_node."""
+    rclpy.init(args=args)
+    node = EchoNode()
+    executor = EventsExecutor()
+    executor.add_node(node)
+    try:
+        spin_until_shutdown(executor)
+    except (KeyboardInterrupt, ExternalShutdownException):
+        pass
+    finally:
+        node.destroy_node()
+        rclpy.try_shutdown()
+    return 0
+
+
+class Driver:
+    """Publishes wheel_travel and counts wheel_carrier_pose answers (arrival times, s)."""
+
+    def __init__(self, context):
+        self.executor = EventsExecutor(context=context)
+        self.node = rclpy.create_node('bench_driver', context=context, enable_rosout=False,
+                                      start_parameter_services=False)
+        self.arrivals = []
+        self.pub = self.node.create_publisher(Float64, 'wheel_travel', QOS)
+        self.sub = self.node.create_subscription(
+            PoseStamped, 'wheel_carrier_pose',
+            lambda _: self.arrivals.append(time.perf_counter()), QOS)
+        self.executor.add_node(self.node)
+
+    def spin_until(self, predicate, timeout):
+        deadline = time.perf_counter() + timeout
+        while not predicate() and time.perf_counter() < deadline:
+            self.executor.spin_once(timeout_sec=min(0.01, deadline - time.perf_counter()))
+        return predicate()
+
+    def connect(self, timeout=20.0):
+        """Wait until the node answers, then until no answer is in flight."""
+        if not self.spin_until(lambda: self.pub.get_subscription_count() > 0
+                               and self.sub.get_publisher_count() > 0, timeout):
+            raise RuntimeError('the node under test was not discovered')
+        deadline = time.perf_counter() + timeout
+        while not self.arrivals and time.perf_counter() < deadline:
+            self.send(0.0)
+            self.spin_until(lambda: self.arrivals, 0.5)
+        if not self.arrivals:
+            raise RuntimeError('the node under test never answered')
+        count = -1
+        while count != len(self.arrivals):   # answers to extra pings: let them land
+            count = len(self.arrivals)
+            self.spin_until(lambda: len(self.arrivals) > count, 0.3)
+        self.arrivals.clear()
+
+    def send(self, travel_m):
+        self.pub.publish(Float64(data=float(travel_m)))
+
+    def latency(self, travels):
+        """Round trip (s) of each command, one at a time."""
+        times = []
+        for travel in travels:
+            count = len(self.arrivals)
+            start = time.perf_counter()
+            self.send(travel)
+            if not self.spin_until(lambda: len(self.arrivals) > count, 5.0):
+                raise RuntimeError(f'no answer to command {len(times)} within 5 s')
+            times.append(self.arrivals[-1] - start)
+        return np.array(times)
+
+    def paced(self, travels, rate, drain=3.0):
+        """Send travels at rate (Hz); returns (sent rate, received, last answer lag s)."""
+        self.arrivals.clear()
+        period = 1.0 / rate
+        start = time.perf_counter()
+        due = start
+        for travel in travels:
+            now = time.perf_counter()
+            while now < due:
+                self.executor.spin_once(timeout_sec=due - now)
+                now = time.perf_counter()
+            self.send(travel)
+            due += period
+        last_sent = time.perf_counter()
+        sent_rate = len(travels) / (last_sent - start)
+        self.spin_until(lambda: len(self.arrivals) >= len(travels), drain)
+        received = len(self.arrivals)
+        lag = self.arrivals[-1] - last_sent if received else float('inf')
+        return sent_rate, received, lag
+
+    def destroy(self):
+        self.executor.remove_node(self.node)
+        self.node.destroy_node()
+        self.executor.shutdown()
+
+
+def travels(count, amplitude=0.02):
+    """A slow +-20 mm sine (m): small steps, one continuation substep each."""
+    return amplitude * np.sin(np.arange(count) * 0.01)
+
+
+def start(command, domain_id, log_dir):
+    env = dict(os.environ, ROS_DOMAIN_ID=str(domain_id), ROS_LOG_DIR=log_dir,
+               ROS_AUTOMATIC_DISCOVERY_RANGE='LOCALHOST')
+    return subprocess.Popen(command, env=env, stdout=subprocess.DEVNULL,
+                            stderr=subprocess.PIPE, text=True)
+
+
+def stop(process):
+    process.send_signal(signal.SIGINT)
+    try:
+        _, err = process.communicate(timeout=10)
+    except subprocess.TimeoutExpired:
+        process.kill()
+        _, err = process.communicate()
+    if process.returncode != 0:
+        print(f'linkage-node-bench: the node exited with {process.returncode}: {err.strip()}',
+              file=sys.stderr)
+
+
+def measure(name, command, domain_id, args, log_dir):
+    """Latency and rate ladder of one node process."""
+    print(f'linkage-node-bench: {name}: starting', file=sys.stderr)
+    process = start(command, domain_id, log_dir)
+    context = rclpy.context.Context()
+    rclpy.init(context=context, domain_id=domain_id)
+    driver = Driver(context)
+    try:
+        driver.connect()
+        driver.latency(travels(args.warmup))
+        rtt = driver.latency(travels(args.count))
+        print(f'linkage-node-bench: {name}: latency median {np.median(rtt) * 1e6:.0f} us, '
+              f'p99 {np.percentile(rtt, 99) * 1e6:.0f} us over {len(rtt)}', file=sys.stderr)
+        ladder = []
+        for rate in args.rates:
+            count = max(1, int(rate * args.duration))
+            sent_rate, received, lag = driver.paced(travels(count), rate)
+            kept_up = received == count and lag * 1000.0 <= args.lag_ms
+            ladder.append((rate, count, sent_rate, received, lag, kept_up))
+            print(f'linkage-node-bench: {name}: {rate} Hz: sent {count} at '
+                  f'{sent_rate:.0f}/s, received {received}, last answer '
+                  f'{lag * 1000.0:.1f} ms after the last command', file=sys.stderr)
+            if received < count:
+                break
+            driver.connect()     # let a backlog drain before the next rate
+    finally:
+        driver.destroy()
+        rclpy.try_shutdown(context=context)
+        stop(process)
+    return rtt, ladder
+
+
+def solve_time(scene_name, method, count):
+    """Median time (s) of one Continuation.solve on the bench's command sequence."""
+    from .kinematics import Continuation
+    from .scene import load_scene
+    cont = Continuation(load_scene(scene_name), method=method)
+    times = []
+    for travel in travels(count) * 1000.0:
+        start_time = time.perf_counter()
+        cont.solve(travel)
+        times.append(time.perf_counter() - start_time)
+    return statistics.median(times)
+
+
+def best_rate(ladder, kept_up=False):
+    """Highest rate of the ladder with nothing lost (and kept up, if asked)."""
+    good = [rate for rate, count, _, received, _, ok in ladder
+            if received == count and (ok or not kept_up)]
+    return max(good) if good else 0
+
+
+def report(results, solve_s, stream):
+    med = {k: np.median(v[0]) * 1e6 for k, v in results.items()}
+    p99 = {k: np.percentile(v[0], 99) * 1e6 for k, v in results.items()}
+    print('node,latency_median_us,latency_p99_us,max_rate_no_loss_hz,max_rate_kept_up_hz',
+          file=stream)
+    for name, (_, ladder) in results.items():
+        print(f'{name},{med[name]:.0f},{p99[name]:.0f},{best_rate(ladder)},'
+              f'{best_rate(ladder, kept_up=True)}', file=stream)
+    print(f'ratio node/echo,{med["node"] / med["echo"]:.2f},{p99["node"] / p99["echo"]:.2f},,',
+          file=stream)
+    print(f'core solve alone (in process),{solve_s * 1e6:.0f},,,', file=stream)
+    print('', file=stream)
+    print('node,rate_hz,sent,sent_rate_hz,received,lost,last_answer_lag_ms,kept_up',
+          file=stream)
+    for name, (_, ladder) in results.items():
+        for rate, count, sent_rate, received, lag, ok in ladder:
+            print(f'{name},{rate},{count},{sent_rate:.0f},{received},{count - received},'
+                  f'{lag * 1000.0:.1f},{ok}', file=stream)
+
+
+def parse_args(argv):
+    parser = argparse.ArgumentParser(prog='linkage-node-bench', description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument('--count', type=int, default=2000,
+                        help='round trips for the latency (default 2000)')
+    parser.add_argument('--warmup', type=int, default=200, help='round trips not counted')
+    parser.add_argument('--rates', type=lambda s: [int(r) for r in s.split(',')],
+                        default=list(DEFAULT_RATES), help='command rates, Hz, comma separated')
+    parser.add_argument('--duration', type=float, default=2.0, help='seconds per rate')
+    parser.add_argument('--lag-ms', type=float, default=50.0,
+                        help='kept up: last answer at most this long after the last command')
+    parser.add_argument('--scene', default='five_link')
+    parser.add_argument('--method', default='fast', choices=('fast', 'paper'))
+    parser.add_argument('--domain-id', type=int, default=None,
+                        help='first of two ROS domain ids to use (default from the pid)')
+    parser.add_argument('--echo', action='store_true', help=argparse.SUPPRESS)
+    return parser.parse_known_args(argv)
+
+
+def main(argv=None):
+    args, ros_args = parse_args(sys.argv[1:] if argv is None else argv)
+    if args.echo:      # the echo node process started by the bench itself
+        return echo_main(['echo', *ros_args])
+    if args.count < 1 or args.duration <= 0 or not args.rates:
+        print('linkage-node-bench: --count >= 1, --duration > 0 and --rates are required',
+              file=sys.stderr)
+        return 2
+    first = args.domain_id if args.domain_id is not None else 1 + os.getpid() % 100
+    node_script = Path(sys.executable).parent / 'suspension_node'
+    commands = {
+        'echo': [sys.executable, '-m', 'linkage_ros.node_bench', '--echo'],
+        'node': [str(node_script), '--ros-args', '-p', f'scene:={args.scene}',
+                 '-p', f'method:={args.method}'],
+    }
+    print(f'linkage-node-bench: {os.cpu_count()} CPUs, load average '
+          f'{os.getloadavg()[0]:.2f}; {args.count} round trips, rates {args.rates} Hz for '
+          f'{args.duration:g} s each', file=sys.stderr)
+    results = {}
+    with tempfile.TemporaryDirectory(prefix='linkage-node-bench-') as log_dir:
+        for offset, (name, command) in enumerate(commands.items()):
+            results[name] = measure(name, command, (first + offset) % 101 or 101, args,
+                                    log_dir)
+    report(results, solve_time(args.scene, args.method, args.count), sys.stdout)
+    return 0
+
+
+if __name__ == '__main__':
+    sys.exit(main())

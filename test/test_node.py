@@ -1,0 +1,353 @@
+"""suspension_node over real rclpy and DDS: in-process (one executor) and cross-process.
+
+Expected values come from the kinematics core (sweep) for the same travels; the node must
+publish exactly those, in SI units.
+"""
+
+import math
+import os
+import signal
+import subprocess
+import sys
+
+from diagnostic_msgs.msg import DiagnosticStatus
+import numpy as np
+import pytest
+from rclpy.parameter import Parameter
+import yaml
+
+from linkage_ros.kinematics import sweep
+from linkage_ros.messages import status_values
+from linkage_ros.node import NODE_NAME, PARAMETERS, QOS, QOS_DEPTH, SuspensionNode
+from linkage_ros.scene import load_scene, SceneError
+
+from conftest import connect, PARAMS_FILE, Probe, spin_until, stamp_ns
+
+TRAVELS_M = [0.02, 0.045, -0.03, -0.0625, 0.0, 0.07]     # jumps up to 132 mm between commands
+BAD_COMMANDS_M = {'nan': math.nan, 'inf': math.inf, '-inf': -math.inf,
+                  'beyond bump': 1.0, 'beyond rebound': -1.0}
+BAD_WHY = {'nan': 'not a finite number', 'inf': 'not a finite number',
+           '-inf': 'not a finite number', 'beyond bump': 'out of reach',
+           'beyond rebound': 'out of reach'}
+
+
+def core(scene_name, travels_m, method='fast'):
+    """The core's answer (Sweep, mm and rad) for travels given in metres, in order."""
+    return sweep(load_scene(scene_name), np.asarray(travels_m) * 1000.0, method=method)
+
+
+def burst_travels(count=1000):
+    """Travels (m) of a burst: two +-60 mm sine periods, 0.8 mm apart at most."""
+    return list(0.06 * np.sin(np.linspace(0.0, 4 * np.pi, count)) + 1e-3)
+
+
+def assert_counts(probe, n):
+    """Exactly n of each output: nothing lost, nothing extra (in-process: no pings)."""
+    assert [len(probe.poses), len(probe.cambers), len(probe.toes), len(probe.statuses)] == [n] * 4
+
+
+def assert_outputs_equal_core(probe, expected, frame_id='base_link', with_statuses=True):
+    """probe's poses, cambers, toes and statuses (the last len(expected) of each) equal the
+    core's sweep: positions to 1 nm, angles and quaternions to 1e-9. One lost message shifts
+    the tail of its topic, so this also checks that none of the commands was lost.
+    with_statuses=False leaves the diagnostics out (when bad commands are among them)."""
+    n = len(expected.travel)
+    poses, statuses = probe.poses[-n:], probe.statuses[-n:]
+    positions = [[p.pose.position.x, p.pose.position.y, p.pose.position.z] for p in poses]
+    quaternions = [[p.pose.orientation.x, p.pose.orientation.y, p.pose.orientation.z,
+                    p.pose.orientation.w] for p in poses]
+    assert np.array(positions) == pytest.approx(expected.wheel_center / 1000.0, abs=1e-9)
+    assert np.array(quaternions) == pytest.approx(expected.quaternion, abs=1e-9)
+    assert probe.cambers[-n:] == pytest.approx(list(expected.camber), abs=1e-9)
+    assert probe.toes[-n:] == pytest.approx(list(expected.toe), abs=1e-9)
+    assert {p.header.frame_id for p in poses} == {frame_id}
+    if not with_statuses:
+        return
+    assert [float(status_values(s)['travel_m']) for s in statuses] == pytest.approx(
+        list(expected.travel / 1000.0), rel=1e-8, abs=1e-15)     # 9 significant digits
+    assert {s.level for s in statuses} == {DiagnosticStatus.OK}
+    assert [stamp_ns(p.header.stamp) for p in poses] == probe.status_stamps[-n:]
+
+
+@pytest.fixture
+def make_node(ros_context, executor):
+    """Factory: a SuspensionNode in the test's Context and executor, parameters by name."""
+    def make(sinks=(), **params):
+        overrides = [Parameter(name, value=value) for name, value in params.items()]
+        node = SuspensionNode(sinks=sinks, context=ros_context, parameter_overrides=overrides)
+        executor.add_node(node)
+        return node
+    return make
+
+
+class ListSink:
+    """A sink that keeps what it is given: (topic, type_name, msg, receive_ns, publish_ns)."""
+
+    def __init__(self):
+        self.records, self.closed = [], 0
+
+    def record(self, topic, type_name, msg, receive_ns, publish_ns):
+        self.records.append((topic, type_name, msg, receive_ns, publish_ns))
+
+    def close(self):
+        self.closed += 1
+
+
+# --- in process: the node and a probe node in one EventsExecutor ---------------------------
+
+def test_answers_equal_the_core_sweep_for_the_same_travels(make_node, executor, probe):
+    make_node()
+    expected = core('five_link', TRAVELS_M)
+    probe.send(*TRAVELS_M)
+    assert spin_until(executor, lambda: probe.answered(expected))
+    assert_counts(probe, len(TRAVELS_M))
+    assert_outputs_equal_core(probe, expected)
+
+
+def test_outputs_of_one_command_share_the_stamp_of_its_receipt(make_node, executor, probe):
+    make_node()
+    expected = core('five_link', [0.01, 0.02])
+    probe.send(0.01, 0.02)
+    assert spin_until(executor, lambda: probe.answered(expected))
+    pose_stamps = [stamp_ns(p.header.stamp) for p in probe.poses]
+    assert pose_stamps == probe.status_stamps
+    assert pose_stamps[0] < pose_stamps[1]
+    assert [s.name for s in probe.statuses] == [f'{NODE_NAME}: five_link'] * 2
+
+
+@pytest.mark.parametrize('max_step_mm, substeps', [(5.0, 10), (20, 3)])
+def test_a_large_jump_is_walked_in_substeps_of_max_step_mm(make_node, executor, probe,
+                                                           max_step_mm, substeps):
+    make_node(max_step_mm=max_step_mm)    # an integer (20) is taken as a number too
+    probe.send(0.05)                      # 50 mm from the design position
+    assert spin_until(executor, lambda: probe.statuses and probe.poses)
+    assert int(status_values(probe.statuses[0])['substeps']) == substeps
+    assert probe.poses[0].pose.position.z == pytest.approx(
+        core('five_link', [0.05]).wheel_center[0, 2] / 1000.0, abs=1e-9)
+
+
+@pytest.mark.parametrize('bad', list(BAD_COMMANDS_M))
+def test_bad_command_publishes_no_pose_and_an_error_saying_why(make_node, executor, probe,
+                                                               bad):
+    make_node()
+    expected = core('five_link', [0.02, 0.03])
+    probe.send(0.02, BAD_COMMANDS_M[bad], 0.03)
+    assert spin_until(executor, lambda: len(probe.statuses) == 3 and probe.answered(expected))
+    good, error, after = probe.statuses
+    assert (good.level, error.level, after.level) == (
+        DiagnosticStatus.OK, DiagnosticStatus.ERROR, DiagnosticStatus.OK)
+    assert BAD_WHY[bad] in error.message
+    # Each pose carries its command's stamp: the two poses are those of the good commands.
+    good_stamps = [probe.status_stamps[0], probe.status_stamps[2]]
+    assert [stamp_ns(p.header.stamp) for p in probe.poses] == good_stamps
+    assert [len(probe.poses), len(probe.cambers), len(probe.toes)] == [2, 2, 2]
+    assert_outputs_equal_core(probe, expected, with_statuses=False)
+
+
+@pytest.mark.parametrize('bad', list(BAD_COMMANDS_M))
+def test_bad_command_keeps_the_last_good_state(make_node, executor, probe, bad):
+    make_node()
+    probe.send(0.02, BAD_COMMANDS_M[bad], 0.02)
+    assert spin_until(executor, lambda: len(probe.statuses) == 3 and len(probe.poses) == 2)
+    assert probe.statuses[1].level == DiagnosticStatus.ERROR
+    # Back at the last good travel, the solver has nothing to walk: the state stayed there.
+    assert int(status_values(probe.statuses[2])['substeps']) == 0
+    assert probe.poses[1].pose == probe.poses[0].pose
+
+
+def test_a_burst_of_1000_commands_is_answered_in_order_none_lost(make_node, executor, probe):
+    # All 1000 are published before the executor runs once: the node's subscription queue
+    # must hold them all (QoS keep-last QOS_DEPTH, reliable).
+    assert QOS_DEPTH >= 1000
+    make_node()
+    travels = burst_travels(1000)
+    expected = core('five_link', travels)
+    probe.send(*travels)
+    assert spin_until(executor, lambda: probe.answered(expected), 30.0)
+    assert_counts(probe, 1000)
+    assert_outputs_equal_core(probe, expected)
+
+
+def test_parameters_come_from_a_params_file(ros_context, executor, probe, tmp_path):
+    params = tmp_path / 'params.yaml'
+    params.write_text(yaml.safe_dump({'/**': {'ros__parameters': {
+        'scene': 'double_wishbone', 'frame_id': 'chassis', 'method': 'paper',
+        'max_step_mm': 20.0}}}))
+    node = SuspensionNode(context=ros_context,
+                          cli_args=['--ros-args', '--params-file', str(params)])
+    executor.add_node(node)
+    expected = core('double_wishbone', [-0.04, 0.035], 'paper')
+    probe.send(-0.04, 0.035)
+    assert spin_until(executor, lambda: probe.answered(expected))
+    assert_outputs_equal_core(probe, expected, frame_id='chassis')
+    assert {s.hardware_id for s in probe.statuses} == {'double_wishbone'}
+    assert {status_values(s)['method'] for s in probe.statuses} == {'paper'}
+    assert int(status_values(probe.statuses[0])['substeps']) == 2
+
+
+def test_bundled_params_file_holds_the_node_defaults(ros_context):
+    node = SuspensionNode(context=ros_context,
+                          cli_args=['--ros-args', '--params-file', str(PARAMS_FILE)])
+    try:
+        assert {name: node.get_parameter(name).value for name in PARAMETERS} == {
+            name: default for name, (default, _) in PARAMETERS.items()}
+    finally:
+        node.destroy_node()
+
+
+def test_condition_warn_parameter_turns_a_well_conditioned_pose_into_a_warning(
+        make_node, executor, probe):
+    make_node(condition_warn=100.0)    # five_link's Jacobian condition is about 600
+    probe.send(0.01)
+    assert spin_until(executor, lambda: probe.statuses and probe.poses)
+    assert probe.statuses[0].level == DiagnosticStatus.WARN
+    assert 'condition number' in probe.statuses[0].message
+
+
+def test_default_condition_warn_leaves_the_scene_travel_range_ok(make_node, executor, probe):
+    make_node()
+    probe.send(-0.08, 0.08)            # five_link's declared travel range
+    assert spin_until(executor, lambda: len(probe.statuses) == 2)
+    assert [s.level for s in probe.statuses] == [DiagnosticStatus.OK] * 2
+
+
+@pytest.mark.parametrize('params, error', [
+    ({'scene': 'no_such_scene'}, 'not a bundled scene'),
+    ({'method': 'slow'}, "method: unknown value 'slow'"),
+    ({'max_step_mm': 0.0}, 'max_step_mm: must be a finite number above 0'),
+])
+def test_bad_parameter_raises_a_clear_error(ros_context, params, error):
+    overrides = [Parameter(k, value=v) for k, v in params.items()]
+    with pytest.raises(ValueError, match=error) as raised:
+        SuspensionNode(context=ros_context, parameter_overrides=overrides)
+    assert isinstance(raised.value, SceneError) == ('scene' in params)
+
+
+def test_qos_is_reliable_keep_last_1000():
+    assert (QOS.reliability.name, QOS.history.name, QOS.depth) == ('RELIABLE', 'KEEP_LAST',
+                                                                   1000)
+
+
+# --- sinks: recorders and viewers ------------------------------------------------------------
+
+def test_every_command_and_published_message_reaches_each_sink(make_node, executor, probe):
+    sinks = [ListSink(), ListSink()]
+    make_node(sinks=sinks)
+    probe.send(0.02, math.nan)
+    assert spin_until(executor, lambda: len(probe.statuses) == 2)
+    expected = [('/wheel_travel', 'std_msgs/msg/Float64'),
+                ('/wheel_carrier_pose', 'geometry_msgs/msg/PoseStamped'),
+                ('/camber', 'std_msgs/msg/Float64'), ('/toe', 'std_msgs/msg/Float64'),
+                ('/diagnostics', 'diagnostic_msgs/msg/DiagnosticArray'),
+                ('/wheel_travel', 'std_msgs/msg/Float64'),
+                ('/diagnostics', 'diagnostic_msgs/msg/DiagnosticArray')]
+    for sink in sinks:
+        assert [(topic, type_name) for topic, type_name, *_ in sink.records] == expected
+    command, pose = sinks[0].records[0], sinks[0].records[1]
+    assert command[2].data == 0.02
+    assert pose[2].pose.position == probe.poses[0].pose.position
+    stamp = pose[2].header.stamp
+    assert command[3] == stamp.sec * 10**9 + stamp.nanosec      # received at the stamp
+    assert all(r[3] <= r[4] for r in sinks[0].records)         # received before published
+
+
+def test_destroying_the_node_closes_its_sinks_once(make_node, executor):
+    sink = ListSink()
+    node = make_node(sinks=[sink])
+    executor.remove_node(node)
+    node.destroy_node()
+    node.close_sinks()
+    assert sink.closed == 1
+
+
+def test_record_mcap_parameter_writes_a_recording_readable_by_mcap(make_node, executor,
+                                                                   probe, tmp_path):
+    from mcap.reader import make_reader
+    from mcap_ros2.decoder import DecoderFactory
+    path = tmp_path / 'run.mcap'
+    node = make_node(record_mcap=str(path))
+    probe.send(0.02, 0.03)
+    assert spin_until(executor, lambda: len(probe.statuses) == 2)
+    executor.remove_node(node)
+    node.destroy_node()
+    with open(path, 'rb') as stream:
+        decoded = [(channel.topic, msg) for _, channel, _, msg in make_reader(
+            stream, decoder_factories=[DecoderFactory()]).iter_decoded_messages()]
+    topics = [topic for topic, _ in decoded]
+    assert topics.count('/wheel_travel') == 2 and topics.count('/wheel_carrier_pose') == 2
+    assert topics.count('/diagnostics') == 2 and topics.count('/camber') == 2
+    assert [m.data for t, m in decoded if t == '/wheel_travel'] == [0.02, 0.03]
+
+
+def test_without_sinks_neither_mcap_nor_rerun_is_imported(domain_id):
+    script = (
+        'import sys, rclpy\n'
+        'from linkage_ros.node import SuspensionNode\n'
+        f'ctx = rclpy.context.Context(); rclpy.init(context=ctx, domain_id={domain_id})\n'
+        'SuspensionNode(context=ctx).destroy_node(); rclpy.try_shutdown(context=ctx)\n'
+        "names = ('mcap', 'rerun', 'linkage_ros.recording', 'linkage_ros.rerun_view')\n"
+        'print(sorted(n for n in names if n in sys.modules))\n')
+    result = subprocess.run([sys.executable, '-c', script], capture_output=True, text=True,
+                            timeout=60, env={**os.environ,
+                                             'ROS_AUTOMATIC_DISCOVERY_RANGE': 'OFF'})
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.strip() == '[]'
+
+
+# --- across processes: the console script in a subprocess ----------------------------------
+
+def test_node_process_answers_like_the_core_and_exits_cleanly_on_sigint(
+        node_process, localhost_context, localhost_executor):
+    process = node_process('--params-file', str(PARAMS_FILE))
+    probe = Probe(localhost_context, localhost_executor)
+    connect(localhost_executor, probe)
+    expected = core('five_link', TRAVELS_M)
+    probe.send(*TRAVELS_M)
+    assert spin_until(localhost_executor, lambda: probe.answered(expected))
+    assert_outputs_equal_core(probe, expected)
+    code, _, err = process.stop(signal.SIGINT)
+    assert code == 0, err
+    assert 'Traceback' not in err
+
+
+def test_node_process_exits_cleanly_on_sigterm_with_its_recording_closed(
+        node_process, localhost_context, localhost_executor, tmp_path):
+    from mcap.reader import make_reader
+    path = tmp_path / 'run.mcap'
+    process = node_process('-p', f'record_mcap:={path}')
+    probe = Probe(localhost_context, localhost_executor)
+    connect(localhost_executor, probe)
+    code, _, err = process.stop(signal.SIGTERM)
+    assert code == 0, err
+    with open(path, 'rb') as stream:
+        summary = make_reader(stream).get_summary()     # written only by a finished file
+    assert summary is not None
+    assert summary.statistics.message_count >= 5       # at least one answered command
+
+
+def test_node_process_answers_a_burst_of_1000_in_order(node_process, localhost_context,
+                                                       localhost_executor):
+    process = node_process()
+    probe = Probe(localhost_context, localhost_executor)
+    connect(localhost_executor, probe)
+    travels = burst_travels(1000)
+    expected = core('five_link', travels)    # the pings leave the node at 0, as the core
+    probe.send(*travels)
+    assert spin_until(localhost_executor, lambda: probe.answered(expected), 30.0)
+    # Replies to the connection pings come first; the last 1000 of each are the burst's.
+    assert_outputs_equal_core(probe, expected)
+    assert process.stop(signal.SIGINT)[0] == 0
+
+
+@pytest.mark.parametrize('scene, error', [
+    ('no_such_scene', 'no_such_scene: scene: no such file, and not a bundled scene'),
+    ('{tmp}/broken.yaml', "broken.yaml: units: unknown value 'furlong'"),
+])
+def test_bad_scene_exits_non_zero_with_the_loader_message(node_process, tmp_path, scene,
+                                                          error):
+    (tmp_path / 'broken.yaml').write_text('units: furlong\nside: left\n')
+    process = node_process('-p', f"scene:={scene.format(tmp=tmp_path)}")
+    code, _, err = process.finish()
+    assert code == 2
+    assert err.strip().splitlines() == [err.strip()]            # one line, no traceback
+    assert err.startswith('suspension_node: ') and error in err
