@@ -7,11 +7,13 @@
 
 The commands are std_msgs/msg/Float64 wheel travel in m on --topic (default /wheel_travel),
 from any MCAP with the ROS 2 profile (ours, rosbag2's, Foxglove's). Outputs are what the node
-publishes, in the command topic's namespace: wheel_carrier_pose (geometry_msgs/PoseStamped,
-m), camber and toe (std_msgs/Float64, rad), and /diagnostics (diagnostic_msgs/DiagnosticArray)
-for a command that cannot be solved. Each output is stamped with its command's receive time,
-so the new bag keeps the recorded timeline. A truncated bag (recording cut by a hard kill)
-gives a warning and its readable messages are used. Progress goes to stderr.
+publishes (built by linkage_ros.messages), in the command topic's namespace:
+wheel_carrier_pose (geometry_msgs/PoseStamped, m), camber and toe (std_msgs/Float64, rad) for a
+solved command, and for every command /diagnostics (diagnostic_msgs/DiagnosticArray: solver
+health, ERROR with the reason for a command that cannot be solved). Each output is stamped
+with its command's receive time, so the new bag keeps the recorded timeline. A truncated bag
+(recording cut by a hard kill) gives a warning and its readable messages are used. Progress
+goes to stderr.
 """
 
 import argparse
@@ -96,22 +98,11 @@ def sweep_commands(scene, start=None, stop=None, step=None, hz=SWEEP_HZ, t0=None
             for i, travel in enumerate(travel_range(start, stop, step))]
 
 
-# --- output messages (what the node publishes) ---------------------------------------------
+# --- output messages (what the node publishes, built by linkage_ros.messages) -------------
 
 def stamp_of(time_ns):
     from builtin_interfaces.msg import Time
     return Time(sec=int(time_ns // 10**9), nanosec=int(time_ns % 10**9))
-
-
-def pose_message(solution, stamp, frame_id=FRAME_ID):
-    """PoseStamped of a solved position: wheel centre (m) and carrier rotation from design."""
-    from geometry_msgs.msg import PoseStamped
-    msg = PoseStamped()
-    msg.header.stamp, msg.header.frame_id = stamp, frame_id
-    p, q = msg.pose.position, msg.pose.orientation
-    p.x, p.y, p.z = (float(v) / 1000.0 for v in solution.wheel_center)
-    q.x, q.y, q.z, q.w = (float(v) for v in solution.quaternion)
-    return msg
 
 
 def float_message(value):
@@ -119,28 +110,22 @@ def float_message(value):
     return Float64(data=float(value))
 
 
-def failure_message(solution, stamp, node_name='suspension_node'):
-    """DiagnosticArray with one ERROR status saying why a command was not solved."""
-    from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
-    status = DiagnosticStatus(level=DiagnosticStatus.ERROR, name=f'{node_name}: kinematics',
-                              message=solution.message, hardware_id='',
-                              values=[KeyValue(key='travel_mm', value=f'{solution.travel}')])
-    msg = DiagnosticArray(status=[status])
-    msg.header.stamp = stamp
-    return msg
-
-
 # --- solving -------------------------------------------------------------------------------
 
-def solve_commands(commands, scene, method, sinks, topic=DEFAULT_TOPIC, progress=None):
-    """Solve each command by continuation (as the node does) and hand the command and the
+def solve_commands(commands, scene, method, sinks, topic=DEFAULT_TOPIC, progress=None,
+                   frame_id=FRAME_ID):
+    """Solve each command by continuation and build what the node publishes for it: pose,
+    camber and toe if it is solved, and a diagnostic status always; hand the command and the
     outputs to each sink (McapRecorder, RerunRecorder: .record(topic, type, msg, t, t_pub)).
 
     Returns the number of commands that could not be solved.
     """
+    from . import messages
+    from .node import NODE_NAME, PARAMETERS
     topic = qualified(topic)
     namespace = topic.rsplit('/', 1)[0]
     outputs = {name: f'{namespace}/{name}' for name in ('wheel_carrier_pose', 'camber', 'toe')}
+    status_name, condition_warn = f'{NODE_NAME}: {scene.name}', PARAMETERS['condition_warn'][0]
     cont = Continuation(scene, method=method)
     failures = 0
 
@@ -154,12 +139,14 @@ def solve_commands(commands, scene, method, sinks, topic=DEFAULT_TOPIC, progress
         solution = cont.solve(command.travel * 1000.0)
         stamp = stamp_of(t)
         if solution.success:
-            emit(outputs['wheel_carrier_pose'], POSE_STAMPED, pose_message(solution, stamp), t, t)
-            emit(outputs['camber'], FLOAT64, float_message(solution.camber), t, t)
-            emit(outputs['toe'], FLOAT64, float_message(solution.toe), t, t)
+            emit(outputs['wheel_carrier_pose'], POSE_STAMPED,
+                 messages.pose_stamped(solution, stamp, frame_id), t, t)
+            emit(outputs['camber'], FLOAT64, messages.camber(solution), t, t)
+            emit(outputs['toe'], FLOAT64, messages.toe(solution), t, t)
         else:
             failures += 1
-            emit(DIAGNOSTICS_TOPIC, DIAGNOSTIC_ARRAY, failure_message(solution, stamp), t, t)
+        emit(DIAGNOSTICS_TOPIC, DIAGNOSTIC_ARRAY, messages.diagnostics(
+            solution, stamp, status_name, scene.name, method, condition_warn), t, t)
         if progress:
             progress.update(i + 1)
     return failures
@@ -179,7 +166,7 @@ def benchmark(commands, scene, method, repeat=3, stream=None):
              'RerunRecorder': lambda d: [RerunRecorder(d / 'bench.rrd', scene)],
              'both': lambda d: [McapRecorder(d / 'bench.mcap'),
                                 RerunRecorder(d / 'bench.rrd', scene)]}
-    messages = 4 * len(commands)
+    messages = 5 * len(commands)
     print('mode,commands,us_per_command,ratio,extra_us_per_message', file=stream)
     base = None
     for mode, make in modes.items():
@@ -282,6 +269,8 @@ def parse_args(argv):
     parser.add_argument('--scene', default='five_link',
                         help='bundled scene name or YAML path (default five_link)')
     parser.add_argument('--method', choices=METHODS, default='fast')
+    parser.add_argument('--frame-id', default=FRAME_ID,
+                        help=f'frame of wheel_carrier_pose (default {FRAME_ID})')
     mode = parser.add_mutually_exclusive_group()
     mode.add_argument('--publish', action='store_true',
                       help='republish the commands on ROS at the recorded timing')
@@ -328,7 +317,7 @@ def main(argv=None):
         return 2
     source = args.bag or 'sweep'
     if bag is not None and bag.truncated:
-        what = 'copied' if args.copy else 'using'
+        what = 'copied' if args.copy else 'solving'
         count = len(bag.messages) if args.copy else len(commands)
         print(f'{PROG}: warning: {args.bag}: {truncation(bag)}; {what} the {count} '
               f'{"messages" if args.copy else "commands"} read', file=sys.stderr)
@@ -355,7 +344,8 @@ def main(argv=None):
         custom = {'scene': scene.name, 'method': args.method, 'source': Path(source).name}
         with McapRecorder(output, custom_data=custom) as recorder:
             failures = solve_commands(commands, scene, args.method, [recorder], args.topic,
-                                      Progress(len(commands), 'commands solved'))
+                                      Progress(len(commands), 'commands solved'),
+                                      args.frame_id)
             written = recorder.message_count
     except RecordingError as exc:
         print(f'{PROG}: {exc}', file=sys.stderr)

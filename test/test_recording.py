@@ -6,6 +6,7 @@ mcap_storage.cpp (channels, 'rosbag2' metadata record) and message_definition_ca
 (schema text). No DDS is needed: messages are real rclpy messages serialized with rclpy.
 """
 
+import collections
 import json
 import os
 from pathlib import Path
@@ -15,18 +16,23 @@ import subprocess
 import sys
 import textwrap
 
+from conftest import connect, Probe, spin_until   # test/conftest.py: launch-free ROS helpers
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
 from geometry_msgs.msg import PoseStamped
 from mcap.reader import make_reader
 from mcap.stream_reader import breakup_chunk, StreamReader
 from mcap_ros2.decoder import DecoderFactory
+import numpy as np
 import pytest
+from rerun.chunk import RrdReader
 from rosbags.highlevel import AnyReader
 from std_msgs.msg import Float64
 import yaml
 
+from linkage_ros.kinematics import sweep
 from linkage_ros.recording import (McapRecorder, message_definition, read_bag, RecordingError,
                                    SEPARATOR, share_dirs)
+from linkage_ros.scene import load_scene
 
 T0 = 1_700_000_000_000_000_000   # ns since the epoch
 PERIOD = 10_000_000              # 100 Hz
@@ -325,3 +331,58 @@ def test_reading_a_complete_file_gives_all_messages_and_no_truncation(run):
     assert [(m.topic, m.log_time) for m in bag.messages] == [(t, time) for t, time, _ in expected]
     assert bag.custom_data == {'scene': 'five_link'}
     assert bag.qos['/camber']['reliability'] == 'reliable'
+
+
+# --- end to end: suspension_node with record_mcap and rerun_rrd, stopped by a signal --------
+
+@pytest.mark.parametrize('sig', [signal.SIGINT, signal.SIGTERM], ids=['SIGINT', 'SIGTERM'])
+def test_node_run_stopped_by_a_signal_leaves_complete_files_with_every_message(
+        node_process, localhost_context, localhost_executor, tmp_path, sig):
+    """suspension_node records and mirrors a run; after SIGINT or SIGTERM the MCAP is complete
+    (summary, rosbag2 metadata) and holds each command and each answer in order, with the
+    core's values; the .rrd holds one sample per command and per pose."""
+    mcap_path, rrd_path = tmp_path / 'run.mcap', tmp_path / 'run.rrd'
+    process = node_process('-p', f'record_mcap:={mcap_path}', '-p', f'rerun_rrd:={rrd_path}')
+    probe = Probe(localhost_context, localhost_executor)
+    connect(localhost_executor, probe)                  # travel 0 pings until answered
+    travels = [0.01 * i for i in range(-5, 6)]
+    expected = sweep(load_scene('five_link'), np.array(travels) * 1000.0)
+    probe.send(*travels)
+    assert spin_until(localhost_executor, lambda: probe.answered(expected))
+    # The probe has the last answer as soon as it is published; the node records it just
+    # after. A SIGINT in between interrupts the callback (rclpy raises KeyboardInterrupt out
+    # of publish) and that answer is never recorded: a node issue, reported. Let it settle.
+    spin_until(localhost_executor, lambda: False, timeout=0.3)
+    code, _, err = process.stop(sig)
+    assert code == 0, err
+
+    with open(mcap_path, 'rb') as stream:
+        reader = make_reader(stream, decoder_factories=[DecoderFactory()])
+        summary = reader.get_summary()
+        rows = [(c.topic, s.name, m.log_time, d) for s, c, m, d in
+                reader.iter_decoded_messages(log_time_order=False)]
+    assert summary is not None and summary.statistics.message_count == len(rows)
+    commands = [r for r in rows if r[0] == '/wheel_travel']
+    n = len(commands)                                     # pings + the 11 travels
+    assert n >= len(travels) + 1
+    assert {t: sum(1 for r in rows if r[0] == t) for t in TYPES} == {t: n for t in TYPES}, err
+    assert {(r[0], r[1]) for r in rows} == set(TYPES.items())
+    assert [r[3].data for r in commands[-len(travels):]] == travels
+    for topic, values in (('/camber', expected.camber), ('/toe', expected.toe)):
+        got = [r[3].data for r in rows if r[0] == topic][-len(travels):]
+        assert got == pytest.approx(list(values), abs=1e-12)
+    # Order: every command is followed by its pose, camber, toe and diagnostics.
+    assert [r[0] for r in rows] == ['/wheel_travel', '/wheel_carrier_pose', '/camber', '/toe',
+                                    '/diagnostics'] * n
+    assert all(a[2] <= b[2] for a, b in zip(rows, rows[1:]))
+    with AnyReader([mcap_path]) as bag:
+        assert {c.topic: c.msgcount for c in bag.connections} == {t: n for t in TYPES}
+        assert bag.connections[0].ext.offered_qos_profiles[0].depth == 1000
+
+    reader = RrdReader(str(rrd_path))
+    samples = collections.Counter()
+    for chunk in reader.stream(store=reader.recordings()[0]):
+        if not chunk.is_static:
+            samples[chunk.entity_path] += chunk.num_rows
+    assert samples == {'/plots/travel_mm': n, '/plots/camber_deg': n, '/plots/toe_deg': n,
+                       '/suspension/carrier': n, '/suspension/links': n}

@@ -24,7 +24,7 @@ from linkage_ros.replay import main
 ROOT = Path(__file__).resolve().parent.parent
 EXAMPLE = ROOT / 'bags' / 'five_link_sweep.mcap'
 T0 = 1_700_000_000_000_000_000
-OUTPUTS = ('/wheel_carrier_pose', '/camber', '/toe')
+OUTPUTS = ('/wheel_carrier_pose', '/camber', '/toe', '/diagnostics')
 
 
 def decoded(path):
@@ -55,7 +55,8 @@ def test_example_bag_is_small_complete_and_a_sweep_of_the_default_scene():
     messages = decoded(EXAMPLE)
     travels = [round(m.data * 1000.0, 9) for m in by_topic(messages, '/wheel_travel')]
     assert travels == list(range(-80, 81))
-    assert [len(by_topic(messages, t)) for t in OUTPUTS] == [161, 161, 161]
+    assert [len(by_topic(messages, t)) for t in OUTPUTS] == [161, 161, 161, 161]
+    assert {m.status[0].level for m in by_topic(messages, '/diagnostics')} == {0}   # all OK
 
 
 def test_example_bag_outputs_match_the_reference_data_of_the_scene():
@@ -85,11 +86,14 @@ def test_replaying_the_example_bag_reproduces_its_outputs(tmp_path):
             for field in ('x', 'y', 'z', 'w'):
                 assert getattr(b.pose.orientation, field) == pytest.approx(
                     getattr(a.pose.orientation, field), abs=1e-12)
+        elif topic == '/diagnostics':
+            assert [(s.level, s.name, s.message) for s in b.status] == [
+                (s.level, s.name, s.message) for s in a.status]
         else:
             assert b.data == pytest.approx(a.data, abs=1e-12)
 
 
-def test_each_command_is_followed_by_pose_camber_and_toe_stamped_with_its_receive_time(
+def test_each_command_is_followed_by_pose_camber_toe_and_diagnostics_at_its_receive_time(
         tmp_path):
     out = tmp_path / 'sweep.mcap'
     assert main(['--sweep', '--from', '-2', '--to', '2', '--step', '1', '--hz', '10', '-o',
@@ -99,12 +103,12 @@ def test_each_command_is_followed_by_pose_camber_and_toe_stamped_with_its_receiv
                 for c, t, raw in reader.messages()]
     assert [r[0] for r in rows] == ['/wheel_travel', *OUTPUTS] * 5
     for i in range(5):
-        command = rows[4 * i]
+        command = rows[5 * i]
         assert command[2].data == pytest.approx((i - 2) / 1000.0)
-        assert {t for _, t, _ in rows[4 * i:4 * i + 4]} == {command[1]}
-        stamp = rows[4 * i + 1][2].header.stamp
+        assert {t for _, t, _ in rows[5 * i:5 * i + 5]} == {command[1]}
+        stamp = rows[5 * i + 1][2].header.stamp
         assert stamp.sec * 10**9 + stamp.nanosec == command[1]
-    assert rows[4][1] - rows[0][1] == 100_000_000        # 10 Hz
+    assert rows[5][1] - rows[0][1] == 100_000_000        # 10 Hz
 
 
 def test_a_command_out_of_reach_gives_an_error_diagnostic_and_no_pose(tmp_path):
@@ -114,8 +118,9 @@ def test_a_command_out_of_reach_gives_an_error_diagnostic_and_no_pose(tmp_path):
     messages = decoded(out)
     assert [t for t, _, _ in messages] == ['/wheel_travel', *OUTPUTS, '/wheel_travel',
                                            '/diagnostics', '/wheel_travel', *OUTPUTS]
-    status = by_topic(messages, '/diagnostics')[0].status[0]
-    assert status.level == 2 and 'out of reach' in status.message
+    levels = [m.status[0].level for m in by_topic(messages, '/diagnostics')]
+    assert levels == [0, 2, 0]                              # OK, ERROR, OK
+    assert 'out of reach' in by_topic(messages, '/diagnostics')[1].status[0].message
     assert by_topic(messages, '/wheel_carrier_pose')[1].pose.position.z == pytest.approx(
         0.32, abs=0.01)                                     # 300 mm + 20 mm, after the failure
 
@@ -138,8 +143,8 @@ def test_another_topic_name_is_solved_and_answered_in_its_namespace(tmp_path):
     write_commands(bag, [0.0, 0.01], topic='/car/front_left/bump')
     assert main([str(bag), '--topic', '/car/front_left/bump', '-o', str(out)]) == 0
     topics = [t for t, _, _ in decoded(out)]
-    assert topics[:4] == ['/car/front_left/bump', '/car/front_left/wheel_carrier_pose',
-                          '/car/front_left/camber', '/car/front_left/toe']
+    assert topics[:5] == ['/car/front_left/bump', '/car/front_left/wheel_carrier_pose',
+                          '/car/front_left/camber', '/car/front_left/toe', '/diagnostics']
 
 
 def test_a_foreign_file_is_refused_clearly(tmp_path, capsys):
