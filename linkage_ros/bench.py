@@ -391,10 +391,14 @@ def plot_front(rows, scenes, names, path):
     import matplotlib
     matplotlib.use('Agg')
     import matplotlib.pyplot as plt
-    fig, axes = plt.subplots(1, len(scenes), figsize=(5.2 * len(scenes), 4.6), squeeze=False,
-                             sharey=True)
+    cols = min(4, len(scenes))
+    rows_ = math.ceil(len(scenes) / cols)
+    fig, axes = plt.subplots(rows_, cols, figsize=(4.4 * cols, 3.7 * rows_ + 0.6),
+                             squeeze=False, sharex=True, sharey=True)
     colours = dict(zip(names, plt.rcParams['axes.prop_cycle'].by_key()['color'] * 2))
-    for ax, scene in zip(axes[0], scenes):
+    for ax in axes.flat[len(scenes):]:
+        ax.set_visible(False)
+    for ax, scene in zip(axes.flat, scenes):
         for name in names:
             pts = [(r['median_us'], max(r['error_mm'], 1e-16)) for r in rows
                    if r['scene'] == scene and r['entry'] == name and r['ok']]
@@ -406,13 +410,19 @@ def plot_front(rows, scenes, names, path):
             ax.step(ft, fe, where='post', color=colours[name], label=name, lw=1.6)
         ax.axhline(GOAL_ERROR, color='grey', ls=':', lw=1)
         ax.axvline(GOAL_US, color='grey', ls=':', lw=1)
-        ax.set(xscale='log', yscale='log', title=scene, xlabel='median time per position (us)')
+        ax.set(xscale='log', yscale='log')
+        ax.set_title(scene, fontsize=9)
         ax.grid(True, which='major', alpha=0.3)
-    axes[0][0].set_ylabel('error: max(residual, wheel-centre deviation) (mm)')
-    axes[0][-1].legend(fontsize=8, loc='upper right')
-    fig.suptitle('Error against run time (dots: every tol x step; lines: Pareto front). '
-                 f'Dotted: {GOAL_ERROR:g} mm, {GOAL_US:g} us', fontsize=10)
-    fig.tight_layout()
+    for ax in axes[-1]:
+        ax.set_xlabel('median time per position (us)')
+    for ax in axes[:, 0]:
+        ax.set_ylabel('error (mm)')
+    handles, labels = axes.flat[0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc='lower center', ncol=len(labels), fontsize=9)
+    fig.suptitle('Error = max(residual, wheel-centre deviation from the reference) against run '
+                 'time. Dots: every tol x step; lines: Pareto fronts. Dotted: '
+                 f'{GOAL_ERROR:g} mm, {GOAL_US:g} us', fontsize=10)
+    fig.tight_layout(rect=(0, 0.04, 1, 0.97))
     fig.savefig(path, dpi=110)
     plt.close(fig)
 
