@@ -83,8 +83,9 @@ def test_poses_close_to_the_toggle_agree_with_the_reference(method):
     cont = Continuation(scene, method=method)
     sols = [cont.solve(t) for t in travels]
     assert all(s.success for s in sols)
-    # A fold amplifies a residual r into a pose error of about sqrt(r * radius).
-    assert pose_error(ref, sols)['wheel_center_mm'] <= 1e-4
+    # The Jacobian's smallest singular value vanishes like sqrt(distance to the fold), so a
+    # residual at tol moves the pose by more there: 3.5e-10 mm measured 0.02 mm from it.
+    assert pose_error(ref, sols)['wheel_center_mm'] <= 1e-8
 
 
 def test_condition_number_grows_past_the_node_warning_towards_the_toggle():
