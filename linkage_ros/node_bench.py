@@ -4,11 +4,13 @@ Each node runs in its own process (one after the other, on a fresh ROS domain, d
 to this machine) and is driven from this process over the same topics and QoS (reliable,
 keep-last 1000):
 
-- latency: one command at a time, time from publishing wheel_travel to receiving
-  wheel_carrier_pose (median, p99);
+- latency, time from publishing wheel_travel to receiving wheel_carrier_pose (median, p99):
+  paced at --latency-rate (commands apart, as a controller sends them), and ping-pong (the
+  next command as soon as the pose arrives, so it can wait for the rest of the previous
+  command's work: camber, toe, diagnostics);
 - rate: commands paced at each rate of a ladder for --duration seconds; the highest rate
   with no command lost, and whether the node kept up (its last answer within --lag-ms of the
-  last command).
+  last command), with the latency at each rate.
 
 The echo node answers each Float64 with a PoseStamped and nothing else: the transport and
 executor cost. The table goes to stdout, progress to stderr.
@@ -122,8 +124,10 @@ class Driver:
         return np.array(times)
 
     def paced(self, travels, rate, drain=3.0):
-        """Send travels at rate (Hz); returns (sent rate, received, last answer lag s)."""
+        """Send travels at rate (Hz); returns (sent rate, received, last answer lag s,
+        latencies s). Answers come in command order, so the i-th answers the i-th command."""
         self.arrivals.clear()
+        sent = []
         period = 1.0 / rate
         start = time.perf_counter()
         due = start
@@ -132,14 +136,16 @@ class Driver:
             while now < due:
                 self.executor.spin_once(timeout_sec=due - now)
                 now = time.perf_counter()
+            sent.append(time.perf_counter())
             self.send(travel)
             due += period
-        last_sent = time.perf_counter()
-        sent_rate = len(travels) / (last_sent - start)
+        last_sent = sent[-1]
+        sent_rate = len(travels) / (time.perf_counter() - start)
         self.spin_until(lambda: len(self.arrivals) >= len(travels), drain)
         received = len(self.arrivals)
         lag = self.arrivals[-1] - last_sent if received else float('inf')
-        return sent_rate, received, lag
+        latencies = np.array(self.arrivals) - np.array(sent) if received == len(sent) else None
+        return sent_rate, received, lag, latencies
 
     def destroy(self):
         self.executor.remove_node(self.node)
@@ -181,35 +187,45 @@ def measure(name, command, domain_id, args, log_dir):
     try:
         driver.connect()
         driver.latency(travels(args.warmup))
-        rtt = driver.latency(travels(args.count))
-        print(f'linkage-node-bench: {name}: latency median {np.median(rtt) * 1e6:.0f} us, '
-              f'p99 {np.percentile(rtt, 99) * 1e6:.0f} us over {len(rtt)}', file=sys.stderr)
+        latency = {'ping-pong': driver.latency(travels(args.count))}
+        _, received, _, paced = driver.paced(travels(args.count), args.latency_rate)
+        if paced is None:
+            raise RuntimeError(f'{args.count - received} commands lost at '
+                               f'{args.latency_rate} Hz')
+        latency['paced'] = paced
+        for kind, values in latency.items():
+            print(f'linkage-node-bench: {name}: {kind} latency median '
+                  f'{np.median(values) * 1e6:.0f} us, p99 {np.percentile(values, 99) * 1e6:.0f}'
+                  f' us over {len(values)}', file=sys.stderr)
         ladder = []
         for rate in args.rates:
             count = max(1, int(rate * args.duration))
-            sent_rate, received, lag = driver.paced(travels(count), rate)
+            driver.connect()     # a backlog of the previous rate drains first
+            sent_rate, received, lag, latencies = driver.paced(travels(count), rate)
             kept_up = received == count and lag * 1000.0 <= args.lag_ms
-            ladder.append((rate, count, sent_rate, received, lag, kept_up))
+            ladder.append((rate, count, sent_rate, received, lag, kept_up, latencies))
             print(f'linkage-node-bench: {name}: {rate} Hz: sent {count} at '
                   f'{sent_rate:.0f}/s, received {received}, last answer '
                   f'{lag * 1000.0:.1f} ms after the last command', file=sys.stderr)
             if received < count:
                 break
-            driver.connect()     # let a backlog drain before the next rate
     finally:
         driver.destroy()
         rclpy.try_shutdown(context=context)
         stop(process)
-    return rtt, ladder
+    return latency, ladder
 
 
-def solve_time(scene_name, method, count):
-    """Median time (s) of one Continuation.solve on the bench's command sequence."""
+def solve_time(scene_name, method, count, gap=0.0):
+    """Median time (s) of one Continuation.solve on the bench's command sequence, with the
+    process idle for gap (s) before each: an idle process solves slower (cold caches)."""
     from .kinematics import Continuation
     from .scene import load_scene
     cont = Continuation(load_scene(scene_name), method=method)
     times = []
     for travel in travels(count) * 1000.0:
+        if gap:
+            time.sleep(gap)
         start_time = time.perf_counter()
         cont.solve(travel)
         times.append(time.perf_counter() - start_time)
@@ -218,36 +234,46 @@ def solve_time(scene_name, method, count):
 
 def best_rate(ladder, kept_up=False):
     """Highest rate of the ladder with nothing lost (and kept up, if asked)."""
-    good = [rate for rate, count, _, received, _, ok in ladder
+    good = [rate for rate, count, _, received, _, ok, _ in ladder
             if received == count and (ok or not kept_up)]
     return max(good) if good else 0
 
 
-def report(results, solve_s, stream):
-    med = {k: np.median(v[0]) * 1e6 for k, v in results.items()}
-    p99 = {k: np.percentile(v[0], 99) * 1e6 for k, v in results.items()}
-    print('node,latency_median_us,latency_p99_us,max_rate_no_loss_hz,max_rate_kept_up_hz',
-          file=stream)
-    for name, (_, ladder) in results.items():
-        print(f'{name},{med[name]:.0f},{p99[name]:.0f},{best_rate(ladder)},'
-              f'{best_rate(ladder, kept_up=True)}', file=stream)
-    print(f'ratio node/echo,{med["node"] / med["echo"]:.2f},{p99["node"] / p99["echo"]:.2f},,',
-          file=stream)
-    print(f'core solve alone (in process),{solve_s * 1e6:.0f},,,', file=stream)
+def _us(values, q):
+    return f'{np.percentile(values, q) * 1e6:.0f}' if values is not None else ''
+
+
+def report(results, solve_s, latency_rate, stream):
+    """solve_s: (paced, back-to-back) median solve times of the core alone, s."""
+    """Summary table, then the rate ladder; CSV with units in the column names."""
+    print(f'node,paced_{latency_rate:g}hz_median_us,paced_p99_us,ping_pong_median_us,'
+          'ping_pong_p99_us,max_rate_no_loss_hz,max_rate_kept_up_hz', file=stream)
+    for name, (latency, ladder) in results.items():
+        print(f"{name},{_us(latency['paced'], 50)},{_us(latency['paced'], 99)},"
+              f"{_us(latency['ping-pong'], 50)},{_us(latency['ping-pong'], 99)},"
+              f'{best_rate(ladder)},{best_rate(ladder, kept_up=True)}', file=stream)
+    ratios = [np.percentile(results['node'][0][kind], q) / np.percentile(
+        results['echo'][0][kind], q) for kind in ('paced', 'ping-pong') for q in (50, 99)]
+    print('ratio node/echo,' + ','.join(f'{r:.2f}' for r in ratios) + ',,', file=stream)
+    print(f'core solve alone (median in process),{solve_s[0] * 1e6:.0f},,'
+          f'{solve_s[1] * 1e6:.0f},,,', file=stream)
     print('', file=stream)
-    print('node,rate_hz,sent,sent_rate_hz,received,lost,last_answer_lag_ms,kept_up',
-          file=stream)
+    print('node,rate_hz,sent,sent_rate_hz,received,lost,last_answer_lag_ms,kept_up,'
+          'latency_median_us,latency_p99_us', file=stream)
     for name, (_, ladder) in results.items():
-        for rate, count, sent_rate, received, lag, ok in ladder:
+        for rate, count, sent_rate, received, lag, ok, latencies in ladder:
             print(f'{name},{rate},{count},{sent_rate:.0f},{received},{count - received},'
-                  f'{lag * 1000.0:.1f},{ok}', file=stream)
+                  f'{lag * 1000.0:.1f},{ok},{_us(latencies, 50)},{_us(latencies, 99)}',
+                  file=stream)
 
 
 def parse_args(argv):
     parser = argparse.ArgumentParser(prog='linkage-node-bench', description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument('--count', type=int, default=2000,
-                        help='round trips for the latency (default 2000)')
+                        help='commands for each latency measurement (default 2000)')
+    parser.add_argument('--latency-rate', type=float, default=200.0,
+                        help='command rate of the paced latency, Hz (default 200)')
     parser.add_argument('--warmup', type=int, default=200, help='round trips not counted')
     parser.add_argument('--rates', type=lambda s: [int(r) for r in s.split(',')],
                         default=list(DEFAULT_RATES), help='command rates, Hz, comma separated')
@@ -266,9 +292,9 @@ def main(argv=None):
     args, ros_args = parse_args(sys.argv[1:] if argv is None else argv)
     if args.echo:      # the echo node process started by the bench itself
         return echo_main(['echo', *ros_args])
-    if args.count < 1 or args.duration <= 0 or not args.rates:
-        print('linkage-node-bench: --count >= 1, --duration > 0 and --rates are required',
-              file=sys.stderr)
+    if args.count < 1 or args.duration <= 0 or args.latency_rate <= 0 or not args.rates:
+        print('linkage-node-bench: --count >= 1, --duration > 0, --latency-rate > 0 and '
+              '--rates are required', file=sys.stderr)
         return 2
     first = args.domain_id if args.domain_id is not None else 1 + os.getpid() % 100
     node_script = Path(sys.executable).parent / 'suspension_node'
@@ -278,14 +304,17 @@ def main(argv=None):
                  '-p', f'method:={args.method}'],
     }
     print(f'linkage-node-bench: {os.cpu_count()} CPUs, load average '
-          f'{os.getloadavg()[0]:.2f}; {args.count} round trips, rates {args.rates} Hz for '
-          f'{args.duration:g} s each', file=sys.stderr)
+          f'{os.getloadavg()[0]:.2f}; {args.count} commands per latency, rates {args.rates} '
+          f'Hz for {args.duration:g} s each', file=sys.stderr)
     results = {}
     with tempfile.TemporaryDirectory(prefix='linkage-node-bench-') as log_dir:
         for offset, (name, command) in enumerate(commands.items()):
             results[name] = measure(name, command, (first + offset) % 101 or 101, args,
                                     log_dir)
-    report(results, solve_time(args.scene, args.method, args.count), sys.stdout)
+    count = min(args.count, 1000)
+    solve_s = (solve_time(args.scene, args.method, count, gap=1.0 / args.latency_rate),
+               solve_time(args.scene, args.method, count))
+    report(results, solve_s, args.latency_rate, sys.stdout)
     return 0
 
 

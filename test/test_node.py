@@ -6,6 +6,7 @@ publish exactly those, in SI units.
 
 import math
 import os
+from pathlib import Path
 import signal
 import subprocess
 import sys
@@ -351,3 +352,17 @@ def test_bad_scene_exits_non_zero_with_the_loader_message(node_process, tmp_path
     assert code == 2
     assert err.strip().splitlines() == [err.strip()]            # one line, no traceback
     assert err.startswith('suspension_node: ') and error in err
+
+
+def test_node_bench_reports_the_node_beside_the_echo_node(domain_id):
+    # A smoke run of linkage-node-bench: the table's structure, not its (machine) timings.
+    result = subprocess.run(
+        [str(Path(sys.executable).parent / 'linkage-node-bench'), '--count', '20', '--warmup',
+         '5', '--rates', '100', '--duration', '0.2', '--domain-id', str(domain_id)],
+        capture_output=True, text=True, timeout=120)
+    assert result.returncode == 0, result.stderr
+    rows = [line.split(',') for line in result.stdout.splitlines()]
+    assert rows[0][0] == 'node' and [r[0] for r in rows[1:3]] == ['echo', 'node']
+    assert [r[5] for r in rows[1:3]] == ['100', '100']     # 100 Hz, nothing lost
+    ladder = [r for r in rows if len(r) == 10 and r[1] == '100']
+    assert [(r[0], r[5]) for r in ladder] == [('echo', '0'), ('node', '0')]
