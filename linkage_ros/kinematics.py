@@ -22,6 +22,7 @@ from .mechanism import carrier_points, compile_scene, length_errors, linearize, 
 
 METHODS = ('paper', 'fast')
 ARC_TOL = 1e-9   # mm: residual tolerance on the arclength path to a travel limit
+ROUND_OFF = 64 * np.finfo(float).eps   # tolerance floor per mm of scene size
 
 
 @dataclass(frozen=True)
@@ -88,7 +89,12 @@ class Continuation:
 
     def __init__(self, scene, settings=None, **overrides):
         self.scene = scene
-        self.settings = settings or Settings(**overrides)
+        settings = settings or Settings(**overrides)
+        # Float64 round-off of coordinates of size L is about eps * L: a tolerance below it
+        # can never be met and would read as a false travel limit, so it is floored there.
+        self.floor = ROUND_OFF * scene.size
+        self.settings = replace(settings, tol=max(settings.tol, self.floor),
+                                knot_tol=max(settings.knot_tol, self.floor))
         if self.settings.method not in METHODS:
             raise ValueError(f"method: unknown value {self.settings.method!r} "
                              f"(expected one of: {', '.join(METHODS)})")
@@ -169,12 +175,13 @@ class Continuation:
         to the travel limit (turning point) that comes first."""
         cfg = self.settings
         status, found = arclength.walk(self.mech, self.center, self.rotation, self.travel,
-                                       target, ARC_TOL, cfg.max_iter, rack=self.rack)
+                                       target, max(ARC_TOL, self.floor), cfg.max_iter,
+                                       rack=self.rack)
         if status == 'reached':
             (near_center, near_rotation, _), length = found
             center, rotation, iterations, ok, jac = pose_newton.correct(
-                self.mech, target, near_center, near_rotation, min(cfg.tol, ARC_TOL),
-                cfg.max_iter, self.rack)
+                self.mech, target, near_center, near_rotation,
+                max(min(cfg.tol, ARC_TOL), self.floor), cfg.max_iter, self.rack)
             moved = carrier_points(self.mech, center, rotation) - carrier_points(
                 self.mech, near_center, near_rotation)
             if ok and np.abs(moved).max() <= 2 * length:   # within the last arc step

@@ -100,10 +100,12 @@ class SuspensionNode(Node):
             self._condition_warn))
 
     def _publish(self, publisher, msg):
-        publisher.publish(msg)
-        if self._sinks:   # a sink sees an output when it is published
+        # Recorded first: a SIGINT can surface as KeyboardInterrupt inside publish() after
+        # the message left, and the recording must still hold what subscribers got.
+        if self._sinks:
             published = self.get_clock().now().nanoseconds
             self._record(publisher.topic_name, msg, published, published)
+        publisher.publish(msg)
 
     def _record(self, topic, msg, receive_ns, publish_ns):
         for sink in list(self._sinks):
