@@ -4,11 +4,15 @@ The core works in mm (vehicle frame: x forward, y left, z up); ROS messages are 
 conversion happens here and only here:
 
     travel_mm(Float64 m)                               -> float mm (+ = bump)
+    joint_travel_mm(JointState, joint)                 -> float mm of that joint, or None
     pose_stamped(solution, stamp, frame_id)            -> PoseStamped: wheel centre (m) and
                                                           carrier rotation relative to design
     camber(solution), toe(solution)                    -> Float64 (rad)
     diagnostics(solution, stamp, name, hardware_id, method, condition_warn)
                                                        -> DiagnosticArray (one status)
+    rack_mm(Float64 m)                                 -> float mm (+ = rack to the left)
+    alignment_array(alignment)                         -> Float64MultiArray: ALIGNMENT_FIELDS
+                                                          in SI, named by the layout's labels
 
 A failed Solution (NaN, inf or out-of-reach command) has no pose: pose_stamped, camber and toe
 refuse it, so no NaN can reach a pose topic; diagnostics turns it into an ERROR status.
@@ -16,7 +20,7 @@ refuse it, so no NaN can reach a pose topic; diagnostics turns it into an ERROR 
 
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
 from geometry_msgs.msg import PoseStamped
-from std_msgs.msg import Float64
+from std_msgs.msg import Float64, Float64MultiArray, MultiArrayDimension, MultiArrayLayout
 
 M_PER_MM = 1e-3
 MM_PER_M = 1e3
@@ -25,6 +29,63 @@ MM_PER_M = 1e3
 def travel_mm(msg):
     """Commanded wheel travel of a Float64 (m, + = bump) in mm, the core's unit."""
     return msg.data * MM_PER_M
+
+
+def joint_travel_mm(msg, joint):
+    """Wheel travel (mm, + = bump) of a sensor_msgs/JointState: the position (m) of the joint
+    named joint. None if the message has no such joint or no position for it (not an error:
+    joint_states carries many joints, often in separate messages)."""
+    try:
+        index = list(msg.name).index(joint)
+    except ValueError:
+        return None
+    if index >= len(msg.position):
+        return None
+    return float(msg.position[index]) * MM_PER_M
+
+
+def rack_mm(msg):
+    """Commanded steering rack travel of a Float64 (m, + = rack to the left) in mm."""
+    return msg.data * MM_PER_M
+
+
+# label: (Alignment attribute, column or None, factor from the core's unit to SI). The order
+# is the order of the data in the alignment message.
+ALIGNMENT_FIELDS = {
+    'camber_gain_rad_per_m': ('camber_gain', None, MM_PER_M),
+    'bump_steer_rad_per_m': ('bump_steer', None, MM_PER_M),
+    'caster_rad': ('caster', None, 1.0),
+    'kingpin_inclination_rad': ('kingpin_inclination', None, 1.0),
+    'scrub_radius_m': ('scrub_radius', None, M_PER_MM),
+    'mechanical_trail_m': ('mechanical_trail', None, M_PER_MM),
+    'track_change_m': ('track_change', None, M_PER_MM),
+    'wheelbase_change_m': ('wheelbase_change', None, M_PER_MM),
+    'wheel_center_lateral_shift_m': ('lateral_shift', None, M_PER_MM),
+    'wheel_center_longitudinal_shift_m': ('longitudinal_shift', None, M_PER_MM),
+    'svic_x_m': ('side_view_ic', 0, M_PER_MM),
+    'svic_z_m': ('side_view_ic', 1, M_PER_MM),
+    'fvic_y_m': ('front_view_ic', 0, M_PER_MM),
+    'fvic_z_m': ('front_view_ic', 1, M_PER_MM),
+}
+
+
+def alignment_array(alignment):
+    """The alignment set of one solved position (linkage_ros.alignment.Alignment, n = 1) as a
+    Float64MultiArray in SI: data[i] is the field named by layout.dim[i].label (one dimension
+    of size 1 per field, labels and order of ALIGNMENT_FIELDS). NaN where a field is undefined
+    (no steer axis without a steer: rack link, no contact patch without a wheel radius)."""
+    data = []
+    for attribute, column, factor in ALIGNMENT_FIELDS.values():
+        value = getattr(alignment, attribute)[0]
+        data.append(float(value if column is None else value[column]) * factor)
+    layout = MultiArrayLayout(dim=[MultiArrayDimension(label=label, size=1, stride=1)
+                                   for label in ALIGNMENT_FIELDS])
+    return Float64MultiArray(layout=layout, data=data)
+
+
+def alignment_values(msg):
+    """{label: value} of an alignment message, for its readers."""
+    return {dim.label: value for dim, value in zip(msg.layout.dim, msg.data)}
 
 
 def pose_stamped(solution, stamp, frame_id):
@@ -76,7 +137,8 @@ def diagnostic_status(solution, name, hardware_id, method, condition_warn):
 
     Keys: travel_m (commanded), iterations (Newton, last step), residual_m (largest
     constraint violation), substeps (continuation steps walked), condition (Jacobian),
-    reachable_min_m and reachable_max_m (travel range explored so far), method.
+    reachable_min_m and reachable_max_m (travel range explored so far), method, rack_m
+    (steering rack, + = to the left; stays 0 for a scene without a steer: rack link).
     """
     level, message = health(solution, condition_warn)
     low, high = solution.reachable
@@ -89,6 +151,7 @@ def diagnostic_status(solution, name, hardware_id, method, condition_warn):
         'reachable_min_m': _number(low * M_PER_MM),
         'reachable_max_m': _number(high * M_PER_MM),
         'method': method,
+        'rack_m': _number(solution.rack * M_PER_MM),
     }
     return DiagnosticStatus(level=level, name=name, message=message, hardware_id=hardware_id,
                             values=[KeyValue(key=k, value=v) for k, v in values.items()])

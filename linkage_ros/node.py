@@ -2,11 +2,15 @@
 
 A thin adapter over the kinematics core (linkage_ros.kinematics.Continuation): each command
 is solved from the last good pose (large jumps walked in substeps of max_step_mm), converted
-to SI messages by linkage_ros.messages, and published. A bad command (NaN, inf, out of reach)
+to SI messages by linkage_ros.messages, and published. Outputs answer a stamped input (JointState) with its header
+stamp, a Float64 with the node clock's time of receipt (simulated time with use_sim_time).
+A bad command (NaN, inf, out of reach)
 publishes no pose, only an ERROR diagnostic saying why; the core keeps the last good state.
 
 Topics (names relative to the node's namespace, /diagnostics absolute):
     sub wheel_travel        std_msgs/Float64            m, + = bump
+    sub joint_states        sensor_msgs/JointState      position of joint travel_joint (m, + =
+                                                        bump); only if travel_joint is set
     pub wheel_carrier_pose  geometry_msgs/PoseStamped   wheel centre (m) in frame_id, carrier
                                                         orientation relative to design
     pub camber, toe         std_msgs/Float64            rad (+ = top outboard, + = toe-in)
@@ -29,6 +33,7 @@ from rclpy.executors import ExternalShutdownException
 from rclpy.experimental import EventsExecutor
 from rclpy.node import Node
 from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
+from sensor_msgs.msg import JointState
 from std_msgs.msg import Float64
 
 from . import messages
@@ -49,6 +54,8 @@ PARAMETERS = {
     'condition_warn': (1e4, 'Jacobian condition number above which diagnostics say WARN'),
     'record_mcap': ('', 'path of an MCAP file recording commands and outputs; empty = off'),
     'rerun_rrd': ('', 'path of a Rerun .rrd file mirroring the poses; empty = off'),
+    'travel_joint': ('', 'joint of sensor_msgs/JointState on joint_states whose position is '
+                     'the wheel travel (m, + = bump); empty = joint_states not subscribed'),
 }
 
 
@@ -79,16 +86,31 @@ class SuspensionNode(Node):
         self._diag_pub = self.create_publisher(DiagnosticArray, '/diagnostics', QOS)
         self._travel_sub = self.create_subscription(Float64, 'wheel_travel', self._on_travel,
                                                     QOS)
+        self._travel_joint = params['travel_joint']
+        self._joint_sub = None
+        if self._travel_joint:   # off by default: no subscription, no discovery traffic
+            self._joint_sub = self.create_subscription(JointState, 'joint_states',
+                                                       self._on_joint_states, QOS)
         self.get_logger().info(
             f'scene {self.scene.name} ({self.scene.source}), method {self._method}, '
             f'frame {self._frame_id}; waiting on {self._travel_sub.topic_name} (m)')
 
     def _on_travel(self, msg):
         received = self.get_clock().now()
-        solution = self.solver.solve(messages.travel_mm(msg))
-        stamp = received.to_msg()
-        if self._sinks:   # Float64 has no publish time, EventsExecutor gives no message info
-            self._record(self._travel_sub.topic_name, msg, received.nanoseconds,
+        self._answer(self._travel_sub, msg, messages.travel_mm(msg), received,
+                     received.to_msg())
+
+    def _on_joint_states(self, msg):
+        travel_mm = messages.joint_travel_mm(msg, self._travel_joint)
+        if travel_mm is not None:   # other joints' messages are not commands: no answer
+            self._answer(self._joint_sub, msg, travel_mm, self.get_clock().now(),
+                         msg.header.stamp)
+
+    def _answer(self, subscription, msg, travel_mm, received, stamp):
+        """Solve travel_mm (received: node-clock Time) and publish its outputs at stamp."""
+        solution = self.solver.solve(travel_mm)
+        if self._sinks:   # the input's publish time is unknown: EventsExecutor gives no info
+            self._record(subscription.topic_name, msg, received.nanoseconds,
                          received.nanoseconds)
         if solution.success:   # the pose first: it is what a controller waits for
             self._publish(self._pose_pub,
@@ -135,6 +157,8 @@ class SuspensionNode(Node):
     def _offered_qos(self):
         """{resolved topic: QoS} of every topic, for the recording's metadata."""
         names = ('wheel_travel', 'wheel_carrier_pose', 'camber', 'toe', '/diagnostics')
+        if self.get_parameter('travel_joint').value:
+            names += ('joint_states',)
         return {self.resolve_topic_name(name): QOS for name in names}
 
     def _declare_parameters(self):
