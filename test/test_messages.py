@@ -104,7 +104,7 @@ def test_diagnostic_of_a_good_solve_is_ok_with_its_numbers_in_si(solved):
     assert (status.name, status.hardware_id, status.message) == (
         'suspension_kinematics: five_link', 'five_link', 'ok')
     assert list(values) == ['travel_m', 'iterations', 'residual_m', 'substeps', 'condition',
-                            'reachable_min_m', 'reachable_max_m', 'method']
+                            'reachable_min_m', 'reachable_max_m', 'method', 'rack_m']
     assert float(values['travel_m']) == pytest.approx(0.030, abs=1e-12)
     assert int(values['iterations']) == solved.iterations
     assert float(values['residual_m']) == pytest.approx(solved.residual / 1000.0, rel=1e-8)
