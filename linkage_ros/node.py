@@ -14,7 +14,15 @@ Topics (names relative to the node's namespace, /diagnostics absolute):
     pub wheel_carrier_pose  geometry_msgs/PoseStamped   wheel centre (m) in frame_id, carrier
                                                         orientation relative to design
     pub camber, toe         std_msgs/Float64            rad (+ = top outboard, + = toe-in)
+    sub steering_rack       std_msgs/Float64            m, + = rack to the left; solved at the
+                                                        last travel; only if the scene has a
+                                                        steer: rack link
     pub /diagnostics        diagnostic_msgs/DiagnosticArray
+    pub alignment           std_msgs/Float64MultiArray  messages.ALIGNMENT_FIELDS in SI, each
+                                                        named by its layout dim label; only if
+                                                        parameter alignment is true
+    pub markers             visualization_msgs/MarkerArray  links and joints (m, frame_id); only
+                                                        if parameter markers is true
 All reliable, keep-last QOS_DEPTH (1000), so a burst of 1000 commands is not lost.
 
 Sinks (recorders, viewers) receive every command and every published message; the MCAP and
@@ -34,7 +42,8 @@ from rclpy.experimental import EventsExecutor
 from rclpy.node import Node
 from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
 from sensor_msgs.msg import JointState
-from std_msgs.msg import Float64
+from std_msgs.msg import Float64, Float64MultiArray
+from visualization_msgs.msg import MarkerArray
 
 from . import messages
 from .kinematics import Continuation
@@ -56,6 +65,8 @@ PARAMETERS = {
     'rerun_rrd': ('', 'path of a Rerun .rrd file mirroring the poses; empty = off'),
     'travel_joint': ('', 'joint of sensor_msgs/JointState on joint_states whose position is '
                      'the wheel travel (m, + = bump); empty = joint_states not subscribed'),
+    'alignment': (False, 'publish the alignment set (std_msgs/Float64MultiArray) per answer'),
+    'markers': (False, 'publish links and joints (visualization_msgs/MarkerArray) per answer'),
 }
 
 
@@ -91,6 +102,19 @@ class SuspensionNode(Node):
         if self._travel_joint:   # off by default: no subscription, no discovery traffic
             self._joint_sub = self.create_subscription(JointState, 'joint_states',
                                                        self._on_joint_states, QOS)
+        self._rack_sub = None
+        if any(c.steer == 'rack' for c in self.scene.constraints):   # only a steered corner
+            self._rack_sub = self.create_subscription(Float64, 'steering_rack', self._on_rack,
+                                                      QOS)
+        self._alignment_pub = self._markers_pub = None
+        if params['alignment']:
+            from .alignment import alignment
+            self._alignment = alignment
+            self._alignment_pub = self.create_publisher(Float64MultiArray, 'alignment', QOS)
+        if params['markers']:
+            from . import markers
+            self._marker_array = markers.marker_array
+            self._markers_pub = self.create_publisher(MarkerArray, 'markers', QOS)
         self.get_logger().info(
             f'scene {self.scene.name} ({self.scene.source}), method {self._method}, '
             f'frame {self._frame_id}; waiting on {self._travel_sub.topic_name} (m)')
@@ -106,9 +130,16 @@ class SuspensionNode(Node):
             self._answer(self._joint_sub, msg, travel_mm, self.get_clock().now(),
                          msg.header.stamp)
 
-    def _answer(self, subscription, msg, travel_mm, received, stamp):
-        """Solve travel_mm (received: node-clock Time) and publish its outputs at stamp."""
-        solution = self.solver.solve(travel_mm)
+    def _on_rack(self, msg):
+        # A new rack at the last travel: Continuation keeps the travel it was last solved at.
+        received = self.get_clock().now()
+        self._answer(self._rack_sub, msg, self.solver.travel, received, received.to_msg(),
+                     rack_mm=messages.rack_mm(msg))
+
+    def _answer(self, subscription, msg, travel_mm, received, stamp, rack_mm=None):
+        """Solve travel_mm at rack_mm (None = unchanged; received: node-clock Time) and publish
+        its outputs at stamp."""
+        solution = self.solver.solve(travel_mm, rack_mm)
         if self._sinks:   # the input's publish time is unknown: EventsExecutor gives no info
             self._record(subscription.topic_name, msg, received.nanoseconds,
                          received.nanoseconds)
@@ -117,6 +148,13 @@ class SuspensionNode(Node):
                           messages.pose_stamped(solution, stamp, self._frame_id))
             self._publish(self._camber_pub, messages.camber(solution))
             self._publish(self._toe_pub, messages.toe(solution))
+            if self._alignment_pub is not None:
+                self._publish(self._alignment_pub, messages.alignment_array(self._alignment(
+                    self.scene, self.solver.mech, solution.wheel_center, solution.rotation,
+                    solution.rack)))
+            if self._markers_pub is not None:
+                self._publish(self._markers_pub, self._marker_array(
+                    self.scene, solution, stamp, self._frame_id))
         self._publish(self._diag_pub, messages.diagnostics(
             solution, stamp, self._status_name, self.scene.name, self._method,
             self._condition_warn))
@@ -159,6 +197,9 @@ class SuspensionNode(Node):
         names = ('wheel_travel', 'wheel_carrier_pose', 'camber', 'toe', '/diagnostics')
         if self.get_parameter('travel_joint').value:
             names += ('joint_states',)
+        if any(c.steer == 'rack' for c in self.scene.constraints):
+            names += ('steering_rack',)
+        names += tuple(n for n in ('alignment', 'markers') if self.get_parameter(n).value)
         return {self.resolve_topic_name(name): QOS for name in names}
 
     def _declare_parameters(self):
