@@ -70,17 +70,6 @@ def assert_outputs_equal_core(probe, expected, frame_id='base_link', with_status
     assert [stamp_ns(p.header.stamp) for p in poses] == probe.status_stamps[-n:]
 
 
-@pytest.fixture
-def make_node(ros_context, executor):
-    """Factory: a SuspensionNode in the test's Context and executor, parameters by name."""
-    def make(sinks=(), **params):
-        overrides = [Parameter(name, value=value) for name, value in params.items()]
-        node = SuspensionNode(sinks=sinks, context=ros_context, parameter_overrides=overrides)
-        executor.add_node(node)
-        return node
-    return make
-
-
 class ListSink:
     """A sink that keeps what it is given: (topic, type_name, msg, receive_ns, publish_ns)."""
 
@@ -96,8 +85,8 @@ class ListSink:
 
 # --- in process: the node and a probe node in one EventsExecutor ---------------------------
 
-def test_answers_equal_the_core_sweep_for_the_same_travels(make_node, executor, probe):
-    make_node()
+def test_answers_equal_the_core_sweep_for_the_same_travels(suspension_node, executor, probe):
+    suspension_node()
     expected = core('five_link', TRAVELS_M)
     probe.send(*TRAVELS_M)
     assert spin_until(executor, lambda: probe.answered(expected))
@@ -105,8 +94,8 @@ def test_answers_equal_the_core_sweep_for_the_same_travels(make_node, executor, 
     assert_outputs_equal_core(probe, expected)
 
 
-def test_outputs_of_one_command_share_the_stamp_of_its_receipt(make_node, executor, probe):
-    make_node()
+def test_outputs_of_one_command_share_the_stamp_of_its_receipt(suspension_node, executor, probe):
+    suspension_node()
     expected = core('five_link', [0.01, 0.02])
     probe.send(0.01, 0.02)
     assert spin_until(executor, lambda: probe.answered(expected))
@@ -117,9 +106,9 @@ def test_outputs_of_one_command_share_the_stamp_of_its_receipt(make_node, execut
 
 
 @pytest.mark.parametrize('max_step_mm, substeps', [(5.0, 10), (20, 3)])
-def test_a_large_jump_is_walked_in_substeps_of_max_step_mm(make_node, executor, probe,
+def test_a_large_jump_is_walked_in_substeps_of_max_step_mm(suspension_node, executor, probe,
                                                            max_step_mm, substeps):
-    make_node(max_step_mm=max_step_mm)    # an integer (20) is taken as a number too
+    suspension_node(max_step_mm=max_step_mm)    # an integer (20) is taken as a number too
     probe.send(0.05)                      # 50 mm from the design position
     assert spin_until(executor, lambda: probe.statuses and probe.poses)
     assert int(status_values(probe.statuses[0])['substeps']) == substeps
@@ -128,9 +117,9 @@ def test_a_large_jump_is_walked_in_substeps_of_max_step_mm(make_node, executor, 
 
 
 @pytest.mark.parametrize('bad', list(BAD_COMMANDS_M))
-def test_bad_command_publishes_no_pose_and_an_error_saying_why(make_node, executor, probe,
+def test_bad_command_publishes_no_pose_and_an_error_saying_why(suspension_node, executor, probe,
                                                                bad):
-    make_node()
+    suspension_node()
     expected = core('five_link', [0.02, 0.03])
     probe.send(0.02, BAD_COMMANDS_M[bad], 0.03)
     assert spin_until(executor, lambda: len(probe.statuses) == 3 and probe.answered(expected))
@@ -146,8 +135,8 @@ def test_bad_command_publishes_no_pose_and_an_error_saying_why(make_node, execut
 
 
 @pytest.mark.parametrize('bad', list(BAD_COMMANDS_M))
-def test_bad_command_keeps_the_last_good_state(make_node, executor, probe, bad):
-    make_node()
+def test_bad_command_keeps_the_last_good_state(suspension_node, executor, probe, bad):
+    suspension_node()
     probe.send(0.02, BAD_COMMANDS_M[bad], 0.02)
     assert spin_until(executor, lambda: len(probe.statuses) == 3 and len(probe.poses) == 2)
     assert probe.statuses[1].level == DiagnosticStatus.ERROR
@@ -156,11 +145,11 @@ def test_bad_command_keeps_the_last_good_state(make_node, executor, probe, bad):
     assert probe.poses[1].pose == probe.poses[0].pose
 
 
-def test_a_burst_of_1000_commands_is_answered_in_order_none_lost(make_node, executor, probe):
+def test_a_burst_of_1000_commands_is_answered_in_order_none_lost(suspension_node, executor, probe):
     # All 1000 are published before the executor runs once: the node's subscription queue
     # must hold them all (QoS keep-last QOS_DEPTH, reliable).
     assert QOS_DEPTH >= 1000
-    make_node()
+    suspension_node()
     travels = burst_travels(1000)
     expected = core('five_link', travels)
     probe.send(*travels)
@@ -197,16 +186,16 @@ def test_bundled_params_file_holds_the_node_defaults(ros_context):
 
 
 def test_condition_warn_parameter_turns_a_well_conditioned_pose_into_a_warning(
-        make_node, executor, probe):
-    make_node(condition_warn=100.0)    # five_link's Jacobian condition is about 600
+        suspension_node, executor, probe):
+    suspension_node(condition_warn=100.0)    # five_link's Jacobian condition is about 600
     probe.send(0.01)
     assert spin_until(executor, lambda: probe.statuses and probe.poses)
     assert probe.statuses[0].level == DiagnosticStatus.WARN
     assert 'condition number' in probe.statuses[0].message
 
 
-def test_default_condition_warn_leaves_the_scene_travel_range_ok(make_node, executor, probe):
-    make_node()
+def test_default_condition_warn_leaves_the_scene_travel_range_ok(suspension_node, executor, probe):
+    suspension_node()
     probe.send(-0.08, 0.08)            # five_link's declared travel range
     assert spin_until(executor, lambda: len(probe.statuses) == 2)
     assert [s.level for s in probe.statuses] == [DiagnosticStatus.OK] * 2
@@ -231,9 +220,9 @@ def test_qos_is_reliable_keep_last_1000():
 
 # --- sinks: recorders and viewers ------------------------------------------------------------
 
-def test_every_command_and_published_message_reaches_each_sink(make_node, executor, probe):
+def test_every_command_and_published_message_reaches_each_sink(suspension_node, executor, probe):
     sinks = [ListSink(), ListSink()]
-    make_node(sinks=sinks)
+    suspension_node(sinks=sinks)
     probe.send(0.02, math.nan)
     assert spin_until(executor, lambda: len(probe.statuses) == 2)
     expected = [('/wheel_travel', 'std_msgs/msg/Float64'),
@@ -252,21 +241,21 @@ def test_every_command_and_published_message_reaches_each_sink(make_node, execut
     assert all(r[3] <= r[4] for r in sinks[0].records)         # received before published
 
 
-def test_destroying_the_node_closes_its_sinks_once(make_node, executor):
+def test_destroying_the_node_closes_its_sinks_once(suspension_node, executor):
     sink = ListSink()
-    node = make_node(sinks=[sink])
+    node = suspension_node(sinks=[sink])
     executor.remove_node(node)
     node.destroy_node()
     node.close_sinks()
     assert sink.closed == 1
 
 
-def test_record_mcap_parameter_writes_a_recording_readable_by_mcap(make_node, executor,
+def test_record_mcap_parameter_writes_a_recording_readable_by_mcap(suspension_node, executor,
                                                                    probe, tmp_path):
     from mcap.reader import make_reader
     from mcap_ros2.decoder import DecoderFactory
     path = tmp_path / 'run.mcap'
-    node = make_node(record_mcap=str(path))
+    node = suspension_node(record_mcap=str(path))
     probe.send(0.02, 0.03)
     assert spin_until(executor, lambda: len(probe.statuses) == 2)
     executor.remove_node(node)

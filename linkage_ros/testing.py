@@ -1,0 +1,352 @@
+"""pytest plugin for launch-free tests of suspension_node: real rclpy and DDS, no launch.
+
+Registered as the pytest11 entry point `linkage_ros`, so an environment with linkage_ros
+installed has these fixtures in every pytest run; they cost nothing unless a test asks for
+one (no autouse fixtures, no hooks). Without pytest the module still imports: the helpers
+(Probe, spin_until, connect, NodeProcess, ...) are plain functions and classes, the fixtures
+only wrap them.
+
+Fixtures:
+    ros_context          private rclpy Context on its own domain id, automatic discovery OFF
+                         (nodes of this Context talk; nothing outside the process joins)
+    executor             EventsExecutor of ros_context; its nodes are destroyed at teardown
+    suspension_node      factory: suspension_node(scene='five_link', sinks=(), **params)
+                         starts a SuspensionNode in ros_context and executor
+    probe                Probe node in ros_context: publishes wheel_travel, keeps every output
+    send_travel          send_travel(travel_m, timeout=5.0) -> Answer(pose, camber, toe,
+                         diagnostics): one command and what came back, waited with a deadline
+    localhost_context, localhost_executor, node_process
+                         the same across processes: a Context that discovers this machine
+                         (ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST) and the console script
+                         started on the test's domain id
+    domain_id            the test's ROS domain id (1..101)
+    ros_environment      session: rcl log files in a temporary folder, discovery range
+                         LOCALHOST unless set; every fixture above that starts ROS uses it
+
+Waits are deadline loops around executor.spin_once, never fixed sleeps.
+"""
+
+import itertools
+import math
+import os
+from pathlib import Path
+import signal
+import subprocess
+import sys
+import time
+from typing import NamedTuple, Optional
+
+from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
+from geometry_msgs.msg import PoseStamped
+import rclpy
+from rclpy.experimental import EventsExecutor
+from rclpy.parameter import Parameter
+from std_msgs.msg import Float64
+
+from .messages import status_values
+from .node import NODE_NAME, QOS, SuspensionNode
+
+try:
+    import pytest
+except ImportError:   # the helpers work without pytest; only the fixtures need it
+    pytest = None
+
+WAIT = 10.0       # s: same-Context matching is immediate; cross-process discovery ~0.04 or ~3 s
+_DOMAIN_COUNTER = itertools.count()
+
+
+def _fixture(*args, **kwargs):
+    """pytest.fixture, or a decorator that leaves the function alone without pytest."""
+    if pytest is not None:
+        return pytest.fixture(*args, **kwargs)
+    return args[0] if args and callable(args[0]) else (lambda function: function)
+
+
+def free_domain_id():
+    """A ROS domain id in 1..101, different for each call of this process for 101 calls and
+    spread by the pid so that test runs started side by side rarely share one (0 is left to
+    whatever runs on the machine by default)."""
+    return 1 + (os.getpid() * 37 + next(_DOMAIN_COUNTER)) % 101
+
+
+def init_context(domain_id, discovery_range='OFF'):
+    """A new initialised rclpy Context on domain_id; discovery range read by rcl at init."""
+    previous = os.environ.get('ROS_AUTOMATIC_DISCOVERY_RANGE')
+    os.environ['ROS_AUTOMATIC_DISCOVERY_RANGE'] = discovery_range
+    try:
+        context = rclpy.context.Context()
+        rclpy.init(context=context, domain_id=domain_id)
+    finally:
+        if previous is None:
+            del os.environ['ROS_AUTOMATIC_DISCOVERY_RANGE']
+        else:
+            os.environ['ROS_AUTOMATIC_DISCOVERY_RANGE'] = previous
+    return context
+
+
+def spin_until(executor, predicate, timeout=WAIT):
+    """Spin until predicate() is true or timeout (s) passes; returns predicate()."""
+    deadline = time.monotonic() + timeout
+    while not predicate() and time.monotonic() < deadline:
+        executor.spin_once(timeout_sec=0.01)
+    return predicate()
+
+
+def node_script(name='suspension_node'):
+    """Path of a console script of this environment (/tmp/venv/bin, .venv/bin in CI)."""
+    return Path(sys.executable).parent / name
+
+
+def stamp_ns(stamp):
+    """builtin_interfaces/Time as integer nanoseconds."""
+    return stamp.sec * 1_000_000_000 + stamp.nanosec
+
+
+class Answer(NamedTuple):
+    """What suspension_node sent back for one command.
+
+    pose: PoseStamped (wheel centre in m, carrier orientation relative to design), camber and
+    toe: float rad; all None if the command could not be solved. diagnostics: the node's
+    DiagnosticStatus for it (level, message, values such as travel_m, residual_m).
+    """
+
+    pose: Optional[PoseStamped]
+    camber: Optional[float]
+    toe: Optional[float]
+    diagnostics: DiagnosticStatus
+
+
+class Probe:
+    """A test node: publishes wheel_travel (m) and keeps every output of suspension_node.
+
+    poses (PoseStamped), cambers and toes (float rad), statuses (DiagnosticStatus of the
+    node, from /diagnostics) and status_stamps (their DiagnosticArray stamps, ns), in arrival
+    order.
+    """
+
+    def __init__(self, context, executor):
+        self.node = rclpy.create_node('probe', context=context, enable_rosout=False,
+                                      start_parameter_services=False)
+        self.executor = executor
+        self.poses, self.cambers, self.toes, self.statuses = [], [], [], []
+        self.status_stamps = []
+        self.travel = self.node.create_publisher(Float64, 'wheel_travel', QOS)
+        self._subscriptions = [
+            self.node.create_subscription(PoseStamped, 'wheel_carrier_pose',
+                                          self.poses.append, QOS),
+            self.node.create_subscription(Float64, 'camber',
+                                          lambda m: self.cambers.append(m.data), QOS),
+            self.node.create_subscription(Float64, 'toe',
+                                          lambda m: self.toes.append(m.data), QOS),
+            self.node.create_subscription(DiagnosticArray, '/diagnostics', self._on_diagnostics,
+                                          QOS),
+        ]
+        executor.add_node(self.node)
+
+    def _on_diagnostics(self, msg):
+        for status in msg.status:
+            if status.name.startswith(NODE_NAME):
+                self.statuses.append(status)
+                self.status_stamps.append(stamp_ns(msg.header.stamp))
+
+    def send(self, *travels_m):
+        for travel in travels_m:
+            self.travel.publish(Float64(data=float(travel)))
+
+    def matched(self):
+        """True once the node's subscription and its four publishers are matched here."""
+        return (self.travel.get_subscription_count() > 0
+                and all(s.get_publisher_count() > 0 for s in self._subscriptions))
+
+    def answered_once(self):
+        return bool(self.poses and self.cambers and self.toes and self.statuses)
+
+    def answered(self, expected):
+        """True once the answers to the commands of expected (a core Sweep) have all arrived:
+        at least that many of each output, the last ones those of the last command."""
+        n = len(expected.travel)
+        if min(len(self.poses), len(self.cambers), len(self.toes), len(self.statuses)) < n:
+            return False
+        travel_mm = float(status_values(self.statuses[-1])['travel_m']) * 1000.0
+        return (math.isclose(travel_mm, expected.travel[-1], abs_tol=1e-6)
+                and stamp_ns(self.poses[-1].header.stamp) == self.status_stamps[-1]
+                and math.isclose(self.cambers[-1], expected.camber[-1], abs_tol=1e-12)
+                and math.isclose(self.toes[-1], expected.toe[-1], abs_tol=1e-12))
+
+    def ask(self, travel_m, timeout=5.0):
+        """Send one travel (m) and wait (at most timeout s) for its Answer.
+
+        The diagnostics always come; pose, camber and toe only for a solved command (level
+        not ERROR). Raises TimeoutError if they do not all arrive in time.
+        """
+        before = [len(self.poses), len(self.cambers), len(self.toes), len(self.statuses)]
+        deadline = time.monotonic() + timeout
+        if not spin_until(self.executor, self.matched, timeout):
+            raise TimeoutError(f'no suspension_node matched wheel_travel within {timeout:g} s')
+
+        def arrived():
+            if len(self.statuses) <= before[3]:
+                return False
+            solved = self.statuses[before[3]].level != DiagnosticStatus.ERROR
+            return not solved or min(len(self.poses) - before[0], len(self.cambers) - before[1],
+                                     len(self.toes) - before[2]) > 0
+
+        self.send(travel_m)
+        if not spin_until(self.executor, arrived, max(0.0, deadline - time.monotonic())):
+            raise TimeoutError(f'suspension_node did not answer travel {travel_m!r} m within '
+                               f'{timeout:g} s')
+        status = self.statuses[before[3]]
+        if status.level == DiagnosticStatus.ERROR:
+            return Answer(None, None, None, status)
+        return Answer(self.poses[before[0]], self.cambers[before[1]], self.toes[before[2]],
+                      status)
+
+
+def connect(executor, probe, timeout=20.0):
+    """Wait until a node in another process answers on every topic.
+
+    Matching seen from the probe's side does not prove the node's writers have matched the
+    probe's readers yet, so travel 0 is sent every 0.5 s until each output has arrived once.
+    After this every reply reaches the probe. Replies to the pings come before later ones
+    on each topic, and a few may still be on their way: compare the last answers (tails).
+    """
+    deadline = time.monotonic() + timeout
+    assert spin_until(executor, probe.matched, timeout), 'suspension_node was not discovered'
+    while not probe.answered_once() and time.monotonic() < deadline:
+        probe.send(0.0)
+        spin_until(executor, probe.answered_once, min(0.5, deadline - time.monotonic()))
+    assert probe.answered_once(), 'suspension_node matched but never answered'
+
+
+class NodeProcess:
+    """suspension_node (or another console script) in a subprocess on a given domain."""
+
+    def __init__(self, ros_args, domain_id, script='suspension_node'):
+        env = dict(os.environ, ROS_DOMAIN_ID=str(domain_id),
+                   ROS_AUTOMATIC_DISCOVERY_RANGE='LOCALHOST')
+        self.popen = subprocess.Popen([str(node_script(script)), '--ros-args', *ros_args],
+                                      env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                                      text=True)
+
+    def stop(self, sig=signal.SIGINT, timeout=WAIT):
+        """Send sig, wait for the exit; returns (exit code, stdout, stderr)."""
+        if self.popen.poll() is None:
+            self.popen.send_signal(sig)
+        return self.finish(timeout)
+
+    def finish(self, timeout=WAIT):
+        """Wait for the process to end by itself; returns (exit code, stdout, stderr)."""
+        out, err = self.popen.communicate(timeout=timeout)
+        return self.popen.returncode, out, err
+
+    def close(self):
+        """End the process if a test left it running: SIGINT first, so that Fast DDS removes
+        its shared-memory segments (a SIGKILL leaves them in /dev/shm), SIGKILL if stuck."""
+        if self.popen.poll() is None:
+            try:
+                self.stop(signal.SIGINT)
+            except subprocess.TimeoutExpired:
+                self.popen.kill()
+                self.popen.communicate()
+
+
+def start_suspension_node(context, executor, scene='five_link', sinks=(), **params):
+    """A SuspensionNode in context, added to executor; params are its ROS parameters by name
+    (e.g. method='paper', use_sim_time=True)."""
+    overrides = [Parameter(name, value=value) for name, value in dict(scene=scene,
+                                                                      **params).items()]
+    node = SuspensionNode(sinks=sinks, context=context, parameter_overrides=overrides)
+    executor.add_node(node)
+    return node
+
+
+def _executor(context):
+    executor = EventsExecutor(context=context)
+    yield executor
+    for node in executor.get_nodes():
+        executor.remove_node(node)
+        node.destroy_node()
+    executor.shutdown()
+
+
+# --- fixtures ------------------------------------------------------------------------------
+
+@_fixture(scope='session')
+def ros_environment(tmp_path_factory):
+    """rcl log files into a temporary folder; discovery kept to this machine."""
+    saved = {k: os.environ.get(k) for k in ('ROS_LOG_DIR', 'ROS_AUTOMATIC_DISCOVERY_RANGE')}
+    os.environ['ROS_LOG_DIR'] = str(tmp_path_factory.mktemp('ros_log'))
+    os.environ.setdefault('ROS_AUTOMATIC_DISCOVERY_RANGE', 'LOCALHOST')
+    yield
+    for key, value in saved.items():
+        if value is None:
+            os.environ.pop(key, None)
+        else:
+            os.environ[key] = value
+
+
+@_fixture
+def domain_id():
+    return free_domain_id()
+
+
+@_fixture
+def ros_context(ros_environment, domain_id):
+    """A private Context with discovery OFF: only nodes of this Context see each other."""
+    context = init_context(domain_id, 'OFF')
+    yield context
+    rclpy.try_shutdown(context=context)
+
+
+@_fixture
+def localhost_context(ros_environment, domain_id):
+    """A private Context that discovers the other processes of this machine on domain_id."""
+    context = init_context(domain_id, 'LOCALHOST')
+    yield context
+    rclpy.try_shutdown(context=context)
+
+
+@_fixture
+def executor(ros_context):
+    """EventsExecutor of ros_context; nodes added to it are destroyed at teardown."""
+    yield from _executor(ros_context)
+
+
+@_fixture
+def localhost_executor(localhost_context):
+    yield from _executor(localhost_context)
+
+
+@_fixture
+def probe(ros_context, executor):
+    return Probe(ros_context, executor)
+
+
+@_fixture
+def suspension_node(ros_context, executor):
+    """Factory: suspension_node(scene='five_link', sinks=(), **params) -> SuspensionNode
+    running in the test's Context and executor (destroyed at teardown)."""
+    def start(scene='five_link', sinks=(), **params):
+        return start_suspension_node(ros_context, executor, scene, sinks, **params)
+    return start
+
+
+@_fixture
+def send_travel(probe):
+    """send_travel(travel_m, timeout=5.0) -> Answer(pose, camber, toe, diagnostics) from the
+    suspension_node of this test; TimeoutError if no answer comes within timeout s."""
+    return probe.ask
+
+
+@_fixture
+def node_process(ros_environment, domain_id):
+    """Factory: node_process(*ros_args) starts suspension_node on the test's domain id."""
+    started = []
+
+    def start(*ros_args, script='suspension_node'):
+        started.append(NodeProcess(ros_args, domain_id, script))
+        return started[-1]
+
+    yield start
+    for process in started:
+        process.close()
