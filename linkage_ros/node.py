@@ -67,11 +67,113 @@ PARAMETERS = {
                      'the wheel travel (m, + = bump); empty = joint_states not subscribed'),
     'alignment': (False, 'publish the alignment set (std_msgs/Float64MultiArray) per answer'),
     'markers': (False, 'publish links and joints (visualization_msgs/MarkerArray) per answer'),
+    'vehicle': ('', 'vehicle file (bundled name or path): one corner per wheel, topics under '
+                'the corner name; empty = the single scene of parameter scene'),
 }
 
 
+def corner_topics(scene, params, prefix=''):
+    """Relative names of a corner's topics (prefix: '' or 'front_left/'), /diagnostics apart."""
+    names = ['wheel_travel', 'wheel_carrier_pose', 'camber', 'toe']
+    if params['travel_joint']:
+        names.append('joint_states')
+    if steered(scene):
+        names.append('steering_rack')
+    names += [name for name in ('alignment', 'markers') if params[name]]
+    return [prefix + name for name in names]
+
+
+def steered(scene):
+    """True if the scene has a steer: rack link (then it takes steering_rack commands)."""
+    return any(c.steer == 'rack' for c in scene.constraints)
+
+
+def load_corners(params):
+    """{topic prefix: Scene}: the one scene under no prefix, or every corner of the vehicle
+    parameter under 'corner_name/'."""
+    if not params['vehicle']:
+        return {'': load_scene(params['scene'])}
+    from .vehicle import load_vehicle
+    return {f'{name}/': scene for name, scene in load_vehicle(params['vehicle']).corners.items()}
+
+
+class Corner:
+    """One wheel: its scene, its Continuation (solved independently of the other corners),
+    its input subscriptions and output publishers, topics under prefix ('' or 'front_left/')."""
+
+    def __init__(self, node, scene, params, prefix=''):
+        self.node, self.scene = node, scene
+        self.solver = Continuation(scene, method=params['method'],
+                                   max_step=params['max_step_mm'])
+        self.status_name = f'{node.get_name()}: {scene.name}'
+        self.pose_pub = node.create_publisher(PoseStamped, prefix + 'wheel_carrier_pose', QOS)
+        self.camber_pub = node.create_publisher(Float64, prefix + 'camber', QOS)
+        self.toe_pub = node.create_publisher(Float64, prefix + 'toe', QOS)
+        self.travel_sub = node.create_subscription(Float64, prefix + 'wheel_travel',
+                                                   self.on_travel, QOS)
+        self.travel_joint = params['travel_joint']
+        self.joint_sub = None
+        if self.travel_joint:   # off by default: no subscription, no discovery traffic
+            self.joint_sub = node.create_subscription(JointState, prefix + 'joint_states',
+                                                      self.on_joint_states, QOS)
+        self.rack_sub = None
+        if steered(scene):
+            self.rack_sub = node.create_subscription(Float64, prefix + 'steering_rack',
+                                                     self.on_rack, QOS)
+        self.alignment_pub = self.markers_pub = None
+        if params['alignment']:
+            from .alignment import alignment
+            self._alignment = alignment
+            self.alignment_pub = node.create_publisher(Float64MultiArray, prefix + 'alignment',
+                                                       QOS)
+        if params['markers']:
+            from . import markers
+            self._marker_array = markers.marker_array
+            self.markers_pub = node.create_publisher(MarkerArray, prefix + 'markers', QOS)
+
+    def on_travel(self, msg):
+        received = self.node.get_clock().now()
+        self.answer(self.travel_sub, msg, messages.travel_mm(msg), received, received.to_msg())
+
+    def on_joint_states(self, msg):
+        travel_mm = messages.joint_travel_mm(msg, self.travel_joint)
+        if travel_mm is not None:   # other joints' messages are not commands: no answer
+            self.answer(self.joint_sub, msg, travel_mm, self.node.get_clock().now(),
+                        msg.header.stamp)
+
+    def on_rack(self, msg):
+        # A new rack at the last travel: Continuation keeps the travel it was last solved at.
+        received = self.node.get_clock().now()
+        self.answer(self.rack_sub, msg, self.solver.travel, received, received.to_msg(),
+                    rack_mm=messages.rack_mm(msg))
+
+    def answer(self, subscription, msg, travel_mm, received, stamp, rack_mm=None):
+        """Solve travel_mm at rack_mm (None = unchanged; received: node-clock Time) and publish
+        its outputs at stamp."""
+        node = self.node
+        solution = self.solver.solve(travel_mm, rack_mm)
+        if node._sinks:   # the input's publish time is unknown: EventsExecutor gives no info
+            node._record(subscription.topic_name, msg, received.nanoseconds,
+                         received.nanoseconds)
+        if solution.success:   # the pose first: it is what a controller waits for
+            node._publish(self.pose_pub, messages.pose_stamped(solution, stamp, node._frame_id))
+            node._publish(self.camber_pub, messages.camber(solution))
+            node._publish(self.toe_pub, messages.toe(solution))
+            if self.alignment_pub is not None:
+                node._publish(self.alignment_pub, messages.alignment_array(self._alignment(
+                    self.scene, self.solver.mech, solution.wheel_center, solution.rotation,
+                    solution.rack)))
+            if self.markers_pub is not None:
+                node._publish(self.markers_pub, self._marker_array(
+                    self.scene, solution, stamp, node._frame_id))
+        node._publish(node._diag_pub, messages.diagnostics(
+            solution, stamp, self.status_name, self.scene.name, node._method,
+            node._condition_warn))
+
+
 class SuspensionNode(Node):
-    """Wheel travel (m) in, wheel-carrier pose (m), camber and toe (rad), diagnostics out."""
+    """Wheel travel (m) in, wheel-carrier pose (m), camber and toe (rad), diagnostics out:
+    one scene, or every corner of a vehicle (parameter vehicle), each a Corner."""
 
     def __init__(self, sinks=(), **kwargs):
         """sinks: extra objects with record(topic, type_name, msg, receive_ns, publish_ns)
@@ -80,84 +182,27 @@ class SuspensionNode(Node):
         self._sinks = []
         try:
             params = self._declare_parameters()
-            self.scene = load_scene(params['scene'])
-            self.solver = Continuation(self.scene, method=params['method'],
-                                       max_step=params['max_step_mm'])
-            self._sinks = open_sinks(params, self.scene, self._offered_qos()) + list(sinks)
+            scenes = load_corners(params)
+            if params['vehicle'] and params['rerun_rrd']:
+                raise ValueError('rerun_rrd: mirrors one scene; not available with vehicle')
+            self._sinks = open_sinks(params, next(iter(scenes.values())),
+                                     self._offered_qos(scenes, params)) + list(sinks)
+            self._frame_id = params['frame_id']
+            self._method = params['method']
+            self._condition_warn = params['condition_warn']
+            self._diag_pub = self.create_publisher(DiagnosticArray, '/diagnostics', QOS)
+            self.corners = {prefix.rstrip('/'): Corner(self, scene, params, prefix)
+                            for prefix, scene in scenes.items()}
         except BaseException:
+            self.close_sinks()
             super().destroy_node()
             raise
-        self._frame_id = params['frame_id']
-        self._method = params['method']
-        self._condition_warn = params['condition_warn']
-        self._status_name = f'{self.get_name()}: {self.scene.name}'
-        self._pose_pub = self.create_publisher(PoseStamped, 'wheel_carrier_pose', QOS)
-        self._camber_pub = self.create_publisher(Float64, 'camber', QOS)
-        self._toe_pub = self.create_publisher(Float64, 'toe', QOS)
-        self._diag_pub = self.create_publisher(DiagnosticArray, '/diagnostics', QOS)
-        self._travel_sub = self.create_subscription(Float64, 'wheel_travel', self._on_travel,
-                                                    QOS)
-        self._travel_joint = params['travel_joint']
-        self._joint_sub = None
-        if self._travel_joint:   # off by default: no subscription, no discovery traffic
-            self._joint_sub = self.create_subscription(JointState, 'joint_states',
-                                                       self._on_joint_states, QOS)
-        self._rack_sub = None
-        if any(c.steer == 'rack' for c in self.scene.constraints):   # only a steered corner
-            self._rack_sub = self.create_subscription(Float64, 'steering_rack', self._on_rack,
-                                                      QOS)
-        self._alignment_pub = self._markers_pub = None
-        if params['alignment']:
-            from .alignment import alignment
-            self._alignment = alignment
-            self._alignment_pub = self.create_publisher(Float64MultiArray, 'alignment', QOS)
-        if params['markers']:
-            from . import markers
-            self._marker_array = markers.marker_array
-            self._markers_pub = self.create_publisher(MarkerArray, 'markers', QOS)
-        self.get_logger().info(
-            f'scene {self.scene.name} ({self.scene.source}), method {self._method}, '
-            f'frame {self._frame_id}; waiting on {self._travel_sub.topic_name} (m)')
-
-    def _on_travel(self, msg):
-        received = self.get_clock().now()
-        self._answer(self._travel_sub, msg, messages.travel_mm(msg), received,
-                     received.to_msg())
-
-    def _on_joint_states(self, msg):
-        travel_mm = messages.joint_travel_mm(msg, self._travel_joint)
-        if travel_mm is not None:   # other joints' messages are not commands: no answer
-            self._answer(self._joint_sub, msg, travel_mm, self.get_clock().now(),
-                         msg.header.stamp)
-
-    def _on_rack(self, msg):
-        # A new rack at the last travel: Continuation keeps the travel it was last solved at.
-        received = self.get_clock().now()
-        self._answer(self._rack_sub, msg, self.solver.travel, received, received.to_msg(),
-                     rack_mm=messages.rack_mm(msg))
-
-    def _answer(self, subscription, msg, travel_mm, received, stamp, rack_mm=None):
-        """Solve travel_mm at rack_mm (None = unchanged; received: node-clock Time) and publish
-        its outputs at stamp."""
-        solution = self.solver.solve(travel_mm, rack_mm)
-        if self._sinks:   # the input's publish time is unknown: EventsExecutor gives no info
-            self._record(subscription.topic_name, msg, received.nanoseconds,
-                         received.nanoseconds)
-        if solution.success:   # the pose first: it is what a controller waits for
-            self._publish(self._pose_pub,
-                          messages.pose_stamped(solution, stamp, self._frame_id))
-            self._publish(self._camber_pub, messages.camber(solution))
-            self._publish(self._toe_pub, messages.toe(solution))
-            if self._alignment_pub is not None:
-                self._publish(self._alignment_pub, messages.alignment_array(self._alignment(
-                    self.scene, self.solver.mech, solution.wheel_center, solution.rotation,
-                    solution.rack)))
-            if self._markers_pub is not None:
-                self._publish(self._markers_pub, self._marker_array(
-                    self.scene, solution, stamp, self._frame_id))
-        self._publish(self._diag_pub, messages.diagnostics(
-            solution, stamp, self._status_name, self.scene.name, self._method,
-            self._condition_warn))
+        first = next(iter(self.corners.values()))
+        self.scene, self.solver = first.scene, first.solver   # the single-scene mode's corner
+        for corner in self.corners.values():
+            self.get_logger().info(
+                f'scene {corner.scene.name} ({corner.scene.source}), method {self._method}, '
+                f'frame {self._frame_id}; waiting on {corner.travel_sub.topic_name} (m)')
 
     def _publish(self, publisher, msg):
         # Recorded first: a SIGINT can surface as KeyboardInterrupt inside publish() after
@@ -192,14 +237,11 @@ class SuspensionNode(Node):
         self.close_sinks()
         super().destroy_node()
 
-    def _offered_qos(self):
+    def _offered_qos(self, scenes, params):
         """{resolved topic: QoS} of every topic, for the recording's metadata."""
-        names = ('wheel_travel', 'wheel_carrier_pose', 'camber', 'toe', '/diagnostics')
-        if self.get_parameter('travel_joint').value:
-            names += ('joint_states',)
-        if any(c.steer == 'rack' for c in self.scene.constraints):
-            names += ('steering_rack',)
-        names += tuple(n for n in ('alignment', 'markers') if self.get_parameter(n).value)
+        names = ['/diagnostics']
+        for prefix, scene in scenes.items():
+            names += corner_topics(scene, params, prefix)
         return {self.resolve_topic_name(name): QOS for name in names}
 
     def _declare_parameters(self):
@@ -235,7 +277,8 @@ def open_sinks(params, scene, qos):
             except ImportError as exc:
                 raise ImportError(f'record_mcap: cannot record ({exc}); install the record '
                                   'extra: pip install "linkage_ros[record]"') from exc
-            about = {k: str(params[k]) for k in ('scene', 'method', 'frame_id', 'max_step_mm')}
+            about = {k: str(params[k]) for k in ('scene', 'vehicle', 'method', 'frame_id',
+                                                'max_step_mm')}
             sinks.append(McapRecorder(params['record_mcap'], qos=qos, custom_data=about))
         if params['rerun_rrd']:
             try:
