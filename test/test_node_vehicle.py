@@ -1,0 +1,123 @@
+"""suspension_node with parameter vehicle: one node, every corner of a vehicle file over DDS.
+
+Each corner has its own topics under its name and its own Continuation; expected values come
+from the core for the vehicle's corner scenes (right corners are the left scenes mirrored).
+"""
+
+from diagnostic_msgs.msg import DiagnosticArray
+from geometry_msgs.msg import PoseStamped
+import numpy as np
+import pytest
+from rclpy.parameter import Parameter
+from std_msgs.msg import Float64
+
+from linkage_ros.kinematics import Continuation
+from linkage_ros.node import NODE_NAME, QOS, SuspensionNode
+from linkage_ros.vehicle import load_vehicle
+
+try:   # the helpers are moving from conftest.py into the pytest plugin linkage_ros.testing
+    from linkage_ros.testing import spin_until
+except ImportError:
+    from conftest import spin_until
+
+CORNERS = ['front_left', 'front_right', 'rear_left', 'rear_right']
+
+
+class CornerProbe:
+    """Publishes a corner's wheel_travel and keeps its poses, cambers and toes."""
+
+    def __init__(self, node, corner):
+        self.travel = node.create_publisher(Float64, f'{corner}/wheel_travel', QOS)
+        self.rack = node.create_publisher(Float64, f'{corner}/steering_rack', QOS)
+        self.poses, self.cambers, self.toes = [], [], []
+        node.create_subscription(PoseStamped, f'{corner}/wheel_carrier_pose', self.poses.append,
+                                 QOS)
+        node.create_subscription(Float64, f'{corner}/camber',
+                                 lambda m: self.cambers.append(m.data), QOS)
+        node.create_subscription(Float64, f'{corner}/toe', lambda m: self.toes.append(m.data),
+                                 QOS)
+
+
+@pytest.fixture
+def vehicle_node(ros_context, executor, probe):
+    """suspension_node serving demo_vehicle, and a CornerProbe per corner on the probe node."""
+    node = SuspensionNode(context=ros_context,
+                          parameter_overrides=[Parameter('vehicle', value='demo_vehicle')])
+    executor.add_node(node)
+    corners = {c: CornerProbe(probe.node, c) for c in CORNERS}
+    statuses = []
+    probe.node.create_subscription(
+        DiagnosticArray, '/diagnostics', lambda m: statuses.extend(m.status), QOS)
+    assert spin_until(executor, lambda: all(p.travel.get_subscription_count()
+                                            for p in corners.values()))
+    return node, corners, statuses
+
+
+def core(corner, travel_mm):
+    scene = load_vehicle('demo_vehicle').corners[corner]
+    return Continuation(scene).solve(travel_mm)
+
+
+def test_a_command_to_one_corner_is_answered_by_that_corner_only(vehicle_node, executor):
+    _, corners, statuses = vehicle_node
+    corners['rear_left'].travel.publish(Float64(data=0.03))
+    assert spin_until(executor, lambda: statuses and corners['rear_left'].poses)
+    spin_until(executor, lambda: False, 0.2)     # anything else would have arrived by now
+    assert [s.name for s in statuses] == [f'{NODE_NAME}: rear_left']
+    assert [len(corners[c].poses) for c in CORNERS] == [0, 0, 1, 0]
+    expected = core('rear_left', 30.0)
+    p = corners['rear_left'].poses[0].pose.position
+    assert [p.x, p.y, p.z] == pytest.approx(expected.wheel_center / 1000.0, abs=1e-9)
+    assert corners['rear_left'].cambers == pytest.approx([expected.camber], abs=1e-9)
+
+
+def test_every_corner_keeps_its_own_travel(vehicle_node, executor):
+    _, corners, statuses = vehicle_node
+    travels = {'front_left': 0.02, 'front_right': -0.03, 'rear_left': 0.04, 'rear_right': 0.0}
+    for corner, travel in travels.items():
+        corners[corner].travel.publish(Float64(data=travel))
+    assert spin_until(executor, lambda: all(corners[c].toes for c in CORNERS)
+                      and len(statuses) == 4)
+    for corner, travel in travels.items():
+        expected = core(corner, travel * 1000.0)
+        p = corners[corner].poses[0].pose.position
+        assert [p.x, p.y, p.z] == pytest.approx(expected.wheel_center / 1000.0, abs=1e-9)
+        assert corners[corner].toes == pytest.approx([expected.toe], abs=1e-9)
+    assert sorted(s.name for s in statuses) == sorted(f'{NODE_NAME}: {c}' for c in CORNERS)
+
+
+@pytest.mark.parametrize('axle', ['front', 'rear'])
+def test_right_corner_has_the_camber_and_toe_of_the_left_at_the_same_travel(
+        vehicle_node, executor, axle):
+    _, corners, _ = vehicle_node
+    left, right = corners[f'{axle}_left'], corners[f'{axle}_right']
+    for travel in (0.035, -0.045):
+        left.travel.publish(Float64(data=travel))
+        right.travel.publish(Float64(data=travel))
+    assert spin_until(executor, lambda: len(left.toes) == 2 and len(right.toes) == 2)
+    assert right.cambers == pytest.approx(left.cambers, abs=1e-9)
+    assert right.toes == pytest.approx(left.toes, abs=1e-9)
+    for lp, rp in zip(left.poses, right.poses):     # mirrored in y
+        lpos, rpos = lp.pose.position, rp.pose.position
+        assert [rpos.x, rpos.y, rpos.z] == pytest.approx([lpos.x, -lpos.y, lpos.z], abs=1e-9)
+    assert abs(left.cambers[0] - left.cambers[1]) > 1e-3    # the travels did move the wheel
+
+
+def test_only_steered_corners_take_steering_rack(vehicle_node, executor):
+    _, corners, _ = vehicle_node
+    assert spin_until(executor, lambda: corners['front_right'].rack.get_subscription_count())
+    spin_until(executor, lambda: False, 0.2)
+    assert [corners[c].rack.get_subscription_count() > 0 for c in CORNERS] == [
+        True, True, False, False]
+    corners['front_right'].rack.publish(Float64(data=0.01))
+    assert spin_until(executor, lambda: corners['front_right'].toes)
+    scene = load_vehicle('demo_vehicle').corners['front_right']
+    expected = Continuation(scene).solve(0.0, 10.0)
+    assert corners['front_right'].toes == pytest.approx([expected.toe], abs=1e-9)
+    assert corners['front_left'].toes == []
+
+
+def test_an_unknown_vehicle_is_refused_naming_the_file(ros_context):
+    with pytest.raises(ValueError, match='no_such_vehicle'):
+        SuspensionNode(context=ros_context,
+                       parameter_overrides=[Parameter('vehicle', value='no_such_vehicle')])
