@@ -121,3 +121,31 @@ def test_an_unknown_vehicle_is_refused_naming_the_file(ros_context):
     with pytest.raises(ValueError, match='no_such_vehicle'):
         SuspensionNode(context=ros_context,
                        parameter_overrides=[Parameter('vehicle', value='no_such_vehicle')])
+
+
+def test_record_mcap_records_every_corner_under_its_name(ros_context, executor, probe,
+                                                          tmp_path):
+    from mcap.reader import make_reader
+    from mcap_ros2.decoder import DecoderFactory
+    path = tmp_path / 'vehicle.mcap'
+    node = SuspensionNode(context=ros_context, parameter_overrides=[
+        Parameter('vehicle', value='demo_vehicle'), Parameter('record_mcap', value=str(path)),
+        Parameter('alignment', value=True)])
+    executor.add_node(node)
+    corners = {c: CornerProbe(probe.node, c) for c in CORNERS}
+    assert spin_until(executor, lambda: all(p.travel.get_subscription_count()
+                                            for p in corners.values()))
+    corners['front_right'].travel.publish(Float64(data=0.01))
+    corners['rear_left'].travel.publish(Float64(data=-0.02))
+    assert spin_until(executor, lambda: corners['front_right'].toes and corners['rear_left'].toes)
+    executor.remove_node(node)
+    node.destroy_node()
+    with open(path, 'rb') as stream:
+        decoded = [(channel.topic, msg) for _, channel, _, msg in make_reader(
+            stream, decoder_factories=[DecoderFactory()]).iter_decoded_messages()]
+    topics = [topic for topic, _ in decoded]
+    for corner in ('front_right', 'rear_left'):
+        for name in ('wheel_travel', 'wheel_carrier_pose', 'camber', 'toe', 'alignment'):
+            assert topics.count(f'/{corner}/{name}') == 1, (corner, name)
+    assert not any(t.startswith(('/front_left/', '/rear_right/')) for t in topics)
+    assert [m.data for t, m in decoded if t == '/rear_left/wheel_travel'] == [-0.02]
