@@ -2,6 +2,8 @@
 
     linkage-replay BAG.mcap -o OUT.mcap          solve the commands, write commands + outputs
     linkage-replay BAG.mcap --publish --rate 2   republish the commands at twice the recorded pace
+    linkage-replay BAG.mcap --publish --clock    ... with /clock at the recorded times (for
+                                                 nodes with use_sim_time:=true)
     linkage-replay --sweep -o OUT.mcap           commands of a travel sweep (scene's range)
     linkage-replay BAG.mcap --copy -o OUT.mcap   copy every readable message into a complete file
 
@@ -214,11 +216,13 @@ class Progress:
 
 # --- republishing --------------------------------------------------------------------------
 
-def publish_commands(commands, topic, rate=1.0, wait=10.0, progress=None):
+def publish_commands(commands, topic, rate=1.0, wait=10.0, progress=None, clock=False):
     """Publish the commands as std_msgs/Float64 on topic at the recorded pace / rate.
 
-    rate > 0 (2 = twice as fast). Waits up to wait s for a subscriber first.
-    Returns the number of commands published.
+    rate > 0 (2 = twice as fast). Waits up to wait s for a subscriber first (with clock, for
+    one on /clock too). clock: before each command, publish rosgraph_msgs/Clock on /clock
+    holding the command's recorded receive time, so that a node with use_sim_time stamps
+    its answer with the recorded time. Returns the number of commands published.
     """
     import rclpy
     from rclpy.qos import QoSProfile
@@ -229,24 +233,34 @@ def publish_commands(commands, topic, rate=1.0, wait=10.0, progress=None):
     try:
         # Reliable, keep last 1000: a burst is never overwritten before it is acknowledged.
         publisher = node.create_publisher(Float64, qualified(topic), QoSProfile(depth=1000))
+        publishers = [publisher]
+        if clock:
+            from rosgraph_msgs.msg import Clock
+            clock_publisher = node.create_publisher(Clock, '/clock', QoSProfile(depth=1000))
+            publishers.append(clock_publisher)
         deadline = time.monotonic() + wait
-        while publisher.get_subscription_count() == 0 and time.monotonic() < deadline:
+        while (not all(p.get_subscription_count() for p in publishers)
+               and time.monotonic() < deadline):
             time.sleep(0.01)
-        if publisher.get_subscription_count() == 0:
-            print(f'{PROG}: no subscriber on {qualified(topic)} after {wait:g} s; publishing '
-                  'anyway', file=sys.stderr)
+        for p in publishers:
+            if p.get_subscription_count() == 0:
+                print(f'{PROG}: no subscriber on {p.topic_name} after {wait:g} s; publishing '
+                      'anyway', file=sys.stderr)
         start, first = time.monotonic(), commands[0].log_time if commands else 0
         for command in commands:
             delay = start + (command.log_time - first) / 1e9 / rate - time.monotonic()
             if delay > 0:
                 time.sleep(delay)
+            if clock:   # the time first: the command's answer is stamped with it
+                clock_publisher.publish(Clock(clock=stamp_of(command.log_time)))
             publisher.publish(Float64(data=command.travel))
             published += 1
             if progress:
                 progress.update(published)
         # Reliable delivery of the last commands before the process goes away.
         from rclpy.duration import Duration
-        publisher.wait_for_all_acked(Duration(seconds=min(wait, 5.0)))
+        for p in publishers:
+            p.wait_for_all_acked(Duration(seconds=min(wait, 5.0)))
     except KeyboardInterrupt:
         print(f'{PROG}: interrupted after {published} commands', file=sys.stderr)
     finally:
@@ -279,6 +293,9 @@ def parse_args(argv):
                       'recording cut by a hard kill)')
     parser.add_argument('--rate', type=float, default=1.0,
                         help='--publish: playback speed factor, > 0 (2 = twice as fast)')
+    parser.add_argument('--clock', action='store_true',
+                        help='--publish: also publish /clock (rosgraph_msgs/Clock) at the '
+                        "commands' recorded times, for nodes with use_sim_time:=true")
     parser.add_argument('--wait', type=float, default=10.0,
                         help='--publish: seconds to wait for a subscriber (default 10)')
     parser.add_argument('--sweep', action='store_true',
@@ -294,6 +311,8 @@ def parse_args(argv):
     args = parser.parse_args(argv)
     if args.sweep == bool(args.bag):
         parser.error('give a BAG or --sweep (one of them)')
+    if args.clock and not args.publish:
+        parser.error('--clock needs --publish')
     if args.sweep and args.copy:
         parser.error('--copy needs a BAG')
     if not (args.rate > 0 and math.isfinite(args.rate)):
@@ -330,7 +349,7 @@ def main(argv=None):
         print(f'{PROG}: publishing {len(commands)} commands from {source} on '
               f'{qualified(args.topic)} at rate {args.rate:g}', file=sys.stderr)
         published = publish_commands(commands, args.topic, args.rate, args.wait,
-                                     Progress(len(commands), 'commands published'))
+                                     Progress(len(commands), 'commands published'), args.clock)
         return 0 if published == len(commands) else 130
     output = args.output or str(Path(args.bag).with_name(Path(args.bag).stem + '_solved.mcap'))
     try:

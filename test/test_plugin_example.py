@@ -1,0 +1,11 @@
+import math
+
+import pytest
+
+
+def test_a_50_mm_bump_lifts_the_wheel_and_gives_negative_camber(suspension_node, send_travel):
+    suspension_node(scene='five_link', method='fast')
+    answer = send_travel(0.05, timeout=5.0)                     # m, + = bump
+    assert answer.diagnostics.message == 'ok'
+    assert answer.pose.pose.position.z == pytest.approx(0.30 + 0.05)   # design centre 0.30 m
+    assert -math.radians(3.0) < answer.camber < 0.0             # rad, wheel top inboard

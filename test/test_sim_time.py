@@ -1,0 +1,109 @@
+"""use_sim_time: with a /clock publisher every stamp suspension_node writes is simulated time.
+
+In process over real DDS: a test node publishes rosgraph_msgs/Clock on /clock and jumps it
+from 100 s to 5000 s; cross process: linkage-replay --publish --clock drives the node's clock
+from a bag's recorded times.
+"""
+
+import os
+import subprocess
+import sys
+
+from builtin_interfaces.msg import Time
+from rclpy.parameter import Parameter
+from rclpy.qos import QoSProfile
+from rosgraph_msgs.msg import Clock
+from std_msgs.msg import Float64
+
+from linkage_ros.node import SuspensionNode
+from linkage_ros.recording import McapRecorder
+from linkage_ros.testing import Probe, spin_until, stamp_ns
+
+S = 1_000_000_000     # ns per s
+
+
+class ListSink:
+    """A sink that keeps receive_ns and publish_ns of everything it is given."""
+
+    def __init__(self):
+        self.times = []
+
+    def record(self, topic, type_name, msg, receive_ns, publish_ns):
+        self.times.append((receive_ns, publish_ns))
+
+    def close(self):
+        pass
+
+
+def set_clock(executor, clock_publisher, node, time_ns):
+    """Publish time_ns on /clock and wait until node's clock reads it."""
+    clock_publisher.publish(Clock(clock=stamp_msg(time_ns)))
+    assert spin_until(executor, lambda: node.get_clock().now().nanoseconds == time_ns)
+
+
+def stamp_msg(time_ns):
+    return Time(sec=time_ns // S, nanosec=time_ns % S)
+
+
+def test_with_use_sim_time_poses_and_diagnostics_are_stamped_with_the_simulated_clock(
+        suspension_node, executor, probe, send_travel):
+    node = suspension_node(use_sim_time=True)
+    clock = probe.node.create_publisher(Clock, '/clock', QoSProfile(depth=10))
+    stamps = []
+    for time_ns in (100 * S, 5000 * S):           # a jump of the simulated clock
+        set_clock(executor, clock, node, time_ns)
+        answer = send_travel(0.01 * len(stamps))
+        stamps.append((stamp_ns(answer.pose.header.stamp), probe.status_stamps[-1]))
+    assert stamps == [(100 * S, 100 * S), (5000 * S, 5000 * S)]
+
+
+def test_with_use_sim_time_sinks_receive_simulated_times(suspension_node, executor, probe,
+                                                         send_travel):
+    sink = ListSink()
+    node = suspension_node(use_sim_time=True, sinks=[sink])
+    clock = probe.node.create_publisher(Clock, '/clock', QoSProfile(depth=10))
+    set_clock(executor, clock, node, 100 * S)
+    send_travel(0.01)
+    set_clock(executor, clock, node, 5000 * S)
+    send_travel(0.02)
+    # Per command: the command, pose, camber, toe and diagnostics, all at the clock's time.
+    assert sink.times == [(100 * S, 100 * S)] * 5 + [(5000 * S, 5000 * S)] * 5
+
+
+def test_without_use_sim_time_the_clock_topic_is_ignored(suspension_node, executor, probe,
+                                                         send_travel):
+    suspension_node()
+    clock = probe.node.create_publisher(Clock, '/clock', QoSProfile(depth=10))
+    clock.publish(Clock(clock=stamp_msg(100 * S)))
+    answer = send_travel(0.01)
+    assert stamp_ns(answer.pose.header.stamp) > 1_600_000_000 * S     # wall time (after 2020)
+
+
+def test_replay_publish_clock_makes_a_sim_time_node_stamp_with_the_recorded_times(
+        tmp_path, localhost_context, localhost_executor, domain_id):
+    bag, t0 = tmp_path / 'run.mcap', 1000 * S
+    travels = [i / 1000.0 for i in range(10)]
+    recorded = [t0 + i * S // 50 for i in range(len(travels))]       # 50 Hz from 1000 s
+    with McapRecorder(bag) as recorder:
+        for travel, t in zip(travels, recorded):
+            recorder.record('/wheel_travel', 'std_msgs/msg/Float64', Float64(data=travel), t, t)
+    node = SuspensionNode(context=localhost_context,
+                          parameter_overrides=[Parameter('use_sim_time', value=True)])
+    localhost_executor.add_node(node)
+    probe = Probe(localhost_context, localhost_executor)
+    env = dict(os.environ, ROS_DOMAIN_ID=str(domain_id),
+               ROS_AUTOMATIC_DISCOVERY_RANGE='LOCALHOST')
+    replay = subprocess.Popen([sys.executable, '-m', 'linkage_ros.replay', str(bag), '--publish',
+                               '--clock', '--wait', '20'], env=env, stderr=subprocess.PIPE,
+                              text=True)
+    try:
+        assert spin_until(localhost_executor, lambda: len(probe.statuses) == len(travels), 30.0)
+    finally:
+        _, err = replay.communicate(timeout=30)
+    assert replay.returncode == 0, err
+    # /clock and the command are two topics: a command may overtake its clock message, and
+    # is then stamped with the previous command's recorded time, never with another time.
+    stamps = [stamp_ns(p.header.stamp) for p in probe.poses]
+    assert len(stamps) == len(travels)
+    assert all(s in (t, previous) for s, t, previous in zip(stamps, recorded,
+                                                            [recorded[0]] + recorded))

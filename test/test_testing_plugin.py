@@ -1,0 +1,71 @@
+"""linkage_ros.testing, the pytest plugin: its fixtures in use, and what it leaves alone."""
+
+from importlib.metadata import entry_points
+import os
+from pathlib import Path
+import shutil
+import subprocess
+import sys
+
+from diagnostic_msgs.msg import DiagnosticStatus
+import pytest
+
+from linkage_ros import testing
+
+EXAMPLE = Path(__file__).resolve().parent / 'test_plugin_example.py'
+
+
+def plugin_args():
+    """-p linkage_ros.testing unless an installed linkage_ros registers it (pytest11)."""
+    installed = any(e.value == 'linkage_ros.testing' for e in entry_points(group='pytest11'))
+    return [] if installed else ['-p', 'linkage_ros.testing']
+
+
+def test_the_readme_example_passes_under_plain_pytest_outside_this_project(tmp_path):
+    shutil.copy(EXAMPLE, tmp_path / 'test_example.py')
+    (tmp_path / 'test_plain.py').write_text(
+        'def test_a_test_without_its_fixtures_sets_up_nothing(request):\n'
+        "    assert request.fixturenames == ['request']\n")
+    result = subprocess.run(
+        [sys.executable, '-m', 'pytest', '-q', '-p', 'no:cacheprovider', *plugin_args()],
+        cwd=tmp_path, capture_output=True, text=True, timeout=120,
+        env=dict(os.environ, ROS_AUTOMATIC_DISCOVERY_RANGE='LOCALHOST'))
+    assert result.returncode == 0, result.stdout + result.stderr
+    assert '2 passed' in result.stdout
+
+
+def test_linkage_ros_testing_imports_without_pytest():
+    script = ("import sys; sys.modules['pytest'] = None\n"
+              'import linkage_ros, linkage_ros.testing\n'
+              'print(linkage_ros.testing.pytest, linkage_ros.testing.Probe.__name__)\n')
+    result = subprocess.run([sys.executable, '-c', script], capture_output=True, text=True,
+                            timeout=60)
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.split() == ['None', 'Probe']
+
+
+def test_the_plugin_defines_no_hooks():
+    assert [name for name in vars(testing) if name.startswith('pytest_')] == []
+
+
+def test_send_travel_returns_no_pose_and_the_error_for_a_travel_out_of_reach(
+        suspension_node, send_travel):
+    suspension_node()
+    answer = send_travel(1.0)
+    assert (answer.pose, answer.camber, answer.toe) == (None, None, None)
+    assert answer.diagnostics.level == DiagnosticStatus.ERROR
+    assert 'out of reach' in answer.diagnostics.message
+
+
+def test_send_travel_answers_follow_their_commands(suspension_node, send_travel):
+    suspension_node(scene='double_wishbone')
+    travels = [0.02, -0.03, 0.0]
+    answers = [send_travel(t) for t in travels]
+    assert [float(testing.status_values(a.diagnostics)['travel_m']) for a in answers] == (
+        pytest.approx(travels))
+    assert [a.diagnostics.hardware_id for a in answers] == ['double_wishbone'] * 3
+
+
+def test_send_travel_without_a_node_times_out_naming_the_problem(send_travel):
+    with pytest.raises(TimeoutError, match='no suspension_node matched wheel_travel'):
+        send_travel(0.01, timeout=0.2)
