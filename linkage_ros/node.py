@@ -2,10 +2,10 @@
 
 A thin adapter over the kinematics core (linkage_ros.kinematics.Continuation): each command
 is solved from the last good pose (large jumps walked in substeps of max_step_mm), converted
-to SI messages by linkage_ros.messages, and published. Outputs answer a stamped input (JointState) with its header
-stamp, a Float64 with the node clock's time of receipt (simulated time with use_sim_time).
-A bad command (NaN, inf, out of reach)
-publishes no pose, only an ERROR diagnostic saying why; the core keeps the last good state.
+to SI messages by linkage_ros.messages, and published. Outputs answer a stamped input
+(JointState) with its header stamp, a Float64 with the node clock's time of receipt (simulated
+time with use_sim_time). A bad command (NaN, inf, out of reach) publishes no pose, only an
+ERROR diagnostic saying why; the core keeps the last good state.
 
 Topics (names relative to the node's namespace, /diagnostics absolute):
     sub wheel_travel        std_msgs/Float64            m, + = bump
