@@ -20,11 +20,8 @@ from linkage_ros.kinematics import Continuation
 from linkage_ros.markers import marker_points
 from linkage_ros.node import QOS, SuspensionNode
 from linkage_ros.scene import load_scene
+from linkage_ros.testing import spin_until
 
-try:   # the helpers are moving from conftest.py into the pytest plugin linkage_ros.testing
-    from linkage_ros.testing import spin_until
-except ImportError:
-    from conftest import spin_until
 
 STEERED = 'double_wishbone'     # tie_rod has steer: rack
 # (kind, value m): a travel, then rack commands at that travel, then a travel at the last rack

@@ -6,19 +6,15 @@ from the core for the vehicle's corner scenes (right corners are the left scenes
 
 from diagnostic_msgs.msg import DiagnosticArray
 from geometry_msgs.msg import PoseStamped
-import numpy as np
 import pytest
 from rclpy.parameter import Parameter
 from std_msgs.msg import Float64
 
 from linkage_ros.kinematics import Continuation
 from linkage_ros.node import NODE_NAME, QOS, SuspensionNode
+from linkage_ros.testing import spin_until
 from linkage_ros.vehicle import load_vehicle
 
-try:   # the helpers are moving from conftest.py into the pytest plugin linkage_ros.testing
-    from linkage_ros.testing import spin_until
-except ImportError:
-    from conftest import spin_until
 
 CORNERS = ['front_left', 'front_right', 'rear_left', 'rear_right']
 
