@@ -10,6 +10,7 @@ import subprocess
 import sys
 
 from builtin_interfaces.msg import Time
+import pytest
 from rclpy.parameter import Parameter
 from rclpy.qos import QoSProfile
 from rosgraph_msgs.msg import Clock
@@ -107,3 +108,11 @@ def test_replay_publish_clock_makes_a_sim_time_node_stamp_with_the_recorded_time
     assert len(stamps) == len(travels)
     assert all(s in (t, previous) for s, t, previous in zip(stamps, recorded,
                                                             [recorded[0]] + recorded))
+
+
+def test_replay_clock_without_publish_is_refused(capsys):
+    from linkage_ros.replay import main
+    with pytest.raises(SystemExit) as exited:
+        main(['--sweep', '--clock'])
+    assert exited.value.code == 2
+    assert '--clock needs --publish' in capsys.readouterr().err
