@@ -35,6 +35,7 @@ Rerun modules are imported only when record_mcap or rerun_rrd is set.
 """
 
 import math
+from pathlib import Path
 import sys
 
 from diagnostic_msgs.msg import DiagnosticArray
@@ -188,9 +189,7 @@ class SuspensionNode(Node):
         try:
             params = self._declare_parameters()
             scenes = load_corners(params)
-            if params['vehicle'] and params['rerun_rrd']:
-                raise ValueError('rerun_rrd: mirrors one scene; not available with vehicle')
-            self._sinks = open_sinks(params, next(iter(scenes.values())),
+            self._sinks = open_sinks(params, scenes,
                                      self._offered_qos(scenes, params)) + list(sinks)
             self._frame_id = params['frame_id']
             self._method = params['method']
@@ -269,10 +268,13 @@ def positive_number(name, value):
     return float(value)
 
 
-def open_sinks(params, scene, qos):
+def open_sinks(params, scenes, qos):
     """The sinks the parameters turn on; their modules are imported only then.
 
-    qos: {topic: QoSProfile} the node offers, stored in the MCAP channel metadata.
+    scenes: {topic prefix: Scene} of load_corners. qos: {topic: QoSProfile} the node offers,
+    stored in the MCAP channel metadata. A Rerun recording draws one scene: with a vehicle,
+    each corner gets its own file, rerun_rrd with the corner name before the suffix
+    (run.rrd -> run.front_left.rrd), fed only that corner's topics.
     """
     sinks = []
     try:
@@ -291,12 +293,34 @@ def open_sinks(params, scene, qos):
             except ImportError as exc:
                 raise ImportError(f'rerun_rrd: cannot mirror to Rerun ({exc}); install the '
                                   'view extra: pip install "linkage_ros[view]"') from exc
-            sinks.append(RerunRecorder(params['rerun_rrd'], scene))
+            for prefix, scene in scenes.items():
+                if not prefix:
+                    sinks.append(RerunRecorder(params['rerun_rrd'], scene))
+                    continue
+                corner = prefix.rstrip('/')
+                path = Path(params['rerun_rrd'])
+                path = path.with_name(f'{path.stem}.{corner}{path.suffix or ".rrd"}')
+                sinks.append(CornerSink(RerunRecorder(path, scene), corner))
     except BaseException:
         for sink in sinks:
             sink.close()
         raise
     return sinks
+
+
+class CornerSink:
+    """Passes to sink only the topics of one corner (/.../corner/name)."""
+
+    def __init__(self, sink, corner):
+        self.sink, self.corner = sink, corner
+
+    def record(self, topic, type_name, msg, receive_ns, publish_ns):
+        parts = topic.rsplit('/', 2)
+        if len(parts) == 3 and parts[1] == self.corner:
+            self.sink.record(topic, type_name, msg, receive_ns, publish_ns)
+
+    def close(self):
+        self.sink.close()
 
 
 def spin_until_shutdown(executor):

@@ -145,3 +145,32 @@ def test_record_mcap_records_every_corner_under_its_name(ros_context, executor, 
             assert topics.count(f'/{corner}/{name}') == 1, (corner, name)
     assert not any(t.startswith(('/front_left/', '/rear_right/')) for t in topics)
     assert [m.data for t, m in decoded if t == '/rear_left/wheel_travel'] == [-0.02]
+
+
+def test_rerun_rrd_writes_one_file_per_corner_with_only_its_commands(ros_context, executor,
+                                                                     probe, tmp_path):
+    from rerun.chunk import RrdReader
+    node = SuspensionNode(context=ros_context, parameter_overrides=[
+        Parameter('vehicle', value='demo_vehicle'),
+        Parameter('rerun_rrd', value=str(tmp_path / 'run.rrd'))])
+    executor.add_node(node)
+    corners = {c: CornerProbe(probe.node, c) for c in CORNERS}
+    assert spin_until(executor, lambda: all(p.travel.get_subscription_count()
+                                            for p in corners.values()))
+    sent = {'front_left': [0.01, 0.02, 0.03], 'rear_right': [-0.02]}
+    for corner, travels in sent.items():
+        for travel in travels:
+            corners[corner].travel.publish(Float64(data=travel))
+    assert spin_until(executor, lambda: len(corners['front_left'].toes) == 3
+                      and len(corners['rear_right'].toes) == 1)
+    executor.remove_node(node)
+    node.destroy_node()
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted(
+        f'run.{c}.rrd' for c in CORNERS)
+    for corner in CORNERS:
+        reader = RrdReader(str(tmp_path / f'run.{corner}.rrd'))
+        travels = [v for chunk in reader.stream(store=reader.recordings()[0])
+                   if chunk.entity_path == '/plots/travel_mm' and not chunk.is_static
+                   for v in chunk.to_record_batch().column('Scalars:scalars').to_pylist()]
+        assert sorted(float(v[0]) for v in travels) == pytest.approx(
+            sorted(1000.0 * t for t in sent.get(corner, [])))
