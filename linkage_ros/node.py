@@ -28,7 +28,8 @@ All reliable, keep-last QOS_DEPTH (1000), so a burst of 1000 commands is not los
 With parameter vehicle (a vehicle file, linkage_ros.vehicle) the node serves every corner:
 each Corner has its own Continuation and the topics above under its name (front_left/
 wheel_travel, front_left/camber, ...; steering_rack only where the corner steers), one
-diagnostic status per corner named after it; parameter scene is then not used.
+diagnostic status per corner named after it; parameter scene is then not used. record_mcap
+records every corner; rerun_rrd writes one file per corner (run.rrd -> run.front_left.rrd).
 
 Sinks (recorders, viewers) receive every command and every published message; the MCAP and
 Rerun modules are imported only when record_mcap or rerun_rrd is set.
