@@ -23,7 +23,9 @@ Fixtures:
     ros_environment      session: rcl log files in a temporary folder, discovery range
                          LOCALHOST unless set; every fixture above that starts ROS uses it
 
-Waits are deadline loops around executor.spin_once, never fixed sleeps.
+Waits are deadline loops around executor.spin_once, never fixed sleeps. rclpy, the messages
+and the node are imported when a fixture or helper first needs them, so that the plugin costs
+a pytest run that does not use it no import time.
 """
 
 import itertools
@@ -34,17 +36,7 @@ import signal
 import subprocess
 import sys
 import time
-from typing import NamedTuple, Optional
-
-from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
-from geometry_msgs.msg import PoseStamped
-import rclpy
-from rclpy.experimental import EventsExecutor
-from rclpy.parameter import Parameter
-from std_msgs.msg import Float64
-
-from .messages import status_values
-from .node import NODE_NAME, QOS, SuspensionNode
+from typing import Any, NamedTuple
 
 try:
     import pytest
@@ -71,6 +63,7 @@ def free_domain_id():
 
 def init_context(domain_id, discovery_range='OFF'):
     """A new initialised rclpy Context on domain_id; discovery range read by rcl at init."""
+    import rclpy
     previous = os.environ.get('ROS_AUTOMATIC_DISCOVERY_RANGE')
     os.environ['ROS_AUTOMATIC_DISCOVERY_RANGE'] = discovery_range
     try:
@@ -82,6 +75,12 @@ def init_context(domain_id, discovery_range='OFF'):
         else:
             os.environ['ROS_AUTOMATIC_DISCOVERY_RANGE'] = previous
     return context
+
+
+def rclpy_try_shutdown(context):
+    """Shut context down if it is still up (rclpy.try_shutdown)."""
+    import rclpy
+    rclpy.try_shutdown(context=context)
 
 
 def spin_until(executor, predicate, timeout=WAIT):
@@ -110,10 +109,10 @@ class Answer(NamedTuple):
     DiagnosticStatus for it (level, message, values such as travel_m, residual_m).
     """
 
-    pose: Optional[PoseStamped]
-    camber: Optional[float]
-    toe: Optional[float]
-    diagnostics: DiagnosticStatus
+    pose: Any           # geometry_msgs/PoseStamped or None
+    camber: Any         # float or None
+    toe: Any            # float or None
+    diagnostics: Any    # diagnostic_msgs/DiagnosticStatus
 
 
 class Probe:
@@ -125,6 +124,13 @@ class Probe:
     """
 
     def __init__(self, context, executor):
+        import rclpy
+        from diagnostic_msgs.msg import DiagnosticArray
+        from geometry_msgs.msg import PoseStamped
+        from std_msgs.msg import Float64
+
+        from .node import NODE_NAME, QOS
+        self._node_name = NODE_NAME
         self.node = rclpy.create_node('probe', context=context, enable_rosout=False,
                                       start_parameter_services=False)
         self.executor = executor
@@ -145,13 +151,13 @@ class Probe:
 
     def _on_diagnostics(self, msg):
         for status in msg.status:
-            if status.name.startswith(NODE_NAME):
+            if status.name.startswith(self._node_name):
                 self.statuses.append(status)
                 self.status_stamps.append(stamp_ns(msg.header.stamp))
 
     def send(self, *travels_m):
         for travel in travels_m:
-            self.travel.publish(Float64(data=float(travel)))
+            self.travel.publish(self.travel.msg_type(data=float(travel)))
 
     def matched(self):
         """True once the node's subscription and its four publishers are matched here."""
@@ -164,6 +170,7 @@ class Probe:
     def answered(self, expected):
         """True once the answers to the commands of expected (a core Sweep) have all arrived:
         at least that many of each output, the last ones those of the last command."""
+        from .messages import status_values
         n = len(expected.travel)
         if min(len(self.poses), len(self.cambers), len(self.toes), len(self.statuses)) < n:
             return False
@@ -179,6 +186,7 @@ class Probe:
         The diagnostics always come; pose, camber and toe only for a solved command (level
         not ERROR). Raises TimeoutError if they do not all arrive in time.
         """
+        from diagnostic_msgs.msg import DiagnosticStatus
         before = [len(self.poses), len(self.cambers), len(self.toes), len(self.statuses)]
         deadline = time.monotonic() + timeout
         if not spin_until(self.executor, self.matched, timeout):
@@ -253,6 +261,9 @@ class NodeProcess:
 def start_suspension_node(context, executor, scene='five_link', sinks=(), **params):
     """A SuspensionNode in context, added to executor; params are its ROS parameters by name
     (e.g. method='paper', use_sim_time=True)."""
+    from rclpy.parameter import Parameter
+
+    from .node import SuspensionNode
     overrides = [Parameter(name, value=value) for name, value in dict(scene=scene,
                                                                       **params).items()]
     node = SuspensionNode(sinks=sinks, context=context, parameter_overrides=overrides)
@@ -261,6 +272,7 @@ def start_suspension_node(context, executor, scene='five_link', sinks=(), **para
 
 
 def _executor(context):
+    from rclpy.experimental import EventsExecutor
     executor = EventsExecutor(context=context)
     yield executor
     for node in executor.get_nodes():
@@ -295,7 +307,7 @@ def ros_context(ros_environment, domain_id):
     """A private Context with discovery OFF: only nodes of this Context see each other."""
     context = init_context(domain_id, 'OFF')
     yield context
-    rclpy.try_shutdown(context=context)
+    rclpy_try_shutdown(context)
 
 
 @_fixture
@@ -303,7 +315,7 @@ def localhost_context(ros_environment, domain_id):
     """A private Context that discovers the other processes of this machine on domain_id."""
     context = init_context(domain_id, 'LOCALHOST')
     yield context
-    rclpy.try_shutdown(context=context)
+    rclpy_try_shutdown(context)
 
 
 @_fixture

@@ -11,6 +11,7 @@ from diagnostic_msgs.msg import DiagnosticStatus
 import pytest
 
 from linkage_ros import testing
+from linkage_ros.messages import status_values
 
 EXAMPLE = Path(__file__).resolve().parent / 'test_plugin_example.py'
 
@@ -44,6 +45,15 @@ def test_linkage_ros_testing_imports_without_pytest():
     assert result.stdout.split() == ['None', 'Probe']
 
 
+def test_importing_the_plugin_loads_neither_rclpy_nor_numpy():
+    script = ('import sys, linkage_ros.testing\n'
+              "print(sorted(m for m in ('rclpy', 'numpy', 'scipy') if m in sys.modules))\n")
+    result = subprocess.run([sys.executable, '-c', script], capture_output=True, text=True,
+                            timeout=60)
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.strip() == '[]'
+
+
 def test_the_plugin_defines_no_hooks():
     assert [name for name in vars(testing) if name.startswith('pytest_')] == []
 
@@ -61,7 +71,7 @@ def test_send_travel_answers_follow_their_commands(suspension_node, send_travel)
     suspension_node(scene='double_wishbone')
     travels = [0.02, -0.03, 0.0]
     answers = [send_travel(t) for t in travels]
-    assert [float(testing.status_values(a.diagnostics)['travel_m']) for a in answers] == (
+    assert [float(status_values(a.diagnostics)['travel_m']) for a in answers] == (
         pytest.approx(travels))
     assert [a.diagnostics.hardware_id for a in answers] == ['double_wishbone'] * 3
 
