@@ -1,6 +1,7 @@
 """Camber and toe against wheel travel for scenes, as a PNG (needs matplotlib: the plot extra).
 
-    python -m linkage_ros.plot OUT.png [SCENE ...]   (default: five_link, double_wishbone, macpherson)
+    python -m linkage_ros.plot OUT.png [--alignment] [SCENE ...]
+    (default scenes: five_link, double_wishbone, macpherson; --alignment: the alignment set)
 """
 
 import sys
@@ -40,13 +41,55 @@ def plot_camber_toe(scenes, path):
     plt.close(fig)
 
 
+ALIGNMENT_PANELS = [
+    ('camber_gain', 'camber gain, deg/mm', True), ('bump_steer', 'bump steer, deg/mm', True),
+    ('caster', 'caster, deg', True), ('kingpin_inclination', 'kingpin inclination, deg', True),
+    ('scrub_radius', 'scrub radius, mm', False), ('mechanical_trail', 'mechanical trail, mm', False),
+    ('track_change', 'track change, mm', False), ('lateral_shift', 'wheel-centre lateral shift, mm',
+                                                    False)]
+
+
+def plot_alignment(scenes, path):
+    """Write a PNG of the alignment set against travel (mm) for the given scenes."""
+    import matplotlib
+    matplotlib.use('Agg')
+    import matplotlib.pyplot as plt
+
+    from .alignment import alignment
+    from .mechanism import compile_scene
+
+    fig, axes = plt.subplots(2, 4, figsize=(16, 7), sharex=True)
+    for scene in scenes:
+        low, high, step = scene.travel
+        result = sweep(scene, travel_range(low, high, step))
+        values = alignment(scene, compile_scene(scene), result.wheel_center, result.rotation)
+        for ax, (field, label, degrees) in zip(axes.flat, ALIGNMENT_PANELS):
+            data = getattr(values, field)
+            ax.plot(result.travel, np.degrees(data) if degrees else data, label=scene.name)
+            ax.set_title(label, fontsize=10)
+    for ax in axes.flat:
+        ax.grid(True, alpha=0.3)
+    for ax in axes[1]:
+        ax.set_xlabel('travel_mm (+ = bump)')
+    axes.flat[0].legend(fontsize=8)
+    fig.suptitle('linkage_ros: alignment set (steer quantities need a steer: rack link)')
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+
+
 def main(argv=None):
     argv = sys.argv[1:] if argv is None else argv
     if not argv:
         print(__doc__, file=sys.stderr)
         return 2
-    names = argv[1:] or ['five_link', 'double_wishbone', 'macpherson']
-    plot_camber_toe([load_scene(n) for n in names], argv[0])
+    names = [n for n in argv[1:] if n != '--alignment'] or ['five_link', 'double_wishbone',
+                                                              'macpherson']
+    scenes = [load_scene(n) for n in names]
+    if '--alignment' in argv:
+        plot_alignment(scenes, argv[0])
+    else:
+        plot_camber_toe(scenes, argv[0])
     print(f'wrote {argv[0]}', file=sys.stderr)
     return 0
 
