@@ -36,6 +36,7 @@ setup(
     description='Spatial multi-link suspension kinematics (Alexandru 2018) as a ROS 2 node',
     license='Apache-2.0',
     entry_points={
+        'pytest11': ['linkage_ros = linkage_ros.testing'],
         'console_scripts': [
             'linkage-sweep = linkage_ros.sweep_cli:main',
             'suspension_node = linkage_ros.node:main',
