@@ -29,14 +29,14 @@ With parameter vehicle (a vehicle file, linkage_ros.vehicle) the node serves eve
 each Corner has its own Continuation and the topics above under its name (front_left/
 wheel_travel, front_left/camber, ...; steering_rack only where the corner steers), one
 diagnostic status per corner named after it; parameter scene is then not used. record_mcap
-records every corner; rerun_rrd writes one file per corner (run.rrd -> run.front_left.rrd).
+records every corner; rerun_rrd writes one file showing the whole vehicle, each corner's
+entities under its name (front_left/suspension/..., plots/front_left/camber_deg).
 
 Sinks (recorders, viewers) receive every command and every published message; the MCAP and
 Rerun modules are imported only when record_mcap or rerun_rrd is set.
 """
 
 import math
-from pathlib import Path
 import sys
 
 from diagnostic_msgs.msg import DiagnosticArray
@@ -273,9 +273,8 @@ def open_sinks(params, scenes, qos):
     """The sinks the parameters turn on; their modules are imported only then.
 
     scenes: {topic prefix: Scene} of load_corners. qos: {topic: QoSProfile} the node offers,
-    stored in the MCAP channel metadata. A Rerun recording draws one scene: with a vehicle,
-    each corner gets its own file, rerun_rrd with the corner name before the suffix
-    (run.rrd -> run.front_left.rrd), fed only that corner's topics.
+    stored in the MCAP channel metadata. With a vehicle, the one Rerun recording draws every
+    corner under its name.
     """
     sinks = []
     try:
@@ -294,34 +293,16 @@ def open_sinks(params, scenes, qos):
             except ImportError as exc:
                 raise ImportError(f'rerun_rrd: cannot mirror to Rerun ({exc}); install the '
                                   'view extra: pip install "linkage_ros[view]"') from exc
-            for prefix, scene in scenes.items():
-                if not prefix:
-                    sinks.append(RerunRecorder(params['rerun_rrd'], scene))
-                    continue
-                corner = prefix.rstrip('/')
-                path = Path(params['rerun_rrd'])
-                path = path.with_name(f'{path.stem}.{corner}{path.suffix or ".rrd"}')
-                sinks.append(CornerSink(RerunRecorder(path, scene), corner))
+            if '' in scenes:
+                sinks.append(RerunRecorder(params['rerun_rrd'], scenes['']))
+            else:
+                sinks.append(RerunRecorder(params['rerun_rrd'], corners={
+                    prefix.rstrip('/'): scene for prefix, scene in scenes.items()}))
     except BaseException:
         for sink in sinks:
             sink.close()
         raise
     return sinks
-
-
-class CornerSink:
-    """Passes to sink only the topics of one corner (/.../corner/name)."""
-
-    def __init__(self, sink, corner):
-        self.sink, self.corner = sink, corner
-
-    def record(self, topic, type_name, msg, receive_ns, publish_ns):
-        parts = topic.rsplit('/', 2)
-        if len(parts) == 3 and parts[1] == self.corner:
-            self.sink.record(topic, type_name, msg, receive_ns, publish_ns)
-
-    def close(self):
-        self.sink.close()
 
 
 def spin_until_shutdown(executor):

@@ -8,8 +8,11 @@ forward, y left, z up); plots in mm and deg.
 
 Entities: suspension/base_points, suspension/links, suspension/carrier (Transform3D),
 suspension/carrier/joints, suspension/carrier/wheel, plots/travel_mm, plots/camber_deg,
-plots/toe_deg. Timelines: 'ros_time' (timestamp: the message's receive time, the MCAP log
-time) and 'command' (sequence: number of wheel-travel commands received so far).
+plots/toe_deg. A vehicle (several corners in one recording) has each corner's entities under
+its name: front_left/suspension/links, plots/front_left/camber_deg, ...; its blueprint has one
+3D view of all corners and one plot per quantity with a line per corner. Timelines: 'ros_time'
+(timestamp: the message's receive time, the MCAP log time) and 'command' (sequence: number of
+wheel-travel commands received so far, all corners together).
 
 Pure geometry functions first (no rerun import needed), then one log_* function per visual
 concept, the blueprint, and RerunRecorder: the node's sink that logs message by message.
@@ -134,34 +137,60 @@ def base_points(scene):
 
 # --- logging -------------------------------------------------------------------------------
 
-def new_recording(path, scene, recording_id=None):
-    """A RecordingStream that writes to path (file sink, no viewer) with the blueprint."""
+def new_recording(path, scenes, recording_id=None):
+    """A RecordingStream that writes to path (file sink, no viewer) with the blueprint.
+
+    scenes: {root: Scene}, root '' for the single scene or a corner name for each corner.
+    """
     rec = rr.RecordingStream(APP_ID, recording_id=recording_id)
-    rec.save(str(path), default_blueprint=blueprint(scene))
+    rec.save(str(path), default_blueprint=blueprint(scenes))
     rec.set_log_time_enabled(False)   # only the ROS time and the command count index data
     rec.set_log_tick_enabled(False)
-    log_scene(rec, scene)
+    if '' not in scenes:   # the vehicle view's origin is the root
+        rec.log('/', rr.ViewCoordinates.RIGHT_HAND_Z_UP, static=True)
+    for root, scene in scenes.items():
+        log_scene(rec, scene, root)
     return rec
 
 
-def eye(scene):
-    """(position, look target) in mm of a camera that shows the whole corner."""
-    points = np.vstack([base_points(scene)[0], carrier_offsets(scene) + scene.wheel_center,
-                        scene.wheel_center])
+def entity(root, path):
+    """Entity path of a scene's entity (path like 'suspension/links') under root ('' = none)."""
+    return f'{root}/{path}' if root else path
+
+
+def plot(root, name):
+    """Entity path of a plot (name in SERIES): plots/name, or plots/root/name."""
+    return f'plots/{root}/{name}' if root else f'plots/{name}'
+
+
+def eye(scenes):
+    """(position, look target) in mm of a camera that shows every scene (corner) of a list."""
+    points = np.vstack([p for scene in scenes for p in (
+        base_points(scene)[0], carrier_offsets(scene) + scene.wheel_center,
+        scene.wheel_center - [0.0, 0.0, scene.wheel_radius],
+        scene.wheel_center + [0.0, 0.0, scene.wheel_radius])])
     low, high = points.min(axis=0), points.max(axis=0)
-    low[2] = min(low[2], scene.wheel_center[2] - scene.wheel_radius)
-    high[2] = max(high[2], scene.wheel_center[2] + scene.wheel_radius)
     target = (low + high) / 2
-    direction = unit(np.array(EYE_DIRECTION) * [1.0, scene.side_sign, 1.0])
+    side = scenes[0].side_sign if len(scenes) == 1 else 1.0   # a vehicle: from its left
+    direction = unit(np.array(EYE_DIRECTION) * [1.0, side, 1.0])
     return target + EYE_DISTANCE * float(np.max(high - low)) * direction, target
 
 
-def blueprint(scene):
-    """3D view of the corner beside the travel, camber and toe plots, on the ROS time."""
-    position, target = eye(scene)
-    plots = [rrb.TimeSeriesView(origin=f'/plots/{name}', name=title)
-             for name, title in SERIES.items()]
-    view = rrb.Spatial3DView(origin='/suspension', name=f'{scene.name} (mm)',
+def blueprint(scenes):
+    """3D view of the scenes ({root: Scene}) beside the travel, camber and toe plots (one line
+    per corner), on the ROS time."""
+    position, target = eye(list(scenes.values()))
+    if '' in scenes:
+        plots = [rrb.TimeSeriesView(origin=f'/plots/{name}', name=title)
+                 for name, title in SERIES.items()]
+        origin, contents, name = '/suspension', '$origin/**', scenes[''].name
+    else:
+        plots = [rrb.TimeSeriesView(origin='/plots', name=title,
+                                    contents=[f'/{plot(root, name)}' for root in scenes])
+                 for name, title in SERIES.items()]
+        origin, contents = '/', [f'/{entity(root, "suspension")}/**' for root in scenes]
+        name = 'vehicle'
+    view = rrb.Spatial3DView(origin=origin, contents=contents, name=f'{name} (mm)',
                              eye_controls=rrb.EyeControls3D(position=position,
                                                             look_target=target,
                                                             eye_up=[0.0, 0.0, 1.0]))
@@ -171,28 +200,31 @@ def blueprint(scene):
         collapse_panels=True)
 
 
-def log_scene(rec, scene):
-    """Static: axes convention, base points, carrier joints and wheel in the carrier frame."""
-    rec.log('suspension', rr.ViewCoordinates.RIGHT_HAND_Z_UP, static=True)
+def log_scene(rec, scene, root=''):
+    """Static: axes convention, base points, carrier joints and wheel in the carrier frame,
+    under root ('' or a corner name)."""
+    rec.log(entity(root, 'suspension'), rr.ViewCoordinates.RIGHT_HAND_Z_UP, static=True)
     points, labels = base_points(scene)
-    rec.log('suspension/base_points', rr.Points3D(points, labels=labels, radii=POINT_RADIUS,
-                                                  colors=COLORS['base'], show_labels=False),
+    rec.log(entity(root, 'suspension/base_points'),
+            rr.Points3D(points, labels=labels, radii=POINT_RADIUS, colors=COLORS['base'],
+                        show_labels=False),
             static=True)
-    rec.log('suspension/carrier', rr.TransformAxes3D(AXES_LENGTH), static=True)
-    rec.log('suspension/carrier/joints',
+    rec.log(entity(root, 'suspension/carrier'), rr.TransformAxes3D(AXES_LENGTH), static=True)
+    rec.log(entity(root, 'suspension/carrier/joints'),
             rr.Points3D(carrier_offsets(scene), labels=[c.name for c in scene.constraints],
                         radii=POINT_RADIUS, colors=COLORS['joint'], show_labels=False),
             static=True)
     circle = wheel_circle(scene)
     if circle is not None:
-        rec.log('suspension/carrier/wheel',
+        rec.log(entity(root, 'suspension/carrier/wheel'),
                 rr.LineStrips3D([circle], radii=WHEEL_LINE_RADIUS, colors=COLORS['wheel']),
                 static=True)
-    rec.log('suspension/links', rr.LineStrips3D.from_fields(
+    rec.log(entity(root, 'suspension/links'), rr.LineStrips3D.from_fields(
         radii=LINK_RADIUS, colors=[COLORS[c.type] for c in scene.constraints],
         labels=[c.name for c in scene.constraints]), static=True)
     for name, title in SERIES.items():
-        rec.log(f'plots/{name}', rr.SeriesLines(names=title), static=True)
+        rec.log(plot(root, name), rr.SeriesLines(names=f'{root} {title}' if root else title),
+                static=True)
 
 
 def set_times(rec, time_ns, sequence):
@@ -200,31 +232,33 @@ def set_times(rec, time_ns, sequence):
     rec.set_time(SEQUENCE, sequence=int(sequence))
 
 
-def log_pose(rec, scene, center, quaternion):
+def log_pose(rec, scene, center, quaternion, root=''):
     """Carrier frame and links of one pose: center (3,) mm, quaternion (x, y, z, w)."""
     rotation = rotation_from_quaternion(quaternion)
-    rec.log('suspension/carrier', rr.Transform3D(translation=center,
-                                                 quaternion=rr.Quaternion(xyzw=quaternion)))
-    rec.log('suspension/links', rr.LineStrips3D.from_fields(
+    rec.log(entity(root, 'suspension/carrier'), rr.Transform3D(
+        translation=center, quaternion=rr.Quaternion(xyzw=quaternion)))
+    rec.log(entity(root, 'suspension/links'), rr.LineStrips3D.from_fields(
         strips=link_strips(scene, carrier_points(scene, center, rotation))))
 
 
-def log_value(rec, name, value):
+def log_value(rec, name, value, root=''):
     """One sample of a plot (name in SERIES)."""
-    rec.log(f'plots/{name}', rr.Scalars(value))
+    rec.log(plot(root, name), rr.Scalars(value))
 
 
-def send_poses(rec, scene, times_ns, sequence, centers, quaternions):
+def send_poses(rec, scene, times_ns, sequence, centers, quaternions, root=''):
     """Columns of poses: times_ns (n,), sequence (n,), centers (n, 3) mm, quaternions (n, 4)."""
     if len(times_ns) == 0:
         return
     indexes = _indexes(times_ns, sequence)
-    rec.send_columns('suspension/carrier', indexes=indexes, columns=rr.Transform3D.columns(
-        translation=centers, quaternion=quaternions))
+    rec.send_columns(entity(root, 'suspension/carrier'), indexes=indexes,
+                     columns=rr.Transform3D.columns(translation=centers,
+                                                    quaternion=quaternions))
     joints = carrier_points(scene, np.asarray(centers), rotation_from_quaternion(quaternions))
-    rec.send_columns('suspension/links', indexes=indexes, columns=rr.LineStrips3D.columns(
-        strips=_strips_array(scene, link_points(scene, joints))).partition(
-            [len(scene.constraints)] * len(times_ns)))
+    rec.send_columns(entity(root, 'suspension/links'), indexes=indexes,
+                     columns=rr.LineStrips3D.columns(
+                         strips=_strips_array(scene, link_points(scene, joints))).partition(
+                             [len(scene.constraints)] * len(times_ns)))
 
 
 def _strips_array(scene, points):
@@ -236,11 +270,11 @@ def _strips_array(scene, points):
     return pa.ListArray.from_arrays(offsets, inner, type=LineStrip3DBatch._ARROW_DATATYPE)
 
 
-def send_values(rec, name, times_ns, sequence, values):
+def send_values(rec, name, times_ns, sequence, values, root=''):
     """Columns of one plot: times_ns (n,), sequence (n,), values (n,)."""
     if len(times_ns) == 0:
         return
-    rec.send_columns(f'plots/{name}', indexes=_indexes(times_ns, sequence),
+    rec.send_columns(plot(root, name), indexes=_indexes(times_ns, sequence),
                      columns=rr.Scalars.columns(scalars=np.asarray(values, dtype=float)))
 
 
@@ -265,29 +299,35 @@ BATCH_DELAY = 0.5      # s (wall clock): or once the oldest buffered row is this
 class RerunRecorder:
     """Mirrors the node's messages to a .rrd file (same calls as McapRecorder).
 
+    scene: the one scene drawn, fed its topics from any namespace; or corners: {corner name:
+    Scene} of a vehicle, all in this one file, each corner under its name and fed the topics
+    of its namespace (/front_left/camber; other corners' topics are not drawn).
+
     Commands (wheel_travel) advance the 'command' sequence; pose, camber and toe are logged at
     the current command; other topics (diagnostics) are not drawn. Rows are buffered and sent
     as columns (rr.send_columns) every batch_rows rows or batch_delay s, and at close: logging
     row by row costs about 10 times more per command.
     """
 
-    def __init__(self, path, scene, recording_id=None, batch_rows=BATCH_ROWS,
-                 batch_delay=BATCH_DELAY):
-        self.scene = scene
+    def __init__(self, path, scene=None, recording_id=None, batch_rows=BATCH_ROWS,
+                 batch_delay=BATCH_DELAY, corners=None):
+        if (scene is None) == (not corners):
+            raise ValueError('RerunRecorder: give either scene or corners, exactly one')
+        self.scenes = {'': scene} if scene is not None else dict(corners)
         self.path = str(path)
         self.sequence = 0
         self.batch_rows = batch_rows
         self.batch_delay = batch_delay
-        self._rec = new_recording(path, scene, recording_id)
-        self._rows = {role: [] for role in ('travel', 'pose', 'camber', 'toe')}
+        self._rec = new_recording(path, self.scenes, recording_id)
+        self._rows = {}        # (root, role): [(receive_ns, sequence, value)]
         self._buffered = 0
         self._oldest = None
         self._closed = False
 
     def record(self, topic, type_name, msg, receive_ns, publish_ns):
         """Buffer one message (rclpy instance) by its topic's role; times in ns."""
-        role = topic_role(topic)
-        if role is None or self._closed:
+        role, root = topic_role(topic), self._root(topic)
+        if role is None or root is None or self._closed:
             return
         if role == 'travel':
             self.sequence += 1
@@ -297,7 +337,7 @@ class RerunRecorder:
             value = (p.x * 1000.0, p.y * 1000.0, p.z * 1000.0, q.x, q.y, q.z, q.w)
         else:
             value = math.degrees(msg.data)
-        self._rows[role].append((receive_ns, self.sequence, value))
+        self._rows.setdefault((root, role), []).append((receive_ns, self.sequence, value))
         self._buffered += 1
         now = time.monotonic()
         if self._oldest is None:
@@ -305,18 +345,27 @@ class RerunRecorder:
         if self._buffered >= self.batch_rows or now - self._oldest >= self.batch_delay:
             self.flush()
 
+    def _root(self, topic):
+        """'' for the single scene; the corner a topic (/.../corner/name) belongs to, or None
+        if it is no corner of this recording."""
+        if '' in self.scenes:
+            return ''
+        parts = topic.rstrip('/').rsplit('/', 2)
+        return parts[1] if len(parts) == 3 and parts[1] in self.scenes else None
+
     def flush(self):
         """Send the buffered rows as columns."""
-        for role, rows in self._rows.items():
+        for (root, role), rows in self._rows.items():
             if not rows:
                 continue
             times, sequence, values = zip(*rows)
             if role == 'pose':
                 values = np.array(values)
-                send_poses(self._rec, self.scene, times, sequence, values[:, :3], values[:, 3:])
+                send_poses(self._rec, self.scenes[root], times, sequence, values[:, :3],
+                           values[:, 3:], root)
             else:
                 name = 'travel_mm' if role == 'travel' else f'{role}_deg'
-                send_values(self._rec, name, times, sequence, values)
+                send_values(self._rec, name, times, sequence, values, root)
             rows.clear()
         self._buffered = 0
         self._oldest = None

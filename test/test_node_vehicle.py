@@ -147,8 +147,9 @@ def test_record_mcap_records_every_corner_under_its_name(ros_context, executor, 
     assert [m.data for t, m in decoded if t == '/rear_left/wheel_travel'] == [-0.02]
 
 
-def test_rerun_rrd_writes_one_file_per_corner_with_only_its_commands(ros_context, executor,
-                                                                     probe, tmp_path):
+def test_rerun_rrd_writes_one_file_with_every_corner_under_its_name(ros_context, executor,
+                                                                   probe, tmp_path):
+    import collections
     from rerun.chunk import RrdReader
     node = SuspensionNode(context=ros_context, parameter_overrides=[
         Parameter('vehicle', value='demo_vehicle'),
@@ -165,12 +166,23 @@ def test_rerun_rrd_writes_one_file_per_corner_with_only_its_commands(ros_context
                       and len(corners['rear_right'].toes) == 1)
     executor.remove_node(node)
     node.destroy_node()
-    assert sorted(p.name for p in tmp_path.iterdir()) == sorted(
-        f'run.{c}.rrd' for c in CORNERS)
-    for corner in CORNERS:
-        reader = RrdReader(str(tmp_path / f'run.{corner}.rrd'))
-        travels = [v for chunk in reader.stream(store=reader.recordings()[0])
-                   if chunk.entity_path == '/plots/travel_mm' and not chunk.is_static
-                   for v in chunk.to_record_batch().column('Scalars:scalars').to_pylist()]
-        assert sorted(float(v[0]) for v in travels) == pytest.approx(
+    assert [p.name for p in tmp_path.iterdir()] == ['run.rrd']
+    reader = RrdReader(str(tmp_path / 'run.rrd'))
+    static, rows, travels = set(), collections.Counter(), collections.defaultdict(list)
+    for chunk in reader.stream(store=reader.recordings()[0]):
+        if chunk.is_static:
+            static.add(chunk.entity_path)
+            continue
+        rows[chunk.entity_path] += chunk.num_rows
+        if chunk.entity_path.endswith('/travel_mm'):
+            travels[chunk.entity_path] += [float(v[0]) for v in chunk.to_record_batch().column(
+                'Scalars:scalars').to_pylist()]
+    for corner in CORNERS:     # every corner drawn, each under its own name
+        assert {f'/{corner}/suspension/links', f'/{corner}/suspension/carrier/wheel',
+                f'/plots/{corner}/camber_deg'} <= static, corner
+        n = len(sent.get(corner, []))
+        assert rows[f'/{corner}/suspension/carrier'] == n, corner
+        assert rows[f'/plots/{corner}/toe_deg'] == n, corner
+        assert sorted(travels[f'/plots/{corner}/travel_mm']) == pytest.approx(
             sorted(1000.0 * t for t in sent.get(corner, [])))
+    assert not any(e.startswith(('/suspension', '/plots/travel')) for e in static | set(rows))

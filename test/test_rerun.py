@@ -175,6 +175,36 @@ def test_blueprint_opens_on_a_3d_view_beside_three_plots(example_rrd):
     assert root == [2]     # ContainerKind.Horizontal (the root, the only one with shares)
 
 
+def test_a_vehicle_recording_shows_every_corner_in_one_3d_view_beside_the_plots(tmp_path):
+    from std_msgs.msg import Float64
+    from linkage_ros.vehicle import load_vehicle
+    corners = load_vehicle('demo_vehicle').corners
+    out = tmp_path / 'vehicle.rrd'
+    with RerunRecorder(out, corners=corners) as viewer:
+        viewer.record('/front_left/camber', 'std_msgs/msg/Float64', Float64(data=0.01), 1, 1)
+        viewer.record('/no_corner/camber', 'std_msgs/msg/Float64', Float64(data=0.02), 2, 2)
+    reader = RrdReader(str(out))
+    views = {}    # view entity: (kind, origin, contents)
+    for chunk in reader.stream(store=reader.blueprints()[0]):
+        batch = chunk.to_record_batch()
+        path = chunk.entity_path.removesuffix('/ViewContents')
+        if 'ViewBlueprint:class_identifier' in batch.schema.names:
+            views[path] = (batch.column('ViewBlueprint:class_identifier').to_pylist()[0][0],
+                           batch.column('ViewBlueprint:space_origin').to_pylist()[0][0],
+                           views.get(path, (None, None, None))[2])
+        if 'ViewContents:query' in batch.schema.names:
+            kind, origin, _ = views.get(path, (None, None, None))
+            views[path] = (kind, origin, batch.column('ViewContents:query').to_pylist()[0])
+    assert sorted((kind, origin) for kind, origin, _ in views.values()) == [
+        ('3D', '/'), ('TimeSeries', '/plots'), ('TimeSeries', '/plots'),
+        ('TimeSeries', '/plots')]
+    for _, _, query in views.values():     # every corner in every view
+        assert len(query) == len(corners) and all(
+            any(f'/{c}/' in q for q in query) for c in corners)
+    rows, _, _ = contents(out)
+    assert [e for e, static in rows if not static] == ['/plots/front_left/camber_deg']
+
+
 def test_the_rerun_binary_verifies_the_file(example_rrd):
     env = dict(os.environ, RERUN_ANALYTICS='0')
     result = subprocess.run([str(RERUN), 'rrd', 'verify', str(example_rrd)], env=env,
