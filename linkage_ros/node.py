@@ -322,6 +322,11 @@ def main(args=None):
         print(f'suspension_node: {exc}', file=sys.stderr)
         rclpy.try_shutdown()
         return 2
+    return run(node)
+
+
+def run(node):
+    """Spin node until SIGINT or SIGTERM, then destroy it and shut down; returns 0."""
     executor = EventsExecutor()
     executor.add_node(node)
     try:

@@ -29,12 +29,11 @@ import time
 from geometry_msgs.msg import PoseStamped
 import numpy as np
 import rclpy
-from rclpy.executors import ExternalShutdownException
 from rclpy.experimental import EventsExecutor
 from rclpy.node import Node
 from std_msgs.msg import Float64
 
-from .node import QOS, spin_until_shutdown
+from .node import QOS, run
 
 DEFAULT_RATES = (250, 500, 1000, 2000, 4000, 8000)
 
@@ -58,17 +57,7 @@ class EchoNode(Node):
 def echo_main(args=None):
     """The echo node process: same executor and spin loop as suspension_node."""
     rclpy.init(args=args)
-    node = EchoNode()
-    executor = EventsExecutor()
-    executor.add_node(node)
-    try:
-        spin_until_shutdown(executor)
-    except (KeyboardInterrupt, ExternalShutdownException):
-        pass
-    finally:
-        node.destroy_node()
-        rclpy.try_shutdown()
-    return 0
+    return run(EchoNode())
 
 
 class Driver:
