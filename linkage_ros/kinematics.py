@@ -182,9 +182,8 @@ class Continuation:
             center, rotation, iterations, ok, jac = pose_newton.correct(
                 self.mech, target, near_center, near_rotation,
                 max(min(cfg.tol, ARC_TOL), self.floor), cfg.max_iter, self.rack)
-            moved = carrier_points(self.mech, center, rotation) - carrier_points(
-                self.mech, near_center, near_rotation)
-            if ok and np.abs(moved).max() <= 2 * length:   # within the last arc step
+            shift = carrier_shift(self.mech, (center, rotation), (near_center, near_rotation))
+            if ok and shift <= 2 * length:   # within the last arc step
                 self.travel, self.center, self.rotation, self._jac = (target, center,
                                                                       rotation, jac)
                 self._extend_reachable(target)
@@ -220,7 +219,7 @@ class Continuation:
         center, rotation, iterations, ok, jac = self._correct(travel, *start, cfg.tol,
                                                               cfg.max_iter, rack)
         if not ok or not on_branch(self.mech, guess, (center, rotation),
-                                   max(abs(h), abs(h_rack)), cfg.tol):
+                                   max(abs(h), abs(h_rack)), 10 * cfg.tol):
             return False, iterations
         if jac is None:
             jac = linearize(self.mech, center, rotation, rack)[1]
@@ -249,14 +248,21 @@ class Continuation:
         return dict(zip(self.mech.point_names, pts))
 
 
-def on_branch(mech, guess, found, travel_step, tol):
-    """True if the converged pose is where continuation along the branch predicts it.
+def carrier_shift(mech, pose, other):
+    """Largest displacement (mm) of any carrier point between two poses (center, rotation);
+    batched over leading axes."""
+    moved = carrier_points(mech, *pose) - carrier_points(mech, *other)
+    return np.abs(moved).max(axis=(-2, -1))
+
+
+def on_branch(mech, guess, found, travel_step, slack):
+    """True where the converged pose is where continuation along the branch predicts it.
 
     A tangent prediction misses by O(step^2); a jump to another assembly branch moves the
-    carrier by a link-length scale. Half the step (plus the tolerance) separates the two.
+    carrier by a link-length scale. Half the step (plus a slack for the tolerance the poses
+    hold to) separates the two. Batched: travel_step (n,) with poses of n.
     """
-    moved = carrier_points(mech, *found) - carrier_points(mech, *guess)
-    return float(np.max(np.abs(moved))) <= 0.5 * abs(travel_step) + 10 * tol
+    return carrier_shift(mech, guess, found) <= 0.5 * np.abs(travel_step) + slack
 
 
 def sweep(scene, travels, method='fast', rack=0.0, **settings):
@@ -324,10 +330,9 @@ def _batched(cont, travels):
         knot_center[nearest], knot_rotation[nearest], [s[nearest] for s in slopes], h)
     center, rotation, iterations, converged = pose_newton.correct_batch(
         mech, travels, guess_center, guess_rotation, cfg.tol, cfg.max_iter, rack)
-    moved = np.abs(carrier_points(mech, center, rotation)
-                   - carrier_points(mech, guess_center, guess_rotation)).max(axis=(1, 2))
     # Knots hold to knot_tol only, so a position at a knot may move by about that much.
-    good = converged & (moved <= 0.5 * np.abs(h) + 1e3 * cfg.knot_tol)
+    good = converged & on_branch(mech, (guess_center, guess_rotation), (center, rotation), h,
+                                 1e3 * cfg.knot_tol)
     origin = (cont.travel, cont.rack, cont.center, cont.rotation, cont._jac)
     for i in np.flatnonzero(~good):    # rare: walk it from travel 0
         cont.travel, cont.rack, cont.center, cont.rotation, cont._jac = origin
@@ -356,9 +361,8 @@ def _knots(cont, low, high):
         guess = pose_newton.predict(center, rotation, pose_newton.slope_of(jac), h)
         center, rotation, _, converged = pose_newton.correct_batch(
             mech, travel + h, *guess, cfg.knot_tol, cfg.max_iter, cont.rack)
-        moved = np.abs(carrier_points(mech, center, rotation)
-                       - carrier_points(mech, *guess)).max(axis=(1, 2))
-        if not np.all(converged & (moved <= 0.5 * np.abs(h) + 1e3 * cfg.knot_tol)):
+        if not np.all(converged & on_branch(mech, guess, (center, rotation), h,
+                                            1e3 * cfg.knot_tol)):
             return None
         travel = np.where(np.abs(ends - travel) <= cfg.knot_step, ends, travel + h)
         trace += list(zip(travel, center, rotation))

@@ -97,11 +97,6 @@ def carrier_points(mech, center, rotation):
     return center[..., None, :] + mech.offsets @ np.swapaxes(rotation, -1, -2)
 
 
-def residuals(mech, center, rotation, rack=0.0):
-    """The guidance equations (mm), shape (..., 5); zero on the mechanism."""
-    return linearize(mech, center, rotation, rack)[0]
-
-
 def rack_derivative(mech, center, rotation, rack=0.0):
     """d(residuals)/d(rack) (..., 5): the steer rows' base points move along +y."""
     r = mech.offsets[mech.dist_point] @ np.swapaxes(rotation, -1, -2)
