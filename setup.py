@@ -19,7 +19,7 @@ setup(
         ('share/' + package_name + '/config/stress', glob('config/stress/*.yaml')),
     ],
     python_requires='>=3.10',
-    install_requires=['setuptools', 'numpy', 'scipy', 'PyYAML'],
+    install_requires=['setuptools', 'numpy', 'scipy', 'PyYAML', 'numba'],
     extras_require={
         'ros': ['ros-jazzy-rclpy[fastrtps]', 'ros-jazzy-common-interfaces'],
         'record': ['mcap'],

@@ -57,7 +57,7 @@ def alignment(scene, mech, center, rotation, rack=0.0):
 
     nan3 = np.full_like(center, np.nan)
     steer_axis = steer_point = nan3
-    if mech.dist_steer.any():
+    if mech.steered:
         v_rack, w_rack = rack_slope_of(jac, rack_derivative(mech, center, rotation, rack))
         steer_axis, steer_point, _ = screw(center, v_rack, w_rack)
         steer_axis = steer_axis * np.sign(steer_axis[:, 2:3])   # pointing up

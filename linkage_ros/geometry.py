@@ -3,9 +3,9 @@
 Units are whatever the caller passes (the package uses mm); angles in radians.
 """
 
-import math
-
 import numpy as np
+
+from . import kernel
 
 
 def unit(v):
@@ -26,61 +26,23 @@ def cross(a, b):
 def exp_so3(omega):
     """Rotation matrix of the rotation vector omega (Rodrigues), shape (..., 3) -> (..., 3, 3).
 
-    R = I + a K + b (w w^T - |w|^2 I) with K = [w]x, a = sin t / t, b = (1 - cos t) / t^2.
-
     >>> bool(np.allclose(exp_so3(np.array([0, 0, np.pi / 2])) @ [1, 0, 0], [0, 1, 0]))
     True
     """
     omega = np.asarray(omega, dtype=float)
-    if omega.ndim == 1:
-        return _exp_so3_one(*omega)
-    t2 = np.einsum('...i,...i->...', omega, omega)
-    t = np.sqrt(t2)
-    small = t2 < 1e-16
-    safe = np.where(small, 1.0, t)
-    a = np.where(small, 1.0 - t2 / 6.0, np.sin(safe) / safe)[..., None, None]
-    b = np.where(small, 0.5 - t2 / 24.0, (1.0 - np.cos(safe)) / safe**2)[..., None, None]
-    x, y, z = omega[..., 0], omega[..., 1], omega[..., 2]
-    k = np.zeros(omega.shape[:-1] + (3, 3))
-    k[..., 0, 1], k[..., 0, 2], k[..., 1, 2] = -z, y, -x
-    k[..., 1, 0], k[..., 2, 0], k[..., 2, 1] = z, -y, x
-    outer = omega[..., :, None] * omega[..., None, :] - t2[..., None, None] * np.eye(3)
-    return np.eye(3) + a * k + b * outer
-
-
-def _exp_so3_one(x, y, z):
-    """exp_so3 of one rotation vector, in scalar arithmetic (the hot path of a single solve)."""
-    t2 = x * x + y * y + z * z
-    if t2 < 1e-16:
-        a, b = 1.0 - t2 / 6.0, 0.5 - t2 / 24.0
-    else:
-        t = math.sqrt(t2)
-        a, b = math.sin(t) / t, (1.0 - math.cos(t)) / t2
-    return np.array([[1.0 - b * (y * y + z * z), b * x * y - a * z, b * x * z + a * y],
-                     [b * x * y + a * z, 1.0 - b * (x * x + z * z), b * y * z - a * x],
-                     [b * x * z - a * y, b * y * z + a * x, 1.0 - b * (x * x + y * y)]])
+    flat = np.ascontiguousarray(omega.reshape(-1, 3))
+    out = np.empty((len(flat), 3, 3))
+    kernel.exp_so3_many(flat, out)
+    return out.reshape(omega.shape[:-1] + (3, 3))
 
 
 def quaternion_from_matrix(rot):
-    """Unit quaternion (x, y, z, w) of a rotation matrix, with w >= 0 (Shepperd's method)."""
-    m = np.asarray(rot, dtype=float)
-    trace = m[0, 0] + m[1, 1] + m[2, 2]
-    candidates = (trace, m[0, 0], m[1, 1], m[2, 2])
-    i = int(np.argmax(candidates))
-    if i == 0:
-        s = 2.0 * np.sqrt(1.0 + trace)
-        q = [(m[2, 1] - m[1, 2]) / s, (m[0, 2] - m[2, 0]) / s, (m[1, 0] - m[0, 1]) / s, s / 4]
-    elif i == 1:
-        s = 2.0 * np.sqrt(1.0 + m[0, 0] - m[1, 1] - m[2, 2])
-        q = [s / 4, (m[0, 1] + m[1, 0]) / s, (m[0, 2] + m[2, 0]) / s, (m[2, 1] - m[1, 2]) / s]
-    elif i == 2:
-        s = 2.0 * np.sqrt(1.0 - m[0, 0] + m[1, 1] - m[2, 2])
-        q = [(m[0, 1] + m[1, 0]) / s, s / 4, (m[1, 2] + m[2, 1]) / s, (m[0, 2] - m[2, 0]) / s]
-    else:
-        s = 2.0 * np.sqrt(1.0 - m[0, 0] - m[1, 1] + m[2, 2])
-        q = [(m[0, 2] + m[2, 0]) / s, (m[1, 2] + m[2, 1]) / s, s / 4, (m[1, 0] - m[0, 1]) / s]
-    q = np.array(q)
-    return q if q[3] >= 0 else -q
+    """Unit quaternion(s) (x, y, z, w) of rotation matrices (..., 3, 3), w >= 0 (Shepperd)."""
+    rot = np.asarray(rot, dtype=float)
+    flat = np.ascontiguousarray(rot.reshape(-1, 3, 3))
+    out = np.empty((len(flat), 4))
+    kernel.quaternion_many(flat, out)
+    return out.reshape(rot.shape[:-2] + (4,))
 
 
 def frame_from_points(m, n, p):
@@ -126,7 +88,10 @@ def camber_toe(spin_axis, side_sign):
     camber = -atan2(a_z, |a_xy|): + = top of the wheel outboard (eq. 14 made side-aware).
     toe = atan2(a_x, a_y_outboard): + = toe-in. side_sign: +1 left wheel, -1 right wheel.
     """
-    a = np.asarray(spin_axis, dtype=float)
-    camber = -np.arctan2(a[..., 2], np.hypot(a[..., 0], a[..., 1]))
-    toe = np.arctan2(a[..., 0], side_sign * a[..., 1])
-    return camber, toe
+    axes = np.asarray(spin_axis, dtype=float)
+    flat = np.ascontiguousarray(axes.reshape(-1, 3))
+    camber, toe = np.empty(len(flat)), np.empty(len(flat))
+    kernel.camber_toe_many(flat, float(side_sign), camber, toe)
+    if axes.ndim == 1:
+        return camber[0], toe[0]
+    return camber.reshape(axes.shape[:-1]), toe.reshape(axes.shape[:-1])

@@ -13,12 +13,13 @@ Nothing here raises for numerics: a Solution or Sweep carries success and a mess
 
 from dataclasses import dataclass, field, replace
 import math
+from typing import NamedTuple
 
 import numpy as np
 
-from . import arclength, paper_method, pose_newton
+from . import arclength, kernel, paper_method, pose_newton
 from .geometry import camber_toe, quaternion_from_matrix
-from .mechanism import carrier_points, compile_scene, length_errors, linearize, rack_derivative
+from .mechanism import carrier_points, compile_scene, length_errors, linearize
 
 METHODS = ('paper', 'fast')
 ARC_TOL = 1e-9   # mm: residual tolerance on the arclength path to a travel limit
@@ -39,9 +40,12 @@ class Settings:
     knot_tol: float = 1e-6    # fast sweeps: knots only start the batch, which converges to tol
 
 
-@dataclass(frozen=True)
-class Solution:
-    """One solved position, vehicle frame, mm and rad. On failure the pose fields are None."""
+class Solution(NamedTuple):
+    """One solved position, vehicle frame, mm and rad. On failure the pose fields are None.
+
+    Immutable (a NamedTuple: cheap to make, which matters on the node's one-command path);
+    its arrays are read-only views of the solver's state.
+    """
 
     travel: float                # imposed wheel-centre z change, + = bump (mm)
     success: bool
@@ -56,11 +60,7 @@ class Solution:
     condition: float = math.nan  # condition number of the Jacobian at the solution
     reachable: tuple = (0.0, 0.0)   # travel range (mm) known to be reachable so far
     rack: float = 0.0            # steering rack travel (mm), + = rack to the left
-
-    @property
-    def quaternion(self):
-        """(x, y, z, w) of the carrier rotation relative to design."""
-        return quaternion_from_matrix(self.rotation)
+    quaternion: np.ndarray = None     # (4,) (x, y, z, w) of rotation, w >= 0
 
 
 @dataclass(frozen=True)
@@ -78,14 +78,17 @@ class Sweep:
     message: str = ''
     joints: np.ndarray = field(default=None, repr=False)   # (n, m, 3) carrier points, mm
     rack: float = 0.0            # steering rack travel of the sweep (mm)
-
-    @property
-    def quaternion(self):
-        return np.array([quaternion_from_matrix(r) for r in self.rotation]).reshape(-1, 4)
+    quaternion: np.ndarray = field(default=None, repr=False)   # (n, 4) (x, y, z, w), w >= 0
 
 
 class Continuation:
-    """Solves wheel travels one after another, each from the last good pose."""
+    """Solves wheel travels one after another, each from the last good pose.
+
+    The last solved position is state, packed for the compiled kernels (kernel.STATE_SIZE:
+    travel and rack in mm, wheel centre, rotation, Jacobian and what it reports). Each
+    accepted step replaces the array and nothing writes into it (it is made read-only), so
+    views of it, such as a Solution's arrays, stay valid.
+    """
 
     def __init__(self, scene, settings=None, **overrides):
         self.scene = scene
@@ -99,76 +102,97 @@ class Continuation:
             raise ValueError(f"method: unknown value {self.settings.method!r} "
                              f"(expected one of: {', '.join(METHODS)})")
         self.mech = compile_scene(scene)
-        if self.settings.method == 'paper':
-            model = paper_method.build(scene, self.mech)
-            self._correct = lambda *args: paper_method.correct(model, *args)
-        else:
-            self._correct = lambda *args: pose_newton.correct(self.mech, *args)
+        self._paper = (paper_method.build(scene, self.mech) if self.settings.method == 'paper'
+                       else None)
+        cfg, mech = self.settings, self.mech
+        # kernel.walk's arguments that never change, looked up once: the one-command path
+        # is a few microseconds, attribute lookups included.
+        self._walk_setup = (mech.equations, mech.spin_axis, scene.side_sign,
+                            float(mech.design_center[2]), cfg.tol, cfg.max_iter, 10 * cfg.tol,
+                            cfg.max_step, cfg.min_step)
         self.reset()
+
+    @property
+    def center(self):
+        """Wheel centre (3,) mm of the last solved position."""
+        return self.state[kernel.CENTER:kernel.CENTER + 3]
+
+    @property
+    def rotation(self):
+        """Carrier rotation (3, 3) relative to design of the last solved position."""
+        return self.state[kernel.ROTATION:kernel.ROTATION + 9].reshape(3, 3)
+
+    @property
+    def jacobian(self):
+        """Jacobian (5, 6) of the guidance equations at the last solved position."""
+        return self.state[kernel.JACOBIAN:kernel.JACOBIAN + 30].reshape(5, 6)
 
     def reset(self):
         """Back to the design position (travel 0, rack 0), the paper's eq. 9 initial solution."""
-        self.travel, self.rack = 0.0, 0.0
-        self.center = self.mech.design_center.copy()
-        self.rotation = np.eye(3)
-        self._jac = linearize(self.mech, self.center, self.rotation)[1]
-        self.reachable = [0.0, 0.0]
+        center, rotation = self.mech.design_center, np.eye(3)
+        self._commit(self._pack(0.0, 0.0, center, rotation))
+        self.reachable = (0.0, 0.0)
 
     def solve(self, travel, rack=None):
         """Solve the pose at travel (mm) and steering rack (mm; None = unchanged) from the
         current state; commit it if it succeeds."""
         rack = self.rack if rack is None else rack
-        for name, value in (('travel', travel), ('rack', rack)):
-            if not isinstance(value, (int, float, np.floating)) or not math.isfinite(value):
-                return self._failure(travel, f'{name} {value!r} is not a finite number', 0)
-        state = (self.travel, self.rack, self.center, self.rotation, self._jac,
-                 list(self.reachable))
+        if not (is_finite_number(travel) and is_finite_number(rack)):
+            name, value = ('rack', rack) if is_finite_number(travel) else ('travel', travel)
+            return self._failure(travel, f'{name} {value!r} is not a finite number', 0)
+        saved = self.state, self.reachable
         if rack != self.rack:
-            self.reachable = [self.travel, self.travel]   # the range explored at this rack
+            self.reachable = (self.travel, self.travel)   # the range explored at this rack
         steps, iterations, error = self._walk(float(travel), float(rack))
         if error:
-            explored = tuple(self.reachable)
-            (self.travel, self.rack, self.center, self.rotation, self._jac,
-             self.reachable) = state
-            if rack == self.rack:      # what was explored still holds at this rack
-                self.reachable = list(explored)
+            explored = self.reachable
+            self._commit(saved[0])
+            self.reachable = explored if rack == self.rack else saved[1]
             return self._failure(travel, error, steps, explored)
         return self._solution(iterations, steps)
 
-    def _walk(self, target, rack=None, trace=None):
-        """Advance the state to (target travel, rack) along a straight line; returns (steps,
-        iterations, error message or '').
-
-        trace, if a list, receives (travel, center, rotation) of every accepted step.
+    def _walk(self, target, rack):
+        """Advance the state to (target travel, rack) along a straight line (substeps of at
+        most max_step, halved on failure); returns (steps, iterations, error message or '').
         """
+        start, start_rack = self.travel, self.rack
+        if self._paper is None:
+            state, steps, iterations, stalled, low, high = kernel.walk(
+                *self._walk_setup, self.state, target, rack, *self.reachable)
+            self._commit(state)
+            self.reachable = (low, high)
+        else:
+            steps, iterations, stalled = self._paper_walk(target, rack)
+        if not stalled:
+            return steps, iterations, ''
+        if rack == start_rack:
+            return self._walk_arclength(start, target, steps)
+        return steps, iterations, (
+            f'travel {target:g} mm at rack {rack:g} mm is out of reach: continuation from '
+            f'travel {start:g} mm, rack {start_rack:g} mm stops at travel {self.travel:.3f} mm, '
+            f'rack {self.rack:.3f} mm')
+
+    def _paper_walk(self, target, rack):
+        """kernel.walk with the paper's corrector (paper_step), in Python: the same line, the
+        same step control (kernel.next_step, kernel.after_step). Returns (steps, iterations,
+        stalled)."""
         cfg = self.settings
-        rack = self.rack if rack is None else rack
-        start, start_rack, steps, iterations = self.travel, self.rack, 0, 0
+        start, start_rack = self.travel, self.rack
         length = max(abs(target - start), abs(rack - start_rack))
-        done = 0.0          # distance walked along the line (mm)
-        step = min(cfg.max_step, length)
+        done, step_length, steps, iterations = 0.0, min(cfg.max_step, length), 0, 0
         while done < length:
-            step = min(step, length - done)
-            fraction = 1.0 if step == length - done else (done + step) / length
-            ok, iterations = self._step(start + fraction * (target - start),
-                                        start_rack + fraction * (rack - start_rack))
-            if ok:
-                steps += 1
-                done = length if fraction == 1.0 else done + step
-                if trace is not None:
-                    trace.append((self.travel, self.center, self.rotation))
+            step_length, fraction = kernel.next_step(length, done, step_length)
+            state, iterations, accepted = self._paper_step(
+                start + fraction * (target - start), start_rack + fraction * (rack - start_rack))
+            if accepted:
+                self._commit(state)
                 self._extend_reachable(self.travel)
-                step = min(2 * step, cfg.max_step)
-            else:
-                step /= 2
-                if step < cfg.min_step:
-                    if rack == start_rack:
-                        return self._walk_arclength(start, target, steps)
-                    return steps, iterations, (
-                        f'travel {target:g} mm at rack {rack:g} mm is out of reach: '
-                        f'continuation from travel {start:g} mm, rack {start_rack:g} mm stops '
-                        f'at travel {self.travel:.3f} mm, rack {self.rack:.3f} mm')
-        return steps, iterations, ''
+                steps += 1
+            done, step_length = kernel.after_step(accepted, length, done, step_length, fraction,
+                                                  cfg.max_step)
+            if step_length < cfg.min_step:
+                return steps, iterations, True
+        return steps, iterations, False
 
     def _walk_arclength(self, start, target, steps):
         """Continuation in travel stalled: follow the curve by arclength to the target, or
@@ -182,10 +206,9 @@ class Continuation:
             center, rotation, iterations, ok, jac = pose_newton.correct(
                 self.mech, target, near_center, near_rotation,
                 max(min(cfg.tol, ARC_TOL), self.floor), cfg.max_iter, self.rack)
-            shift = carrier_shift(self.mech, (center, rotation), (near_center, near_rotation))
-            if ok and shift <= 2 * length:   # within the last arc step
-                self.travel, self.center, self.rotation, self._jac = (target, center,
-                                                                      rotation, jac)
+            if ok and kernel.carrier_shift(self.mech.equations, center, rotation, near_center,
+                                           near_rotation) <= 2 * length:   # the last arc step
+                self._commit(self._pack(target, self.rack, center, rotation, jac))
                 self._extend_reachable(target)
                 return steps + 1, iterations, ''
             found = self.travel
@@ -201,42 +224,53 @@ class Continuation:
                           f'[{low:.3f}, {high:.3f}] mm')
 
     def _extend_reachable(self, travel):
-        self.reachable[0] = min(self.reachable[0], travel)
-        self.reachable[1] = max(self.reachable[1], travel)
+        low, high = self.reachable
+        self.reachable = (min(low, travel), max(high, travel))
 
-    def _step(self, travel, rack):
-        """One continuation step: tangent prediction, Newton correction, branch check."""
-        cfg = self.settings
+    def _paper_step(self, travel, rack):
+        """_step with the paper's corrector, which starts from the last pose (eq. 9's
+        continuation) and is checked against the same tangent prediction. Returns (state,
+        iterations, accepted)."""
+        cfg, mech = self.settings, self.mech
         h, h_rack = travel - self.travel, rack - self.rack
-        d_center, d_omega = pose_newton.slope_of(self._jac)
-        d_center, d_omega = d_center * h, d_omega * h
-        if h_rack:
-            column = rack_derivative(self.mech, self.center, self.rotation, self.rack)
-            r_center, r_omega = pose_newton.rack_slope_of(self._jac, column)
-            d_center, d_omega = d_center + r_center * h_rack, d_omega + r_omega * h_rack
-        guess = pose_newton.predict(self.center, self.rotation, (d_center, d_omega), 1.0)
-        start = guess if cfg.method == 'fast' else (self.center, self.rotation)
-        center, rotation, iterations, ok, jac = self._correct(travel, *start, cfg.tol,
-                                                              cfg.max_iter, rack)
-        if not ok or not on_branch(self.mech, guess, (center, rotation),
-                                   max(abs(h), abs(h_rack)), 10 * cfg.tol):
-            return False, iterations
-        if jac is None:
-            jac = linearize(self.mech, center, rotation, rack)[1]
-        self.travel, self.rack, self.center, self.rotation, self._jac = (travel, rack, center,
-                                                                         rotation, jac)
-        return True, iterations
+        guess = pose_newton.predict(mech, self.center, self.rotation, self.jacobian, h, h_rack,
+                                    self.rack)
+        if guess is None:
+            return None, 0, False
+        center, rotation, iterations, ok, _ = paper_method.correct(
+            self._paper, travel, self.center, self.rotation, cfg.tol, cfg.max_iter, rack)
+        if not ok or not kernel.on_branch(mech.equations, *guess, center, rotation,
+                                          max(abs(h), abs(h_rack)), 10 * cfg.tol):
+            return None, iterations, False
+        return self._pack(travel, rack, center, rotation), iterations, True
+
+    def _pack(self, travel, rack, center, rotation, jacobian=None):
+        """A solved position as a reported kernel state; the Jacobian is computed if not
+        given."""
+        if jacobian is None:
+            jacobian = linearize(self.mech, center, rotation, rack)[1]
+        state = np.zeros(kernel.STATE_SIZE)
+        state[kernel.TRAVEL], state[kernel.RACK] = travel, rack
+        state[kernel.CENTER:kernel.CENTER + 3] = center
+        state[kernel.ROTATION:kernel.ROTATION + 9] = np.ravel(rotation)
+        state[kernel.JACOBIAN:kernel.JACOBIAN + 30] = np.ravel(jacobian)
+        kernel.report(self.mech.equations, self.mech.spin_axis, self.scene.side_sign, state)
+        return state
+
+    def _commit(self, state):
+        state.flags.writeable = False
+        self.state = state
+        self.travel, self.rack = float(state[kernel.TRAVEL]), float(state[kernel.RACK])
 
     def _solution(self, iterations, steps):
-        camber, toe = camber_toe(self.rotation @ self.mech.spin_axis, self.scene.side_sign)
-        return Solution(
-            travel=self.travel, success=True, message='ok', wheel_center=self.center.copy(),
-            rotation=self.rotation.copy(), camber=float(camber), toe=float(toe),
-            iterations=iterations, residual=float(length_errors(self.mech, self.center,
-                                                                self.rotation, self.rack)),
-            rack=self.rack,
-            substeps=steps, condition=float(np.linalg.cond(self._jac[:, pose_newton.FREE])),
-            reachable=tuple(self.reachable))
+        state = self.state
+        residual, condition, camber, toe = state[kernel.RESIDUAL:kernel.TOE + 1].tolist()
+        # Positional, in the order Solution declares its fields: keywords would cost about
+        # a microsecond on the node's path, a tenth of a command.
+        return Solution(self.travel, True, 'ok', state[kernel.CENTER:kernel.CENTER + 3],
+                        state[kernel.ROTATION:kernel.ROTATION + 9].reshape(3, 3), camber, toe,
+                        iterations, residual, steps, condition, self.reachable, self.rack,
+                        state[kernel.QUATERNION:kernel.QUATERNION + 4])
 
     def _failure(self, travel, message, steps, reachable=None):
         return Solution(travel=travel, success=False, message=message, substeps=steps,
@@ -248,21 +282,9 @@ class Continuation:
         return dict(zip(self.mech.point_names, pts))
 
 
-def carrier_shift(mech, pose, other):
-    """Largest displacement (mm) of any carrier point between two poses (center, rotation);
-    batched over leading axes."""
-    moved = carrier_points(mech, *pose) - carrier_points(mech, *other)
-    return np.abs(moved).max(axis=(-2, -1))
-
-
-def on_branch(mech, guess, found, travel_step, slack):
-    """True where the converged pose is where continuation along the branch predicts it.
-
-    A tangent prediction misses by O(step^2); a jump to another assembly branch moves the
-    carrier by a link-length scale. Half the step (plus a slack for the tolerance the poses
-    hold to) separates the two. Batched: travel_step (n,) with poses of n.
-    """
-    return carrier_shift(mech, guess, found) <= 0.5 * np.abs(travel_step) + slack
+def is_finite_number(value):
+    """True for a finite int or float (numpy floats included), False for anything else."""
+    return isinstance(value, (int, float, np.floating)) and math.isfinite(value)
 
 
 def sweep(scene, travels, method='fast', rack=0.0, **settings):
@@ -310,32 +332,32 @@ def _sweep_of(cont, travel, center, rotation, iterations, rack, success=True, me
     return Sweep(travel=travel, wheel_center=center, rotation=rotation, camber=camber, toe=toe,
                  iterations=iterations, residual=length_errors(mech, center, rotation, rack),
                  success=success, message=message, rack=rack,
-                 joints=carrier_points(mech, center, rotation))
+                 joints=carrier_points(mech, center, rotation),
+                 quaternion=quaternion_from_matrix(rotation))
 
 
 def _batched(cont, travels):
-    """Fast sweep: knots by continuation from the state at travel 0, then all positions in
-    one batched solve. Returns None when a knot cannot be reached (the sequential walk then
-    finds the limit).
+    """Fast sweep: knots by continuation from the state at travel 0, then every position in
+    one compiled loop, each a continuation step from its nearest knot. Returns None when a
+    knot cannot be reached (the sequential walk then finds the limit).
     """
     cfg, mech, rack = cont.settings, cont.mech, cont.rack
     knots = _knots(cont, min(travels.min(), 0.0), max(travels.max(), 0.0))
     if knots is None:
         return None
-    knot_travel, knot_center, knot_rotation = knots
-    nearest = np.argmin(np.abs(travels[:, None] - knot_travel[None, :]), axis=1)
-    h = travels - knot_travel[nearest]
-    slopes = pose_newton.slope_of(linearize(mech, knot_center, knot_rotation, rack)[1])
-    guess_center, guess_rotation = pose_newton.predict(
-        knot_center[nearest], knot_rotation[nearest], [s[nearest] for s in slopes], h)
-    center, rotation, iterations, converged = pose_newton.correct_batch(
-        mech, travels, guess_center, guess_rotation, cfg.tol, cfg.max_iter, rack)
+    nearest = np.argmin(np.abs(travels[:, None] - knots[:, kernel.TRAVEL][None, :]), axis=1)
+    n = len(travels)
+    states = np.empty((n, kernel.STATE_SIZE))
+    iterations, good = np.empty(n, dtype=np.int64), np.empty(n, dtype=np.bool_)
     # Knots hold to knot_tol only, so a position at a knot may move by about that much.
-    good = converged & on_branch(mech, (guess_center, guess_rotation), (center, rotation), h,
-                                 1e3 * cfg.knot_tol)
-    origin = (cont.travel, cont.rack, cont.center, cont.rotation, cont._jac)
+    kernel.step_many(mech.equations, mech.design_center[2], cfg.tol, cfg.max_iter,
+                     1e3 * cfg.knot_tol, nearest, knots, travels, rack, states, iterations,
+                     good)
+    center = states[:, kernel.CENTER:kernel.CENTER + 3]
+    rotation = states[:, kernel.ROTATION:kernel.ROTATION + 9].reshape(n, 3, 3)
+    origin = cont.state
     for i in np.flatnonzero(~good):    # rare: walk it from travel 0
-        cont.travel, cont.rack, cont.center, cont.rotation, cont._jac = origin
+        cont._commit(origin)
         sol = cont.solve(travels[i])
         if not sol.success:
             return None
@@ -344,33 +366,28 @@ def _batched(cont, travels):
 
 
 def _knots(cont, low, high):
-    """Poses every knot_step mm from the current state (travel 0) to low and to high (mm):
-    the bump and rebound continuation chains, walked side by side as one batch, each step
-    from its tangent prediction and checked for a branch change. Knots hold to knot_tol only
-    (they start the batched solve). Returns arrays (k,), (k, 3), (k, 3, 3), or None if a
-    step fails (the caller then walks, halving steps, and finds any limit)."""
+    """States every knot_step mm from the current state (travel 0) to high and to low (mm):
+    the bump and rebound continuation chains, each step from its tangent prediction and
+    checked for a branch change. Knots hold to knot_tol only (they start the batched solve).
+    Returns an array (k, kernel.STATE_SIZE), or None if a step fails (the caller then walks,
+    halving steps, and finds any limit)."""
     cfg, mech = cont.settings, cont.mech
-    ends = np.array([end for end in (high, low) if end != cont.travel])
-    travel = np.full(len(ends), cont.travel)
-    center = np.repeat(cont.center[None], len(ends), axis=0)
-    rotation = np.repeat(cont.rotation[None], len(ends), axis=0)
-    jac = np.repeat(cont._jac[None], len(ends), axis=0)
-    trace = [(cont.travel, cont.center, cont.rotation)]
-    while len(ends):
-        h = np.clip(ends - travel, -cfg.knot_step, cfg.knot_step)
-        guess = pose_newton.predict(center, rotation, pose_newton.slope_of(jac), h)
-        center, rotation, _, converged = pose_newton.correct_batch(
-            mech, travel + h, *guess, cfg.knot_tol, cfg.max_iter, cont.rack)
-        if not np.all(converged & on_branch(mech, guess, (center, rotation), h,
-                                            1e3 * cfg.knot_tol)):
-            return None
-        travel = np.where(np.abs(ends - travel) <= cfg.knot_step, ends, travel + h)
-        trace += list(zip(travel, center, rotation))
-        going = travel != ends
-        ends, travel, center, rotation = ends[going], travel[going], center[going], rotation[going]
-        jac = linearize(mech, center, rotation, cont.rack)[1]
-    return (np.array([t[0] for t in trace]), np.array([t[1] for t in trace]),
-            np.array([t[2] for t in trace]))
+    knots = [cont.state]
+    for end in (high, low):
+        state = knots[0]
+        while state[kernel.TRAVEL] != end:
+            travel = state[kernel.TRAVEL]
+            target = end if abs(end - travel) <= cfg.knot_step else (
+                travel + math.copysign(cfg.knot_step, end - travel))
+            new = np.empty(kernel.STATE_SIZE)
+            _, ok = kernel.step(mech.equations, mech.design_center[2], cfg.knot_tol,
+                                cfg.max_iter, 1e3 * cfg.knot_tol, state, target, cont.rack, new)
+            if not ok:
+                return None
+            new.flags.writeable = False   # as committed states are: one kernel specialization
+            state = new
+            knots.append(state)
+    return np.array(knots)
 
 
 def travel_range(start, stop, step):

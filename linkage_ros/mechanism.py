@@ -1,4 +1,4 @@
-"""The 5 guidance equations of a scene, written on the carrier pose (M, R).
+"""The mechanism of a scene: its 5 guidance equations as a table, on the carrier pose (M, R).
 
 The pose is the wheel-centre position M (mm, vehicle frame) and the carrier rotation R
 relative to design: a carrier point at design position b0 is at M + R (b0 - M0).
@@ -7,79 +7,72 @@ Residuals are lengths in mm, so a tolerance reads the same in every scene:
   circle (eqs. 3-4): two spheres about the two axis points;
   line (strut):       distance of the top mount T from the carrier-fixed strut line,
                       as two components along carrier-fixed normals of the line.
+The equations themselves are written once, compiled, in kernel.py; the functions here apply
+them to one pose or to a batch (leading axes of center (..., 3) and rotation (..., 3, 3)).
 """
 
 from dataclasses import dataclass
 
 import numpy as np
 
-from .geometry import cross, unit
+from . import kernel
+from .geometry import unit
 
 
 @dataclass(frozen=True)
 class Mechanism:
-    """Arrays compiled from a Scene. Shapes: m carrier points, k distance eqs, q line eqs."""
+    """A scene compiled for the solvers. m carrier points (one per constraint)."""
 
     design_center: np.ndarray    # M0 (3,)
     offsets: np.ndarray          # (m, 3) carrier points minus M0, carrier frame = design frame
     point_names: tuple           # (m,) names of the carrier points
-    dist_point: np.ndarray       # (k,) index into offsets
-    dist_base: np.ndarray        # (k, 3)
-    dist_length: np.ndarray      # (k,)
-    dist_steer: np.ndarray       # (k,) 1.0 where the base point moves with the steering rack
-    line_point: np.ndarray       # (q,) index into offsets
-    line_base: np.ndarray        # (q, 3) top mount T
-    line_normal: np.ndarray      # (q, 3) carrier-fixed unit normals of the strut line
-    equation_names: tuple        # (k + q,) for diagnostics
+    equations: np.ndarray        # (5, kernel.COLUMNS) one row per guidance equation
+    equation_point: np.ndarray   # (5,) index into offsets of each equation's carrier point
     spin_axis: np.ndarray        # (3,) design outboard spin-axis unit vector
     lever: float                 # mm: largest |offset|, turns a rotation step into mm
 
     @property
-    def n_equations(self):
-        return len(self.dist_length) + len(self.line_base)
+    def steered(self):
+        """True if a base point moves with the steering rack (a steer: rack link)."""
+        return bool(self.equations[:, kernel.STEER].any())
 
-    @property
-    def inv_length(self):
-        return (1.0 / self.dist_length)[:, None]
-
-    @property
-    def half_inv_length(self):
-        return 0.5 / self.dist_length
+    def line_rows(self):
+        """(carrier point index, top mount T (3,), carrier-fixed normal (3,)) of each strut
+        line equation, at design."""
+        return [(int(self.equation_point[i]), row[kernel.BASE:kernel.BASE + 3],
+                 row[kernel.NORMAL:kernel.NORMAL + 3])
+                for i, row in enumerate(self.equations) if row[kernel.KIND] == kernel.LINE]
 
 
 def compile_scene(scene):
-    """Build the Mechanism of a validated Scene."""
+    """Build the Mechanism of a validated Scene: sphere rows first, then strut line rows."""
     m0 = scene.wheel_center
-    names, offsets = [], []
-    dist_point, dist_base, dist_length, dist_steer, eq_names = [], [], [], [], []
-    line_point, line_base, line_normal, line_names = [], [], [], []
-    for c in scene.constraints:
-        idx = len(offsets)
-        names.append(c.name)
-        offsets.append(c.carrier - m0)
+    offsets = np.array([c.carrier - m0 for c in scene.constraints])
+    spheres, lines = [], []
+    for index, c in enumerate(scene.constraints):
         if c.type in ('sphere', 'circle'):
-            for j, base in enumerate(c.base):
-                dist_point.append(idx)
-                dist_base.append(base)
-                dist_length.append(np.linalg.norm(c.carrier - base))
-                dist_steer.append(1.0 if c.steer == 'rack' else 0.0)
-                eq_names.append(c.name if len(c.base) == 1 else f'{c.name}[{j}]')
+            for base in c.base:
+                row = np.zeros(kernel.COLUMNS)
+                row[kernel.KIND] = kernel.SPHERE
+                row[kernel.BASE:kernel.BASE + 3] = base
+                row[kernel.LENGTH] = np.linalg.norm(c.carrier - base)
+                row[kernel.STEER] = 1.0 if c.steer == 'rack' else 0.0
+                spheres.append((index, row))
         else:
-            for j, normal in enumerate(line_normals(c.base[0] - c.carrier, scene.wheel_center
-                                                    - scene.spin_axis_point)):
-                line_point.append(idx)
-                line_base.append(c.base[0])
-                line_normal.append(normal)
-                line_names.append(f'{c.name}[{j}]')
-    offsets = np.array(offsets)
+            for normal in line_normals(c.base[0] - c.carrier, m0 - scene.spin_axis_point):
+                row = np.zeros(kernel.COLUMNS)
+                row[kernel.KIND] = kernel.LINE
+                row[kernel.BASE:kernel.BASE + 3] = c.base[0]
+                row[kernel.NORMAL:kernel.NORMAL + 3] = normal
+                lines.append((index, row))
+    rows = spheres + lines
+    equations = np.array([row for _, row in rows])
+    points = np.array([index for index, _ in rows], dtype=np.int64)
+    equations[:, kernel.POINT:kernel.POINT + 3] = offsets[points]
     return Mechanism(
-        design_center=m0.copy(), offsets=offsets, point_names=tuple(names),
-        dist_point=np.array(dist_point, dtype=int), dist_base=np.array(dist_base).reshape(-1, 3),
-        dist_length=np.array(dist_length), dist_steer=np.array(dist_steer),
-        line_point=np.array(line_point, dtype=int),
-        line_base=np.array(line_base).reshape(-1, 3),
-        line_normal=np.array(line_normal).reshape(-1, 3),
-        equation_names=tuple(eq_names + line_names),
+        design_center=m0.copy(), offsets=offsets,
+        point_names=tuple(c.name for c in scene.constraints),
+        equations=np.ascontiguousarray(equations), equation_point=points,
         spin_axis=unit(scene.wheel_center - scene.spin_axis_point),
         lever=float(np.max(np.linalg.norm(offsets, axis=1))))
 
@@ -97,56 +90,45 @@ def carrier_points(mech, center, rotation):
     return center[..., None, :] + mech.offsets @ np.swapaxes(rotation, -1, -2)
 
 
-def rack_derivative(mech, center, rotation, rack=0.0):
-    """d(residuals)/d(rack) (..., 5): the steer rows' base points move along +y."""
-    r = mech.offsets[mech.dist_point] @ np.swapaxes(rotation, -1, -2)
-    d_y = r[..., 1] + (center[..., None, 1] - mech.dist_base[:, 1]) \
-        - np.asarray(rack)[..., None] * mech.dist_steer
-    out = np.zeros(center.shape[:-1] + (mech.n_equations,))
-    out[..., :len(mech.dist_length)] = -d_y / mech.dist_length * mech.dist_steer
-    return out
+def poses(center, rotation, rack=0.0):
+    """(leading shape, centers (n, 3), rotations (n, 3, 3), racks (n,)): a pose or a batch of
+    poses as contiguous float64 arrays for the kernels, leading axes broadcast together."""
+    center, rotation = np.asarray(center, dtype=float), np.asarray(rotation, dtype=float)
+    rack = np.asarray(rack, dtype=float)
+    shape = np.broadcast_shapes(center.shape[:-1], rotation.shape[:-2], rack.shape)
+    n = int(np.prod(shape))
+    return (shape,
+            np.ascontiguousarray(np.broadcast_to(center, shape + (3,)).reshape(n, 3)),
+            np.ascontiguousarray(np.broadcast_to(rotation, shape + (3, 3)).reshape(n, 3, 3)),
+            np.ascontiguousarray(np.broadcast_to(rack, shape).reshape(n)))
+
+
+def linearize(mech, center, rotation, rack=0.0):
+    """Residuals (..., 5) and their Jacobian d/d(M, omega) (..., 5, 6) at a pose or a batch.
+
+    omega is a small rotation applied in the vehicle frame (R <- exp(omega) R); Jacobian
+    column 2 (dZ_M) is the travel direction, kernel.FREE the unknowns. rack (mm, scalar or
+    (...,)): steering rack travel, + = to the left, moving the base points of steer: rack
+    constraints along y.
+    """
+    shape, centers, rotations, racks = poses(center, rotation, rack)
+    f = np.empty((len(centers), kernel.N_EQUATIONS))
+    jac = np.empty((len(centers), kernel.N_EQUATIONS, 6))
+    kernel.linearize_many(mech.equations, centers, rotations, racks, f, jac)
+    return f.reshape(shape + (kernel.N_EQUATIONS,)), jac.reshape(shape + (kernel.N_EQUATIONS, 6))
 
 
 def length_errors(mech, center, rotation, rack=0.0):
     """Largest constraint violation (mm) as a true length: link length error or strut offset."""
-    pts = carrier_points(mech, center, rotation)
-    d = pts[..., mech.dist_point, :] - mech.dist_base
-    d[..., 1] -= np.asarray(rack)[..., None] * mech.dist_steer
-    dist = np.abs(np.linalg.norm(d, axis=-1) - mech.dist_length)
-    normals = mech.line_normal @ np.swapaxes(rotation, -1, -2)
-    line = np.abs(np.einsum('...i,...i->...', mech.line_base - pts[..., mech.line_point, :],
-                            normals))
-    return np.max(np.concatenate((dist, line), axis=-1), axis=-1)
+    shape, centers, rotations, racks = poses(center, rotation, rack)
+    out = np.empty(len(centers))
+    kernel.residual_many(mech.equations, centers, rotations, racks, out)
+    return out.reshape(shape) if shape else float(out[0])
 
 
-def linearize(mech, center, rotation, rack=0.0):
-    """Residuals (..., 5) and their Jacobian d/d(M, omega) (..., 5, 6).
-
-    omega is a small rotation applied in the vehicle frame (R <- exp(omega) R); Jacobian
-    column 2 (dZ_M) is the travel direction, columns 0, 1, 3, 4, 5 the unknowns.
-    rack (mm, scalar or (...,)): steering rack travel, + = to the left, moving the base
-    points of steer: rack constraints along y.
-    Written for speed: it is the inner loop of every solve.
-    """
-    rt = np.swapaxes(rotation, -1, -2)
-    k = len(mech.dist_length)
-    f = np.empty(center.shape[:-1] + (mech.n_equations,))
-    jac = np.empty(center.shape[:-1] + (mech.n_equations, 6))
-    # sphere rows: F = (|d|^2 - l^2) / 2l, dF = (d / l) . (dM + omega x r)
-    r = mech.offsets[mech.dist_point] @ rt
-    d = r + (center[..., None, :] - mech.dist_base)
-    if np.any(rack):
-        d[..., 1] -= np.asarray(rack)[..., None] * mech.dist_steer
-    f[..., :k] = (np.einsum('...i,...i->...', d, d) - mech.dist_length**2) * mech.half_inv_length
-    d *= mech.inv_length
-    jac[..., :k, :3] = d
-    jac[..., :k, 3:] = cross(r, d)
-    if len(mech.line_point):
-        # line rows: F = (T - B) . n, n = R n0; dF = -n . dM + omega . (n x (T - B) - r x n)
-        r = mech.offsets[mech.line_point] @ rt
-        normals = mech.line_normal @ rt
-        to_base = (mech.line_base - center[..., None, :]) - r
-        f[..., k:] = np.einsum('...i,...i->...', to_base, normals)
-        jac[..., k:, :3] = -normals
-        jac[..., k:, 3:] = cross(normals, to_base) - cross(r, normals)
-    return f, jac
+def rack_derivative(mech, center, rotation, rack=0.0):
+    """d(residuals)/d(rack) (..., 5): the steer rows' base points move along +y."""
+    shape, centers, rotations, racks = poses(center, rotation, rack)
+    out = np.empty((len(centers), kernel.N_EQUATIONS))
+    kernel.rack_column_many(mech.equations, centers, rotations, racks, out)
+    return out.reshape(shape + (kernel.N_EQUATIONS,))

@@ -46,13 +46,12 @@ def build(scene, mech):
             for base in c.base:
                 equations.append(('sphere', b, base, np.linalg.norm(c.carrier - base),
                                   1.0 if c.steer == 'rack' else 0.0))
-    for i, point in enumerate(mech.line_point):
-        # A strut line: T stays in the carrier plane through C spanned by the line and normal
-        # i; the normal is carried by an auxiliary carrier point E = C + L n (a joint too).
+    for point, top, normal in mech.line_rows():
+        # A strut line: T stays in the carrier plane through C spanned by the line and the
+        # normal; the normal is carried by an auxiliary carrier point E = C + L n (a joint too).
         carrier = joints[point]   # joints 0..k-1 are the constraints' carrier points
-        length = np.linalg.norm(mech.line_base[i] - carrier)
-        aux = add_joint(carrier + length * mech.line_normal[i])
-        equations.append(('line', int(point), aux, mech.line_base[i]))
+        aux = add_joint(carrier + np.linalg.norm(top - carrier) * normal)
+        equations.append(('line', point, aux, top))
     joints = np.array(joints)
     radii = np.linalg.norm(joints[:, None, :] - np.array([m0, n0, p0])[None], axis=2)
     signs = np.array([np.sign(local_coordinates(m0, n0, p0, j)[2]) for j in joints])

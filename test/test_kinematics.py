@@ -143,10 +143,10 @@ def test_tangent_predicts_the_next_position_to_second_order():
     mech = compile_scene(scene)
     cont = Continuation(scene)
     base = cont.solve(10.0)
-    slope = pose_newton.tangent(mech, base.wheel_center, base.rotation)
+    jac = linearize(mech, base.wheel_center, base.rotation)[1]
     errors = []
     for h in (1.0, 0.5):
-        guess = pose_newton.predict(base.wheel_center, base.rotation, slope, h)
+        guess = pose_newton.predict(mech, base.wheel_center, base.rotation, jac, h)
         exact = Continuation(scene).solve(10.0 + h)
         errors.append(np.abs(carrier_points(mech, *guess)
                              - carrier_points(mech, exact.wheel_center, exact.rotation)).max())

@@ -1,6 +1,5 @@
 """linkage_ros.messages: Solution (mm, rad) -> ROS messages (m, rad), without DDS."""
 
-import dataclasses
 import math
 
 from builtin_interfaces.msg import Time
@@ -129,7 +128,7 @@ def test_diagnostic_of_a_failed_solve_is_an_error_saying_why(failed):
 
 
 def test_error_outranks_an_ill_conditioned_jacobian(failed):
-    bad = dataclasses.replace(failed, condition=1e12)
+    bad = failed._replace(condition=1e12)
     assert messages.health(bad, condition_warn=1e4)[0] == DiagnosticStatus.ERROR
 
 
