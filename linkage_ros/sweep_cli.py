@@ -4,7 +4,6 @@ Data goes to stdout (or --csv PATH), progress and errors to stderr.
 """
 
 import argparse
-import csv
 import sys
 import time
 
@@ -28,17 +27,17 @@ ALIGNMENT_COLUMNS = [
     'screw_pitch_mm_per_rad']
 
 
-def table_rows(result, scene=None, with_rack=False):
-    """CSV rows (mm, deg) of a Sweep: COLUMNS, then rack_mm if with_rack, then the
-    alignment columns if a scene is given."""
-    extra = np.empty((len(result.travel), 0))
+def table(result, scene=None, with_rack=False):
+    """The table (n, columns) of a Sweep in mm and deg: COLUMNS, then rack_mm if with_rack,
+    then the alignment columns if a scene is given. Built column-wise: linear in n."""
+    n = len(result.travel)
+    columns = [result.travel, np.degrees(result.camber), np.degrees(result.toe),
+               result.wheel_center, result.quaternion, result.residual, result.iterations]
+    if with_rack:
+        columns.append(np.full(n, result.rack))
     if scene is not None:
-        extra = alignment_table(scene, result)
-    for i in range(len(result.travel)):
-        yield ([result.travel[i], np.degrees(result.camber[i]), np.degrees(result.toe[i]),
-                *result.wheel_center[i], *result.quaternion[i], result.residual[i],
-                int(result.iterations[i])] + ([result.rack] if with_rack else [])
-               + list(extra[i]))
+        columns.append(alignment_table(scene, result))
+    return np.column_stack([np.reshape(c, (n, -1)).astype(float) for c in columns])
 
 
 def alignment_table(scene, result):
@@ -56,13 +55,15 @@ def alignment_table(scene, result):
 
 
 def write_csv(results, stream, scene=None, with_rack=False):
-    """Write Sweeps (one or several, e.g. a rack grid) as one CSV table."""
-    writer = csv.writer(stream, lineterminator='\n')
-    writer.writerow(COLUMNS + (RACK_COLUMNS if with_rack else [])
-                    + (ALIGNMENT_COLUMNS if scene is not None else []))
+    """Write Sweeps (one or several, e.g. a rack grid) as one CSV table, values to 10
+    significant digits."""
+    header = COLUMNS + (RACK_COLUMNS if with_rack else []) + (
+        ALIGNMENT_COLUMNS if scene is not None else [])
+    row_format = ','.join(['%.10g'] * len(header)) + '\n'
+    stream.write(','.join(header) + '\n')
     for result in results:
-        for row in table_rows(result, scene, with_rack):
-            writer.writerow([f'{v + 0.0:.10g}' if isinstance(v, float) else v for v in row])
+        rows = table(result, scene, with_rack) + 0.0   # + 0.0: no '-0' in the table
+        stream.writelines(row_format % tuple(row) for row in rows.tolist())
 
 
 def parse_args(argv):

@@ -222,6 +222,16 @@ def test_core_imports_nothing_of_ros_mcap_or_rerun():
     assert out.stdout.strip() == '[]'
 
 
+def test_the_core_is_used_from_the_package_itself_without_loading_ros_mcap_or_rerun():
+    code = ('import sys; from linkage_ros import Continuation, load_scene, sweep; '
+            'solution = Continuation(load_scene("five_link")).solve(10.0); '
+            'table = sweep(load_scene("five_link"), [-10.0, 0.0, 10.0]); '
+            'print(solution.success, table.success, '
+            'sorted(m for m in ("rclpy", "mcap", "rerun") if m in sys.modules))')
+    out = subprocess.run([sys.executable, '-c', code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == 'True True []'
+
+
 @pytest.mark.parametrize('name', [n for n in bundled_scenes() if n.startswith('chrono_')])
 def test_chrono_reference_scene_sweeps_with_paper_and_fast_agreeing(name):
     # ../shared/refdata Chrono hardpoint sets: no published curves, so the checks are the
