@@ -1,21 +1,23 @@
-"""ROS messages of one solved position: pure functions, testable without DDS.
+"""ROS messages of solved positions: pure functions, testable without DDS.
 
 The core works in mm (vehicle frame: x forward, y left, z up); ROS messages are in SI, so the
 conversion happens here and only here:
 
     travel_mm(Float64 m)                               -> float mm (+ = bump)
     joint_travel_mm(JointState, joint)                 -> float mm of that joint, or None
+    rack_mm(Float64 m)                                 -> float mm (+ = rack to the left)
+    answer(solution, stamp, frame_id)                  -> [(output name, message)]: what the
+                                                          node publishes for a solved command
     pose_stamped(solution, stamp, frame_id)            -> PoseStamped: wheel centre (m) and
                                                           carrier rotation relative to design
     camber(solution), toe(solution)                    -> Float64 (rad)
-    diagnostics(solution, stamp, name, hardware_id, method, condition_warn)
-                                                       -> DiagnosticArray (one status)
-    rack_mm(Float64 m)                                 -> float mm (+ = rack to the left)
+    health_status(health, name, hardware_id, method)   -> DiagnosticStatus of a corner
+    diagnostics(statuses, stamp)                       -> DiagnosticArray
     alignment_array(alignment)                         -> Float64MultiArray: ALIGNMENT_FIELDS
                                                           in SI, named by the layout's labels
 
 A failed Solution (NaN, inf or out-of-reach command) has no pose: pose_stamped, camber and toe
-refuse it, so no NaN can reach a pose topic; diagnostics turns it into an ERROR status.
+refuse it, so no NaN can reach a pose topic; its Health says ERROR with the reason.
 """
 
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
@@ -118,49 +120,53 @@ def toe(solution):
     return Float64(data=float(solution.toe))
 
 
-def health(solution, condition_warn):
-    """(level, message) of a solve: ERROR if it failed, WARN if the Jacobian is ill-conditioned.
+def answer(solution, stamp, frame_id):
+    """The messages answering one solved command, in publishing order (the pose first: it is
+    what a controller waits for): [(output name, message)] for wheel_carrier_pose, camber and
+    toe. Names are relative to the corner's namespace."""
+    return [('wheel_carrier_pose', pose_stamped(solution, stamp, frame_id)),
+            ('camber', camber(solution)), ('toe', toe(solution))]
 
-    A condition number above condition_warn means the mechanism is near a singular position
-    (a turning point at the end of travel): the pose is right but sensitive to hardpoint error.
+
+def health_status(health, name, hardware_id, method):
+    """A corner's Health (linkage_ros.health) as a DiagnosticStatus; values in SI, keys name
+    their units.
+
+    Level and message: ERROR with the reason (a failed last command, a fault such as a
+    recording that stopped), WARN near a singular position, OK. Keys about the period since
+    the last periodic report: commands, failures, residual_max_m (largest constraint
+    violation), condition_max (Jacobian), iterations_max (Newton, last step of a command),
+    substeps_max (continuation steps for one command). Since start: commands_total,
+    failures_total. About the last command: travel_m (commanded),
+    rack_m (+ = to the left; 0 without a steer: rack link), reachable_min_m, reachable_max_m
+    (travel range explored so far). And method.
     """
-    if not solution.success:
-        return DiagnosticStatus.ERROR, solution.message
-    if solution.condition > condition_warn:
-        return DiagnosticStatus.WARN, (f'near a singular position: Jacobian condition number '
-                                       f'{solution.condition:.3g} above {condition_warn:.3g}')
-    return DiagnosticStatus.OK, 'ok'
-
-
-def diagnostic_status(solution, name, hardware_id, method, condition_warn):
-    """Solver health of one command as a DiagnosticStatus; values in m (SI), keys name units.
-
-    Keys: travel_m (commanded), iterations (Newton, last step), residual_m (largest
-    constraint violation), substeps (continuation steps walked), condition (Jacobian),
-    reachable_min_m and reachable_max_m (travel range explored so far), method, rack_m
-    (steering rack, + = to the left; stays 0 for a scene without a steer: rack link).
-    """
-    level, message = health(solution, condition_warn)
-    low, high = solution.reachable
+    last = health.last
+    travel, rack, (low, high) = ((last.travel, last.rack, last.reachable) if last is not None
+                                 else (0.0, 0.0, (0.0, 0.0)))
     values = {
-        'travel_m': _number(solution.travel * M_PER_MM),
-        'iterations': str(int(solution.iterations)),
-        'residual_m': _number(solution.residual * M_PER_MM),
-        'substeps': str(int(solution.substeps)),
-        'condition': _number(solution.condition),
+        'commands': str(health.commands),
+        'failures': str(health.failures),
+        'commands_total': str(health.commands_total),
+        'failures_total': str(health.failures_total),
+        'residual_max_m': _number(health.residual_max * M_PER_MM),
+        'condition_max': _number(health.condition_max),
+        'iterations_max': str(health.iterations_max),
+        'substeps_max': str(health.substeps_max),
+        'travel_m': _number(_as_float(travel) * M_PER_MM),
+        'rack_m': _number(rack * M_PER_MM),
         'reachable_min_m': _number(low * M_PER_MM),
         'reachable_max_m': _number(high * M_PER_MM),
         'method': method,
-        'rack_m': _number(solution.rack * M_PER_MM),
     }
-    return DiagnosticStatus(level=level, name=name, message=message, hardware_id=hardware_id,
+    return DiagnosticStatus(level=bytes([health.level]), name=name, message=health.message,
+                            hardware_id=hardware_id,
                             values=[KeyValue(key=k, value=v) for k, v in values.items()])
 
 
-def diagnostics(solution, stamp, name, hardware_id, method, condition_warn):
-    """A DiagnosticArray holding the one status of diagnostic_status, stamped."""
-    msg = DiagnosticArray(status=[diagnostic_status(solution, name, hardware_id, method,
-                                                    condition_warn)])
+def diagnostics(statuses, stamp):
+    """A DiagnosticArray of DiagnosticStatus messages, stamped."""
+    msg = DiagnosticArray(status=list(statuses))
     msg.header.stamp = stamp
     return msg
 
@@ -178,6 +184,14 @@ def status_values(status):
 def _number(value):
     # Nine significant digits: nanometres at a metre of travel; 'nan' for a NaN command.
     return f'{float(value):.9g}'
+
+
+def _as_float(value):
+    """A commanded travel as a float: what a bad command sent may not be a number."""
+    try:
+        return float(value)
+    except (TypeError, ValueError):
+        return float('nan')
 
 
 def _require_pose(solution):

@@ -1,8 +1,8 @@
 """suspension_node: wheel travel in; wheel-carrier pose, camber, toe and solver health out.
 
 A thin adapter over the kinematics core (linkage_ros.kinematics.Continuation): each command
-is solved from the last good pose (large jumps walked in substeps of max_step_mm), converted
-to SI messages by linkage_ros.messages, and published. Outputs answer a stamped input
+is solved from the last good pose (large jumps walked in substeps of max_step_mm), turned
+into SI messages by linkage_ros.messages, and published. Outputs answer a stamped input
 (JointState) with its header stamp, a Float64 with the node clock's time of receipt (simulated
 time with use_sim_time). A bad command (NaN, inf, out of reach) publishes no pose, only an
 ERROR diagnostic saying why; the core keeps the last good state.
@@ -17,7 +17,10 @@ Topics (names relative to the node's namespace, /diagnostics absolute):
     sub steering_rack       std_msgs/Float64            m, + = rack to the left; solved at the
                                                         last travel; only if the scene has a
                                                         steer: rack link
-    pub /diagnostics        diagnostic_msgs/DiagnosticArray
+    pub /diagnostics        diagnostic_msgs/DiagnosticArray  one status per corner every
+                                                        diagnostic_period s (the diagnostic_updater
+                                                        convention), and at once for a bad
+                                                        command or a change of level
     pub alignment           std_msgs/Float64MultiArray  messages.ALIGNMENT_FIELDS in SI, each
                                                         named by its layout dim label; only if
                                                         parameter alignment is true
@@ -28,9 +31,11 @@ All reliable, keep-last QOS_DEPTH (1000), so a burst of 1000 commands is not los
 With parameter vehicle (a vehicle file, linkage_ros.vehicle) the node serves every corner:
 each Corner has its own Continuation and the topics above under its name (front_left/
 wheel_travel, front_left/camber, ...; steering_rack only where the corner steers), one
-diagnostic status per corner named after it; parameter scene is then not used. record_mcap
-records every corner; rerun_rrd writes one file showing the whole vehicle, each corner's
-entities under its name (front_left/suspension/..., plots/front_left/camber_deg).
+diagnostic status per corner named after it; parameter scene is then not used. Corners whose
+vehicle entry names a travel_joint (and rack_joint) are also answered from one joint_states
+topic: every named corner of a message in one callback, at the message's header stamp.
+record_mcap records every corner; rerun_rrd writes one file showing the whole vehicle, each
+corner's entities under its name (front_left/suspension/..., plots/front_left/camber_deg).
 
 Sinks (recorders, viewers) receive every command and every published message; the MCAP and
 Rerun modules are imported only when record_mcap or rerun_rrd is set.
@@ -53,6 +58,7 @@ from std_msgs.msg import Float64, Float64MultiArray
 from visualization_msgs.msg import MarkerArray
 
 from . import messages
+from .health import Health
 from .kinematics import Continuation
 from .scene import load_scene
 
@@ -60,6 +66,7 @@ NODE_NAME = 'suspension_kinematics'
 QOS_DEPTH = 1000
 QOS = QoSProfile(history=HistoryPolicy.KEEP_LAST, depth=QOS_DEPTH,
                  reliability=ReliabilityPolicy.RELIABLE, durability=DurabilityPolicy.VOLATILE)
+OUTPUTS = {'wheel_carrier_pose': PoseStamped, 'camber': Float64, 'toe': Float64}
 
 # name: (default, description). Numbers accept integers too (a YAML 5 means 5.0).
 PARAMETERS = {
@@ -68,6 +75,7 @@ PARAMETERS = {
     'method': ('fast', 'solver: fast (pose Newton) or paper (Gauss-Jordan, Alexandru 2018)'),
     'max_step_mm': (5.0, 'longest continuation substep, mm (> 0)'),
     'condition_warn': (1e4, 'Jacobian condition number above which diagnostics say WARN'),
+    'diagnostic_period': (1.0, 'seconds between /diagnostics reports, on the node clock (> 0)'),
     'record_mcap': ('', 'path of an MCAP file recording commands and outputs; empty = off'),
     'rerun_rrd': ('', 'path of a Rerun .rrd file mirroring the poses; empty = off'),
     'travel_joint': ('', 'joint of sensor_msgs/JointState on joint_states whose position is '
@@ -80,8 +88,9 @@ PARAMETERS = {
 
 
 def corner_topics(scene, params, prefix=''):
-    """Relative names of a corner's topics (prefix: '' or 'front_left/'), /diagnostics apart."""
-    names = ['wheel_travel', 'wheel_carrier_pose', 'camber', 'toe']
+    """Relative names of a corner's topics (prefix: '' or 'front_left/'), /diagnostics and
+    the vehicle's joint_states apart."""
+    names = ['wheel_travel', *OUTPUTS]
     if params['travel_joint']:
         names.append('joint_states')
     if steered(scene):
@@ -96,86 +105,85 @@ def steered(scene):
 
 
 def load_corners(params):
-    """{topic prefix: Scene}: the one scene under no prefix, or every corner of the vehicle
-    parameter under 'corner_name/'."""
+    """{topic prefix: (Scene, travel joint, rack joint)}: the one scene under no prefix, or
+    every corner of the vehicle parameter under 'corner_name/' with the joint_states joints
+    its vehicle file names ('' where none)."""
     if not params['vehicle']:
-        return {'': load_scene(params['scene'])}
+        return {'': (load_scene(params['scene']), '', '')}
     from .vehicle import load_vehicle
-    return {f'{name}/': scene for name, scene in load_vehicle(params['vehicle']).corners.items()}
+    vehicle = load_vehicle(params['vehicle'])
+    return {f'{name}/': (scene, *vehicle.joints.get(name, ('', '')))
+            for name, scene in vehicle.corners.items()}
 
 
 class Corner:
     """One wheel: its scene, its Continuation (solved independently of the other corners),
-    its input subscriptions and output publishers, topics under prefix ('' or 'front_left/')."""
+    its Health, its input subscriptions and output publishers, topics under prefix ('' or
+    'front_left/')."""
 
-    def __init__(self, node, scene, params, prefix=''):
+    def __init__(self, node, scene, params, prefix='', travel_joint='', rack_joint=''):
         self.node, self.scene = node, scene
         self.solver = Continuation(scene, method=params['method'],
                                    max_step=params['max_step_mm'])
+        self.health = Health(params['condition_warn'])
         self.status_name = f'{node.get_name()}: {scene.name}'
-        self.pose_pub = node.create_publisher(PoseStamped, prefix + 'wheel_carrier_pose', QOS)
-        self.camber_pub = node.create_publisher(Float64, prefix + 'camber', QOS)
-        self.toe_pub = node.create_publisher(Float64, prefix + 'toe', QOS)
+        self.travel_joint, self.rack_joint = travel_joint, rack_joint   # vehicle joint_states
+        self.publishers = {name: node.create_publisher(kind, prefix + name, QOS)
+                           for name, kind in OUTPUTS.items()}
         self.travel_sub = node.create_subscription(Float64, prefix + 'wheel_travel',
                                                    self.on_travel, QOS)
-        self.travel_joint = params['travel_joint']
-        self.joint_sub = None
-        if self.travel_joint:   # off by default: no subscription, no discovery traffic
+        self.joint = params['travel_joint']
+        if self.joint:   # off by default: no subscription, no discovery traffic
             self.joint_sub = node.create_subscription(JointState, prefix + 'joint_states',
                                                       self.on_joint_states, QOS)
-        self.rack_sub = None
         if steered(scene):
             self.rack_sub = node.create_subscription(Float64, prefix + 'steering_rack',
                                                      self.on_rack, QOS)
-        self.alignment_pub = self.markers_pub = None
+        self.extras = []   # (publisher, function(solution, stamp) -> message)
         if params['alignment']:
             from .alignment import alignment
-            self._alignment = alignment
-            self.alignment_pub = node.create_publisher(Float64MultiArray, prefix + 'alignment',
-                                                       QOS)
+            self.extras.append((
+                node.create_publisher(Float64MultiArray, prefix + 'alignment', QOS),
+                lambda solution, stamp: messages.alignment_array(alignment(
+                    scene, self.solver.mech, solution.wheel_center, solution.rotation,
+                    solution.rack))))
         if params['markers']:
-            from . import markers
-            self._marker_array = markers.marker_array
-            self.markers_pub = node.create_publisher(MarkerArray, prefix + 'markers', QOS)
+            from .markers import marker_array
+            self.extras.append((
+                node.create_publisher(MarkerArray, prefix + 'markers', QOS),
+                lambda solution, stamp: marker_array(scene, solution, stamp, node.frame_id)))
 
     def on_travel(self, msg):
-        received = self.node.get_clock().now()
-        self.answer(self.travel_sub, msg, messages.travel_mm(msg), received, received.to_msg())
-
-    def on_joint_states(self, msg):
-        travel_mm = messages.joint_travel_mm(msg, self.travel_joint)
-        if travel_mm is not None:   # other joints' messages are not commands: no answer
-            self.answer(self.joint_sub, msg, travel_mm, self.node.get_clock().now(),
-                        msg.header.stamp)
+        stamp = self.node.received(self.travel_sub, msg)
+        self.answer(messages.travel_mm(msg), None, stamp)
 
     def on_rack(self, msg):
         # A new rack at the last travel: Continuation keeps the travel it was last solved at.
-        received = self.node.get_clock().now()
-        self.answer(self.rack_sub, msg, self.solver.travel, received, received.to_msg(),
-                    rack_mm=messages.rack_mm(msg))
+        stamp = self.node.received(self.rack_sub, msg)
+        self.answer(self.solver.travel, messages.rack_mm(msg), stamp)
 
-    def answer(self, subscription, msg, travel_mm, received, stamp, rack_mm=None):
-        """Solve travel_mm at rack_mm (None = unchanged; received: node-clock Time) and publish
-        its outputs at stamp."""
-        node = self.node
+    def on_joint_states(self, msg):
+        stamp = self.node.received(self.joint_sub, msg, msg.header.stamp)
+        travel_mm = messages.joint_travel_mm(msg, self.joint)
+        if travel_mm is not None:   # other joints' messages are not commands: no answer
+            self.answer(travel_mm, None, stamp)
+
+    def answer(self, travel_mm, rack_mm, stamp):
+        """Solve travel_mm at rack_mm (None = unchanged) and publish the answer at stamp
+        (builtin_interfaces/Time); a failure or a change of level goes to /diagnostics at
+        once."""
         solution = self.solver.solve(travel_mm, rack_mm)
-        if node._sinks:   # the input's publish time is unknown: EventsExecutor gives no info
-            node._record(subscription.topic_name, msg, received.nanoseconds,
-                         received.nanoseconds)
-        if solution.success:   # the pose first: it is what a controller waits for
-            node._publish(self.pose_pub, messages.pose_stamped(solution, stamp, node._frame_id))
-            node._publish(self.camber_pub, messages.camber(solution))
-            node._publish(self.toe_pub, messages.toe(solution))
-            if self.alignment_pub is not None:
-                node._publish(self.alignment_pub, messages.alignment_array(self._alignment(
-                    self.scene, self.solver.mech, solution.wheel_center, solution.rotation,
-                    solution.rack)))
-            if self.markers_pub is not None:
-                node._publish(self.markers_pub, self._marker_array(
-                    self.scene, solution, stamp, node._frame_id))
-        node._publish(node._diag_pub, messages.diagnostics(
-            solution, stamp, self.status_name, self.scene.name, node._method,
-            node._condition_warn))
+        if solution.success:
+            for name, msg in messages.answer(solution, stamp, self.node.frame_id):
+                self.node.publish(self.publishers[name], msg)
+            for publisher, build in self.extras:
+                self.node.publish(publisher, build(solution, stamp))
+        if self.health.add(solution):
+            self.node.report([self])
+
+    def status(self):
+        return messages.health_status(self.health, self.status_name, self.scene.name,
+                                      self.node.method)
 
 
 class SuspensionNode(Node):
@@ -186,49 +194,83 @@ class SuspensionNode(Node):
         """sinks: extra objects with record(topic, type_name, msg, receive_ns, publish_ns)
         and close(), after those the parameters turn on. kwargs go to rclpy Node."""
         super().__init__(NODE_NAME, **kwargs)
-        self._sinks = []
+        self.sinks = []
         try:
             params = self._declare_parameters()
-            scenes = load_corners(params)
-            self._sinks = open_sinks(params, scenes,
-                                     self._offered_qos(scenes, params)) + list(sinks)
-            self._frame_id = params['frame_id']
-            self._method = params['method']
-            self._condition_warn = params['condition_warn']
-            self._diag_pub = self.create_publisher(DiagnosticArray, '/diagnostics', QOS)
-            self.corners = {prefix.rstrip('/'): Corner(self, scene, params, prefix)
-                            for prefix, scene in scenes.items()}
+            corners = load_corners(params)
+            scenes = {prefix: scene for prefix, (scene, _, _) in corners.items()}
+            self.sinks = open_sinks(params, scenes,
+                                    self._offered_qos(corners, params)) + list(sinks)
+            self.frame_id, self.method = params['frame_id'], params['method']
+            self.diagnostics_pub = self.create_publisher(DiagnosticArray, '/diagnostics', QOS)
+            self.corners = {prefix.rstrip('/'): Corner(self, scene, params, prefix, *joints)
+                            for prefix, (scene, *joints) in corners.items()}
         except BaseException:
             self.close_sinks()
             super().destroy_node()
             raise
-        first = next(iter(self.corners.values()))
-        self.scene, self.solver = first.scene, first.solver   # the single-scene mode's corner
+        self.joint_corners = [c for c in self.corners.values()
+                              if c.travel_joint or c.rack_joint]
+        if self.joint_corners:
+            self.joint_states_sub = self.create_subscription(
+                JointState, 'joint_states', self.on_vehicle_joint_states, QOS)
+        self.create_timer(params['diagnostic_period'], self.on_diagnostic_period)
         for corner in self.corners.values():
             self.get_logger().info(
-                f'scene {corner.scene.name} ({corner.scene.source}), method {self._method}, '
-                f'frame {self._frame_id}; waiting on {corner.travel_sub.topic_name} (m)')
+                f'scene {corner.scene.name} ({corner.scene.source}), method {self.method}, '
+                f'frame {self.frame_id}; waiting on {corner.travel_sub.topic_name} (m)')
 
-    def _publish(self, publisher, msg):
+    def received(self, subscription, msg, stamp=None):
+        """Record an input that came on subscription (if recording) and return the stamp of
+        its answer: stamp, or the node clock's time of receipt."""
+        if stamp is None or self.sinks:
+            now = self.get_clock().now()
+            if self.sinks:   # the input's publish time is unknown: EventsExecutor gives no info
+                self._record(subscription.topic_name, msg, now.nanoseconds, now.nanoseconds)
+            stamp = now.to_msg() if stamp is None else stamp
+        return stamp
+
+    def on_vehicle_joint_states(self, msg):
+        """One JointState for the whole vehicle: answer every corner whose joints it names."""
+        stamp = self.received(self.joint_states_sub, msg, msg.header.stamp)
+        for corner in self.joint_corners:
+            travel_mm = messages.joint_travel_mm(msg, corner.travel_joint)
+            rack_mm = messages.joint_travel_mm(msg, corner.rack_joint) if corner.rack_joint \
+                else None
+            if travel_mm is not None or rack_mm is not None:
+                corner.answer(corner.solver.travel if travel_mm is None else travel_mm,
+                              rack_mm, stamp)
+
+    def on_diagnostic_period(self):
+        self.report(self.corners.values())
+        for corner in self.corners.values():
+            corner.health.reset_period()
+
+    def report(self, corners):
+        """Publish the status of each of corners on /diagnostics, stamped now."""
+        self.publish(self.diagnostics_pub, messages.diagnostics(
+            [corner.status() for corner in corners], self.get_clock().now().to_msg()))
+
+    def publish(self, publisher, msg):
         # Recorded first: a SIGINT can surface as KeyboardInterrupt inside publish() after
         # the message left, and the recording must still hold what subscribers got.
-        if self._sinks:
+        if self.sinks:
             published = self.get_clock().now().nanoseconds
             self._record(publisher.topic_name, msg, published, published)
         publisher.publish(msg)
 
     def _record(self, topic, msg, receive_ns, publish_ns):
-        for sink in list(self._sinks):
+        for sink in list(self.sinks):
             try:
                 sink.record(topic, messages.type_name(msg), msg, receive_ns, publish_ns)
             except Exception as exc:  # a broken recorder must not stop the node
                 self.get_logger().error(f'{type(sink).__name__} failed ({exc}); dropped')
-                self._sinks.remove(sink)
+                self.sinks.remove(sink)
                 self._close(sink)
 
     def close_sinks(self):
         """Close every sink once (files are finished here); later calls do nothing."""
-        sinks, self._sinks = self._sinks, []
+        sinks, self.sinks = self.sinks, []
         for sink in sinks:
             self._close(sink)
 
@@ -242,12 +284,15 @@ class SuspensionNode(Node):
         self.close_sinks()
         super().destroy_node()
 
-    def _offered_qos(self, scenes, params):
-        """{resolved topic: QoS} of every topic, for the recording's metadata."""
+    def _offered_qos(self, corners, params):
+        """{resolved topic: QoS} of every topic, for the recording's metadata; corners as
+        load_corners gives them."""
         names = ['/diagnostics']
-        for prefix, scene in scenes.items():
+        for prefix, (scene, *joints) in corners.items():
             names += corner_topics(scene, params, prefix)
-        return {self.resolve_topic_name(name): QOS for name in names}
+            if any(joints):
+                names.append('joint_states')
+        return {self.resolve_topic_name(name): QOS for name in dict.fromkeys(names)}
 
     def _declare_parameters(self):
         values = {}

@@ -11,9 +11,10 @@ The commands are std_msgs/msg/Float64 wheel travel in m on --topic (default /whe
 from any MCAP with the ROS 2 profile (ours, rosbag2's, Foxglove's). Outputs are what the node
 publishes (built by linkage_ros.messages), in the command topic's namespace:
 wheel_carrier_pose (geometry_msgs/PoseStamped, m), camber and toe (std_msgs/Float64, rad) for a
-solved command, and for every command /diagnostics (diagnostic_msgs/DiagnosticArray: solver
-health, ERROR with the reason for a command that cannot be solved). Each output is stamped
-with its command's receive time, so the new bag keeps the recorded timeline. A truncated bag
+solved command, stamped with its receive time, and /diagnostics (diagnostic_msgs/
+DiagnosticArray) as the node sends it: a report every second of recorded time, at once for a
+command that cannot be solved (ERROR, with the reason) or a change of level, and one after
+the last command. The new bag keeps the recorded timeline. A truncated bag
 (recording cut by a hard kill) gives a warning and its readable messages are used. Progress
 goes to stderr.
 """
@@ -33,13 +34,12 @@ from .scene import load_scene, SceneError
 
 PROG = 'linkage-replay'
 FLOAT64 = 'std_msgs/msg/Float64'
-POSE_STAMPED = 'geometry_msgs/msg/PoseStamped'
-DIAGNOSTIC_ARRAY = 'diagnostic_msgs/msg/DiagnosticArray'
 DIAGNOSTICS_TOPIC = '/diagnostics'
 FRAME_ID = 'base_link'
 DEFAULT_TOPIC = '/wheel_travel'
 SWEEP_HZ = 50.0
 PROGRESS_PERIOD = 1.0   # s between progress lines
+DIAGNOSTIC_PERIOD_S = 1.0   # the node's default diagnostic_period
 
 
 class ReplayError(ValueError):
@@ -100,57 +100,68 @@ def sweep_commands(scene, start=None, stop=None, step=None, hz=SWEEP_HZ, t0=None
             for i, travel in enumerate(travel_range(start, stop, step))]
 
 
-# --- output messages (what the node publishes, built by linkage_ros.messages) -------------
+# --- solving -------------------------------------------------------------------------------
 
 def stamp_of(time_ns):
     from builtin_interfaces.msg import Time
     return Time(sec=int(time_ns // 10**9), nanosec=int(time_ns % 10**9))
 
 
-def float_message(value):
-    from std_msgs.msg import Float64
-    return Float64(data=float(value))
-
-
-# --- solving -------------------------------------------------------------------------------
-
 def solve_commands(commands, scene, method, sinks, topic=DEFAULT_TOPIC, progress=None,
-                   frame_id=FRAME_ID):
-    """Solve each command by continuation and build what the node publishes for it: pose,
-    camber and toe if it is solved, and a diagnostic status always; hand the command and the
-    outputs to each sink (McapRecorder, RerunRecorder: .record(topic, type, msg, t, t_pub)).
+                   frame_id=FRAME_ID, period_s=DIAGNOSTIC_PERIOD_S):
+    """Solve each command by continuation and hand the command and what the node publishes
+    for it to each sink (McapRecorder, RerunRecorder: .record(topic, type, msg, t, t_pub)), on
+    the recorded timeline: pose, camber and toe (messages.answer) for a solved command, at its
+    receive time; /diagnostics as the node sends them (health.Health): a report every
+    period_s of recorded time, at once for a failed command or a change of level, and a last
+    one after the last command (a gap in the commands gives one report, not one per period).
 
     Returns the number of commands that could not be solved.
     """
+    from std_msgs.msg import Float64
+
     from . import messages
+    from .health import Health
     from .node import NODE_NAME, PARAMETERS
     topic = qualified(topic)
     namespace = topic.rsplit('/', 1)[0]
-    outputs = {name: f'{namespace}/{name}' for name in ('wheel_carrier_pose', 'camber', 'toe')}
-    status_name, condition_warn = f'{NODE_NAME}: {scene.name}', PARAMETERS['condition_warn'][0]
+    health = Health(PARAMETERS['condition_warn'][0])
+    status_name = f'{NODE_NAME}: {scene.name}'
     cont = Continuation(scene, method=method)
-    failures = 0
+    period = int(round(period_s * 1e9))
+    failures, next_report, t = 0, None, 0
 
-    def emit(name, type_name, msg, t, t_pub):
+    def emit(name, msg, time_ns):
         for sink in sinks:
-            sink.record(name, type_name, msg, t, t_pub)
+            sink.record(name, messages.type_name(msg), msg, time_ns, time_ns)
+
+    def report(time_ns):
+        emit(DIAGNOSTICS_TOPIC, messages.diagnostics(
+            [messages.health_status(health, status_name, scene.name, method)],
+            stamp_of(time_ns)), time_ns)
 
     for i, command in enumerate(commands):
         t = command.log_time
-        emit(topic, FLOAT64, float_message(command.travel), t, command.publish_time)
+        next_report = t + period if next_report is None else next_report
+        if t >= next_report:           # the period ended before this command
+            report(next_report)
+            health.reset_period()
+            next_report += period * ((t - next_report) // period + 1)
+        for sink in sinks:
+            sink.record(topic, FLOAT64, Float64(data=float(command.travel)), t,
+                        command.publish_time)
         solution = cont.solve(command.travel * 1000.0)
-        stamp = stamp_of(t)
         if solution.success:
-            emit(outputs['wheel_carrier_pose'], POSE_STAMPED,
-                 messages.pose_stamped(solution, stamp, frame_id), t, t)
-            emit(outputs['camber'], FLOAT64, messages.camber(solution), t, t)
-            emit(outputs['toe'], FLOAT64, messages.toe(solution), t, t)
+            for name, msg in messages.answer(solution, stamp_of(t), frame_id):
+                emit(f'{namespace}/{name}', msg, t)
         else:
             failures += 1
-        emit(DIAGNOSTICS_TOPIC, DIAGNOSTIC_ARRAY, messages.diagnostics(
-            solution, stamp, status_name, scene.name, method, condition_warn), t, t)
+        if health.add(solution):
+            report(t)
         if progress:
             progress.update(i + 1)
+    if commands:
+        report(t)
     return failures
 
 
@@ -168,7 +179,7 @@ def benchmark(commands, scene, method, repeat=3, stream=None):
              'RerunRecorder': lambda d: [RerunRecorder(d / 'bench.rrd', scene)],
              'both': lambda d: [McapRecorder(d / 'bench.mcap'),
                                 RerunRecorder(d / 'bench.rrd', scene)]}
-    messages = 5 * len(commands)
+    messages = 4 * len(commands)   # the command, pose, camber, toe (diagnostics: a few)
     print('mode,commands,us_per_command,ratio,extra_us_per_message', file=stream)
     base = None
     for mode, make in modes.items():

@@ -14,7 +14,8 @@ Fixtures:
                          starts a SuspensionNode in ros_context and executor
     probe                Probe node in ros_context: publishes wheel_travel, keeps every output
     send_travel          send_travel(travel_m, timeout=5.0) -> Answer(pose, camber, toe,
-                         diagnostics): one command and what came back, waited with a deadline
+                         diagnostics): one command and what came back (pose, camber and toe,
+                         or the ERROR status of a bad command), waited with a deadline
     localhost_context, localhost_executor, node_process
                          the same across processes: a Context that discovers this machine
                          (ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST) and the console script
@@ -105,14 +106,23 @@ class Answer(NamedTuple):
     """What suspension_node sent back for one command.
 
     pose: PoseStamped (wheel centre in m, carrier orientation relative to design), camber and
-    toe: float rad; all None if the command could not be solved. diagnostics: the node's
-    DiagnosticStatus for it (level, message, values such as travel_m, residual_m).
+    toe: float rad; all None if the command could not be solved. diagnostics: for a command
+    that could not be solved, the ERROR DiagnosticStatus the node published at once (message:
+    why; values such as travel_m); None for a solved command, which the node's periodic
+    report counts (Probe.statuses keeps every status).
     """
 
     pose: Any           # geometry_msgs/PoseStamped or None
     camber: Any         # float or None
     toe: Any            # float or None
     diagnostics: Any    # diagnostic_msgs/DiagnosticStatus
+
+
+def _same_travel(text, travel_m):
+    """A diagnostics travel_m value (text) names the command travel_m (m)."""
+    value = float(text)
+    return value == travel_m or math.isnan(value) and math.isnan(travel_m) or math.isclose(
+        value, travel_m, rel_tol=1e-8, abs_tol=1e-12)
 
 
 class Probe:
@@ -165,49 +175,51 @@ class Probe:
                 and all(s.get_publisher_count() > 0 for s in self._subscriptions))
 
     def answered_once(self):
-        return bool(self.poses and self.cambers and self.toes and self.statuses)
+        return bool(self.poses and self.cambers and self.toes)
 
     def answered(self, expected):
         """True once the answers to the commands of expected (a core Sweep) have all arrived:
         at least that many of each output, the last ones those of the last command."""
-        from .messages import status_values
         n = len(expected.travel)
-        if min(len(self.poses), len(self.cambers), len(self.toes), len(self.statuses)) < n:
+        if min(len(self.poses), len(self.cambers), len(self.toes)) < n:
             return False
-        travel_mm = float(status_values(self.statuses[-1])['travel_m']) * 1000.0
-        return (math.isclose(travel_mm, expected.travel[-1], abs_tol=1e-6)
-                and stamp_ns(self.poses[-1].header.stamp) == self.status_stamps[-1]
+        return (math.isclose(self.poses[-1].pose.position.z * 1000.0,
+                             expected.wheel_center[-1][2], abs_tol=1e-6)
                 and math.isclose(self.cambers[-1], expected.camber[-1], abs_tol=1e-12)
                 and math.isclose(self.toes[-1], expected.toe[-1], abs_tol=1e-12))
 
-    def ask(self, travel_m, timeout=5.0):
-        """Send one travel (m) and wait (at most timeout s) for its Answer.
-
-        The diagnostics always come; pose, camber and toe only for a solved command (level
-        not ERROR). Raises TimeoutError if they do not all arrive in time.
-        """
+    def errors_about(self, travel_m, since=0):
+        """ERROR statuses (from index since) about a command of travel_m (m): what the node
+        says at once about a command it cannot solve."""
         from diagnostic_msgs.msg import DiagnosticStatus
+
+        from .messages import status_values
+        return [s for s in self.statuses[since:] if s.level == DiagnosticStatus.ERROR
+                and _same_travel(status_values(s)['travel_m'], travel_m)]
+
+    def ask(self, travel_m, timeout=5.0):
+        """Send one travel (m) and wait (at most timeout s) for its Answer: pose, camber and
+        toe for a solved command, the ERROR status for one that cannot be solved. Raises
+        TimeoutError if neither arrives in time.
+        """
         before = [len(self.poses), len(self.cambers), len(self.toes), len(self.statuses)]
         deadline = time.monotonic() + timeout
         if not spin_until(self.executor, self.matched, timeout):
             raise TimeoutError(f'no suspension_node matched wheel_travel within {timeout:g} s')
 
-        def arrived():
-            if len(self.statuses) <= before[3]:
-                return False
-            solved = self.statuses[before[3]].level != DiagnosticStatus.ERROR
-            return not solved or min(len(self.poses) - before[0], len(self.cambers) - before[1],
-                                     len(self.toes) - before[2]) > 0
+        def solved():
+            return min(len(self.poses) - before[0], len(self.cambers) - before[1],
+                       len(self.toes) - before[2]) > 0
 
         self.send(travel_m)
-        if not spin_until(self.executor, arrived, max(0.0, deadline - time.monotonic())):
+        if not spin_until(self.executor, lambda: solved() or self.errors_about(
+                travel_m, before[3]), max(0.0, deadline - time.monotonic())):
             raise TimeoutError(f'suspension_node did not answer travel {travel_m!r} m within '
                                f'{timeout:g} s')
-        status = self.statuses[before[3]]
-        if status.level == DiagnosticStatus.ERROR:
-            return Answer(None, None, None, status)
+        if not solved():
+            return Answer(None, None, None, self.errors_about(travel_m, before[3])[0])
         return Answer(self.poses[before[0]], self.cambers[before[1]], self.toes[before[2]],
-                      status)
+                      None)
 
 
 def connect(executor, probe, timeout=20.0):

@@ -3,15 +3,19 @@
     name: demo_vehicle
     units: mm                    # of the offsets: mm | m
     corners:
-      front_left:  {scene: double_wishbone, offset: [1400, 0, 0]}
+      front_left:  {scene: double_wishbone, offset: [1400, 0, 0],
+                    travel_joint: front_left_travel, rack_joint: steering_rack}
       front_right: {scene: double_wishbone, offset: [1400, 0, 0], mirror: true}
 
 A corner's scene is a bundled name or a path (relative paths from the vehicle file's
 folder). mirror: true mirrors the scene in y (a left scene becomes the right corner) before
-the offset is added. Errors raise SceneError naming the vehicle file and the field.
+the offset is added. travel_joint and rack_joint (optional) name the joints of
+sensor_msgs/JointState that carry the corner's wheel travel and, for a corner whose scene has
+a steer: rack link, the steering rack: suspension_node then answers every named corner of a
+joint_states message at once. Errors raise SceneError naming the vehicle file and the field.
 """
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 import re
 
@@ -28,6 +32,8 @@ class Vehicle:
     name: str
     source: str
     corners: dict      # corner name -> Scene, in vehicle coordinates (mm)
+    joints: dict = field(default_factory=dict)   # corner name -> (travel_joint, rack_joint),
+                                                 # '' where not named
 
 
 def vehicle_dir():
@@ -52,10 +58,27 @@ def load_vehicle(name_or_path):
     units = data.get('units', 'mm')
     if units not in UNITS_TO_MM:
         raise SceneError(path, 'units', f'unknown value {units!r} (expected one of: mm, m)')
-    corners = {}
+    corners, joints = {}, {}
     for corner, spec in data['corners'].items():
         corners[corner] = _corner(path, corner, spec, UNITS_TO_MM[units])
-    return Vehicle(name=str(data.get('name') or path.stem), source=str(path), corners=corners)
+        joints[corner] = _joints(path, corner, spec, corners[corner])
+    return Vehicle(name=str(data.get('name') or path.stem), source=str(path), corners=corners,
+                   joints=joints)
+
+
+def _joints(path, corner, spec, scene):
+    """(travel_joint, rack_joint) of a corner's spec, '' where not given."""
+    names = []
+    for key in ('travel_joint', 'rack_joint'):
+        value = spec.get(key, '')
+        if not isinstance(value, str):
+            raise SceneError(path, f'corners.{corner}.{key}',
+                             f'expected a joint name (text), got {value!r}')
+        names.append(value)
+    if names[1] and not any(c.steer == 'rack' for c in scene.constraints):
+        raise SceneError(path, f'corners.{corner}.rack_joint',
+                         f'scene {scene.source} has no steer: rack link for a rack to move')
+    return tuple(names)
 
 
 def _corner(path, corner, spec, scale):

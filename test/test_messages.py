@@ -9,6 +9,7 @@ import pytest
 from std_msgs.msg import Float64
 
 from linkage_ros import messages
+from linkage_ros.health import Health
 from linkage_ros.kinematics import Continuation
 from linkage_ros.scene import load_scene
 
@@ -95,55 +96,79 @@ def test_failed_solution_has_no_pose_message(failed, build):
         build(failed)
 
 
-def test_diagnostic_of_a_good_solve_is_ok_with_its_numbers_in_si(solved):
-    status = messages.diagnostic_status(solved, 'suspension_kinematics: five_link', 'five_link',
-                                        'fast', 1e4)
+def health_of(*solutions, condition_warn=1e4):
+    health = Health(condition_warn)
+    for solution in solutions:
+        health.add(solution)
+    return health
+
+
+def test_status_of_good_solves_is_ok_with_the_period_in_si(solved):
+    second = solved._replace(residual=solved.residual * 3, condition=solved.condition / 2,
+                             iterations=solved.iterations + 4, substeps=1, travel=12.5)
+    status = messages.health_status(health_of(solved, second),
+                                    'suspension_kinematics: five_link', 'five_link', 'fast')
     values = messages.status_values(status)
     assert status.level == DiagnosticStatus.OK
     assert (status.name, status.hardware_id, status.message) == (
         'suspension_kinematics: five_link', 'five_link', 'ok')
-    assert list(values) == ['travel_m', 'iterations', 'residual_m', 'substeps', 'condition',
-                            'reachable_min_m', 'reachable_max_m', 'method', 'rack_m']
-    assert float(values['travel_m']) == pytest.approx(0.030, abs=1e-12)
-    assert int(values['iterations']) == solved.iterations
-    assert float(values['residual_m']) == pytest.approx(solved.residual / 1000.0, rel=1e-8)
-    assert int(values['substeps']) == 6     # 30 mm from design in steps of max_step 5 mm
-    assert float(values['condition']) == pytest.approx(solved.condition, rel=1e-8)
+    assert list(values) == ['commands', 'failures', 'commands_total', 'failures_total',
+                            'residual_max_m', 'condition_max', 'iterations_max',
+                            'substeps_max', 'travel_m', 'rack_m', 'reachable_min_m',
+                            'reachable_max_m', 'method']
+    assert (values['commands'], values['failures']) == ('2', '0')
+    # The worst of the period: residual and iterations of the second, condition and
+    # substeps (6: 30 mm from design in steps of max_step 5 mm) of the first.
+    assert float(values['residual_max_m']) == pytest.approx(3 * solved.residual / 1000.0,
+                                                            rel=1e-8)
+    assert float(values['condition_max']) == pytest.approx(solved.condition, rel=1e-8)
+    assert int(values['iterations_max']) == solved.iterations + 4
+    assert int(values['substeps_max']) == 6
+    assert float(values['travel_m']) == pytest.approx(0.0125, abs=1e-12)   # the last command
     assert float(values['reachable_min_m']) == pytest.approx(solved.reachable[0] / 1000.0)
     assert float(values['reachable_max_m']) == pytest.approx(solved.reachable[1] / 1000.0)
     assert values['method'] == 'fast'
 
 
-def test_diagnostic_warns_when_the_jacobian_condition_exceeds_the_threshold(solved):
-    level, message = messages.health(solved, condition_warn=solved.condition / 2)
-    assert level == DiagnosticStatus.WARN
-    assert 'condition number' in message and f'{solved.condition:.3g}' in message
+def test_status_warns_when_the_jacobian_condition_exceeds_the_threshold(solved):
+    status = messages.health_status(health_of(solved, condition_warn=solved.condition / 2),
+                                    'n', 'five_link', 'fast')
+    assert status.level == DiagnosticStatus.WARN
+    assert 'condition number' in status.message and f'{solved.condition:.3g}' in status.message
 
 
-def test_diagnostic_of_a_failed_solve_is_an_error_saying_why(failed):
-    status = messages.diagnostic_status(failed, 'n', 'five_link', 'fast', 1e4)
+def test_status_of_a_failed_solve_is_an_error_saying_why(solved, failed):
+    status = messages.health_status(health_of(solved, failed), 'n', 'five_link', 'fast')
+    values = messages.status_values(status)
     assert status.level == DiagnosticStatus.ERROR
     assert status.message == failed.message == 'travel nan is not a finite number'
-    assert messages.status_values(status)['travel_m'] == 'nan'
+    assert (values['travel_m'], values['commands'], values['failures']) == ('nan', '2', '1')
 
 
 def test_error_outranks_an_ill_conditioned_jacobian(failed):
     bad = failed._replace(condition=1e12)
-    assert messages.health(bad, condition_warn=1e4)[0] == DiagnosticStatus.ERROR
+    assert health_of(bad).level == DiagnosticStatus.ERROR[0]
 
 
-def test_diagnostic_array_is_stamped_and_holds_one_status(solved):
-    array = messages.diagnostics(solved, STAMP, 'n', 'five_link', 'paper', 1e4)
+def test_diagnostic_array_is_stamped_and_holds_the_statuses(solved):
+    statuses = [messages.health_status(health_of(solved), name, 'five_link', 'paper')
+                for name in ('a', 'b')]
+    array = messages.diagnostics(statuses, STAMP)
     assert (array.header.stamp.sec, array.header.stamp.nanosec) == (1_700_000_000, 123_456_789)
-    assert len(array.status) == 1
+    assert [s.name for s in array.status] == ['a', 'b']
     assert messages.status_values(array.status[0])['method'] == 'paper'
+
+
+def test_answer_is_pose_camber_toe_in_that_order(solved):
+    answer = messages.answer(solved, STAMP, 'base_link')
+    assert [name for name, _ in answer] == ['wheel_carrier_pose', 'camber', 'toe']
+    assert answer[1][1].data == solved.camber and answer[2][1].data == solved.toe
 
 
 @pytest.mark.parametrize('build, expected', [
     (lambda s: messages.pose_stamped(s, STAMP, 'f'), 'geometry_msgs/msg/PoseStamped'),
     (messages.camber, 'std_msgs/msg/Float64'),
-    (lambda s: messages.diagnostics(s, STAMP, 'n', 'h', 'fast', 1e4),
-     'diagnostic_msgs/msg/DiagnosticArray'),
+    (lambda s: messages.diagnostics([], STAMP), 'diagnostic_msgs/msg/DiagnosticArray'),
 ])
 def test_type_name_is_the_ros_interface_name(solved, build, expected):
     assert messages.type_name(build(solved)) == expected

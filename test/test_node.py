@@ -17,7 +17,7 @@ import pytest
 from rclpy.parameter import Parameter
 import yaml
 
-from linkage_ros.kinematics import sweep
+from linkage_ros.kinematics import Continuation, sweep
 from linkage_ros.messages import status_values
 from linkage_ros.node import NODE_NAME, PARAMETERS, QOS, QOS_DEPTH, SuspensionNode
 from linkage_ros.scene import load_scene, SceneError
@@ -44,16 +44,15 @@ def burst_travels(count=1000):
 
 def assert_counts(probe, n):
     """Exactly n of each output: nothing lost, nothing extra (in-process: no pings)."""
-    assert [len(probe.poses), len(probe.cambers), len(probe.toes), len(probe.statuses)] == [n] * 4
+    assert [len(probe.poses), len(probe.cambers), len(probe.toes)] == [n] * 3
 
 
-def assert_outputs_equal_core(probe, expected, frame_id='base_link', with_statuses=True):
-    """probe's poses, cambers, toes and statuses (the last len(expected) of each) equal the
-    core's sweep: positions to 1 nm, angles and quaternions to 1e-9. One lost message shifts
-    the tail of its topic, so this also checks that none of the commands was lost.
-    with_statuses=False leaves the diagnostics out (when bad commands are among them)."""
+def assert_outputs_equal_core(probe, expected, frame_id='base_link'):
+    """probe's poses, cambers and toes (the last len(expected) of each) equal the core's
+    sweep: positions to 1 nm, angles and quaternions to 1e-9. One lost message shifts the
+    tail of its topic, so this also checks that none of the commands was lost."""
     n = len(expected.travel)
-    poses, statuses = probe.poses[-n:], probe.statuses[-n:]
+    poses = probe.poses[-n:]
     positions = [[p.pose.position.x, p.pose.position.y, p.pose.position.z] for p in poses]
     quaternions = [[p.pose.orientation.x, p.pose.orientation.y, p.pose.orientation.z,
                     p.pose.orientation.w] for p in poses]
@@ -62,12 +61,15 @@ def assert_outputs_equal_core(probe, expected, frame_id='base_link', with_status
     assert probe.cambers[-n:] == pytest.approx(list(expected.camber), abs=1e-9)
     assert probe.toes[-n:] == pytest.approx(list(expected.toe), abs=1e-9)
     assert {p.header.frame_id for p in poses} == {frame_id}
-    if not with_statuses:
-        return
-    assert [float(status_values(s)['travel_m']) for s in statuses] == pytest.approx(
-        list(expected.travel / 1000.0), rel=1e-8, abs=1e-15)     # 9 significant digits
-    assert {s.level for s in statuses} == {DiagnosticStatus.OK}
-    assert [stamp_ns(p.header.stamp) for p in poses] == probe.status_stamps[-n:]
+
+
+def report_after(probe, commands):
+    """Wait for a status whose running count has reached commands; return its values."""
+    def counted():
+        return probe.statuses and int(
+            status_values(probe.statuses[-1])['commands_total']) >= commands
+    assert spin_until(probe.executor, counted)
+    return status_values(probe.statuses[-1])
 
 
 class ListSink:
@@ -82,8 +84,12 @@ class ListSink:
     def close(self):
         self.closed += 1
 
-
 # --- in process: the node and a probe node in one EventsExecutor ---------------------------
+# Tests that count statuses set a diagnostic_period of an hour: then every status they see
+# is one the node published at once (a bad command, a change of level).
+
+HOUR = 3600.0
+
 
 def test_answers_equal_the_core_sweep_for_the_same_travels(suspension_node, executor, probe):
     suspension_node()
@@ -94,54 +100,55 @@ def test_answers_equal_the_core_sweep_for_the_same_travels(suspension_node, exec
     assert_outputs_equal_core(probe, expected)
 
 
-def test_outputs_of_one_command_share_the_stamp_of_its_receipt(suspension_node, executor, probe):
-    suspension_node()
+def test_each_pose_carries_the_time_its_command_was_received(suspension_node, executor,
+                                                             probe):
+    sink = ListSink()
+    suspension_node(sinks=[sink])
     expected = core('five_link', [0.01, 0.02])
     probe.send(0.01, 0.02)
     assert spin_until(executor, lambda: probe.answered(expected))
+    received = [r[3] for r in sink.records if r[0] == '/wheel_travel']
     pose_stamps = [stamp_ns(p.header.stamp) for p in probe.poses]
-    assert pose_stamps == probe.status_stamps
-    assert pose_stamps[0] < pose_stamps[1]
-    assert [s.name for s in probe.statuses] == [f'{NODE_NAME}: five_link'] * 2
+    assert pose_stamps == received and pose_stamps[0] < pose_stamps[1]
 
 
 @pytest.mark.parametrize('max_step_mm, substeps', [(5.0, 10), (20, 3)])
 def test_a_large_jump_is_walked_in_substeps_of_max_step_mm(suspension_node, executor, probe,
                                                            max_step_mm, substeps):
-    suspension_node(max_step_mm=max_step_mm)    # an integer (20) is taken as a number too
+    suspension_node(max_step_mm=max_step_mm, diagnostic_period=0.05)   # 20: a number too
     probe.send(0.05)                      # 50 mm from the design position
-    assert spin_until(executor, lambda: probe.statuses and probe.poses)
-    assert int(status_values(probe.statuses[0])['substeps']) == substeps
+    assert int(report_after(probe, 1)['substeps_max']) == substeps
     assert probe.poses[0].pose.position.z == pytest.approx(
         core('five_link', [0.05]).wheel_center[0, 2] / 1000.0, abs=1e-9)
 
 
 @pytest.mark.parametrize('bad', list(BAD_COMMANDS_M))
-def test_bad_command_publishes_no_pose_and_an_error_saying_why(suspension_node, executor, probe,
-                                                               bad):
-    suspension_node()
+def test_bad_command_publishes_no_pose_and_an_error_saying_why_at_once(
+        suspension_node, executor, probe, bad):
+    sink = ListSink()
+    suspension_node(diagnostic_period=HOUR, sinks=[sink])
     expected = core('five_link', [0.02, 0.03])
     probe.send(0.02, BAD_COMMANDS_M[bad], 0.03)
-    assert spin_until(executor, lambda: len(probe.statuses) == 3 and probe.answered(expected))
-    good, error, after = probe.statuses
-    assert (good.level, error.level, after.level) == (
-        DiagnosticStatus.OK, DiagnosticStatus.ERROR, DiagnosticStatus.OK)
+    # At once: the ERROR of the bad command, then OK again with the good one that follows.
+    assert spin_until(executor, lambda: len(probe.statuses) == 2 and probe.answered(expected))
+    error, after = probe.statuses
+    assert (error.level, after.level) == (DiagnosticStatus.ERROR, DiagnosticStatus.OK)
     assert BAD_WHY[bad] in error.message
+    assert status_values(error)['failures'] == '1'
     # Each pose carries its command's stamp: the two poses are those of the good commands.
-    good_stamps = [probe.status_stamps[0], probe.status_stamps[2]]
-    assert [stamp_ns(p.header.stamp) for p in probe.poses] == good_stamps
+    received = [r[3] for r in sink.records if r[0] == '/wheel_travel']
+    assert [stamp_ns(p.header.stamp) for p in probe.poses] == [received[0], received[2]]
     assert [len(probe.poses), len(probe.cambers), len(probe.toes)] == [2, 2, 2]
-    assert_outputs_equal_core(probe, expected, with_statuses=False)
+    assert_outputs_equal_core(probe, expected)
 
 
 @pytest.mark.parametrize('bad', list(BAD_COMMANDS_M))
 def test_bad_command_keeps_the_last_good_state(suspension_node, executor, probe, bad):
-    suspension_node()
+    suspension_node(diagnostic_period=HOUR)
     probe.send(0.02, BAD_COMMANDS_M[bad], 0.02)
-    assert spin_until(executor, lambda: len(probe.statuses) == 3 and len(probe.poses) == 2)
-    assert probe.statuses[1].level == DiagnosticStatus.ERROR
-    # Back at the last good travel, the solver has nothing to walk: the state stayed there.
-    assert int(status_values(probe.statuses[2])['substeps']) == 0
+    assert spin_until(executor, lambda: len(probe.statuses) == 2 and len(probe.poses) == 2)
+    assert probe.statuses[0].level == DiagnosticStatus.ERROR
+    # Back at the last good travel: the very same pose, and nothing walked to get there.
     assert probe.poses[1].pose == probe.poses[0].pose
 
 
@@ -162,17 +169,17 @@ def test_parameters_come_from_a_params_file(ros_context, executor, probe, tmp_pa
     params = tmp_path / 'params.yaml'
     params.write_text(yaml.safe_dump({'/**': {'ros__parameters': {
         'scene': 'double_wishbone', 'frame_id': 'chassis', 'method': 'paper',
-        'max_step_mm': 20.0}}}))
+        'max_step_mm': 20.0, 'diagnostic_period': 0.05}}}))
     node = SuspensionNode(context=ros_context,
                           cli_args=['--ros-args', '--params-file', str(params)])
     executor.add_node(node)
-    expected = core('double_wishbone', [-0.04, 0.035], 'paper')
-    probe.send(-0.04, 0.035)
+    expected = core('double_wishbone', [-0.04])
+    probe.send(-0.04)
     assert spin_until(executor, lambda: probe.answered(expected))
     assert_outputs_equal_core(probe, expected, frame_id='chassis')
-    assert {s.hardware_id for s in probe.statuses} == {'double_wishbone'}
-    assert {status_values(s)['method'] for s in probe.statuses} == {'paper'}
-    assert int(status_values(probe.statuses[0])['substeps']) == 2
+    values = report_after(probe, 1)
+    assert probe.statuses[-1].hardware_id == 'double_wishbone'
+    assert values['method'] == 'paper' and values['substeps_max'] == '2'
 
 
 def test_bundled_params_file_holds_the_node_defaults(ros_context):
@@ -185,9 +192,30 @@ def test_bundled_params_file_holds_the_node_defaults(ros_context):
         node.destroy_node()
 
 
-def test_condition_warn_parameter_turns_a_well_conditioned_pose_into_a_warning(
+def test_reports_come_every_diagnostic_period_and_summarise_it(suspension_node, executor,
+                                                               probe):
+    suspension_node(diagnostic_period=0.2)
+    travels = [0.0, 0.02, 0.04, 0.06, 0.08]      # all OK: no status is sent at once
+    probe.send(*travels)
+    report_after(probe, 5)
+    assert spin_until(executor, lambda: len(probe.statuses) >= 3)
+    values = [status_values(s) for s in probe.statuses]
+    # Every command counted in exactly one period, with the worst values of its period.
+    assert sum(int(v['commands']) for v in values) == 5
+    assert {v['failures'] for v in values} == {'0'}
+    expected = [Continuation(load_scene('five_link')).solve(t * 1000.0) for t in travels]
+    assert max(float(v['condition_max']) for v in values) == pytest.approx(
+        max(e.condition for e in expected), rel=1e-8)
+    assert max(float(v['residual_max_m']) for v in values) <= 1e-13       # m: tol 1e-10 mm
+    assert max(int(v['iterations_max']) for v in values) >= 1
+    # Periodic, not per command: reports a period (0.2 s, timer jitter aside) apart.
+    gaps = np.diff(probe.status_stamps) / 1e9
+    assert all(0.1 <= gap <= 1.0 for gap in gaps)
+
+
+def test_condition_warn_parameter_turns_a_well_conditioned_pose_into_a_warning_at_once(
         suspension_node, executor, probe):
-    suspension_node(condition_warn=100.0)    # five_link's Jacobian condition is about 600
+    suspension_node(condition_warn=100.0, diagnostic_period=HOUR)   # five_link's is about 600
     probe.send(0.01)
     assert spin_until(executor, lambda: probe.statuses and probe.poses)
     assert probe.statuses[0].level == DiagnosticStatus.WARN
@@ -195,10 +223,10 @@ def test_condition_warn_parameter_turns_a_well_conditioned_pose_into_a_warning(
 
 
 def test_default_condition_warn_leaves_the_scene_travel_range_ok(suspension_node, executor, probe):
-    suspension_node()
+    suspension_node(diagnostic_period=0.05)
     probe.send(-0.08, 0.08)            # five_link's declared travel range
-    assert spin_until(executor, lambda: len(probe.statuses) == 2)
-    assert [s.level for s in probe.statuses] == [DiagnosticStatus.OK] * 2
+    report_after(probe, 2)
+    assert {s.level for s in probe.statuses} == {DiagnosticStatus.OK}
 
 
 @pytest.mark.parametrize('params, error', [
@@ -222,13 +250,12 @@ def test_qos_is_reliable_keep_last_1000():
 
 def test_every_command_and_published_message_reaches_each_sink(suspension_node, executor, probe):
     sinks = [ListSink(), ListSink()]
-    suspension_node(sinks=sinks)
+    suspension_node(sinks=sinks, diagnostic_period=HOUR)
     probe.send(0.02, math.nan)
-    assert spin_until(executor, lambda: len(probe.statuses) == 2)
+    assert spin_until(executor, lambda: len(probe.statuses) == 1)
     expected = [('/wheel_travel', 'std_msgs/msg/Float64'),
                 ('/wheel_carrier_pose', 'geometry_msgs/msg/PoseStamped'),
                 ('/camber', 'std_msgs/msg/Float64'), ('/toe', 'std_msgs/msg/Float64'),
-                ('/diagnostics', 'diagnostic_msgs/msg/DiagnosticArray'),
                 ('/wheel_travel', 'std_msgs/msg/Float64'),
                 ('/diagnostics', 'diagnostic_msgs/msg/DiagnosticArray')]
     for sink in sinks:
@@ -255,18 +282,18 @@ def test_record_mcap_parameter_writes_a_recording_readable_by_mcap(suspension_no
     from mcap.reader import make_reader
     from mcap_ros2.decoder import DecoderFactory
     path = tmp_path / 'run.mcap'
-    node = suspension_node(record_mcap=str(path))
-    probe.send(0.02, 0.03)
-    assert spin_until(executor, lambda: len(probe.statuses) == 2)
+    node = suspension_node(record_mcap=str(path), diagnostic_period=HOUR)
+    probe.send(0.02, 0.03, math.nan)
+    assert spin_until(executor, lambda: len(probe.statuses) == 1 and len(probe.poses) == 2)
     executor.remove_node(node)
     node.destroy_node()
     with open(path, 'rb') as stream:
         decoded = [(channel.topic, msg) for _, channel, _, msg in make_reader(
             stream, decoder_factories=[DecoderFactory()]).iter_decoded_messages()]
     topics = [topic for topic, _ in decoded]
-    assert topics.count('/wheel_travel') == 2 and topics.count('/wheel_carrier_pose') == 2
-    assert topics.count('/diagnostics') == 2 and topics.count('/camber') == 2
-    assert [m.data for t, m in decoded if t == '/wheel_travel'] == [0.02, 0.03]
+    assert topics.count('/wheel_travel') == 3 and topics.count('/wheel_carrier_pose') == 2
+    assert topics.count('/diagnostics') == 1 and topics.count('/camber') == 2
+    assert [m.data for t, m in decoded if t == '/wheel_travel'][:2] == [0.02, 0.03]
 
 
 def test_without_sinks_neither_mcap_nor_rerun_is_imported(domain_id):
@@ -312,7 +339,7 @@ def test_node_process_exits_cleanly_on_sigterm_with_its_recording_closed(
     with open(path, 'rb') as stream:
         summary = make_reader(stream).get_summary()     # written only by a finished file
     assert summary is not None
-    assert summary.statistics.message_count >= 5       # at least one answered command
+    assert summary.statistics.message_count >= 4       # at least one answered command
 
 
 def test_node_process_answers_a_burst_of_1000_in_order(node_process, localhost_context,

@@ -8,9 +8,11 @@ from diagnostic_msgs.msg import DiagnosticArray
 from geometry_msgs.msg import PoseStamped
 import pytest
 from rclpy.parameter import Parameter
+from sensor_msgs.msg import JointState
 from std_msgs.msg import Float64
 
 from linkage_ros.kinematics import Continuation
+from linkage_ros.messages import status_values
 from linkage_ros.node import NODE_NAME, QOS, SuspensionNode
 from linkage_ros.testing import spin_until
 from linkage_ros.vehicle import load_vehicle
@@ -37,13 +39,13 @@ class CornerProbe:
 @pytest.fixture
 def vehicle_node(ros_context, executor, probe):
     """suspension_node serving demo_vehicle, and a CornerProbe per corner on the probe node."""
-    node = SuspensionNode(context=ros_context,
-                          parameter_overrides=[Parameter('vehicle', value='demo_vehicle')])
+    node = SuspensionNode(context=ros_context, parameter_overrides=[
+        Parameter('vehicle', value='demo_vehicle'), Parameter('diagnostic_period', value=0.05)])
     executor.add_node(node)
     corners = {c: CornerProbe(probe.node, c) for c in CORNERS}
-    statuses = []
+    statuses = []       # one list per /diagnostics message
     probe.node.create_subscription(
-        DiagnosticArray, '/diagnostics', lambda m: statuses.extend(m.status), QOS)
+        DiagnosticArray, '/diagnostics', lambda m: statuses.append(m.status), QOS)
     assert spin_until(executor, lambda: all(p.travel.get_subscription_count()
                                             for p in corners.values()))
     return node, corners, statuses
@@ -54,17 +56,26 @@ def core(corner, travel_mm):
     return Continuation(scene).solve(travel_mm)
 
 
+def next_report(executor, statuses):
+    """{corner name: status values} of the next /diagnostics message."""
+    count = len(statuses)
+    assert spin_until(executor, lambda: len(statuses) > count)
+    return {s.name.split(': ')[1]: status_values(s) for s in statuses[-1]}
+
+
 def test_a_command_to_one_corner_is_answered_by_that_corner_only(vehicle_node, executor):
     _, corners, statuses = vehicle_node
     corners['rear_left'].travel.publish(Float64(data=0.03))
-    assert spin_until(executor, lambda: statuses and corners['rear_left'].poses)
+    assert spin_until(executor, lambda: corners['rear_left'].poses)
     spin_until(executor, lambda: False, 0.2)     # anything else would have arrived by now
-    assert [s.name for s in statuses] == [f'{NODE_NAME}: rear_left']
     assert [len(corners[c].poses) for c in CORNERS] == [0, 0, 1, 0]
     expected = core('rear_left', 30.0)
     p = corners['rear_left'].poses[0].pose.position
     assert [p.x, p.y, p.z] == pytest.approx(expected.wheel_center / 1000.0, abs=1e-9)
     assert corners['rear_left'].cambers == pytest.approx([expected.camber], abs=1e-9)
+    report = next_report(executor, statuses)
+    assert {c: v['commands_total'] for c, v in report.items()} == {
+        'front_left': '0', 'front_right': '0', 'rear_left': '1', 'rear_right': '0'}
 
 
 def test_every_corner_keeps_its_own_travel(vehicle_node, executor):
@@ -72,14 +83,14 @@ def test_every_corner_keeps_its_own_travel(vehicle_node, executor):
     travels = {'front_left': 0.02, 'front_right': -0.03, 'rear_left': 0.04, 'rear_right': 0.0}
     for corner, travel in travels.items():
         corners[corner].travel.publish(Float64(data=travel))
-    assert spin_until(executor, lambda: all(corners[c].toes for c in CORNERS)
-                      and len(statuses) == 4)
+    assert spin_until(executor, lambda: all(corners[c].toes for c in CORNERS))
     for corner, travel in travels.items():
         expected = core(corner, travel * 1000.0)
         p = corners[corner].poses[0].pose.position
         assert [p.x, p.y, p.z] == pytest.approx(expected.wheel_center / 1000.0, abs=1e-9)
         assert corners[corner].toes == pytest.approx([expected.toe], abs=1e-9)
-    assert sorted(s.name for s in statuses) == sorted(f'{NODE_NAME}: {c}' for c in CORNERS)
+    report = next_report(executor, statuses)     # one status per corner, named after it
+    assert {c: float(v['travel_m']) for c, v in report.items()} == pytest.approx(travels)
 
 
 @pytest.mark.parametrize('axle', ['front', 'rear'])
@@ -111,6 +122,46 @@ def test_only_steered_corners_take_steering_rack(vehicle_node, executor):
     expected = Continuation(scene).solve(0.0, 10.0)
     assert corners['front_right'].toes == pytest.approx([expected.toe], abs=1e-9)
     assert corners['front_left'].toes == []
+
+
+# --- one JointState per simulation step ----------------------------------------------------
+
+def vehicle_step(positions, sec=7, nanosec=250_000_000):
+    """A sensor_msgs/JointState of demo_vehicle's joints ({joint: m}), stamped."""
+    msg = JointState(name=list(positions), position=[float(v) for v in positions.values()])
+    msg.header.stamp.sec, msg.header.stamp.nanosec = sec, nanosec
+    return msg
+
+
+def test_one_joint_state_answers_every_corner_it_names_at_its_stamp(vehicle_node, executor,
+                                                                     probe):
+    _, corners, _ = vehicle_node
+    step = probe.node.create_publisher(JointState, 'joint_states', QOS)
+    assert spin_until(executor, lambda: step.get_subscription_count() > 0)
+    travels = {'front_left': 0.02, 'front_right': -0.01, 'rear_left': 0.035, 'rear_right': 0.0}
+    joints = {f'{corner}_travel': travel for corner, travel in travels.items()}
+    step.publish(vehicle_step({**joints, 'steering_rack': 0.012, 'unrelated_joint': 1.0}))
+    assert spin_until(executor, lambda: all(corners[c].toes for c in CORNERS))
+    vehicle = load_vehicle('demo_vehicle')
+    for corner, travel in travels.items():
+        rack = 12.0 if corner.startswith('front') else None     # only front corners steer
+        expected = Continuation(vehicle.corners[corner]).solve(travel * 1000.0, rack)
+        pose = corners[corner].poses[0]
+        p = pose.pose.position
+        assert [p.x, p.y, p.z] == pytest.approx(expected.wheel_center / 1000.0, abs=1e-9)
+        assert corners[corner].toes == pytest.approx([expected.toe], abs=1e-9)
+        assert (pose.header.stamp.sec, pose.header.stamp.nanosec) == (7, 250_000_000)
+
+
+def test_a_joint_state_naming_one_corner_answers_that_corner_only(vehicle_node, executor,
+                                                                  probe):
+    _, corners, _ = vehicle_node
+    step = probe.node.create_publisher(JointState, 'joint_states', QOS)
+    assert spin_until(executor, lambda: step.get_subscription_count() > 0)
+    step.publish(vehicle_step({'rear_right_travel': -0.025}))
+    assert spin_until(executor, lambda: corners['rear_right'].poses)
+    spin_until(executor, lambda: False, 0.2)     # anything else would have arrived by now
+    assert [len(corners[c].poses) for c in CORNERS] == [0, 0, 0, 1]
 
 
 def test_an_unknown_vehicle_is_refused_naming_the_file(ros_context):

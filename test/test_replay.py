@@ -18,6 +18,7 @@ import pytest
 from rosbags.highlevel import AnyReader
 import yaml
 
+from linkage_ros.messages import status_values
 from linkage_ros.recording import McapRecorder
 from linkage_ros.replay import main
 
@@ -55,8 +56,11 @@ def test_example_bag_is_small_complete_and_a_sweep_of_the_default_scene():
     messages = decoded(EXAMPLE)
     travels = [round(m.data * 1000.0, 9) for m in by_topic(messages, '/wheel_travel')]
     assert travels == list(range(-80, 81))
-    assert [len(by_topic(messages, t)) for t in OUTPUTS] == [161, 161, 161, 161]
-    assert {m.status[0].level for m in by_topic(messages, '/diagnostics')} == {0}   # all OK
+    # 161 commands at 50 Hz: a diagnostics report each second of it, and one at the end.
+    assert [len(by_topic(messages, t)) for t in OUTPUTS] == [161, 161, 161, 4]
+    reports = by_topic(messages, '/diagnostics')
+    assert {m.status[0].level for m in reports} == {0}   # all OK
+    assert [status_values(m.status[0])['commands'] for m in reports] == ['50', '50', '50', '11']
 
 
 def test_example_bag_outputs_match_the_reference_data_of_the_scene():
@@ -93,22 +97,32 @@ def test_replaying_the_example_bag_reproduces_its_outputs(tmp_path):
             assert b.data == pytest.approx(a.data, abs=1e-12)
 
 
-def test_each_command_is_followed_by_pose_camber_toe_and_diagnostics_at_its_receive_time(
-        tmp_path):
+def test_each_command_is_followed_by_pose_camber_toe_at_its_receive_time(tmp_path):
     out = tmp_path / 'sweep.mcap'
     assert main(['--sweep', '--from', '-2', '--to', '2', '--step', '1', '--hz', '10', '-o',
                  str(out)]) == 0
     with AnyReader([out]) as reader:
         rows = [(c.topic, t, reader.deserialize(raw, c.msgtype))
                 for c, t, raw in reader.messages()]
-    assert [r[0] for r in rows] == ['/wheel_travel', *OUTPUTS] * 5
+    # 0.4 s of good commands: no change of level, no full period; one report at the end.
+    assert [r[0] for r in rows] == ['/wheel_travel', *OUTPUTS[:3]] * 5 + ['/diagnostics']
     for i in range(5):
-        command = rows[5 * i]
+        command = rows[4 * i]
         assert command[2].data == pytest.approx((i - 2) / 1000.0)
-        assert {t for _, t, _ in rows[5 * i:5 * i + 5]} == {command[1]}
-        stamp = rows[5 * i + 1][2].header.stamp
+        assert {t for _, t, _ in rows[4 * i:4 * i + 4]} == {command[1]}
+        stamp = rows[4 * i + 1][2].header.stamp
         assert stamp.sec * 10**9 + stamp.nanosec == command[1]
-    assert rows[5][1] - rows[0][1] == 100_000_000        # 10 Hz
+    assert rows[4][1] - rows[0][1] == 100_000_000        # 10 Hz
+    assert status_values(rows[-1][2].status[0])['commands'] == '5'
+
+
+def test_diagnostics_are_reported_every_second_of_the_recorded_time(tmp_path):
+    bag, out = tmp_path / 'in.mcap', tmp_path / 'out.mcap'
+    write_commands(bag, [0.001 * (i % 20) for i in range(250)])    # 2.5 s at 100 Hz
+    assert main([str(bag), '-o', str(out)]) == 0
+    reports = [(t, msg) for topic, t, msg in decoded(out) if topic == '/diagnostics']
+    assert [t - T0 for t, _ in reports] == [10**9, 2 * 10**9, 249 * 10**7]
+    assert [status_values(m.status[0])['commands'] for _, m in reports] == ['100', '100', '50']
 
 
 def test_a_command_out_of_reach_gives_an_error_diagnostic_and_no_pose(tmp_path):
@@ -116,11 +130,14 @@ def test_a_command_out_of_reach_gives_an_error_diagnostic_and_no_pose(tmp_path):
     write_commands(bag, [0.01, 0.5, 0.02])                 # 500 mm: beyond the bump stop
     assert main([str(bag), '-o', str(out)]) == 0
     messages = decoded(out)
-    assert [t for t, _, _ in messages] == ['/wheel_travel', *OUTPUTS, '/wheel_travel',
-                                           '/diagnostics', '/wheel_travel', *OUTPUTS]
+    # At once: the ERROR of the failed command, the OK of the next (a change of level); then
+    # the report after the last command.
+    assert [t for t, _, _ in messages] == ['/wheel_travel', *OUTPUTS[:3], '/wheel_travel',
+                                           '/diagnostics', '/wheel_travel', *OUTPUTS,
+                                           '/diagnostics']
     levels = [m.status[0].level for m in by_topic(messages, '/diagnostics')]
-    assert levels == [0, 2, 0]                              # OK, ERROR, OK
-    assert 'out of reach' in by_topic(messages, '/diagnostics')[1].status[0].message
+    assert levels == [2, 0, 0]                              # ERROR, OK, OK
+    assert 'out of reach' in by_topic(messages, '/diagnostics')[0].status[0].message
     assert by_topic(messages, '/wheel_carrier_pose')[1].pose.position.z == pytest.approx(
         0.32, abs=0.01)                                     # 300 mm + 20 mm, after the failure
 
@@ -143,8 +160,8 @@ def test_another_topic_name_is_solved_and_answered_in_its_namespace(tmp_path):
     write_commands(bag, [0.0, 0.01], topic='/car/front_left/bump')
     assert main([str(bag), '--topic', '/car/front_left/bump', '-o', str(out)]) == 0
     topics = [t for t, _, _ in decoded(out)]
-    assert topics[:5] == ['/car/front_left/bump', '/car/front_left/wheel_carrier_pose',
-                          '/car/front_left/camber', '/car/front_left/toe', '/diagnostics']
+    assert topics == ['/car/front_left/bump', '/car/front_left/wheel_carrier_pose',
+                      '/car/front_left/camber', '/car/front_left/toe'] * 2 + ['/diagnostics']
 
 
 def test_a_foreign_file_is_refused_clearly(tmp_path, capsys):

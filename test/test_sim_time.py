@@ -16,6 +16,7 @@ from rclpy.qos import QoSProfile
 from rosgraph_msgs.msg import Clock
 from std_msgs.msg import Float64
 
+from linkage_ros.messages import status_values
 from linkage_ros.node import SuspensionNode
 from linkage_ros.recording import McapRecorder
 from linkage_ros.testing import Probe, spin_until, stamp_ns
@@ -46,7 +47,7 @@ def stamp_msg(time_ns):
     return Time(sec=time_ns // S, nanosec=time_ns % S)
 
 
-def test_with_use_sim_time_poses_and_diagnostics_are_stamped_with_the_simulated_clock(
+def test_with_use_sim_time_poses_are_stamped_with_the_simulated_clock(
         suspension_node, executor, probe, send_travel):
     node = suspension_node(use_sim_time=True)
     clock = probe.node.create_publisher(Clock, '/clock', QoSProfile(depth=10))
@@ -54,21 +55,36 @@ def test_with_use_sim_time_poses_and_diagnostics_are_stamped_with_the_simulated_
     for time_ns in (100 * S, 5000 * S):           # a jump of the simulated clock
         set_clock(executor, clock, node, time_ns)
         answer = send_travel(0.01 * len(stamps))
-        stamps.append((stamp_ns(answer.pose.header.stamp), probe.status_stamps[-1]))
-    assert stamps == [(100 * S, 100 * S), (5000 * S, 5000 * S)]
+        stamps.append(stamp_ns(answer.pose.header.stamp))
+    assert stamps == [100 * S, 5000 * S]
+
+
+def test_with_use_sim_time_diagnostics_come_every_period_of_simulated_time(
+        suspension_node, executor, probe, send_travel):
+    node = suspension_node(use_sim_time=True, diagnostic_period=0.5)
+    clock = probe.node.create_publisher(Clock, '/clock', QoSProfile(depth=10))
+    set_clock(executor, clock, node, 100 * S)       # from 0: a report may catch up at 100 s
+    send_travel(0.01)
+    spin_until(executor, lambda: False, 1.5)        # wall time passes, the simulation stands
+    assert set(probe.status_stamps) <= {100 * S}
+    for time_ns in (100 * S + S // 2, 101 * S):     # two periods of simulated time
+        set_clock(executor, clock, node, time_ns)
+        assert spin_until(executor, lambda: probe.status_stamps[-1:] == [time_ns])
+    assert status_values(probe.statuses[-1])['commands_total'] == '1'
 
 
 def test_with_use_sim_time_sinks_receive_simulated_times(suspension_node, executor, probe,
                                                          send_travel):
     sink = ListSink()
-    node = suspension_node(use_sim_time=True, sinks=[sink])
+    # A period longer than the jump: no periodic report among the records.
+    node = suspension_node(use_sim_time=True, sinks=[sink], diagnostic_period=1e6)
     clock = probe.node.create_publisher(Clock, '/clock', QoSProfile(depth=10))
     set_clock(executor, clock, node, 100 * S)
     send_travel(0.01)
     set_clock(executor, clock, node, 5000 * S)
     send_travel(0.02)
-    # Per command: the command, pose, camber, toe and diagnostics, all at the clock's time.
-    assert sink.times == [(100 * S, 100 * S)] * 5 + [(5000 * S, 5000 * S)] * 5
+    # Per command: the command, pose, camber and toe, all at the clock's time.
+    assert sink.times == [(100 * S, 100 * S)] * 4 + [(5000 * S, 5000 * S)] * 4
 
 
 def test_without_use_sim_time_the_clock_topic_is_ignored(suspension_node, executor, probe,
@@ -98,7 +114,7 @@ def test_replay_publish_clock_makes_a_sim_time_node_stamp_with_the_recorded_time
                                '--clock', '--wait', '20'], env=env, stderr=subprocess.PIPE,
                               text=True)
     try:
-        assert spin_until(localhost_executor, lambda: len(probe.statuses) == len(travels), 30.0)
+        assert spin_until(localhost_executor, lambda: len(probe.poses) == len(travels), 30.0)
     finally:
         _, err = replay.communicate(timeout=30)
     assert replay.returncode == 0, err

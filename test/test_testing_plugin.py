@@ -8,10 +8,12 @@ import subprocess
 import sys
 
 from diagnostic_msgs.msg import DiagnosticStatus
+import numpy as np
 import pytest
 
 from linkage_ros import testing
-from linkage_ros.messages import status_values
+from linkage_ros.kinematics import sweep
+from linkage_ros.scene import load_scene
 
 EXAMPLE = Path(__file__).resolve().parent / 'test_plugin_example.py'
 
@@ -32,7 +34,7 @@ def test_the_readme_example_passes_under_plain_pytest_outside_this_project(tmp_p
         cwd=tmp_path, capture_output=True, text=True, timeout=120,
         env=dict(os.environ, ROS_AUTOMATIC_DISCOVERY_RANGE='LOCALHOST'))
     assert result.returncode == 0, result.stdout + result.stderr
-    assert '2 passed' in result.stdout
+    assert '3 passed' in result.stdout   # the example's two tests and test_plain's one
 
 
 def test_linkage_ros_testing_imports_without_pytest():
@@ -71,9 +73,11 @@ def test_send_travel_answers_follow_their_commands(suspension_node, send_travel)
     suspension_node(scene='double_wishbone')
     travels = [0.02, -0.03, 0.0]
     answers = [send_travel(t) for t in travels]
-    assert [float(status_values(a.diagnostics)['travel_m']) for a in answers] == (
-        pytest.approx(travels))
-    assert [a.diagnostics.hardware_id for a in answers] == ['double_wishbone'] * 3
+    expected = sweep(load_scene('double_wishbone'), np.array(travels) * 1000.0)
+    assert [a.pose.pose.position.z for a in answers] == pytest.approx(
+        list(expected.wheel_center[:, 2] / 1000.0), abs=1e-12)
+    assert [a.camber for a in answers] == pytest.approx(list(expected.camber), abs=1e-12)
+    assert [a.diagnostics for a in answers] == [None] * 3    # solved: nothing said at once
 
 
 def test_send_travel_without_a_node_times_out_naming_the_problem(send_travel):

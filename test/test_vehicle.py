@@ -39,3 +39,24 @@ def test_vehicle_corner_name_must_be_a_ros_name(tmp_path):
     path.write_text('corners:\n  Front-Left: {scene: five_link}\n')
     with pytest.raises(SceneError, match='lower-case ROS names'):
         load_vehicle(path)
+
+
+def test_demo_vehicle_names_the_joint_states_joints_of_each_corner():
+    assert load_vehicle('demo_vehicle').joints == {
+        'front_left': ('front_left_travel', 'steering_rack'),
+        'front_right': ('front_right_travel', 'steering_rack'),
+        'rear_left': ('rear_left_travel', ''), 'rear_right': ('rear_right_travel', '')}
+
+
+def test_a_joint_name_that_is_not_text_names_the_field(tmp_path):
+    path = tmp_path / 'car.yaml'
+    path.write_text('corners:\n  rear_left: {scene: five_link, travel_joint: [1]}\n')
+    with pytest.raises(SceneError, match=r'corners\.rear_left\.travel_joint: expected a joint'):
+        load_vehicle(path)
+
+
+def test_a_rack_joint_on_a_corner_that_does_not_steer_is_refused(tmp_path):
+    path = tmp_path / 'car.yaml'
+    path.write_text('corners:\n  rear_left: {scene: five_link, rack_joint: steering_rack}\n')
+    with pytest.raises(SceneError, match=r'rear_left\.rack_joint: .* no steer: rack link'):
+        load_vehicle(path)

@@ -1,0 +1,81 @@
+"""What /diagnostics says about one corner, kept the way diagnostic_updater keeps it.
+
+A Health counts the commands a corner answers and remembers the worst of the period
+(residual, condition number, Newton iterations, substeps); the node publishes its status
+every diagnostic period and resets the period, and publishes at once when a command fails or
+the level changes. ROS-free: messages.health_status turns it into a DiagnosticStatus.
+
+Level (the diagnostic_msgs values): ERROR if a fault holds (a recording that stopped, say) or
+the last command failed, WARN if the last pose is near a singular position (Jacobian
+condition number above condition_warn), OK otherwise.
+"""
+
+from dataclasses import dataclass
+
+OK, WARN, ERROR = 0, 1, 2
+
+
+@dataclass
+class Health:
+    """The diagnostic state of one corner. Lengths in mm."""
+
+    condition_warn: float          # condition number above which a pose is WARN
+    level: int = OK
+    message: str = 'no command yet'
+    last: object = None            # the Solution of the last command
+    fault: str = ''                # a fault outside the solver (sets ERROR while it holds)
+    commands_total: int = 0        # since start
+    failures_total: int = 0
+    # The period since the last report:
+    commands: int = 0
+    failures: int = 0
+    residual_max: float = 0.0      # mm, over the solved commands
+    condition_max: float = 0.0
+    iterations_max: int = 0
+    substeps_max: int = 0
+
+    def add(self, solution):
+        """Count one answered command (a kinematics Solution). Returns True if /diagnostics
+        should say so at once: the command failed, or the level changed."""
+        self.commands += 1
+        self.commands_total += 1
+        self.last = solution
+        if solution.success:
+            # max() would drop a NaN; a residual or condition that is NaN must show.
+            if not solution.residual <= self.residual_max:
+                self.residual_max = solution.residual
+            if not solution.condition <= self.condition_max:
+                self.condition_max = solution.condition
+            self.iterations_max = max(self.iterations_max, solution.iterations)
+            self.substeps_max = max(self.substeps_max, solution.substeps)
+        else:
+            self.failures += 1
+            self.failures_total += 1
+        level = self.level
+        self.level, self.message = self._assess()
+        return not solution.success or self.level != level
+
+    def set_fault(self, fault):
+        """Hold a fault (a non-empty text) or clear it (''); True if the level changed."""
+        level, self.fault = self.level, fault
+        self.level, self.message = self._assess()
+        return self.level != level
+
+    def reset_period(self):
+        """Start a new period: the counts and the worst values start again."""
+        self.commands = self.failures = self.iterations_max = self.substeps_max = 0
+        self.residual_max = self.condition_max = 0.0
+
+    def _assess(self):
+        solution = self.last
+        if self.fault:
+            return ERROR, self.fault
+        if solution is None:
+            return OK, 'no command yet'
+        if not solution.success:
+            return ERROR, solution.message
+        if not solution.condition <= self.condition_warn:
+            return WARN, (f'near a singular position: Jacobian condition number '
+                          f'{solution.condition:.3g} above {self.condition_warn:.3g}')
+        return OK, 'ok'
+
