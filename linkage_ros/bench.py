@@ -117,19 +117,21 @@ class ExudynSolver:
         newton.relativeTolerance = newton.absoluteTolerance = tol
         self.settings.staticSolver.numberOfLoadSteps = 1
         self.settings.staticSolver.verboseMode = 0
+        self.settings.solution.file.write = False      # no solution file: exudyn's fast path
+        self.settings.solution.sensors.active = False
         self.settings.linearSolver.solverType = exu.LinearSolverType.EXUdense
+        # Initialized once; each solve is then one SolveSteps from the last solution
+        # (continuation), the cheapest way to ask exudyn for one position at a time.
         self.solver = exu.MainSolverStatic()
+        self.solver.InitializeSolver(mbs, self.settings)
 
     def solve(self, travel):
         exu, mbs = self.exu, self.mbs
         mbs.SetObjectParameter(self.travel, 'offset', float(travel))
-        ok = self.solver.SolveSystem(mbs, self.settings)
+        ok = self.solver.SolveSteps(mbs, self.settings)
         center = np.array(mbs.GetNodeOutput(self.node, exu.OutputVariableType.Position))
         rotation = np.array(mbs.GetNodeOutput(self.node, exu.OutputVariableType.RotationMatrix)
                             ).reshape(3, 3)
-        # The next solve starts from this one (continuation).
-        mbs.systemData.SetODE2Coordinates(mbs.systemData.GetODE2Coordinates(),
-                                          configuration=exu.ConfigurationType.Initial)
         return center, rotation, int(self.solver.it.newtonStepsCount), bool(ok)
 
 

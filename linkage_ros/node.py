@@ -44,6 +44,7 @@ Rerun modules are imported only when record_mcap or rerun_rrd is set.
 import math
 import sys
 
+from builtin_interfaces.msg import Time
 from diagnostic_msgs.msg import DiagnosticArray
 from geometry_msgs.msg import PoseStamped
 from rcl_interfaces.msg import ParameterDescriptor
@@ -151,7 +152,8 @@ class Corner:
             from .markers import marker_array
             self.extras.append((
                 node.create_publisher(MarkerArray, prefix + 'markers', QOS),
-                lambda solution, stamp: marker_array(scene, solution, stamp, node.frame_id)))
+                lambda solution, stamp: marker_array(scene, solution, Time(
+                    sec=stamp[0], nanosec=stamp[1]), node.frame_id)))
 
     def on_travel(self, msg):
         stamp = self.node.received(self.travel_sub, msg)
@@ -170,12 +172,11 @@ class Corner:
 
     def answer(self, travel_mm, rack_mm, stamp):
         """Solve travel_mm at rack_mm (None = unchanged) and publish the answer at stamp
-        (builtin_interfaces/Time); a failure or a change of level goes to /diagnostics at
-        once."""
+        (sec, nanosec); a failure or a change of level goes to /diagnostics at once."""
         solution = self.solver.solve(travel_mm, rack_mm)
         if solution.success:
-            for name, msg in messages.answer(solution, stamp, self.node.frame_id):
-                self.node.publish(self.publishers[name], msg)
+            for name, data in messages.answer(solution, stamp, self.node.frame_id):
+                self.node.publish(self.publishers[name], data)
             for publisher, build in self.extras:
                 self.node.publish(publisher, build(solution, stamp))
         if self.health.add(solution):
@@ -191,10 +192,12 @@ class SuspensionNode(Node):
     one scene, or every corner of a vehicle (parameter vehicle), each a Corner."""
 
     def __init__(self, sinks=(), **kwargs):
-        """sinks: extra objects with record(topic, type_name, msg, receive_ns, publish_ns)
-        and close(), after those the parameters turn on. kwargs go to rclpy Node."""
+        """sinks: extra objects with record(topic, type_name, cdr_bytes, receive_ns,
+        publish_ns) and close(), after those the parameters turn on. kwargs go to rclpy
+        Node."""
         super().__init__(NODE_NAME, **kwargs)
         self.sinks = []
+        self.clock = self.get_clock()
         try:
             params = self._declare_parameters()
             corners = load_corners(params)
@@ -221,14 +224,17 @@ class SuspensionNode(Node):
                 f'frame {self.frame_id}; waiting on {corner.travel_sub.topic_name} (m)')
 
     def received(self, subscription, msg, stamp=None):
-        """Record an input that came on subscription (if recording) and return the stamp of
-        its answer: stamp, or the node clock's time of receipt."""
+        """Record an input that came on subscription (if recording) and return the stamp
+        (sec, nanosec) of its answer: stamp (a builtin_interfaces/Time), or the node clock's
+        time of receipt."""
         if stamp is None or self.sinks:
-            now = self.get_clock().now()
+            now = self.clock.now()
             if self.sinks:   # the input's publish time is unknown: EventsExecutor gives no info
-                self._record(subscription.topic_name, msg, now.nanoseconds, now.nanoseconds)
-            stamp = now.to_msg() if stamp is None else stamp
-        return stamp
+                self._record(subscription.topic_name, subscription.msg_type,
+                             messages.to_cdr(msg), now.nanoseconds, now.nanoseconds)
+            if stamp is None:
+                return now.seconds_nanoseconds()
+        return stamp.sec, stamp.nanosec
 
     def on_vehicle_joint_states(self, msg):
         """One JointState for the whole vehicle: answer every corner whose joints it names."""
@@ -249,20 +255,22 @@ class SuspensionNode(Node):
     def report(self, corners):
         """Publish the status of each of corners on /diagnostics, stamped now."""
         self.publish(self.diagnostics_pub, messages.diagnostics(
-            [corner.status() for corner in corners], self.get_clock().now().to_msg()))
+            [corner.status() for corner in corners], self.clock.now().to_msg()))
 
     def publish(self, publisher, msg):
+        """Publish msg (CDR bytes or an rclpy message) and hand it to the sinks."""
         # Recorded first: a SIGINT can surface as KeyboardInterrupt inside publish() after
         # the message left, and the recording must still hold what subscribers got.
         if self.sinks:
-            published = self.get_clock().now().nanoseconds
-            self._record(publisher.topic_name, msg, published, published)
+            published = self.clock.now().nanoseconds
+            self._record(publisher.topic_name, publisher.msg_type, messages.to_cdr(msg),
+                         published, published)
         publisher.publish(msg)
 
-    def _record(self, topic, msg, receive_ns, publish_ns):
+    def _record(self, topic, msg_type, data, receive_ns, publish_ns):
         for sink in list(self.sinks):
             try:
-                sink.record(topic, messages.type_name(msg), msg, receive_ns, publish_ns)
+                sink.record(topic, messages.type_name(msg_type), data, receive_ns, publish_ns)
             except Exception as exc:  # a broken recorder must not stop the node
                 self.get_logger().error(f'{type(sink).__name__} failed ({exc}); dropped')
                 self.sinks.remove(sink)

@@ -1,26 +1,36 @@
-"""linkage-node-bench: suspension_node against a bare rclpy echo node, across processes.
+"""linkage-node-bench: speed on the paths users take, side by side with what it must beat.
 
-Each node runs in its own process (one after the other, on a fresh ROS domain, discovery kept
-to this machine) and is driven from this process over the same topics and QoS (reliable,
-keep-last 1000):
+Sections (all by default; --only picks some), sizes multiplied by --scale (run 1, 10, 100):
 
-- latency, time from publishing wheel_travel to receiving wheel_carrier_pose (median, p99):
-  paced at --latency-rate (commands apart, as a controller sends them), and ping-pong (the
-  next command as soon as the pose arrives, so it can wait for the rest of the previous
-  command's work: camber, toe, diagnostics);
-- rate: commands paced at each rate of a ladder for --duration seconds; the highest rate
-  with no command lost, and whether the node kept up (its last answer within --lag-ms of the
-  last command), with the latency at each rate.
+  core      one command at a time through Continuation.solve (five_link, steps of up to
+            0.75 mm), beside exudyn's static solver on the same commands (one position per
+            call), in alternating rounds; the largest residual and the largest difference
+  sweep     linkage-sweep five_link to a CSV file at 161, 1601 and 16001 positions: cost per
+            position, and per position over the 161-position run
+  start     from launching a process to its first answer: the core (import, scene, first
+            solve) and suspension_node (first pose over DDS), with the compiled kernels in
+            numba's cache (warm) and with an empty cache (cold: compiled at start)
+  latency   suspension_node against a bare rclpy echo node (Float64 in, PoseStamped out),
+            each in its own process, measured alternately: paced at --latency-rate, and
+            ping-pong; then a ladder of command rates (lost commands, lag, latency)
+  vehicle   vehicle:=demo_vehicle against a four-corner echo node, four corners at --hz each
+            for --seconds: one Float64 per corner per step, then one JointState per step; the
+            step latency is from sending a step to the last of its four poses
+  callback  the node's travel callback called in process (no subscribers): plain, with the
+            alignment or markers outputs, recording to MCAP, mirroring to Rerun, both
 
-The echo node answers each Float64 with a PoseStamped and nothing else: the transport and
-executor cost. The table goes to stdout, progress to stderr.
+Tables go to stdout as CSV (the first cell of each header row names the section), progress
+to stderr; --plot writes latency against command rate (node and echo) as a PNG. Discovery
+stays on this machine (ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST for every process started).
+Absolute times on shared machines are noisy: read the ratios, measured in the same run.
 """
 
 import argparse
+import contextlib
+import io
 import os
 from pathlib import Path
 import signal
-import statistics
 import subprocess
 import sys
 import tempfile
@@ -31,48 +41,102 @@ import numpy as np
 import rclpy
 from rclpy.experimental import EventsExecutor
 from rclpy.node import Node
+from sensor_msgs.msg import JointState
 from std_msgs.msg import Float64
 
 from .node import QOS, run
 
-DEFAULT_RATES = (250, 500, 1000, 2000, 4000, 8000)
+SECTIONS = ('core', 'sweep', 'start', 'latency', 'vehicle', 'callback')
+DEFAULT_RATES = (250, 500, 1000, 2000, 4000)
+VEHICLE = 'demo_vehicle'
+CORNERS = ('front_left', 'front_right', 'rear_left', 'rear_right')
 
+
+def progress(text):
+    print(f'linkage-node-bench: {text}', file=sys.stderr, flush=True)
+
+
+def table(header, rows):
+    """Print a CSV table: header (first cell: the section) and rows, floats to 4 digits."""
+    print(','.join(header))
+    for row in rows:
+        print(','.join(f'{v:.4g}' if isinstance(v, float) else str(v) for v in row))
+    print()
+
+
+# --- the bare references ---------------------------------------------------------------------
 
 class EchoNode(Node):
-    """The bare reference: wheel_travel (Float64) in, a PoseStamped with z = travel out."""
+    """The bare reference: each wheel_travel (Float64) is answered by a PoseStamped with
+    z = travel, under every corner prefix; a joint_states message naming '<corner>_travel'
+    joints is answered by one pose per corner it names. Transport and executor cost only."""
 
-    def __init__(self, **kwargs):
+    def __init__(self, prefixes=('',), **kwargs):
         super().__init__('echo', **kwargs)
-        self._pub = self.create_publisher(PoseStamped, 'wheel_carrier_pose', QOS)
-        self.create_subscription(Float64, 'wheel_travel', self._on_travel, QOS)
+        self.pubs = {}
+        for prefix in prefixes:
+            pub = self.create_publisher(PoseStamped, prefix + 'wheel_carrier_pose', QOS)
+            self.pubs[prefix.rstrip('/')] = pub
+            self.create_subscription(Float64, prefix + 'wheel_travel',
+                                     lambda msg, pub=pub: self.answer(pub, msg.data), QOS)
+        if prefixes != ('',):
+            self.create_subscription(JointState, 'joint_states', self.on_joint_states, QOS)
 
-    def _on_travel(self, msg):
+    def answer(self, pub, travel):
         out = PoseStamped()
         out.header.stamp = self.get_clock().now().to_msg()
         out.header.frame_id = 'base_link'
-        out.pose.position.z = msg.data
-        self._pub.publish(out)
+        out.pose.position.z = travel
+        pub.publish(out)
+
+    def on_joint_states(self, msg):
+        positions = dict(zip(msg.name, msg.position))
+        for corner, pub in self.pubs.items():
+            if f'{corner}_travel' in positions:
+                self.answer(pub, positions[f'{corner}_travel'])
 
 
-def echo_main(args=None):
-    """The echo node process: same executor and spin loop as suspension_node."""
+def echo_main(vehicle, args=None):
+    """An echo node process: same executor and spin loop as suspension_node."""
     rclpy.init(args=args)
-    return run(EchoNode())
+    return run(EchoNode(tuple(f'{c}/' for c in CORNERS) if vehicle else ('',)))
 
 
 class Driver:
-    """Publishes wheel_travel and counts wheel_carrier_pose answers (arrival times, s)."""
+    """Sends steps of commands to one node process and times the poses that answer them.
 
-    def __init__(self, context):
+    prefixes: '' for one scene, '<corner>/' for each corner of a vehicle. A step is one
+    Float64 per corner, or (joint_states=True) one JointState naming every corner's travel
+    joint. Poses of a corner come in command order, so its i-th answers step i.
+    """
+
+    def __init__(self, context, prefixes=('',)):
         self.executor = EventsExecutor(context=context)
         self.node = rclpy.create_node('bench_driver', context=context, enable_rosout=False,
                                       start_parameter_services=False)
-        self.arrivals = []
-        self.pub = self.node.create_publisher(Float64, 'wheel_travel', QOS)
-        self.sub = self.node.create_subscription(
-            PoseStamped, 'wheel_carrier_pose',
-            lambda _: self.arrivals.append(time.perf_counter()), QOS)
+        self.prefixes = prefixes
+        self.arrivals = {p: [] for p in prefixes}
+        self.pubs = [self.node.create_publisher(Float64, p + 'wheel_travel', QOS)
+                     for p in prefixes]
+        self.joint_pub = self.node.create_publisher(JointState, 'joint_states', QOS)
+        self.subs = [self.node.create_subscription(
+            PoseStamped, p + 'wheel_carrier_pose',
+            lambda _, times=self.arrivals[p]: times.append(time.perf_counter()), QOS)
+            for p in prefixes]
         self.executor.add_node(self.node)
+
+    def answered(self):
+        """Steps answered by every corner."""
+        return min(len(times) for times in self.arrivals.values())
+
+    def clear(self):
+        for times in self.arrivals.values():
+            times.clear()
+
+    def step_arrivals(self):
+        """Arrival (s) of the last answer of each step answered by every corner."""
+        n = self.answered()
+        return np.max([times[:n] for times in self.arrivals.values()], axis=0)
 
     def spin_until(self, predicate, timeout):
         deadline = time.perf_counter() + timeout
@@ -80,61 +144,63 @@ class Driver:
             self.executor.spin_once(timeout_sec=min(0.01, deadline - time.perf_counter()))
         return predicate()
 
-    def connect(self, timeout=20.0):
-        """Wait until the node answers, then until no answer is in flight."""
-        if not self.spin_until(lambda: self.pub.get_subscription_count() > 0
-                               and self.sub.get_publisher_count() > 0, timeout):
+    def send(self, travel_m, joint_states=False):
+        if joint_states:
+            names = [p.rstrip('/') + '_travel' for p in self.prefixes]
+            self.joint_pub.publish(JointState(name=names, position=[float(travel_m)] * len(names)))
+        else:
+            for pub in self.pubs:
+                pub.publish(Float64(data=float(travel_m)))
+
+    def connect(self, joint_states=False, timeout=20.0, ping_period=0.5):
+        """Wait until the node answers every corner (a ping every ping_period s), then until
+        no answer is in flight."""
+        pubs = [self.joint_pub] if joint_states else self.pubs
+        if not self.spin_until(lambda: all(p.get_subscription_count() for p in pubs)
+                               and all(s.get_publisher_count() for s in self.subs), timeout):
             raise RuntimeError('the node under test was not discovered')
         deadline = time.perf_counter() + timeout
-        while not self.arrivals and time.perf_counter() < deadline:
-            self.send(0.0)
-            self.spin_until(lambda: self.arrivals, 0.5)
-        if not self.arrivals:
+        while not self.answered() and time.perf_counter() < deadline:
+            self.send(0.0, joint_states)
+            self.spin_until(self.answered, ping_period)
+        if not self.answered():
             raise RuntimeError('the node under test never answered')
         count = -1
-        while count != len(self.arrivals):   # answers to extra pings: let them land
-            count = len(self.arrivals)
-            self.spin_until(lambda: len(self.arrivals) > count, 0.3)
-        self.arrivals.clear()
+        while count != sum(len(t) for t in self.arrivals.values()):   # answers to extra pings
+            count = sum(len(t) for t in self.arrivals.values())
+            self.spin_until(lambda: sum(len(t) for t in self.arrivals.values()) > count, 0.3)
+        self.clear()
 
-    def send(self, travel_m):
-        self.pub.publish(Float64(data=float(travel_m)))
-
-    def latency(self, travels):
-        """Round trip (s) of each command, one at a time."""
+    def ping_pong(self, travels):
+        """Latency (s) of each step sent when the previous one is answered."""
+        self.clear()
         times = []
-        for travel in travels:
-            count = len(self.arrivals)
+        for i, travel in enumerate(travels):
             start = time.perf_counter()
             self.send(travel)
-            if not self.spin_until(lambda: len(self.arrivals) > count, 5.0):
-                raise RuntimeError(f'no answer to command {len(times)} within 5 s')
-            times.append(self.arrivals[-1] - start)
+            if not self.spin_until(lambda: self.answered() > i, 5.0):
+                raise RuntimeError(f'no answer to command {i} within 5 s')
+            times.append(self.step_arrivals()[i] - start)
         return np.array(times)
 
-    def paced(self, travels, rate, drain=3.0):
-        """Send travels at rate (Hz); returns (sent rate, received, last answer lag s,
-        latencies s). Answers come in command order, so the i-th answers the i-th command."""
-        self.arrivals.clear()
-        sent = []
-        period = 1.0 / rate
-        start = time.perf_counter()
-        due = start
+    def paced(self, travels, rate, joint_states=False, drain=3.0):
+        """Send one step per travel at rate (Hz). Returns (steps sent, steps answered, lag of
+        the last answer after the last step (s), step latencies (s))."""
+        self.clear()
+        sent, period = [], 1.0 / rate
+        due = time.perf_counter()
         for travel in travels:
             now = time.perf_counter()
             while now < due:
                 self.executor.spin_once(timeout_sec=due - now)
                 now = time.perf_counter()
             sent.append(time.perf_counter())
-            self.send(travel)
+            self.send(travel, joint_states)
             due += period
-        last_sent = sent[-1]
-        sent_rate = len(travels) / (time.perf_counter() - start)
-        self.spin_until(lambda: len(self.arrivals) >= len(travels), drain)
-        received = len(self.arrivals)
-        lag = self.arrivals[-1] - last_sent if received else float('inf')
-        latencies = np.array(self.arrivals) - np.array(sent) if received == len(sent) else None
-        return sent_rate, received, lag, latencies
+        self.spin_until(lambda: self.answered() >= len(travels), drain)
+        arrivals = self.step_arrivals()
+        lag = arrivals[-1] - sent[-1] if len(arrivals) else float('inf')
+        return len(travels), len(arrivals), lag, arrivals - np.array(sent[:len(arrivals)])
 
     def destroy(self):
         self.executor.remove_node(self.node)
@@ -142,19 +208,31 @@ class Driver:
         self.executor.shutdown()
 
 
-def travels(count, amplitude=0.02):
-    """A slow +-20 mm sine (m): small steps, one continuation substep each."""
-    return amplitude * np.sin(np.arange(count) * 0.01)
+class Target:
+    """A node process under test on its own ROS domain, and the Driver that talks to it."""
+
+    def __init__(self, name, command, domain_id, log_dir, prefixes=('',), env=None):
+        self.name = name
+        self.started = time.perf_counter()
+        self.process = start_process(command, domain_id, log_dir, env)
+        self.context = rclpy.context.Context()
+        rclpy.init(context=self.context, domain_id=domain_id)
+        self.driver = Driver(self.context, prefixes)
+
+    def close(self):
+        self.driver.destroy()
+        rclpy.try_shutdown(context=self.context)
+        stop_process(self.process, self.name)
 
 
-def start(command, domain_id, log_dir):
-    env = dict(os.environ, ROS_DOMAIN_ID=str(domain_id), ROS_LOG_DIR=log_dir,
+def start_process(command, domain_id, log_dir, env=None):
+    env = dict(os.environ, **(env or {}), ROS_DOMAIN_ID=str(domain_id), ROS_LOG_DIR=log_dir,
                ROS_AUTOMATIC_DISCOVERY_RANGE='LOCALHOST')
     return subprocess.Popen(command, env=env, stdout=subprocess.DEVNULL,
                             stderr=subprocess.PIPE, text=True)
 
 
-def stop(process):
+def stop_process(process, name):
     process.send_signal(signal.SIGINT)
     try:
         _, err = process.communicate(timeout=10)
@@ -162,148 +240,317 @@ def stop(process):
         process.kill()
         _, err = process.communicate()
     if process.returncode != 0:
-        print(f'linkage-node-bench: the node exited with {process.returncode}: {err.strip()}',
-              file=sys.stderr)
+        progress(f'{name} exited with {process.returncode}: {err.strip()}')
 
 
-def measure(name, command, domain_id, args, log_dir):
-    """Latency and rate ladder of one node process."""
-    print(f'linkage-node-bench: {name}: starting', file=sys.stderr)
-    process = start(command, domain_id, log_dir)
-    context = rclpy.context.Context()
-    rclpy.init(context=context, domain_id=domain_id)
-    driver = Driver(context)
-    try:
-        driver.connect()
-        driver.latency(travels(args.warmup))
-        latency = {'ping-pong': driver.latency(travels(args.count))}
-        _, received, _, paced = driver.paced(travels(args.count), args.latency_rate)
-        if paced is None:
-            raise RuntimeError(f'{args.count - received} commands lost at '
-                               f'{args.latency_rate} Hz')
-        latency['paced'] = paced
-        for kind, values in latency.items():
-            print(f'linkage-node-bench: {name}: {kind} latency median '
-                  f'{np.median(values) * 1e6:.0f} us, p99 {np.percentile(values, 99) * 1e6:.0f}'
-                  f' us over {len(values)}', file=sys.stderr)
-        ladder = []
-        for rate in args.rates:
-            count = max(1, int(rate * args.duration))
-            driver.connect()     # a backlog of the previous rate drains first
-            sent_rate, received, lag, latencies = driver.paced(travels(count), rate)
-            kept_up = received == count and lag * 1000.0 <= args.lag_ms
-            ladder.append((rate, count, sent_rate, received, lag, kept_up, latencies))
-            print(f'linkage-node-bench: {name}: {rate} Hz: sent {count} at '
-                  f'{sent_rate:.0f}/s, received {received}, last answer '
-                  f'{lag * 1000.0:.1f} ms after the last command', file=sys.stderr)
-            if received < count:
-                break
-    finally:
-        driver.destroy()
-        rclpy.try_shutdown(context=context)
-        stop(process)
-    return latency, ladder
+def sine(count, amplitude_m=0.02, step=0.01):
+    """Travels (m) of a slow sine: small steps, one continuation substep each."""
+    return amplitude_m * np.sin(np.arange(count) * step)
 
 
-def solve_time(scene_name, method, count, gap=0.0):
-    """Median time (s) of one Continuation.solve on the bench's command sequence, with the
-    process idle for gap (s) before each: an idle process solves slower (cold caches)."""
+def us(values, q=50):
+    return float(np.percentile(values, q) * 1e6) if len(values) else float('nan')
+
+
+# --- sections ------------------------------------------------------------------------------
+
+def bench_core(args):
+    """One command at a time: Continuation.solve beside exudyn, alternating rounds."""
+    from . import bench
     from .kinematics import Continuation
     from .scene import load_scene
-    cont = Continuation(load_scene(scene_name), method=method)
-    times = []
-    for travel in travels(count) * 1000.0:
-        if gap:
-            time.sleep(gap)
-        start_time = time.perf_counter()
-        cont.solve(travel)
-        times.append(time.perf_counter() - start_time)
-    return statistics.median(times)
+    scene = load_scene(args.scene)
+    count = args.count * args.scale
+    travels = 60.0 * np.sin(np.arange(count) * 0.0125)      # mm, steps of up to 0.75 mm
+    entries = {'linkage_ros': Continuation(scene)}
+    if bench.exudyn_version():
+        entries['exudyn'] = bench.ExudynSolver(scene, 1e-10)
+    else:
+        progress('exudyn is not installed (pip install -e .[bench]): core alone')
+    times = {name: [] for name in entries}
+    centers = {name: [] for name in entries}
+    residual = 0.0
+    rounds = 4
+    for r, chunk in enumerate(np.array_split(travels, rounds)):
+        for name, solver in entries.items():
+            for travel in chunk:
+                start = time.perf_counter()
+                answer = solver.solve(travel)
+                times[name].append(time.perf_counter() - start)
+                if name == 'linkage_ros':
+                    residual = max(residual, answer.residual)
+                    centers[name].append(answer.wheel_center)
+                else:
+                    centers[name].append(answer[0])
+        progress(f'core: round {r + 1}/{rounds}')
+    base = np.median(times['linkage_ros'])
+    rows = []
+    for name, values in times.items():
+        diff = np.abs(np.array(centers[name]) - np.array(centers['linkage_ros'])).max()
+        rows.append((name, count, us(values), us(values, 99), float(np.median(values) / base),
+                     residual if name == 'linkage_ros' else '', float(diff)))
+    table(['core', 'commands', 'median_us', 'p99_us', 'ratio_to_linkage_ros',
+           'residual_max_mm', 'wheel_center_diff_mm'], rows)
 
 
-def best_rate(ladder, kept_up=False):
-    """Highest rate of the ladder with nothing lost (and kept up, if asked)."""
-    good = [rate for rate, count, _, received, _, ok, _ in ladder
-            if received == count and (ok or not kept_up)]
-    return max(good) if good else 0
+def bench_sweep(args):
+    """linkage-sweep to a CSV file at 161, 1601, 16001 positions (x scale)."""
+    from . import sweep_cli
+    rows, base = [], None
+    with tempfile.TemporaryDirectory() as folder:
+        for step in (1.0, 0.1, 0.01):
+            step /= args.scale
+            positions = int(round(160 / step)) + 1
+            out = Path(folder) / 'sweep.csv'
+            with contextlib.redirect_stderr(io.StringIO()):
+                start = time.perf_counter()
+                sweep_cli.main([args.scene, '--step', repr(step), '--csv', str(out)])
+                seconds = time.perf_counter() - start
+            base = base or (positions, seconds)
+            over = ((seconds - base[1]) / (positions - base[0]) * 1e6
+                    if positions > base[0] else '')
+            rows.append((positions, seconds, seconds / positions * 1e6, over))
+            progress(f'sweep: {positions} positions in {seconds:.2f} s')
+    table(['sweep', 'seconds', 'us_per_position', 'us_per_position_over_the_first'], rows)
 
 
-def _us(values, q):
-    return f'{np.percentile(values, q) * 1e6:.0f}' if values is not None else ''
+def bench_start(args, log_dir, domain_id):
+    """Launch to first answer, warm and cold (empty) numba cache."""
+    core_code = ('import time; t = time.perf_counter(); '
+                 'from linkage_ros import Continuation, load_scene; '
+                 f'Continuation(load_scene({args.scene!r})).solve(1.0); '
+                 'print(time.perf_counter() - t)')
+    rows = []
+    for cache in ('warm', 'cold'):
+        with tempfile.TemporaryDirectory() as empty:
+            env = {'NUMBA_CACHE_DIR': empty} if cache == 'cold' else {}
+            start = time.perf_counter()
+            out = subprocess.run([sys.executable, '-c', core_code], capture_output=True,
+                                 text=True, env=dict(os.environ, **env), check=True)
+            rows.append((f'core {cache}', time.perf_counter() - start, float(out.stdout)))
+            progress(f'start: core, {cache} cache: {rows[-1][1]:.2f} s')
+            target = Target('suspension_node', [node_script(), '--ros-args', '-p',
+                                                f'scene:={args.scene}'],
+                            domain_id, log_dir, env=env)
+            try:
+                target.driver.connect(timeout=120.0, ping_period=0.02)
+                rows.append((f'suspension_node {cache}', time.perf_counter() - target.started,
+                             ''))
+            finally:
+                target.close()
+            progress(f'start: suspension_node, {cache} cache: {rows[-1][1]:.2f} s')
+    table(['start', 'launch_to_first_answer_s', 'in_process_s'], rows)
 
 
-def report(results, solve_s, latency_rate, stream):
-    """solve_s: (paced, back-to-back) median solve times of the core alone, s."""
-    """Summary table, then the rate ladder; CSV with units in the column names."""
-    print(f'node,paced_{latency_rate:g}hz_median_us,paced_p99_us,ping_pong_median_us,'
-          'ping_pong_p99_us,max_rate_no_loss_hz,max_rate_kept_up_hz', file=stream)
-    for name, (latency, ladder) in results.items():
-        print(f"{name},{_us(latency['paced'], 50)},{_us(latency['paced'], 99)},"
-              f"{_us(latency['ping-pong'], 50)},{_us(latency['ping-pong'], 99)},"
-              f'{best_rate(ladder)},{best_rate(ladder, kept_up=True)}', file=stream)
-    ratios = [np.percentile(results['node'][0][kind], q) / np.percentile(
-        results['echo'][0][kind], q) for kind in ('paced', 'ping-pong') for q in (50, 99)]
-    print('ratio node/echo,' + ','.join(f'{r:.2f}' for r in ratios) + ',,', file=stream)
-    print(f'core solve alone (median in process),{solve_s[0] * 1e6:.0f},,'
-          f'{solve_s[1] * 1e6:.0f},,,', file=stream)
-    print('', file=stream)
-    print('node,rate_hz,sent,sent_rate_hz,received,lost,last_answer_lag_ms,kept_up,'
-          'latency_median_us,latency_p99_us', file=stream)
-    for name, (_, ladder) in results.items():
-        for rate, count, sent_rate, received, lag, ok, latencies in ladder:
-            print(f'{name},{rate},{count},{sent_rate:.0f},{received},{count - received},'
-                  f'{lag * 1000.0:.1f},{ok},{_us(latencies, 50)},{_us(latencies, 99)}',
-                  file=stream)
+def bench_latency(args, log_dir, first_domain):
+    """suspension_node and the echo node, measured alternately; then the rate ladder."""
+    targets = [Target('node', [node_script(), '--ros-args', '-p', f'scene:={args.scene}'],
+                      first_domain, log_dir),
+               Target('echo', [sys.executable, '-m', 'linkage_ros.node_bench', '--echo'],
+                      first_domain + 1, log_dir)]
+    ladder = []
+    try:
+        for target in targets:
+            target.driver.connect()
+            target.driver.ping_pong(sine(args.warmup))
+        count = args.count * args.scale
+        latency = {(t.name, kind): [] for t in targets for kind in ('paced', 'ping-pong')}
+        rounds = 4
+        for r in range(rounds):
+            for target in targets:
+                chunk = sine(count // rounds)
+                sent, got, _, values = target.driver.paced(chunk, args.latency_rate)
+                if got < sent:
+                    raise RuntimeError(f'{target.name}: {sent - got} commands lost at '
+                                       f'{args.latency_rate:g} Hz')
+                latency[target.name, 'paced'] += list(values)
+                latency[target.name, 'ping-pong'] += list(target.driver.ping_pong(chunk))
+            progress(f'latency: round {r + 1}/{rounds}')
+        rows = []
+        for kind in ('paced', 'ping-pong'):
+            echo = np.median(latency['echo', kind])
+            for target in targets:
+                values = latency[target.name, kind]
+                rows.append((target.name, kind, len(values), us(values), us(values, 99),
+                             float(np.median(values) / echo)))
+        table(['latency', 'mode', 'commands', 'median_us', 'p99_us', 'ratio_to_echo'], rows)
+        for rate in args.rates:
+            for target in targets:
+                target.driver.connect()         # a backlog of the previous rate drains first
+                count = max(1, int(rate * args.duration * args.scale))
+                sent, got, lag, values = target.driver.paced(sine(count), rate)
+                ladder.append((target.name, rate, sent, got, sent - got, lag * 1000.0,
+                               lag * 1000.0 <= args.lag_ms and got == sent, us(values),
+                               us(values, 99)))
+                progress(f'latency: {target.name} at {rate} Hz: {got}/{sent} answered, '
+                         f'last {lag * 1000.0:.1f} ms after the last command')
+    finally:
+        for target in targets:
+            target.close()
+    table(['rate', 'hz', 'sent', 'answered', 'lost', 'last_answer_lag_ms', 'kept_up',
+           'median_us', 'p99_us'], ladder)
+    return ladder
+
+
+def bench_vehicle(args, log_dir, first_domain):
+    """Four corners at args.hz each: Float64 per corner, then one JointState per step."""
+    prefixes = tuple(f'{c}/' for c in CORNERS)
+    targets = [Target('node', [node_script(), '--ros-args', '-p', f'vehicle:={VEHICLE}'],
+                      first_domain, log_dir, prefixes),
+               Target('echo', [sys.executable, '-m', 'linkage_ros.node_bench',
+                               '--echo-vehicle'], first_domain + 1, log_dir, prefixes)]
+    rows, medians = [], {}
+    try:
+        steps = int(args.hz * args.seconds * args.scale)
+        for joint_states in (False, True):
+            mode = 'joint_states' if joint_states else 'float64_per_corner'
+            for target in targets:
+                target.driver.connect(joint_states)
+                sent, got, lag, values = target.driver.paced(sine(steps), args.hz, joint_states)
+                medians[target.name, mode] = np.median(values) if len(values) else np.nan
+                rows.append([target.name, mode, sent, got, sent - got, lag * 1000.0,
+                             us(values), us(values, 99)])
+                progress(f'vehicle: {target.name}, {mode}: {got}/{sent} steps answered, last '
+                         f'{lag * 1000.0:.1f} ms after the last step')
+    finally:
+        for target in targets:
+            target.close()
+    for row in rows:
+        row.append(float(medians[row[0], row[1]] / medians['echo', row[1]]))
+    table(['vehicle', 'mode', 'steps', 'answered', 'lost', 'last_answer_lag_ms',
+           'step_median_us', 'step_p99_us', 'ratio_to_echo'], rows)
+
+
+def bench_callback(args):
+    """The travel callback in process, with each optional output or sink."""
+    from rclpy.parameter import Parameter
+
+    from .node import SuspensionNode
+    modes = {'plain': {}, 'alignment': {'alignment': True}, 'markers': {'markers': True},
+             'record_mcap': {'record_mcap': 'run.mcap'}, 'rerun_rrd': {'rerun_rrd': 'run.rrd'},
+             'record_mcap+rerun_rrd': {'record_mcap': 'run.mcap', 'rerun_rrd': 'run.rrd'}}
+    context = rclpy.context.Context()
+    rclpy.init(context=context, domain_id=args.domain_id)
+    travels = sine(args.count * args.scale, 0.05, 0.02)
+    rows, base = [], None
+    try:
+        for mode, params in modes.items():
+            with tempfile.TemporaryDirectory() as folder:
+                overrides = [Parameter('scene', value=args.scene)] + [
+                    Parameter(k, value=str(Path(folder) / v) if isinstance(v, str) else v)
+                    for k, v in params.items()]
+                node = SuspensionNode(context=context, parameter_overrides=overrides)
+                corner = next(iter(node.corners.values()))
+                times = []
+                for travel in travels:
+                    msg = Float64(data=float(travel))
+                    start = time.perf_counter()
+                    corner.on_travel(msg)
+                    times.append(time.perf_counter() - start)
+                start = time.perf_counter()
+                node.destroy_node()          # files are finished here
+                closing = time.perf_counter() - start
+            base = base or np.median(times)
+            rows.append((mode, len(times), us(times), float(np.mean(times) * 1e6),
+                         float(np.median(times) / base), closing))
+            progress(f'callback: {mode}: median {us(times):.1f} us')
+    finally:
+        rclpy.try_shutdown(context=context)
+    table(['callback', 'commands', 'median_us', 'mean_us', 'ratio_to_plain', 'close_s'], rows)
+
+
+def plot_ladder(ladder, path):
+    """Median and p99 latency against command rate, node and echo, as a PNG."""
+    import matplotlib
+    matplotlib.use('Agg')
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(figsize=(6.5, 4))
+    for name, color in (('node', 'C0'), ('echo', 'C1')):
+        rows = [r for r in ladder if r[0] == name and r[3]]
+        rates = [r[1] for r in rows]
+        ax.plot(rates, [r[7] / 1000.0 for r in rows], 'o-', color=color,
+                label=f'{"suspension_node" if name == "node" else "bare rclpy echo"} median')
+        ax.plot(rates, [r[8] / 1000.0 for r in rows], 'o--', color=color, alpha=0.6,
+                label='p99')
+    ax.set_xscale('log')
+    ax.set_yscale('log')
+    ax.set_xlabel('command rate, Hz')
+    ax.set_ylabel('latency, ms (command to pose)')
+    ax.grid(True, which='both', alpha=0.3)
+    ax.legend(fontsize=8)
+    ax.set_title('Latency against command rate, across processes')
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def node_script():
+    return str(Path(sys.executable).parent / 'suspension_node')
 
 
 def parse_args(argv):
     parser = argparse.ArgumentParser(prog='linkage-node-bench', description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument('--count', type=int, default=2000,
-                        help='commands for each latency measurement (default 2000)')
+    parser.add_argument('--only', default=','.join(SECTIONS),
+                        help=f'sections to run, comma separated (default: all: '
+                        f'{",".join(SECTIONS)})')
+    parser.add_argument('--scale', type=int, default=1,
+                        help='multiply every size (commands, positions, durations) by this')
+    parser.add_argument('--scene', default='five_link', help='scene of the single-scene runs')
     parser.add_argument('--latency-rate', type=float, default=200.0,
                         help='command rate of the paced latency, Hz (default 200)')
     parser.add_argument('--warmup', type=int, default=200, help='round trips not counted')
     parser.add_argument('--rates', type=lambda s: [int(r) for r in s.split(',')],
-                        default=list(DEFAULT_RATES), help='command rates, Hz, comma separated')
+                        default=list(DEFAULT_RATES), help='ladder of command rates, Hz')
     parser.add_argument('--duration', type=float, default=2.0, help='seconds per rate')
     parser.add_argument('--lag-ms', type=float, default=50.0,
                         help='kept up: last answer at most this long after the last command')
-    parser.add_argument('--scene', default='five_link')
-    parser.add_argument('--method', default='fast', choices=('fast', 'paper'))
+    parser.add_argument('--hz', type=float, default=1000.0, help='vehicle: steps per second')
+    parser.add_argument('--seconds', type=float, default=5.0, help='vehicle: seconds per mode')
+    parser.add_argument('--plot', help='write latency against command rate here (PNG)')
+    parser.add_argument('--quick', action='store_true',
+                        help='a smoke run: every size cut to a tenth or less, low rates')
     parser.add_argument('--domain-id', type=int, default=None,
-                        help='first of two ROS domain ids to use (default from the pid)')
+                        help='first of the ROS domain ids to use (default from the pid)')
     parser.add_argument('--echo', action='store_true', help=argparse.SUPPRESS)
-    return parser.parse_known_args(argv)
+    parser.add_argument('--echo-vehicle', action='store_true', help=argparse.SUPPRESS)
+    args, ros_args = parser.parse_known_args(argv)
+    args.only = [s for s in args.only.split(',') if s]
+    args.count = 200 if args.quick else 2000      # commands per core, latency, callback run
+    if args.quick:
+        args.rates, args.duration, args.hz, args.seconds, args.warmup = [100], 0.3, 100, 0.3, 20
+    unknown = [s for s in args.only if s not in SECTIONS]
+    if unknown:
+        parser.error(f'--only: unknown section {unknown[0]!r} (sections: {", ".join(SECTIONS)})')
+    if args.scale < 1 or args.duration <= 0 or args.latency_rate <= 0 or not args.rates:
+        parser.error('--scale >= 1, --duration > 0, --latency-rate > 0 and --rates are required')
+    return args, ros_args
 
 
 def main(argv=None):
     args, ros_args = parse_args(sys.argv[1:] if argv is None else argv)
-    if args.echo:      # the echo node process started by the bench itself
-        return echo_main(['echo', *ros_args])
-    if args.count < 1 or args.duration <= 0 or args.latency_rate <= 0 or not args.rates:
-        print('linkage-node-bench: --count >= 1, --duration > 0, --latency-rate > 0 and '
-              '--rates are required', file=sys.stderr)
-        return 2
-    first = args.domain_id if args.domain_id is not None else 1 + os.getpid() % 100
-    node_script = Path(sys.executable).parent / 'suspension_node'
-    commands = {
-        'echo': [sys.executable, '-m', 'linkage_ros.node_bench', '--echo'],
-        'node': [str(node_script), '--ros-args', '-p', f'scene:={args.scene}',
-                 '-p', f'method:={args.method}'],
-    }
-    print(f'linkage-node-bench: {os.cpu_count()} CPUs, load average '
-          f'{os.getloadavg()[0]:.2f}; {args.count} commands per latency, rates {args.rates} '
-          f'Hz for {args.duration:g} s each', file=sys.stderr)
-    results = {}
+    if args.echo or args.echo_vehicle:      # an echo node process started by the bench
+        return echo_main(args.echo_vehicle, ['echo', *ros_args])
+    first = args.domain_id if args.domain_id is not None else 1 + os.getpid() % 90
+    args.domain_id = first
+    progress(f'{os.cpu_count()} CPUs, load average {os.getloadavg()[0]:.2f}; sections '
+             f'{",".join(args.only)}, scale {args.scale}')
     with tempfile.TemporaryDirectory(prefix='linkage-node-bench-') as log_dir:
-        for offset, (name, command) in enumerate(commands.items()):
-            results[name] = measure(name, command, (first + offset) % 101 or 101, args,
-                                    log_dir)
-    count = min(args.count, 1000)
-    solve_s = (solve_time(args.scene, args.method, count, gap=1.0 / args.latency_rate),
-               solve_time(args.scene, args.method, count))
-    report(results, solve_s, args.latency_rate, sys.stdout)
+        if 'core' in args.only:
+            bench_core(args)
+        if 'sweep' in args.only:
+            bench_sweep(args)
+        if 'start' in args.only:
+            bench_start(args, log_dir, first + 1)
+        if 'latency' in args.only:
+            ladder = bench_latency(args, log_dir, first + 2)
+            if args.plot:
+                plot_ladder(ladder, args.plot)
+                progress(f'wrote {args.plot}')
+        if 'vehicle' in args.only:
+            bench_vehicle(args, log_dir, first + 4)
+        if 'callback' in args.only:
+            bench_callback(args)
     return 0
 
 

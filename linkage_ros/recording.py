@@ -1,7 +1,7 @@
 """MCAP recording in the layout rosbag2's MCAP storage plugin writes (Jazzy), and reading back.
 
     with McapRecorder('run.mcap') as rec:
-        rec.record('/wheel_travel', 'std_msgs/msg/Float64', msg, receive_ns, publish_ns)
+        rec.record('/wheel_travel', 'std_msgs/msg/Float64', cdr_bytes, receive_ns, publish_ns)
 
 The file has profile 'ros2'; one schema per type (encoding 'ros2msg', the type's .msg text
 with every dependency appended, as rosbag2_storage_mcap's message_definition_cache does);
@@ -18,7 +18,6 @@ read_bag() (used by linkage-replay and linkage-rerun) recovers it.
 
 import atexit
 from dataclasses import dataclass, field
-import importlib
 import json
 import os
 from pathlib import Path
@@ -30,6 +29,8 @@ from mcap.records import Channel, Header, Message, Metadata, Schema
 from mcap.stream_reader import StreamReader
 from mcap.writer import CompressionType, Writer
 import yaml
+
+from .messages import to_cdr
 
 MCAP_MAGIC = b'\x89MCAP0\r\n'
 PROFILE = 'ros2'
@@ -126,16 +127,6 @@ def type_hash(type_name):
         if entry.get('type_name') == f'{package}/msg/{name}':
             return entry.get('hash_string', '')
     return ''
-
-
-def message_class(type_name):
-    """The rclpy message class of 'pkg/msg/Type'."""
-    package, name = _split_type(type_name)
-    try:
-        return getattr(importlib.import_module(f'{package}.msg'), name)
-    except (ImportError, AttributeError):
-        raise RecordingError(f'type {type_name!r}: no Python message class {package}.msg.{name} '
-                             'is installed') from None
 
 
 def qos_profile_dict(profile=None):
@@ -251,14 +242,10 @@ class McapRecorder:
     def message_count(self):
         return sum(t.count for t in self._topics.values())
 
-    def record(self, topic, type_name, msg, receive_ns, publish_ns):
-        """Serialize an rclpy message (CDR) and write it on topic with its ROS 2 type name."""
-        from rclpy.serialization import serialize_message
-        self.record_serialized(topic, type_name, serialize_message(msg), receive_ns,
-                               publish_ns)
-
-    def record_serialized(self, topic, type_name, data, receive_ns, publish_ns):
-        """Write CDR bytes (as from a raw subscription or serialize_message)."""
+    def record(self, topic, type_name, data, receive_ns, publish_ns):
+        """Write a message on topic with its ROS 2 type name: data is CDR bytes (as the node
+        publishes them, or a raw subscription receives them) or an rclpy message."""
+        data = to_cdr(data)
         with self._lock:
             if self._closed:
                 raise RecordingError(f'{self.path}: recording is closed')
@@ -471,9 +458,3 @@ def _describe(exc):
     if type(exc).__name__ in ('EndOfFile', 'error'):   # mcap's EndOfFile, struct.error
         return 'the file ends in the middle of a record'
     return f'{type(exc).__name__}: {exc}'
-
-
-def decode(message):
-    """The rclpy message of a BagMessage (CDR -> message instance)."""
-    from rclpy.serialization import deserialize_message
-    return deserialize_message(message.data, message_class(message.type_name))

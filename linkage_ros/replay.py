@@ -29,11 +29,13 @@ import time
 import numpy as np
 
 from .kinematics import Continuation, METHODS, travel_range
-from .recording import decode, McapRecorder, qualified, read_bag, RecordingError
+from .messages import float64_cdr, from_cdr
+from .recording import McapRecorder, qualified, read_bag, RecordingError
 from .scene import load_scene, SceneError
 
 PROG = 'linkage-replay'
 FLOAT64 = 'std_msgs/msg/Float64'
+DIAGNOSTIC_ARRAY = 'diagnostic_msgs/msg/DiagnosticArray'
 DIAGNOSTICS_TOPIC = '/diagnostics'
 FRAME_ID = 'base_link'
 DEFAULT_TOPIC = '/wheel_travel'
@@ -72,7 +74,7 @@ def read_commands(path, topic=DEFAULT_TOPIC):
         raise ReplayError(f'{path}: topic {name} carries {bag.topics[name] or "no schema"} '
                           f"('{bag.encodings.get(name)}' encoding), but wheel-travel commands "
                           f'must be {FLOAT64} in cdr (topics present: {topic_list(bag)})')
-    commands = [Command(m.log_time, m.publish_time, float(decode(m).data))
+    commands = [Command(m.log_time, m.publish_time, float(from_cdr(m.type_name, m.data).data))
                 for m in bag.messages if m.topic == name]
     return commands, bag
 
@@ -110,7 +112,7 @@ def stamp_of(time_ns):
 def solve_commands(commands, scene, method, sinks, topic=DEFAULT_TOPIC, progress=None,
                    frame_id=FRAME_ID, period_s=DIAGNOSTIC_PERIOD_S):
     """Solve each command by continuation and hand the command and what the node publishes
-    for it to each sink (McapRecorder, RerunRecorder: .record(topic, type, msg, t, t_pub)), on
+    for it to each sink (McapRecorder, RerunRecorder: .record(topic, type, CDR, t, t_pub)), on
     the recorded timeline: pose, camber and toe (messages.answer) for a solved command, at its
     receive time; /diagnostics as the node sends them (health.Health): a report every
     period_s of recorded time, at once for a failed command or a change of level, and a last
@@ -118,8 +120,6 @@ def solve_commands(commands, scene, method, sinks, topic=DEFAULT_TOPIC, progress
 
     Returns the number of commands that could not be solved.
     """
-    from std_msgs.msg import Float64
-
     from . import messages
     from .health import Health
     from .node import NODE_NAME, PARAMETERS
@@ -131,14 +131,15 @@ def solve_commands(commands, scene, method, sinks, topic=DEFAULT_TOPIC, progress
     period = int(round(period_s * 1e9))
     failures, next_report, t = 0, None, 0
 
-    def emit(name, msg, time_ns):
+    def emit(name, type_name, data, time_ns, publish_ns=None):
         for sink in sinks:
-            sink.record(name, messages.type_name(msg), msg, time_ns, time_ns)
+            sink.record(name, type_name, data, time_ns,
+                        time_ns if publish_ns is None else publish_ns)
 
     def report(time_ns):
-        emit(DIAGNOSTICS_TOPIC, messages.diagnostics(
+        emit(DIAGNOSTICS_TOPIC, DIAGNOSTIC_ARRAY, messages.to_cdr(messages.diagnostics(
             [messages.health_status(health, status_name, scene.name, method)],
-            stamp_of(time_ns)), time_ns)
+            stamp_of(time_ns))), time_ns)
 
     for i, command in enumerate(commands):
         t = command.log_time
@@ -147,13 +148,11 @@ def solve_commands(commands, scene, method, sinks, topic=DEFAULT_TOPIC, progress
             report(next_report)
             health.reset_period()
             next_report += period * ((t - next_report) // period + 1)
-        for sink in sinks:
-            sink.record(topic, FLOAT64, Float64(data=float(command.travel)), t,
-                        command.publish_time)
+        emit(topic, FLOAT64, float64_cdr(command.travel), t, command.publish_time)
         solution = cont.solve(command.travel * 1000.0)
         if solution.success:
-            for name, msg in messages.answer(solution, stamp_of(t), frame_id):
-                emit(f'{namespace}/{name}', msg, t)
+            for name, data in messages.answer(solution, divmod(t, 10**9), frame_id):
+                emit(f'{namespace}/{name}', messages.ANSWER_TYPES[name], data, t)
         else:
             failures += 1
         if health.add(solution):
@@ -202,7 +201,7 @@ def benchmark(commands, scene, method, repeat=3, stream=None):
 def copy_messages(bag, recorder, progress=None):
     """Copy every message read from bag (CDR bytes, times, QoS) into recorder."""
     for i, m in enumerate(bag.messages):
-        recorder.record_serialized(m.topic, m.type_name, m.data, m.log_time, m.publish_time)
+        recorder.record(m.topic, m.type_name, m.data, m.log_time, m.publish_time)
         if progress:
             progress.update(i + 1)
 

@@ -14,7 +14,7 @@ import math
 from pathlib import Path
 import sys
 
-from .recording import decode, read_bag, RecordingError
+from .recording import read_bag, RecordingError
 from .rerun_view import RerunRecorder, topic_role
 from .scene import load_scene, SceneError
 
@@ -34,7 +34,7 @@ def convert(bag, scene, output, recording_id=None):
             role = topic_role(m.topic)
             if role is None:
                 continue
-            viewer.record(m.topic, m.type_name, decode(m), m.log_time, m.publish_time)
+            viewer.record(m.topic, m.type_name, m.data, m.log_time, m.publish_time)
             counts[role] = counts.get(role, 0) + 1
     return counts
 

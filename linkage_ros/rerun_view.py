@@ -29,6 +29,7 @@ from rerun.components import LineStrip3DBatch
 from rerun.encodings import Vec3DBatch
 
 from .geometry import unit
+from .messages import float64_of, pose_of, to_cdr
 
 APP_ID = 'linkage_ros'
 TIME = 'ros_time'
@@ -325,18 +326,21 @@ class RerunRecorder:
         self._closed = False
 
     def record(self, topic, type_name, msg, receive_ns, publish_ns):
-        """Buffer one message (rclpy instance) by its topic's role; times in ns."""
+        """Buffer one message (CDR bytes or an rclpy message) by its topic's role; times in
+        ns."""
         role, root = topic_role(topic), self._root(topic)
         if role is None or root is None or self._closed:
             return
-        if role == 'travel':
+        if not isinstance(msg, bytes):
+            msg = to_cdr(msg)
+        if role == 'pose':
+            (x, y, z), q = pose_of(msg)
+            value = (x * 1000.0, y * 1000.0, z * 1000.0, *q)
+        elif role == 'travel':
             self.sequence += 1
-            value = 1000.0 * msg.data
-        elif role == 'pose':
-            p, q = msg.pose.position, msg.pose.orientation
-            value = (p.x * 1000.0, p.y * 1000.0, p.z * 1000.0, q.x, q.y, q.z, q.w)
+            value = 1000.0 * float64_of(msg)
         else:
-            value = math.degrees(msg.data)
+            value = math.degrees(float64_of(msg))
         self._rows.setdefault((root, role), []).append((receive_ns, self.sequence, value))
         self._buffered += 1
         now = time.monotonic()

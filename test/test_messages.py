@@ -6,6 +6,8 @@ from builtin_interfaces.msg import Time
 from diagnostic_msgs.msg import DiagnosticStatus
 import numpy as np
 import pytest
+from geometry_msgs.msg import PoseStamped
+from rclpy.serialization import deserialize_message, serialize_message
 from std_msgs.msg import Float64
 
 from linkage_ros import messages
@@ -46,20 +48,33 @@ def test_travel_command_in_metres_becomes_millimetres():
     assert messages.travel_mm(Float64(data=-0.08)) == pytest.approx(-80.0, abs=1e-12)
 
 
+def answered(solution, frame_id='base_link'):
+    """{output name: message} of messages.answer, read back by rclpy's own deserializer."""
+    return {name: deserialize_message(data, PoseStamped if name == 'wheel_carrier_pose'
+                                      else Float64)
+            for name, data in messages.answer(solution, (STAMP.sec, STAMP.nanosec), frame_id)}
+
+
+def test_the_answer_is_pose_camber_and_toe_in_that_order(solved):
+    assert [name for name, _ in messages.answer(solved, (0, 0), 'f')] == [
+        'wheel_carrier_pose', 'camber', 'toe']
+    assert set(messages.ANSWER_TYPES) == {'wheel_carrier_pose', 'camber', 'toe'}
+
+
 def test_pose_position_is_the_wheel_centre_in_metres(solved):
-    position = messages.pose_stamped(solved, STAMP, 'base_link').pose.position
+    position = answered(solved)['wheel_carrier_pose'].pose.position
     assert [position.x, position.y, position.z] == pytest.approx(
         solved.wheel_center / 1000.0, abs=1e-15)
 
 
 def test_pose_position_moves_up_by_the_commanded_travel(scene, solved):
     # The travel is imposed on the wheel-centre z (scene design z + 30 mm).
-    position = messages.pose_stamped(solved, STAMP, 'base_link').pose.position
+    position = answered(solved)['wheel_carrier_pose'].pose.position
     assert position.z == pytest.approx((scene.wheel_center[2] + 30.0) / 1000.0, abs=1e-12)
 
 
 def test_pose_orientation_is_the_carrier_rotation_relative_to_design(solved):
-    q = messages.pose_stamped(solved, STAMP, 'base_link').pose.orientation
+    q = answered(solved)['wheel_carrier_pose'].pose.orientation
     quaternion = [q.x, q.y, q.z, q.w]
     assert np.linalg.norm(quaternion) == pytest.approx(1.0, abs=1e-12)
     assert quaternion_matrix(quaternion) == pytest.approx(solved.rotation, abs=1e-12)
@@ -67,33 +82,49 @@ def test_pose_orientation_is_the_carrier_rotation_relative_to_design(solved):
 
 def test_design_position_has_the_identity_orientation(scene):
     design = Continuation(scene).solve(0.0)
-    pose = messages.pose_stamped(design, STAMP, 'base_link').pose
+    pose = answered(design)['wheel_carrier_pose'].pose
     assert [pose.orientation.x, pose.orientation.y, pose.orientation.z,
             abs(pose.orientation.w)] == pytest.approx([0.0, 0.0, 0.0, 1.0], abs=1e-12)
     assert [pose.position.x, pose.position.y, pose.position.z] == pytest.approx(
         scene.wheel_center / 1000.0, abs=1e-12)
 
 
-def test_pose_header_carries_stamp_and_frame(solved):
-    header = messages.pose_stamped(solved, STAMP, 'chassis').header
-    assert (header.stamp.sec, header.stamp.nanosec) == (1_700_000_000, 123_456_789)
-    assert header.frame_id == 'chassis'
+@pytest.mark.parametrize('frame_id', ['', 'f', 'chassis', 'base_link', 'a_frame_of_16_ch'])
+def test_pose_header_carries_stamp_and_frame_of_any_length(solved, frame_id):
+    # The frame name's length moves the pose's alignment padding: every length mod 8 here.
+    message = answered(solved, frame_id)['wheel_carrier_pose']
+    assert (message.header.stamp.sec, message.header.stamp.nanosec) == (1_700_000_000,
+                                                                         123_456_789)
+    assert message.header.frame_id == frame_id
+    assert message.pose.position.x == solved.wheel_center[0] / 1000.0
+
+
+def test_the_answer_bytes_are_what_rclpy_serializes(solved):
+    # Padding aside (rclpy leaves it uninitialised), the bytes read back the same.
+    for name, data in messages.answer(solved, (STAMP.sec, STAMP.nanosec), 'base_link'):
+        kind = PoseStamped if name == 'wheel_carrier_pose' else Float64
+        again = serialize_message(deserialize_message(data, kind))
+        assert len(again) == len(data)
 
 
 def test_camber_and_toe_are_the_solution_angles_in_radians(solved):
-    assert messages.camber(solved).data == solved.camber
-    assert messages.toe(solved).data == solved.toe
+    answer = answered(solved)
+    assert answer['camber'].data == solved.camber and answer['toe'].data == solved.toe
     assert math.isfinite(solved.camber) and solved.camber != 0.0
 
 
-@pytest.mark.parametrize('build', [
-    lambda s: messages.pose_stamped(s, STAMP, 'base_link'),
-    messages.camber,
-    messages.toe,
-])
-def test_failed_solution_has_no_pose_message(failed, build):
+def test_pose_and_float64_are_read_back_in_place_from_any_cdr(solved):
+    pose = PoseStamped()
+    pose.header.frame_id = 'abc'
+    pose.pose.position.x, pose.pose.orientation.w = 1.25, -0.5
+    assert messages.pose_of(serialize_message(pose)) == ((1.25, 0.0, 0.0), (0.0, 0.0, 0.0,
+                                                                              -0.5))
+    assert messages.float64_of(serialize_message(Float64(data=-2.5))) == -2.5
+
+
+def test_failed_solution_has_no_answer(failed):
     with pytest.raises(ValueError, match='not a finite number'):
-        build(failed)
+        messages.answer(failed, (0, 0), 'base_link')
 
 
 def health_of(*solutions, condition_warn=1e4):
@@ -159,16 +190,9 @@ def test_diagnostic_array_is_stamped_and_holds_the_statuses(solved):
     assert messages.status_values(array.status[0])['method'] == 'paper'
 
 
-def test_answer_is_pose_camber_toe_in_that_order(solved):
-    answer = messages.answer(solved, STAMP, 'base_link')
-    assert [name for name, _ in answer] == ['wheel_carrier_pose', 'camber', 'toe']
-    assert answer[1][1].data == solved.camber and answer[2][1].data == solved.toe
-
-
-@pytest.mark.parametrize('build, expected', [
-    (lambda s: messages.pose_stamped(s, STAMP, 'f'), 'geometry_msgs/msg/PoseStamped'),
-    (messages.camber, 'std_msgs/msg/Float64'),
-    (lambda s: messages.diagnostics([], STAMP), 'diagnostic_msgs/msg/DiagnosticArray'),
+@pytest.mark.parametrize('message, expected', [
+    (PoseStamped(), 'geometry_msgs/msg/PoseStamped'), (Float64, 'std_msgs/msg/Float64'),
+    (messages.diagnostics([], STAMP), 'diagnostic_msgs/msg/DiagnosticArray'),
 ])
-def test_type_name_is_the_ros_interface_name(solved, build, expected):
-    assert messages.type_name(build(solved)) == expected
+def test_type_name_is_the_ros_interface_name_of_a_message_or_its_class(message, expected):
+    assert messages.type_name(message) == expected

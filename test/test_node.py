@@ -14,7 +14,10 @@ import sys
 from diagnostic_msgs.msg import DiagnosticStatus
 import numpy as np
 import pytest
+from geometry_msgs.msg import PoseStamped
 from rclpy.parameter import Parameter
+from rclpy.serialization import deserialize_message
+from std_msgs.msg import Float64
 import yaml
 
 from linkage_ros.kinematics import Continuation, sweep
@@ -260,7 +263,11 @@ def test_every_command_and_published_message_reaches_each_sink(suspension_node, 
                 ('/diagnostics', 'diagnostic_msgs/msg/DiagnosticArray')]
     for sink in sinks:
         assert [(topic, type_name) for topic, type_name, *_ in sink.records] == expected
-    command, pose = sinks[0].records[0], sinks[0].records[1]
+    # Sinks get CDR bytes; rclpy's own deserializer reads them back.
+    command = sinks[0].records[0][:2] + (deserialize_message(sinks[0].records[0][2], Float64),
+                                         *sinks[0].records[0][3:])
+    pose = sinks[0].records[1][:2] + (deserialize_message(sinks[0].records[1][2], PoseStamped),
+                                      *sinks[0].records[1][3:])
     assert command[2].data == 0.02
     assert pose[2].pose.position == probe.poses[0].pose.position
     stamp = pose[2].header.stamp
@@ -370,15 +377,22 @@ def test_bad_scene_exits_non_zero_with_the_loader_message(node_process, tmp_path
     assert err.startswith('suspension_node: ') and error in err
 
 
-def test_node_bench_reports_the_node_beside_the_echo_node(domain_id):
-    # A smoke run of linkage-node-bench: the table's structure, not its (machine) timings.
+def test_node_bench_quick_run_prints_every_section_with_nothing_lost(domain_id):
+    # A smoke run of linkage-node-bench: the tables' structure, not their (machine) timings.
     result = subprocess.run(
-        [str(Path(sys.executable).parent / 'linkage-node-bench'), '--count', '20', '--warmup',
-         '5', '--rates', '100', '--duration', '0.2', '--domain-id', str(domain_id)],
-        capture_output=True, text=True, timeout=120)
+        [str(Path(sys.executable).parent / 'linkage-node-bench'), '--quick',
+         '--only', 'core,sweep,latency,vehicle,callback', '--domain-id', str(domain_id)],
+        capture_output=True, text=True, timeout=300)
     assert result.returncode == 0, result.stderr
-    rows = [line.split(',') for line in result.stdout.splitlines()]
-    assert rows[0][0] == 'node' and [r[0] for r in rows[1:3]] == ['echo', 'node']
-    assert [r[5] for r in rows[1:3]] == ['100', '100']     # 100 Hz, nothing lost
-    ladder = [r for r in rows if len(r) == 10 and r[1] == '100']
-    assert [(r[0], r[5]) for r in ladder] == [('echo', '0'), ('node', '0')]
+    tables = {}
+    for block in result.stdout.strip().split('\n\n'):
+        rows = [line.split(',') for line in block.splitlines()]
+        tables[rows[0][0]] = rows
+    assert list(tables) == ['core', 'sweep', 'latency', 'rate', 'vehicle', 'callback']
+    assert [r[0] for r in tables['core'][1:]][:1] == ['linkage_ros']
+    assert [r[0] for r in tables['latency'][1:]] == ['node', 'echo'] * 2
+    assert {r[4] for r in tables['rate'][1:]} == {'0'}            # nothing lost
+    assert [(r[0], r[1], r[4]) for r in tables['vehicle'][1:]] == [
+        ('node', 'float64_per_corner', '0'), ('echo', 'float64_per_corner', '0'),
+        ('node', 'joint_states', '0'), ('echo', 'joint_states', '0')]
+    assert [r[0] for r in tables['callback'][1:]][:2] == ['plain', 'alignment']

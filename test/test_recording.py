@@ -218,7 +218,7 @@ def test_message_definitions_are_found_through_ament_prefix_path(monkeypatch):
 def test_unknown_type_raises_an_error_naming_it(tmp_path, type_name, problem):
     with McapRecorder(tmp_path / 'x.mcap') as rec:
         with pytest.raises(RecordingError, match=problem):
-            rec.record_serialized('/x', type_name, b'\0\1\0\0', 1, 1)
+            rec.record('/x', type_name, b'\0\1\0\0', 1, 1)
 
 
 def test_unwritable_path_raises_an_error_naming_it(tmp_path):
