@@ -408,7 +408,7 @@ def walk(eqs, spin_axis, side_sign, z0, tol, max_iter, slack, max_step, min_step
             if fraction == 1.0:
                 report(eqs, spin_axis, side_sign, state)
         done, step_length = after_step(accepted, length, done, step_length, fraction, max_step)
-        if step_length < min_step:
+        if not accepted and step_length < min_step:
             return state, steps, iterations, True, low, high
     return state, steps, iterations, False, low, high
 

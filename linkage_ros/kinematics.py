@@ -190,7 +190,7 @@ class Continuation:
                 steps += 1
             done, step_length = kernel.after_step(accepted, length, done, step_length, fraction,
                                                   cfg.max_step)
-            if step_length < cfg.min_step:
+            if not accepted and step_length < cfg.min_step:
                 return steps, iterations, True
         return steps, iterations, False
 

@@ -3,9 +3,10 @@
 The core works in mm (vehicle frame: x forward, y left, z up); ROS messages are in SI, so the
 conversion happens here and only here:
 
-    travel_mm(Float64 m)                               -> float mm (+ = bump)
+    command_mm(Float64 CDR, m)                         -> float mm (travel + = bump, rack
+                                                          + = to the left)
     joint_travel_mm(JointState, joint)                 -> float mm of that joint, or None
-    rack_mm(Float64 m)                                 -> float mm (+ = rack to the left)
+    float64_of(CDR), pose_of(CDR)                      -> values read in place from bytes
     answer(solution, stamp, frame_id)                  -> [(output name, CDR bytes)]: what
                                                           the node publishes for a solved
                                                           command: PoseStamped (wheel centre,
@@ -32,9 +33,10 @@ M_PER_MM = 1e-3
 MM_PER_M = 1e3
 
 
-def travel_mm(msg):
-    """Commanded wheel travel of a Float64 (m, + = bump) in mm, the core's unit."""
-    return msg.data * MM_PER_M
+def command_mm(data):
+    """A Float64 command in CDR bytes (wheel travel or steering rack, m) in mm, the core's
+    unit."""
+    return float64_of(data) * MM_PER_M
 
 
 def joint_travel_mm(msg, joint):
@@ -48,11 +50,6 @@ def joint_travel_mm(msg, joint):
     if index >= len(msg.position):
         return None
     return float(msg.position[index]) * MM_PER_M
-
-
-def rack_mm(msg):
-    """Commanded steering rack travel of a Float64 (m, + = rack to the left) in mm."""
-    return msg.data * MM_PER_M
 
 
 # label: (Alignment attribute, column or None, factor from the core's unit to SI). The order

@@ -31,6 +31,7 @@ import io
 import os
 from pathlib import Path
 import signal
+import struct
 import subprocess
 import sys
 import tempfile
@@ -44,6 +45,7 @@ from rclpy.node import Node
 from sensor_msgs.msg import JointState
 from std_msgs.msg import Float64
 
+from .messages import float64_cdr
 from .node import QOS, run
 
 SECTIONS = ('core', 'sweep', 'start', 'latency', 'vehicle', 'callback')
@@ -119,10 +121,13 @@ class Driver:
         self.pubs = [self.node.create_publisher(Float64, p + 'wheel_travel', QOS)
                      for p in prefixes]
         self.joint_pub = self.node.create_publisher(JointState, 'joint_states', QOS)
+        # Raw (CDR) both ways: the driver must be much faster than what it measures, so it
+        # neither builds nor decodes messages.
         self.subs = [self.node.create_subscription(
             PoseStamped, p + 'wheel_carrier_pose',
-            lambda _, times=self.arrivals[p]: times.append(time.perf_counter()), QOS)
-            for p in prefixes]
+            lambda _, times=self.arrivals[p]: times.append(time.perf_counter()), QOS,
+            raw=True) for p in prefixes]
+        self.joint_layout = joint_state_layout([p.rstrip('/') + '_travel' for p in prefixes])
         self.executor.add_node(self.node)
 
     def answered(self):
@@ -146,11 +151,11 @@ class Driver:
 
     def send(self, travel_m, joint_states=False):
         if joint_states:
-            names = [p.rstrip('/') + '_travel' for p in self.prefixes]
-            self.joint_pub.publish(JointState(name=names, position=[float(travel_m)] * len(names)))
+            self.joint_pub.publish(self.joint_layout(travel_m))
         else:
+            data = float64_cdr(travel_m)
             for pub in self.pubs:
-                pub.publish(Float64(data=float(travel_m)))
+                pub.publish(data)
 
     def connect(self, joint_states=False, timeout=20.0, ping_period=0.5):
         """Wait until the node answers every corner (a ping every ping_period s), then until
@@ -223,6 +228,23 @@ class Target:
         self.driver.destroy()
         rclpy.try_shutdown(context=self.context)
         stop_process(self.process, self.name)
+
+
+def joint_state_layout(names):
+    """A function travel (m) -> CDR of a sensor_msgs/JointState (zero stamp) giving every
+    joint of names that position; the positions' place found in, and checked against,
+    rclpy's own serialization."""
+    from rclpy.serialization import deserialize_message, serialize_message
+    marker = struct.pack(f'<{len(names)}d', *range(1, len(names) + 1))
+    template = serialize_message(JointState(name=names, position=list(range(1, len(names) + 1))))
+    start, end = template.index(marker), template.index(marker) + len(marker)
+
+    def layout(travel):
+        return template[:start] + struct.pack(f'<{len(names)}d', *[float(travel)] * len(
+            names)) + template[end:]
+    back = deserialize_message(layout(0.125), JointState)
+    assert list(back.name) == names and list(back.position) == [0.125] * len(names)
+    return layout
 
 
 def start_process(command, domain_id, log_dir, env=None):
@@ -443,9 +465,9 @@ def bench_callback(args):
                 corner = next(iter(node.corners.values()))
                 times = []
                 for travel in travels:
-                    msg = Float64(data=float(travel))
+                    data = float64_cdr(travel)      # as the raw subscription hands it over
                     start = time.perf_counter()
-                    corner.on_travel(msg)
+                    corner.on_travel(data)
                     times.append(time.perf_counter() - start)
                 start = time.perf_counter()
                 node.destroy_node()          # files are finished here

@@ -10,7 +10,7 @@ import yaml
 
 from linkage_ros import paper_method, pose_newton
 from linkage_ros.geometry import camber_toe, exp_so3, trilaterate
-from linkage_ros.kinematics import Continuation, sweep, travel_range
+from linkage_ros.kinematics import Continuation, METHODS, sweep, travel_range
 from linkage_ros.mechanism import carrier_points, compile_scene, linearize
 from linkage_ros.scene import bundled_scenes, load_scene, mirror
 
@@ -203,6 +203,17 @@ def test_unreachable_sweep_keeps_the_positions_solved_before_the_limit():
     result = sweep(load_scene('five_link'), travel_range(0.0, 1000.0, 50.0))
     assert not result.success and 'out of reach' in result.message
     assert len(result.travel) >= 3 and result.residual.max() <= 1e-9
+
+
+@pytest.mark.parametrize('method', METHODS)
+@pytest.mark.parametrize('step', [1e-6, 1e-3, 0.004])
+def test_a_step_shorter_than_min_step_is_one_plain_continuation_step(method, step):
+    # Below min_step (0.005 mm) only a *failing* step means out of reach; a tiny command
+    # that converges is one step, not a detour by arclength (which would count two).
+    cont = Continuation(load_scene('five_link'), method=method)
+    cont.solve(20.0)
+    sol = cont.solve(20.0 + step)
+    assert sol.success and sol.substeps == 1 and sol.travel == 20.0 + step
 
 
 def test_large_jump_is_walked_in_substeps_to_the_same_pose():

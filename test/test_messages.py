@@ -43,11 +43,6 @@ def quaternion_matrix(q):
         [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
 
 
-def test_travel_command_in_metres_becomes_millimetres():
-    assert messages.travel_mm(Float64(data=0.025)) == pytest.approx(25.0, abs=1e-12)
-    assert messages.travel_mm(Float64(data=-0.08)) == pytest.approx(-80.0, abs=1e-12)
-
-
 def answered(solution, frame_id='base_link'):
     """{output name: message} of messages.answer, read back by rclpy's own deserializer."""
     return {name: deserialize_message(data, PoseStamped if name == 'wheel_carrier_pose'
@@ -111,6 +106,11 @@ def test_camber_and_toe_are_the_solution_angles_in_radians(solved):
     answer = answered(solved)
     assert answer['camber'].data == solved.camber and answer['toe'].data == solved.toe
     assert math.isfinite(solved.camber) and solved.camber != 0.0
+
+
+def test_a_command_in_metres_becomes_millimetres():
+    assert messages.command_mm(serialize_message(Float64(data=0.025))) == pytest.approx(25.0)
+    assert messages.command_mm(serialize_message(Float64(data=-0.08))) == pytest.approx(-80.0)
 
 
 def test_pose_and_float64_are_read_back_in_place_from_any_cdr(solved):
