@@ -52,6 +52,7 @@ SECTIONS = ('core', 'sweep', 'start', 'latency', 'vehicle', 'callback')
 DEFAULT_RATES = (250, 500, 1000, 2000, 4000)
 VEHICLE = 'demo_vehicle'
 CORNERS = ('front_left', 'front_right', 'rear_left', 'rear_right')
+QUICK_DISCOVERY = Path(__file__).resolve().parent.parent / 'config' / 'fastdds_quick_discovery.xml'
 
 
 def progress(text):
@@ -170,6 +171,7 @@ class Driver:
             self.spin_until(self.answered, ping_period)
         if not self.answered():
             raise RuntimeError('the node under test never answered')
+        self.first_answer = min(times[0] for times in self.arrivals.values())
         count = -1
         while count != sum(len(t) for t in self.arrivals.values()):   # answers to extra pings
             count = sum(len(t) for t in self.arrivals.values())
@@ -337,31 +339,55 @@ def bench_sweep(args):
 
 
 def bench_start(args, log_dir, domain_id):
-    """Launch to first answer, warm and cold (empty) numba cache."""
-    core_code = ('import time; t = time.perf_counter(); '
-                 'from linkage_ros import Continuation, load_scene; '
-                 f'Continuation(load_scene({args.scene!r})).solve(1.0); '
-                 'print(time.perf_counter() - t)')
+    """Launch to first answer: warm and cold (empty) numba cache, default and quick
+    discovery. Each launch is timed from a fresh process, whose DDS participant (the client)
+    reads the discovery profile as the node does: Fast DDS reads it once per process."""
+    quick = {'FASTRTPS_DEFAULT_PROFILES_FILE': str(QUICK_DISCOVERY)}
+    cases = [('core', 'warm', {}), ('suspension_node', 'warm', {}),
+             ('suspension_node', 'warm quick-discovery', quick),
+             ('core', 'cold', {}), ('suspension_node', 'cold quick-discovery', quick)]
     rows = []
-    for cache in ('warm', 'cold'):
-        with tempfile.TemporaryDirectory() as empty:
-            env = {'NUMBA_CACHE_DIR': empty} if cache == 'cold' else {}
-            start = time.perf_counter()
-            out = subprocess.run([sys.executable, '-c', core_code], capture_output=True,
-                                 text=True, env=dict(os.environ, **env), check=True)
-            rows.append((f'core {cache}', time.perf_counter() - start, float(out.stdout)))
-            progress(f'start: core, {cache} cache: {rows[-1][1]:.2f} s')
-            target = Target('suspension_node', [node_script(), '--ros-args', '-p',
-                                                f'scene:={args.scene}'],
-                            domain_id, log_dir, env=env)
-            try:
-                target.driver.connect(timeout=120.0, ping_period=0.02)
-                rows.append((f'suspension_node {cache}', time.perf_counter() - target.started,
-                             ''))
-            finally:
-                target.close()
-            progress(f'start: suspension_node, {cache} cache: {rows[-1][1]:.2f} s')
-    table(['start', 'launch_to_first_answer_s', 'in_process_s'], rows)
+    for what, case, env in cases:
+        times = []
+        for _ in range(1 if 'cold' in case else args.starts):
+            with tempfile.TemporaryDirectory() as empty:    # a new one each time: cold
+                child = dict(os.environ, **env, **(
+                    {'NUMBA_CACHE_DIR': empty} if 'cold' in case else {}))
+                out = subprocess.run(
+                    [sys.executable, '-m', 'linkage_ros.node_bench', '--start-once', what,
+                     '--scene', args.scene, '--domain-id', str(domain_id)], env=child,
+                    capture_output=True, text=True, check=True, timeout=300)
+                times.append([float(v) for v in out.stdout.split()])
+        launch = [t[0] for t in times]
+        rows.append((what, case, len(times), float(np.median(launch)), max(launch),
+                     float(np.median([t[1] for t in times])) if what == 'core' else ''))
+        progress(f'start: {what}, {case}: median {rows[-1][3]:.2f} s, max {rows[-1][4]:.2f} s')
+    table(['start', 'case', 'starts', 'launch_to_first_answer_median_s', 'max_s',
+           'in_process_s'], rows)
+
+
+def start_once(what, scene, domain_id):
+    """Print the seconds from launch to the first answer of the core (and in process) or of
+    suspension_node (a pose over DDS, pinged every 20 ms)."""
+    if what == 'core':
+        code = ('import time; t = time.perf_counter(); '
+                'from linkage_ros import Continuation, load_scene; '
+                f'Continuation(load_scene({scene!r})).solve(1.0); '
+                'print(time.perf_counter() - t)')
+        start = time.perf_counter()
+        out = subprocess.run([sys.executable, '-c', code], capture_output=True, text=True,
+                             check=True)
+        print(time.perf_counter() - start, float(out.stdout))
+        return 0
+    with tempfile.TemporaryDirectory() as log_dir:
+        target = Target('suspension_node', [node_script(), '--ros-args', '-p',
+                                            f'scene:={scene}'], domain_id, log_dir)
+        try:
+            target.driver.connect(timeout=120.0, ping_period=0.02)
+            print(target.driver.first_answer - target.started)
+        finally:
+            target.close()
+    return 0
 
 
 def bench_latency(args, log_dir, first_domain):
@@ -527,6 +553,8 @@ def parse_args(argv):
     parser.add_argument('--duration', type=float, default=2.0, help='seconds per rate')
     parser.add_argument('--lag-ms', type=float, default=50.0,
                         help='kept up: last answer at most this long after the last command')
+    parser.add_argument('--starts', type=int, default=5,
+                        help='start: launches per warm case (default 5)')
     parser.add_argument('--hz', type=float, default=1000.0, help='vehicle: steps per second')
     parser.add_argument('--seconds', type=float, default=5.0, help='vehicle: seconds per mode')
     parser.add_argument('--plot', help='write latency against command rate here (PNG)')
@@ -536,6 +564,8 @@ def parse_args(argv):
                         help='first of the ROS domain ids to use (default from the pid)')
     parser.add_argument('--echo', action='store_true', help=argparse.SUPPRESS)
     parser.add_argument('--echo-vehicle', action='store_true', help=argparse.SUPPRESS)
+    parser.add_argument('--start-once', choices=('core', 'suspension_node'),
+                        help=argparse.SUPPRESS)
     args, ros_args = parser.parse_known_args(argv)
     args.only = [s for s in args.only.split(',') if s]
     args.count = 200 if args.quick else 2000      # commands per core, latency, callback run
@@ -553,6 +583,8 @@ def main(argv=None):
     args, ros_args = parse_args(sys.argv[1:] if argv is None else argv)
     if args.echo or args.echo_vehicle:      # an echo node process started by the bench
         return echo_main(args.echo_vehicle, ['echo', *ros_args])
+    if args.start_once:                     # one launch timed by the start section
+        return start_once(args.start_once, args.scene, args.domain_id)
     first = args.domain_id if args.domain_id is not None else 1 + os.getpid() % 90
     args.domain_id = first
     progress(f'{os.cpu_count()} CPUs, load average {os.getloadavg()[0]:.2f}; sections '
