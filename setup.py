@@ -36,14 +36,14 @@ setup(
     description='Spatial multi-link suspension kinematics (Alexandru 2018) as a ROS 2 node',
     license='Apache-2.0',
     entry_points={
-        'pytest11': ['linkage_ros = linkage_ros.testing'],
+        'pytest11': ['linkage_ros = linkage_ros.ros.testing'],
         'console_scripts': [
-            'linkage-sweep = linkage_ros.sweep_cli:main',
-            'suspension_node = linkage_ros.node:main',
-            'linkage-node-bench = linkage_ros.node_bench:main',
-            'linkage-replay = linkage_ros.replay:main',
-            'linkage-rerun = linkage_ros.rerun_cli:main',
-            'linkage-bench = linkage_ros.bench:main',
+            'linkage-sweep = linkage_ros.tools.sweep:main',
+            'suspension_node = linkage_ros.ros.node:main',
+            'linkage-node-bench = linkage_ros.bench.node_bench:main',
+            'linkage-replay = linkage_ros.tools.replay:main',
+            'linkage-rerun = linkage_ros.tools.rerun_convert:main',
+            'linkage-bench = linkage_ros.bench.solvers:main',
         ],
     },
 )

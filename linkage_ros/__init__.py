@@ -1,5 +1,11 @@
 """linkage_ros: kinematics of spatial multi-link suspensions (Alexandru 2018) for ROS 2.
 
+    linkage_ros.core     the kinematics, ROS-free (its public names are re-exported here)
+    linkage_ros.ros      suspension_node, its messages and diagnostics, the pytest plugin
+    linkage_ros.record   MCAP and Rerun files of a run
+    linkage_ros.tools    linkage-sweep, linkage-replay, linkage-rerun, plots
+    linkage_ros.bench    linkage-bench, linkage-node-bench and their references
+
 The core works without ROS:
 
     from linkage_ros import Continuation, load_scene, sweep
@@ -7,22 +13,18 @@ The core works without ROS:
     table = sweep(scene, range(-80, 81))            # travels in mm -> Sweep
     solution = Continuation(scene).solve(12.5)      # one command -> Solution (mm, rad)
 
-These names load numpy, scipy, PyYAML and numba only, never rclpy, mcap or rerun; and only
-when first used, so that `import linkage_ros` (which every pytest run does for the plugin
-linkage_ros.testing) costs nothing.
+The names load numpy, scipy, PyYAML and numba only, never rclpy, mcap or rerun; and only when
+first used, so that `import linkage_ros` (which every pytest run does for the plugin
+linkage_ros.ros.testing) costs nothing.
 """
 
 import importlib
 
-_EXPORTS = {
-    'Continuation': 'kinematics', 'Settings': 'kinematics', 'Solution': 'kinematics',
-    'Sweep': 'kinematics', 'sweep': 'kinematics',
-    'load_scene': 'scene', 'Scene': 'scene', 'SceneError': 'scene',
-}
-__all__ = list(_EXPORTS)
+__all__ = ['Continuation', 'LinkageError', 'load_scene', 'Scene', 'SceneError', 'Settings',
+           'Solution', 'Sweep', 'sweep']
 
 
 def __getattr__(name):
-    if name not in _EXPORTS:
+    if name not in __all__:
         raise AttributeError(f'module {__name__!r} has no attribute {name!r}')
-    return getattr(importlib.import_module(f'.{_EXPORTS[name]}', __name__), name)
+    return getattr(importlib.import_module('.core', __name__), name)

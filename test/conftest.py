@@ -1,4 +1,4 @@
-"""The project's tests use the fixtures of its pytest plugin, linkage_ros.testing.
+"""The project's tests use the fixtures of its pytest plugin, linkage_ros.ros.testing.
 
 They are imported by name rather than through pytest_plugins: once the pytest11 entry point
 of an installed linkage_ros registers the same module, pytest_plugins would register it a
@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pytest
 
-from linkage_ros.testing import (  # noqa: F401 (fixtures and helpers for the test modules)
+from linkage_ros.ros.testing import (  # noqa: F401 (fixtures and helpers for the test modules)
     connect, domain_id, executor, localhost_context, localhost_executor, node_process, probe,
     Probe, ros_context, ros_environment, send_travel, spin_until, stamp_ns, suspension_node)
 

@@ -4,10 +4,10 @@ import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
 
-from linkage_ros.alignment import alignment
-from linkage_ros.kinematics import Continuation, sweep, travel_range
-from linkage_ros.mechanism import compile_scene
-from linkage_ros.scene import load_scene
+from linkage_ros.core.alignment import alignment
+from linkage_ros.core.kinematics import Continuation, sweep, travel_range
+from linkage_ros.core.mechanism import compile_scene
+from linkage_ros.core.scene import load_scene
 
 TRAVEL = travel_range(-60.0, 60.0, 0.5)
 H = 0.5   # mm: central differences of the sweep have an O(H^2) error of about 1e-9 rad/mm

@@ -8,11 +8,11 @@ import numpy as np
 import pytest
 from sensor_msgs.msg import JointState
 
-from linkage_ros.kinematics import sweep
-from linkage_ros.messages import status_values
-from linkage_ros.node import QOS
-from linkage_ros.scene import load_scene
-from linkage_ros.testing import spin_until, stamp_ns
+from linkage_ros.core.kinematics import sweep
+from linkage_ros.ros.messages import status_values
+from linkage_ros.ros.node import QOS
+from linkage_ros.core.scene import load_scene
+from linkage_ros.ros.testing import spin_until, stamp_ns
 
 JOINT = 'wheel_travel_fl'
 

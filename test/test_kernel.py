@@ -10,9 +10,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from linkage_ros.kinematics import Continuation, sweep
-from linkage_ros.mechanism import carrier_points
-from linkage_ros.scene import bundled_scenes, load_scene
+from linkage_ros.core.kinematics import Continuation, sweep
+from linkage_ros.core.mechanism import carrier_points
+from linkage_ros.core.scene import bundled_scenes, load_scene
 
 STRESS = Path(__file__).resolve().parent.parent / 'config' / 'stress'
 SCENES = bundled_scenes() + sorted(str(p) for p in STRESS.glob('*.yaml'))

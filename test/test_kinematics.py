@@ -8,11 +8,11 @@ import numpy as np
 import pytest
 import yaml
 
-from linkage_ros import paper_method, pose_newton
-from linkage_ros.geometry import camber_toe, exp_so3, trilaterate
-from linkage_ros.kinematics import Continuation, METHODS, sweep, travel_range
-from linkage_ros.mechanism import carrier_points, compile_scene, linearize
-from linkage_ros.scene import bundled_scenes, load_scene, mirror
+from linkage_ros.core import paper_method, pose_newton
+from linkage_ros.core.geometry import camber_toe, exp_so3, trilaterate
+from linkage_ros.core.kinematics import Continuation, METHODS, sweep, travel_range
+from linkage_ros.core.mechanism import carrier_points, compile_scene, linearize
+from linkage_ros.core.scene import bundled_scenes, load_scene, mirror
 
 SCENES = ['five_link', 'double_wishbone', 'macpherson']
 FULL = travel_range(-80.0, 80.0, 1.0)
@@ -226,9 +226,11 @@ def test_large_jump_is_walked_in_substeps_to_the_same_pose():
     assert far.wheel_center == pytest.approx(fine.wheel_center[-1], abs=1e-9)
 
 
-def test_core_imports_nothing_of_ros_mcap_or_rerun():
-    code = ('import sys, linkage_ros.kinematics, linkage_ros.sweep_cli; '
-            'print(sorted(m for m in ("rclpy", "mcap", "rerun") if m in sys.modules))')
+def test_the_core_package_imports_nothing_of_ros_mcap_rerun_or_matplotlib():
+    code = ('import sys, linkage_ros, linkage_ros.core, linkage_ros.core.alignment, '
+            'linkage_ros.core.vehicle, linkage_ros.tools.sweep; '
+            'print(sorted(m for m in ("rclpy", "mcap", "rerun", "matplotlib") '
+            'if m in sys.modules))')
     out = subprocess.run([sys.executable, '-c', code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == '[]'
 

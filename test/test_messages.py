@@ -1,4 +1,4 @@
-"""linkage_ros.messages: Solution (mm, rad) -> ROS messages (m, rad), without DDS."""
+"""linkage_ros.ros.messages: Solution (mm, rad) -> ROS messages (m, rad), without DDS."""
 
 import math
 
@@ -10,10 +10,10 @@ from geometry_msgs.msg import PoseStamped
 from rclpy.serialization import deserialize_message, serialize_message
 from std_msgs.msg import Float64
 
-from linkage_ros import messages
-from linkage_ros.health import Health
-from linkage_ros.kinematics import Continuation
-from linkage_ros.scene import load_scene
+from linkage_ros.ros import messages
+from linkage_ros.ros.health import Health
+from linkage_ros.core.kinematics import Continuation
+from linkage_ros.core.scene import load_scene
 
 STAMP = Time(sec=1_700_000_000, nanosec=123_456_789)
 

@@ -20,10 +20,10 @@ from rclpy.serialization import deserialize_message
 from std_msgs.msg import Float64
 import yaml
 
-from linkage_ros.kinematics import Continuation, sweep
-from linkage_ros.messages import status_values
-from linkage_ros.node import NODE_NAME, PARAMETERS, QOS, QOS_DEPTH, SuspensionNode
-from linkage_ros.scene import load_scene, SceneError
+from linkage_ros.core.kinematics import Continuation, sweep
+from linkage_ros.ros.messages import status_values
+from linkage_ros.ros.node import NODE_NAME, PARAMETERS, QOS, QOS_DEPTH, SuspensionNode
+from linkage_ros.core.scene import load_scene, SceneError
 
 from conftest import connect, PARAMS_FILE, Probe, spin_until, stamp_ns
 
@@ -306,10 +306,10 @@ def test_record_mcap_parameter_writes_a_recording_readable_by_mcap(suspension_no
 def test_without_sinks_neither_mcap_nor_rerun_is_imported(domain_id):
     script = (
         'import sys, rclpy\n'
-        'from linkage_ros.node import SuspensionNode\n'
+        'from linkage_ros.ros.node import SuspensionNode\n'
         f'ctx = rclpy.context.Context(); rclpy.init(context=ctx, domain_id={domain_id})\n'
         'SuspensionNode(context=ctx).destroy_node(); rclpy.try_shutdown(context=ctx)\n'
-        "names = ('mcap', 'rerun', 'linkage_ros.recording', 'linkage_ros.rerun_view')\n"
+        "names = ('mcap', 'rerun', 'linkage_ros.record.bag', 'linkage_ros.record.rerun_view')\n"
         'print(sorted(n for n in names if n in sys.modules))\n')
     result = subprocess.run([sys.executable, '-c', script], capture_output=True, text=True,
                             timeout=60, env={**os.environ,

@@ -14,13 +14,13 @@ from rclpy.parameter import Parameter
 from std_msgs.msg import Float64, Float64MultiArray
 from visualization_msgs.msg import MarkerArray
 
-from linkage_ros import messages
-from linkage_ros.alignment import alignment
-from linkage_ros.kinematics import Continuation
-from linkage_ros.markers import marker_points
-from linkage_ros.node import QOS, SuspensionNode
-from linkage_ros.scene import load_scene
-from linkage_ros.testing import spin_until
+from linkage_ros.ros import messages
+from linkage_ros.core.alignment import alignment
+from linkage_ros.core.kinematics import Continuation
+from linkage_ros.ros.markers import marker_points
+from linkage_ros.ros.node import QOS, SuspensionNode
+from linkage_ros.core.scene import load_scene
+from linkage_ros.ros.testing import spin_until
 
 
 STEERED = 'double_wishbone'     # tie_rod has steer: rack

@@ -11,11 +11,11 @@ from rclpy.parameter import Parameter
 from sensor_msgs.msg import JointState
 from std_msgs.msg import Float64
 
-from linkage_ros.kinematics import Continuation
-from linkage_ros.messages import status_values
-from linkage_ros.node import NODE_NAME, QOS, SuspensionNode
-from linkage_ros.testing import spin_until
-from linkage_ros.vehicle import load_vehicle
+from linkage_ros.core.kinematics import Continuation
+from linkage_ros.ros.messages import status_values
+from linkage_ros.ros.node import NODE_NAME, QOS, SuspensionNode
+from linkage_ros.ros.testing import spin_until
+from linkage_ros.core.vehicle import load_vehicle
 
 
 CORNERS = ['front_left', 'front_right', 'rear_left', 'rear_right']

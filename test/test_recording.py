@@ -29,10 +29,10 @@ from rosbags.highlevel import AnyReader
 from std_msgs.msg import Float64
 import yaml
 
-from linkage_ros.kinematics import sweep
-from linkage_ros.recording import (McapRecorder, message_definition, read_bag, RecordingError,
+from linkage_ros.core.kinematics import sweep
+from linkage_ros.record.bag import (McapRecorder, message_definition, read_bag, RecordingError,
                                    SEPARATOR, share_dirs)
-from linkage_ros.scene import load_scene
+from linkage_ros.core.scene import load_scene
 
 T0 = 1_700_000_000_000_000_000   # ns since the epoch
 PERIOD = 10_000_000              # 100 Hz
@@ -283,7 +283,7 @@ def test_hard_kill_loses_only_the_chunk_being_built(tmp_path):
     script = textwrap.dedent(f"""
         import os, signal, time
         from std_msgs.msg import Float64
-        from linkage_ros.recording import McapRecorder
+        from linkage_ros.record.bag import McapRecorder
         rec = McapRecorder({str(path)!r}, flush_period=0.1)
         for i in range(100):
             rec.record('/wheel_travel', 'std_msgs/msg/Float64', Float64(data=i), i + 1, i + 1)

@@ -10,9 +10,9 @@ import math
 import numpy as np
 import pytest
 
-from linkage_ros import reference
-from linkage_ros.kinematics import sweep, travel_range
-from linkage_ros.scene import load_scene
+from linkage_ros.bench import reference
+from linkage_ros.core.kinematics import sweep, travel_range
+from linkage_ros.core.scene import load_scene
 
 from test_stability import stress_scene, TOGGLE_LIMIT_MM
 

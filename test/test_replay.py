@@ -18,9 +18,9 @@ import pytest
 from rosbags.highlevel import AnyReader
 import yaml
 
-from linkage_ros.messages import status_values
-from linkage_ros.recording import McapRecorder
-from linkage_ros.replay import main
+from linkage_ros.ros.messages import status_values
+from linkage_ros.record.bag import McapRecorder
+from linkage_ros.tools.replay import main
 
 ROOT = Path(__file__).resolve().parent.parent
 EXAMPLE = ROOT / 'bags' / 'five_link_sweep.mcap'
@@ -230,7 +230,7 @@ def test_publish_republishes_the_commands_in_order_at_the_recorded_pace(tmp_path
                                  lambda msg: received.append((time.monotonic(), msg.data)), 100)
         executor = SingleThreadedExecutor(context=ctx)
         executor.add_node(node)
-        proc = subprocess.Popen([sys.executable, '-m', 'linkage_ros.replay', str(bag),
+        proc = subprocess.Popen([sys.executable, '-m', 'linkage_ros.tools.replay', str(bag),
                                  '--publish', '--rate', '0.5', '--wait', '20'], env=env,
                                 stderr=subprocess.PIPE, text=True)
         deadline = time.monotonic() + 40

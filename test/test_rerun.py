@@ -16,11 +16,11 @@ import pytest
 from rerun.chunk import RrdReader
 import yaml
 
-from linkage_ros.kinematics import sweep, travel_range
-from linkage_ros.rerun_cli import main
-from linkage_ros.rerun_view import (carrier_points, link_points, link_strips, RerunRecorder,
+from linkage_ros.core.kinematics import sweep, travel_range
+from linkage_ros.tools.rerun_convert import main
+from linkage_ros.record.rerun_view import (carrier_points, link_points, link_strips, RerunRecorder,
                                     rotation_from_quaternion, wheel_circle)
-from linkage_ros.scene import load_scene
+from linkage_ros.core.scene import load_scene
 
 ROOT = Path(__file__).resolve().parent.parent
 EXAMPLE = ROOT / 'bags' / 'five_link_sweep.mcap'
@@ -177,7 +177,7 @@ def test_blueprint_opens_on_a_3d_view_beside_three_plots(example_rrd):
 
 def test_a_vehicle_recording_shows_every_corner_in_one_3d_view_beside_the_plots(tmp_path):
     from std_msgs.msg import Float64
-    from linkage_ros.vehicle import load_vehicle
+    from linkage_ros.core.vehicle import load_vehicle
     corners = load_vehicle('demo_vehicle').corners
     out = tmp_path / 'vehicle.rrd'
     with RerunRecorder(out, corners=corners) as viewer:
@@ -253,12 +253,12 @@ def test_a_truncated_bag_is_converted_up_to_the_cut_with_a_warning(tmp_path, cap
 
 
 def test_recording_and_viewing_modules_import_only_their_own_library():
-    code = ('import sys, linkage_ros.recording; a = "rerun" in sys.modules; '
-            'import linkage_ros.rerun_view; b = "mcap" in sys.modules; print(a, b)')
+    code = ('import sys, linkage_ros.record.bag; a = "rerun" in sys.modules; '
+            'import linkage_ros.record.rerun_view; b = "mcap" in sys.modules; print(a, b)')
     fresh = subprocess.run([sys.executable, '-c', code], capture_output=True, text=True,
                            timeout=60)
     assert fresh.stdout.split() == ['False', 'True']   # mcap was imported by recording
-    code = 'import sys, linkage_ros.rerun_view; print("mcap" in sys.modules)'
+    code = 'import sys, linkage_ros.record.rerun_view; print("mcap" in sys.modules)'
     fresh = subprocess.run([sys.executable, '-c', code], capture_output=True, text=True,
                            timeout=60)
     assert fresh.stdout.split() == ['False']

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 import yaml
 
-from linkage_ros.scene import bundled_scenes, load_scene, mirror, SceneError
+from linkage_ros.core.scene import bundled_scenes, load_scene, mirror, SceneError
 
 VALID = {
     'name': 'probe',

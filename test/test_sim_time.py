@@ -16,10 +16,10 @@ from rclpy.qos import QoSProfile
 from rosgraph_msgs.msg import Clock
 from std_msgs.msg import Float64
 
-from linkage_ros.messages import status_values
-from linkage_ros.node import SuspensionNode
-from linkage_ros.recording import McapRecorder
-from linkage_ros.testing import Probe, spin_until, stamp_ns
+from linkage_ros.ros.messages import status_values
+from linkage_ros.ros.node import SuspensionNode
+from linkage_ros.record.bag import McapRecorder
+from linkage_ros.ros.testing import Probe, spin_until, stamp_ns
 
 S = 1_000_000_000     # ns per s
 
@@ -110,7 +110,7 @@ def test_replay_publish_clock_makes_a_sim_time_node_stamp_with_the_recorded_time
     probe = Probe(localhost_context, localhost_executor)
     env = dict(os.environ, ROS_DOMAIN_ID=str(domain_id),
                ROS_AUTOMATIC_DISCOVERY_RANGE='LOCALHOST')
-    replay = subprocess.Popen([sys.executable, '-m', 'linkage_ros.replay', str(bag), '--publish',
+    replay = subprocess.Popen([sys.executable, '-m', 'linkage_ros.tools.replay', str(bag), '--publish',
                                '--clock', '--wait', '20'], env=env, stderr=subprocess.PIPE,
                               text=True)
     try:
@@ -127,7 +127,7 @@ def test_replay_publish_clock_makes_a_sim_time_node_stamp_with_the_recorded_time
 
 
 def test_replay_clock_without_publish_is_refused(capsys):
-    from linkage_ros.replay import main
+    from linkage_ros.tools.replay import main
     with pytest.raises(SystemExit) as exited:
         main(['--sweep', '--clock'])
     assert exited.value.code == 2

@@ -2,7 +2,7 @@
 perturbed hardpoints, random scenes.
 
 Expected values come from outside the core: an analytic toggle, the extended-precision 6-DOF
-reference (linkage_ros.reference, its own formulation), or an identity (the pose is a
+reference (linkage_ros.bench.reference, its own formulation), or an identity (the pose is a
 function of travel; the same travel gives the same pose however it was reached).
 Stress scenes live in config/stress/ (not bundled).
 """
@@ -16,12 +16,12 @@ import numpy as np
 import pytest
 from rclpy.parameter import Parameter
 
-from linkage_ros import reference
-from linkage_ros.bench import hardpoint_count, perturbed, random_walk
-from linkage_ros.kinematics import Continuation, Settings, sweep, travel_range
-from linkage_ros.messages import status_values
-from linkage_ros.pose_newton import FREE
-from linkage_ros.scene import bundled_scenes, load_scene, SceneError
+from linkage_ros.bench import reference
+from linkage_ros.bench.solvers import hardpoint_count, perturbed, random_walk
+from linkage_ros.core.kinematics import Continuation, Settings, sweep, travel_range
+from linkage_ros.ros.messages import status_values
+from linkage_ros.core.pose_newton import FREE
+from linkage_ros.core.scene import bundled_scenes, load_scene, SceneError
 
 STRESS = Path(__file__).resolve().parent.parent / 'config' / 'stress'
 # trailing_arm_toggle: M turns about the arm axis at radius hypot(150, 400) mm from an axis
@@ -108,7 +108,7 @@ def test_reported_condition_number_is_that_of_an_independent_jacobian(travel):
 def test_node_warns_near_the_toggle_with_its_default_condition_warn(ros_context, executor,
                                                                      probe):
     from conftest import spin_until
-    from linkage_ros.node import SuspensionNode
+    from linkage_ros.ros.node import SuspensionNode
     path = str(STRESS / 'trailing_arm_toggle.yaml')
     executor.add_node(SuspensionNode(context=ros_context, parameter_overrides=[
         Parameter('scene', value=path), Parameter('diagnostic_period', value=3600.0)]))

@@ -8,7 +8,7 @@ import sys
 import numpy as np
 import pytest
 
-from linkage_ros.sweep_cli import COLUMNS, main
+from linkage_ros.tools.sweep import COLUMNS, main
 
 LEADING = ('travel_mm,camber_deg,toe_deg,wheel_center_x_mm,wheel_center_y_mm,'
            'wheel_center_z_mm,qx,qy,qz,qw,residual_mm,iterations')
@@ -68,7 +68,7 @@ def test_unreachable_range_exits_1_after_writing_the_rows_it_solved(capsys):
 
 
 def test_console_script_runs_as_a_module():
-    out = subprocess.run([sys.executable, '-m', 'linkage_ros.sweep_cli', 'five_link', '--step',
+    out = subprocess.run([sys.executable, '-m', 'linkage_ros.tools.sweep', 'five_link', '--step',
                           '80'], capture_output=True, text=True, check=True)
     assert out.stdout.splitlines()[0] == LEADING and len(out.stdout.splitlines()) == 4
 

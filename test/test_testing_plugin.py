@@ -1,4 +1,4 @@
-"""linkage_ros.testing, the pytest plugin: its fixtures in use, and what it leaves alone."""
+"""linkage_ros.ros.testing, the pytest plugin: its fixtures in use, and what it leaves alone."""
 
 from importlib.metadata import entry_points
 import os
@@ -11,17 +11,17 @@ from diagnostic_msgs.msg import DiagnosticStatus
 import numpy as np
 import pytest
 
-from linkage_ros import testing
-from linkage_ros.kinematics import sweep
-from linkage_ros.scene import load_scene
+from linkage_ros.ros import testing
+from linkage_ros.core.kinematics import sweep
+from linkage_ros.core.scene import load_scene
 
 EXAMPLE = Path(__file__).resolve().parent / 'test_plugin_example.py'
 
 
 def plugin_args():
-    """-p linkage_ros.testing unless an installed linkage_ros registers it (pytest11)."""
-    installed = any(e.value == 'linkage_ros.testing' for e in entry_points(group='pytest11'))
-    return [] if installed else ['-p', 'linkage_ros.testing']
+    """-p linkage_ros.ros.testing unless an installed linkage_ros registers it (pytest11)."""
+    installed = any(e.value == 'linkage_ros.ros.testing' for e in entry_points(group='pytest11'))
+    return [] if installed else ['-p', 'linkage_ros.ros.testing']
 
 
 def test_the_readme_example_passes_under_plain_pytest_outside_this_project(tmp_path):
@@ -39,8 +39,8 @@ def test_the_readme_example_passes_under_plain_pytest_outside_this_project(tmp_p
 
 def test_linkage_ros_testing_imports_without_pytest():
     script = ("import sys; sys.modules['pytest'] = None\n"
-              'import linkage_ros, linkage_ros.testing\n'
-              'print(linkage_ros.testing.pytest, linkage_ros.testing.Probe.__name__)\n')
+              'import linkage_ros, linkage_ros.ros.testing\n'
+              'print(linkage_ros.ros.testing.pytest, linkage_ros.ros.testing.Probe.__name__)\n')
     result = subprocess.run([sys.executable, '-c', script], capture_output=True, text=True,
                             timeout=60)
     assert result.returncode == 0, result.stderr
@@ -48,7 +48,7 @@ def test_linkage_ros_testing_imports_without_pytest():
 
 
 def test_importing_the_plugin_loads_neither_rclpy_nor_numpy():
-    script = ('import sys, linkage_ros.testing\n'
+    script = ('import sys, linkage_ros.ros.testing\n'
               "print(sorted(m for m in ('rclpy', 'numpy', 'scipy') if m in sys.modules))\n")
     result = subprocess.run([sys.executable, '-c', script], capture_output=True, text=True,
                             timeout=60)

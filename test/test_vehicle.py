@@ -3,9 +3,9 @@
 import numpy as np
 import pytest
 
-from linkage_ros.kinematics import sweep
-from linkage_ros.scene import SceneError
-from linkage_ros.vehicle import load_vehicle
+from linkage_ros.core.kinematics import sweep
+from linkage_ros.core.scene import SceneError
+from linkage_ros.core.vehicle import load_vehicle
 
 
 def test_demo_vehicle_has_four_corners_with_mirrored_right_side():

@@ -28,8 +28,8 @@ import rerun.blueprint as rrb
 from rerun.components import LineStrip3DBatch
 from rerun.encodings import Vec3DBatch
 
-from .geometry import unit
-from .messages import float64_of, pose_of, to_cdr
+from ..core.geometry import unit
+from ..ros.messages import float64_of, pose_of, to_cdr
 
 APP_ID = 'linkage_ros'
 TIME = 'ros_time'

@@ -29,6 +29,8 @@ import struct
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
 from std_msgs.msg import Float64MultiArray, MultiArrayDimension, MultiArrayLayout
 
+from ..core.errors import LinkageError
+
 M_PER_MM = 1e-3
 MM_PER_M = 1e3
 
@@ -73,7 +75,7 @@ ALIGNMENT_FIELDS = {
 
 
 def alignment_array(alignment):
-    """The alignment set of one solved position (linkage_ros.alignment.Alignment, n = 1) as a
+    """The alignment set of one solved position (linkage_ros.core.alignment.Alignment, n = 1) as a
     Float64MultiArray in SI: data[i] is the field named by layout.dim[i].label (one dimension
     of size 1 per field, labels and order of ALIGNMENT_FIELDS). NaN where a field is undefined
     (no steer axis without a steer: rack link, no contact patch without a wheel radius)."""
@@ -167,17 +169,17 @@ def to_cdr(msg):
 
 
 def message_class(type_name):
-    """The rclpy message class of 'pkg/msg/Type'; ValueError if none is installed."""
+    """The rclpy message class of 'pkg/msg/Type'; LinkageError if none is installed."""
     package, _, name = type_name.partition('/msg/')
     try:
         return getattr(importlib.import_module(f'{package}.msg'), name)
     except (ImportError, AttributeError, ValueError):
-        raise ValueError(f'type {type_name!r}: no Python message class {package}.msg.{name} '
-                         'is installed') from None
+        raise LinkageError(f'type {type_name!r}', f'no Python message class '
+                           f'{package}.msg.{name} is installed') from None
 
 
 def health_status(health, name, hardware_id, method):
-    """A corner's Health (linkage_ros.health) as a DiagnosticStatus; values in SI, keys name
+    """A corner's Health (linkage_ros.ros.health) as a DiagnosticStatus; values in SI, keys name
     their units.
 
     Level and message: ERROR with the reason (a failed last command, a fault such as a

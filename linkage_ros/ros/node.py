@@ -1,8 +1,8 @@
 """suspension_node: wheel travel in; wheel-carrier pose, camber, toe and solver health out.
 
-A thin adapter over the kinematics core (linkage_ros.kinematics.Continuation): each command
+A thin adapter over the kinematics core (linkage_ros.core.kinematics.Continuation): each command
 is solved from the last good pose (large jumps walked in substeps of max_step_mm), turned
-into SI messages by linkage_ros.messages, and published. Outputs answer a stamped input
+into SI messages by linkage_ros.ros.messages, and published. Outputs answer a stamped input
 (JointState) with its header stamp, a Float64 with the node clock's time of receipt (simulated
 time with use_sim_time). A bad command (NaN, inf, out of reach) publishes no pose, only an
 ERROR diagnostic saying why; the core keeps the last good state.
@@ -28,7 +28,7 @@ Topics (names relative to the node's namespace, /diagnostics absolute):
                                                         if parameter markers is true
 All reliable, keep-last QOS_DEPTH (1000), so a burst of 1000 commands is not lost.
 
-With parameter vehicle (a vehicle file, linkage_ros.vehicle) the node serves every corner:
+With parameter vehicle (a vehicle file, linkage_ros.core.vehicle) the node serves every corner:
 each Corner has its own Continuation and the topics above under its name (front_left/
 wheel_travel, front_left/camber, ...; steering_rack only where the corner steers), one
 diagnostic status per corner named after it; parameter scene is then not used. Corners whose
@@ -60,8 +60,9 @@ from visualization_msgs.msg import MarkerArray
 
 from . import messages
 from .health import Health
-from .kinematics import Continuation
-from .scene import load_scene
+from ..core.errors import LinkageError
+from ..core.kinematics import Continuation
+from ..core.scene import load_scene
 
 NODE_NAME = 'suspension_kinematics'
 QOS_DEPTH = 1000
@@ -111,7 +112,7 @@ def load_corners(params):
     its vehicle file names ('' where none)."""
     if not params['vehicle']:
         return {'': (load_scene(params['scene']), '', '')}
-    from .vehicle import load_vehicle
+    from ..core.vehicle import load_vehicle
     vehicle = load_vehicle(params['vehicle'])
     return {f'{name}/': (scene, *vehicle.joints.get(name, ('', '')))
             for name, scene in vehicle.corners.items()}
@@ -144,7 +145,7 @@ class Corner:
                                                      self.on_rack, QOS, raw=True)
         self.extras = []   # (publisher, function(solution, stamp) -> message)
         if params['alignment']:
-            from .alignment import alignment
+            from ..core.alignment import alignment
             self.extras.append((
                 node.create_publisher(Float64MultiArray, prefix + 'alignment', QOS),
                 lambda solution, stamp: messages.alignment_array(alignment(
@@ -318,9 +319,9 @@ class SuspensionNode(Node):
 def positive_number(name, value):
     """value as a float if it is a finite number > 0, else ValueError naming the parameter."""
     if isinstance(value, bool) or not isinstance(value, (int, float)):
-        raise ValueError(f'{name}: expected a number, got {value!r}')
+        raise LinkageError(name, f'expected a number, got {value!r}')
     if not (math.isfinite(value) and value > 0):
-        raise ValueError(f'{name}: must be a finite number above 0, got {value!r}')
+        raise LinkageError(name, f'must be a finite number above 0, got {value!r}')
     return float(value)
 
 
@@ -335,7 +336,7 @@ def open_sinks(params, scenes, qos):
     try:
         if params['record_mcap']:
             try:
-                from .recording import McapRecorder
+                from ..record.bag import McapRecorder
             except ImportError as exc:
                 raise ImportError(f'record_mcap: cannot record ({exc}); install the record '
                                   'extra: pip install "linkage_ros[record]"') from exc
@@ -344,7 +345,7 @@ def open_sinks(params, scenes, qos):
             sinks.append(McapRecorder(params['record_mcap'], qos=qos, custom_data=about))
         if params['rerun_rrd']:
             try:
-                from .rerun_view import RerunRecorder
+                from ..record.rerun_view import RerunRecorder
             except ImportError as exc:
                 raise ImportError(f'rerun_rrd: cannot mirror to Rerun ({exc}); install the '
                                   'view extra: pip install "linkage_ros[view]"') from exc

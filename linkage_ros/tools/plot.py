@@ -1,6 +1,6 @@
 """Camber and toe against wheel travel for scenes, as a PNG (needs matplotlib: the plot extra).
 
-    python -m linkage_ros.plot OUT.png [--alignment] [SCENE ...]
+    python -m linkage_ros.tools.plot OUT.png [--alignment] [SCENE ...]
     (default scenes: five_link, double_wishbone, macpherson; --alignment: the alignment set)
 """
 
@@ -8,8 +8,8 @@ import sys
 
 import numpy as np
 
-from .kinematics import sweep, travel_range
-from .scene import load_scene
+from ..core.kinematics import sweep, travel_range
+from ..core.scene import load_scene
 
 
 def plot_camber_toe(scenes, path):
@@ -55,8 +55,8 @@ def plot_alignment(scenes, path):
     matplotlib.use('Agg')
     import matplotlib.pyplot as plt
 
-    from .alignment import alignment
-    from .mechanism import compile_scene
+    from ..core.alignment import alignment
+    from ..core.mechanism import compile_scene
 
     fig, axes = plt.subplots(2, 4, figsize=(16, 7), sharex=True)
     for scene in scenes:

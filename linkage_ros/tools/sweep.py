@@ -9,8 +9,9 @@ import time
 
 import numpy as np
 
-from .kinematics import Continuation, METHODS, sweep, travel_range
-from .scene import load_scene, SceneError
+from ..core.errors import LinkageError
+from ..core.kinematics import Continuation, METHODS, sweep, travel_range
+from ..core.scene import load_scene, SceneError
 
 COLUMNS = ['travel_mm', 'camber_deg', 'toe_deg', 'wheel_center_x_mm', 'wheel_center_y_mm',
            'wheel_center_z_mm', 'qx', 'qy', 'qz', 'qw', 'residual_mm', 'iterations']
@@ -42,8 +43,8 @@ def table(result, scene=None, with_rack=False):
 
 def alignment_table(scene, result):
     """The ALIGNMENT_COLUMNS of a Sweep, shape (n, len(ALIGNMENT_COLUMNS))."""
-    from .alignment import alignment
-    from .mechanism import compile_scene
+    from ..core.alignment import alignment
+    from ..core.mechanism import compile_scene
     a = alignment(scene, compile_scene(scene), result.wheel_center, result.rotation,
                   result.rack)
     deg = np.degrees
@@ -140,7 +141,7 @@ def main(argv=None):
           f'{stop:g} mm, method {args.method}', file=sys.stderr)
     try:
         racks = rack_values(args)
-    except ValueError as exc:
+    except LinkageError as exc:
         print(f'linkage-sweep: {exc}', file=sys.stderr)
         return 2
     if racks != [0.0] and not any(c.steer == 'rack' for c in scene.constraints):
@@ -176,14 +177,15 @@ def rack_values(args):
     if args.grid is None:
         rack = 0.0 if args.rack is None else args.rack
         if not np.isfinite(rack):
-            raise ValueError(f'--rack must be finite, got {rack}')
+            raise LinkageError('--rack', f'must be finite, got {rack}')
         return [rack]
     try:
         start, stop, step = (float(v) for v in args.grid.split(':'))
     except ValueError:
-        raise ValueError(f'--grid: expected FROM:TO:STEP in mm, got {args.grid!r}') from None
+        raise LinkageError('--grid', f'expected FROM:TO:STEP in mm, got {args.grid!r}') from None
     if not (step > 0 and np.isfinite([start, stop, step]).all()):
-        raise ValueError(f'--grid: FROM, TO, STEP must be finite and STEP > 0, got {args.grid!r}')
+        raise LinkageError('--grid', f'FROM, TO, STEP must be finite and STEP > 0, got '
+                           f'{args.grid!r}')
     return list(travel_range(start, stop, step))
 
 

@@ -25,8 +25,8 @@ import numpy as np
 from scipy.optimize import least_squares, root
 from scipy.spatial.transform import Rotation
 
-from . import paper_method
-from .mechanism import compile_scene, linearize
+from ..core import paper_method
+from ..core.mechanism import compile_scene, linearize
 
 LD = np.longdouble
 REF_STEP = 1e-3          # longest step of the reference walk, as a fraction of the scene size

@@ -45,14 +45,15 @@ from rclpy.node import Node
 from sensor_msgs.msg import JointState
 from std_msgs.msg import Float64
 
-from .messages import float64_cdr
-from .node import QOS, run
+from ..core.scene import config_dir
+from ..ros.messages import float64_cdr
+from ..ros.node import QOS, run
 
 SECTIONS = ('core', 'sweep', 'start', 'latency', 'vehicle', 'callback')
 DEFAULT_RATES = (250, 500, 1000, 2000, 4000)
 VEHICLE = 'demo_vehicle'
 CORNERS = ('front_left', 'front_right', 'rear_left', 'rear_right')
-QUICK_DISCOVERY = Path(__file__).resolve().parent.parent / 'config' / 'fastdds_quick_discovery.xml'
+QUICK_DISCOVERY = config_dir() / 'fastdds_quick_discovery.xml'
 
 
 def progress(text):
@@ -280,15 +281,15 @@ def us(values, q=50):
 
 def bench_core(args):
     """One command at a time: Continuation.solve beside exudyn, alternating rounds."""
-    from . import bench
-    from .kinematics import Continuation
-    from .scene import load_scene
+    from . import solvers
+    from ..core.kinematics import Continuation
+    from ..core.scene import load_scene
     scene = load_scene(args.scene)
     count = args.count * args.scale
     travels = 60.0 * np.sin(np.arange(count) * 0.0125)      # mm, steps of up to 0.75 mm
     entries = {'linkage_ros': Continuation(scene)}
-    if bench.exudyn_version():
-        entries['exudyn'] = bench.ExudynSolver(scene, 1e-10)
+    if solvers.exudyn_version():
+        entries['exudyn'] = solvers.ExudynSolver(scene, 1e-10)
     else:
         progress('exudyn is not installed (pip install -e .[bench]): core alone')
     times = {name: [] for name in entries}
@@ -319,7 +320,7 @@ def bench_core(args):
 
 def bench_sweep(args):
     """linkage-sweep to a CSV file at 161, 1601, 16001 positions (x scale)."""
-    from . import sweep_cli
+    from ..tools import sweep
     rows, base = [], None
     with tempfile.TemporaryDirectory() as folder:
         for step in (1.0, 0.1, 0.01):
@@ -328,7 +329,7 @@ def bench_sweep(args):
             out = Path(folder) / 'sweep.csv'
             with contextlib.redirect_stderr(io.StringIO()):
                 start = time.perf_counter()
-                sweep_cli.main([args.scene, '--step', repr(step), '--csv', str(out)])
+                sweep.main([args.scene, '--step', repr(step), '--csv', str(out)])
                 seconds = time.perf_counter() - start
             base = base or (positions, seconds)
             over = ((seconds - base[1]) / (positions - base[0]) * 1e6
@@ -354,7 +355,7 @@ def bench_start(args, log_dir, domain_id):
                 child = dict(os.environ, **env, **(
                     {'NUMBA_CACHE_DIR': empty} if 'cold' in case else {}))
                 out = subprocess.run(
-                    [sys.executable, '-m', 'linkage_ros.node_bench', '--start-once', what,
+                    [sys.executable, '-m', 'linkage_ros.bench.node_bench', '--start-once', what,
                      '--scene', args.scene, '--domain-id', str(domain_id)], env=child,
                     capture_output=True, text=True, check=True, timeout=300)
                 times.append([float(v) for v in out.stdout.split()])
@@ -394,7 +395,7 @@ def bench_latency(args, log_dir, first_domain):
     """suspension_node and the echo node, measured alternately; then the rate ladder."""
     targets = [Target('node', [node_script(), '--ros-args', '-p', f'scene:={args.scene}'],
                       first_domain, log_dir),
-               Target('echo', [sys.executable, '-m', 'linkage_ros.node_bench', '--echo'],
+               Target('echo', [sys.executable, '-m', 'linkage_ros.bench.node_bench', '--echo'],
                       first_domain + 1, log_dir)]
     ladder = []
     try:
@@ -445,7 +446,7 @@ def bench_vehicle(args, log_dir, first_domain):
     prefixes = tuple(f'{c}/' for c in CORNERS)
     targets = [Target('node', [node_script(), '--ros-args', '-p', f'vehicle:={VEHICLE}'],
                       first_domain, log_dir, prefixes),
-               Target('echo', [sys.executable, '-m', 'linkage_ros.node_bench',
+               Target('echo', [sys.executable, '-m', 'linkage_ros.bench.node_bench',
                                '--echo-vehicle'], first_domain + 1, log_dir, prefixes)]
     rows, medians = [], {}
     try:
@@ -473,7 +474,7 @@ def bench_callback(args):
     """The travel callback in process, with each optional output or sink."""
     from rclpy.parameter import Parameter
 
-    from .node import SuspensionNode
+    from ..ros.node import SuspensionNode
     modes = {'plain': {}, 'alignment': {'alignment': True}, 'markers': {'markers': True},
              'record_mcap': {'record_mcap': 'run.mcap'}, 'rerun_rrd': {'rerun_rrd': 'run.rrd'},
              'record_mcap+rerun_rrd': {'record_mcap': 'run.mcap', 'rerun_rrd': 'run.rrd'}}

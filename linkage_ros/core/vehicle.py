@@ -21,7 +21,7 @@ import re
 
 import yaml
 
-from .scene import (load_scene, mirror, resolve_scene_path, scene_dir, SceneError, translate,
+from .scene import (load_scene, mirror, resolve_scene_path, config_dir, SceneError, translate,
                     UNITS_TO_MM)
 
 CORNER_NAME = re.compile(r'^[a-z][a-z0-9_]*$')   # becomes a ROS namespace
@@ -37,7 +37,8 @@ class Vehicle:
 
 
 def vehicle_dir():
-    return scene_dir().parent / 'vehicles'
+    """Folder of the bundled vehicle files."""
+    return config_dir() / 'vehicles'
 
 
 def load_vehicle(name_or_path):

@@ -17,7 +17,11 @@ from typing import NamedTuple
 
 import numpy as np
 
-from . import arclength, kernel, paper_method, pose_newton
+from . import arclength
+from . import kernel
+from . import paper_method
+from . import pose_newton
+from .errors import LinkageError
 from .geometry import camber_toe, quaternion_from_matrix
 from .mechanism import carrier_points, compile_scene, length_errors, linearize
 
@@ -99,8 +103,8 @@ class Continuation:
         self.settings = replace(settings, tol=max(settings.tol, self.floor),
                                 knot_tol=max(settings.knot_tol, self.floor))
         if self.settings.method not in METHODS:
-            raise ValueError(f"method: unknown value {self.settings.method!r} "
-                             f"(expected one of: {', '.join(METHODS)})")
+            raise LinkageError('method', f"unknown value {self.settings.method!r} (expected "
+                               f"one of: {', '.join(METHODS)})")
         self.mech = compile_scene(scene)
         self._paper = (paper_method.build(scene, self.mech) if self.settings.method == 'paper'
                        else None)

@@ -12,6 +12,8 @@ from pathlib import Path
 import numpy as np
 import yaml
 
+from .errors import LinkageError
+
 UNITS_TO_MM = {'mm': 1.0, 'm': 1000.0}
 EQUATIONS_PER_TYPE = {'sphere': 1, 'circle': 2, 'line': 2}
 SIDES = ('left', 'right')
@@ -19,15 +21,16 @@ SIDES = ('left', 'right')
 # and a triangle or arm is "too thin" to define a frame.
 THIN = 1e-6
 
-SCENE_DIR = Path(__file__).resolve().parent.parent / 'config' / 'scenes'
+SOURCE_CONFIG = Path(__file__).resolve().parents[2] / 'config'   # in a source checkout
 
 
-class SceneError(ValueError):
-    """A scene file is malformed; the message names the file, the field and the problem."""
+class SceneError(LinkageError):
+    """A scene or vehicle file is malformed; the message names the file, the field and the
+    problem."""
 
     def __init__(self, source, field_name, problem):
-        self.source, self.field, self.problem = str(source), field_name, problem
-        super().__init__(f'{source}: {field_name}: {problem}')
+        super().__init__(f'{source}: {field_name}', problem)
+        self.source, self.field = str(source), field_name
 
 
 @dataclass(frozen=True)
@@ -89,16 +92,21 @@ def bundled_scenes():
     return sorted(p.stem for p in scene_dir().glob('*.yaml'))
 
 
-def scene_dir():
-    """Folder of the bundled scenes: the source tree, or the installed share/ folder."""
-    if SCENE_DIR.is_dir():
-        return SCENE_DIR
+def config_dir():
+    """The package's config/ folder: the source tree's, or the installed share/ one."""
+    if SOURCE_CONFIG.is_dir():
+        return SOURCE_CONFIG
     try:
         from ament_index_python.packages import get_package_share_directory
-        return Path(get_package_share_directory('linkage_ros')) / 'config' / 'scenes'
+        return Path(get_package_share_directory('linkage_ros')) / 'config'
     except Exception:  # not in an ament install: fall back to sys.prefix/share
         import sys
-        return Path(sys.prefix) / 'share' / 'linkage_ros' / 'config' / 'scenes'
+        return Path(sys.prefix) / 'share' / 'linkage_ros' / 'config'
+
+
+def scene_dir():
+    """Folder of the bundled scenes."""
+    return config_dir() / 'scenes'
 
 
 def resolve_scene_path(name_or_path):

@@ -9,7 +9,7 @@
 
 The commands are std_msgs/msg/Float64 wheel travel in m on --topic (default /wheel_travel),
 from any MCAP with the ROS 2 profile (ours, rosbag2's, Foxglove's). Outputs are what the node
-publishes (built by linkage_ros.messages), in the command topic's namespace:
+publishes (built by linkage_ros.ros.messages), in the command topic's namespace:
 wheel_carrier_pose (geometry_msgs/PoseStamped, m), camber and toe (std_msgs/Float64, rad) for a
 solved command, stamped with its receive time, and /diagnostics (diagnostic_msgs/
 DiagnosticArray) as the node sends it: a report every second of recorded time, at once for a
@@ -28,10 +28,11 @@ import time
 
 import numpy as np
 
-from .kinematics import Continuation, METHODS, travel_range
-from .messages import float64_cdr, from_cdr
-from .recording import McapRecorder, qualified, read_bag, RecordingError
-from .scene import load_scene, SceneError
+from ..core.errors import LinkageError
+from ..core.kinematics import Continuation, METHODS, travel_range
+from ..ros.messages import float64_cdr, from_cdr
+from ..record.bag import McapRecorder, qualified, read_bag, RecordingError
+from ..core.scene import load_scene, SceneError
 
 PROG = 'linkage-replay'
 FLOAT64 = 'std_msgs/msg/Float64'
@@ -44,8 +45,8 @@ PROGRESS_PERIOD = 1.0   # s between progress lines
 DIAGNOSTIC_PERIOD_S = 1.0   # the node's default diagnostic_period
 
 
-class ReplayError(ValueError):
-    """A bag cannot be replayed; the message names the file, the topic and why."""
+class ReplayError(LinkageError):
+    """A bag cannot be replayed: ReplayError(file or option, problem)."""
 
 
 @dataclass(frozen=True)
@@ -68,10 +69,10 @@ def read_commands(path, topic=DEFAULT_TOPIC):
     name = qualified(topic)
     if name not in bag.topics:
         cut = f'; {truncation(bag)}' if bag.truncated else ''
-        raise ReplayError(f'{path}: no topic {name} (topics present: {topic_list(bag)}{cut}); '
+        raise ReplayError(path, f'no topic {name} (topics present: {topic_list(bag)}{cut}); '
                           'choose the wheel-travel topic with --topic')
     if bag.topics[name] != FLOAT64 or bag.encodings.get(name) != 'cdr':
-        raise ReplayError(f'{path}: topic {name} carries {bag.topics[name] or "no schema"} '
+        raise ReplayError(path, f'topic {name} carries {bag.topics[name] or "no schema"} '
                           f"('{bag.encodings.get(name)}' encoding), but wheel-travel commands "
                           f'must be {FLOAT64} in cdr (topics present: {topic_list(bag)})')
     commands = [Command(m.log_time, m.publish_time, float(from_cdr(m.type_name, m.data).data))
@@ -94,7 +95,7 @@ def sweep_commands(scene, start=None, stop=None, step=None, hz=SWEEP_HZ, t0=None
     stop = high if stop is None else stop
     step = default_step if step is None else step
     if not (step > 0 and hz > 0 and np.isfinite([start, stop, step, hz]).all()):
-        raise ReplayError(f'--from, --to, --step and --hz must be finite, --step and --hz > 0 '
+        raise ReplayError('--from, --to, --step, --hz', f'must be finite, --step and --hz > 0 '
                           f'(got {start}, {stop}, {step}, {hz})')
     t0 = time.time_ns() if t0 is None else t0
     period = int(round(1e9 / hz))
@@ -120,9 +121,9 @@ def solve_commands(commands, scene, method, sinks, topic=DEFAULT_TOPIC, progress
 
     Returns the number of commands that could not be solved.
     """
-    from . import messages
-    from .health import Health
-    from .node import NODE_NAME, PARAMETERS
+    from ..ros import messages
+    from ..ros.health import Health
+    from ..ros.node import NODE_NAME, PARAMETERS
     topic = qualified(topic)
     namespace = topic.rsplit('/', 1)[0]
     health = Health(PARAMETERS['condition_warn'][0])
@@ -171,7 +172,7 @@ def benchmark(commands, scene, method, repeat=3, stream=None):
     other rows add McapRecorder, RerunRecorder or both, file closing included. Best of repeat.
     """
     import tempfile
-    from .rerun_view import RerunRecorder
+    from ..record.rerun_view import RerunRecorder
     stream = stream or sys.stdout
     modes = {'no recording': lambda d: [],
              'McapRecorder': lambda d: [McapRecorder(d / 'bench.mcap')],

@@ -14,9 +14,9 @@ import math
 from pathlib import Path
 import sys
 
-from .recording import read_bag, RecordingError
-from .rerun_view import RerunRecorder, topic_role
-from .scene import load_scene, SceneError
+from ..record.bag import read_bag, RecordingError
+from ..record.rerun_view import RerunRecorder, topic_role
+from ..core.scene import load_scene, SceneError
 
 PROG = 'linkage-rerun'
 DEFAULT_SCENE = 'five_link'

@@ -38,15 +38,15 @@ import numpy as np
 import scipy
 
 from . import reference
-from .kinematics import Continuation, Settings, sweep, travel_range
-from .scene import bundled_scenes, load_scene, parse_scene, SceneError
+from ..core.kinematics import Continuation, Settings, sweep, travel_range
+from ..core.scene import bundled_scenes, config_dir, load_scene, parse_scene, SceneError
 
 TOLS = (1e-3, 1e-6, 1e-8, 1e-9, 1e-10, 1e-12)     # mm
 STEPS = (0.1, 1.0, 5.0, 20.0)                           # mm
 LEVELS = (1e-3, 1e-6, 1e-9, 1e-12)                      # mm: accuracy levels of the summary
 WARMUP_STEP = 2.0        # mm: untimed walk from design to a timing window
 GOAL_US, GOAL_ERROR = 20.0, 1e-9    # the goal: 1e-9 mm in at most 20 us per position
-STRESS_DIR = Path(__file__).resolve().parent.parent / 'config' / 'stress'
+STRESS_DIR = config_dir() / 'stress'
 COLUMNS = ['scene', 'entry', 'tol_mm', 'step_mm', 'positions', 'median_us', 'p95_us',
            'ratio_to_fast', 'iterations_mean', 'residual_mm', 'wheel_center_mm', 'camber_deg',
            'toe_deg', 'error_mm', 'ok']

@@ -30,7 +30,8 @@ from mcap.stream_reader import StreamReader
 from mcap.writer import CompressionType, Writer
 import yaml
 
-from .messages import to_cdr
+from ..core.errors import LinkageError
+from ..ros.messages import to_cdr
 
 MCAP_MAGIC = b'\x89MCAP0\r\n'
 PROFILE = 'ros2'
@@ -52,8 +53,8 @@ _FIELD_TYPE = re.compile(r'(?:^|\n)\s*([a-zA-Z0-9_/]+)(?:\[[^\]]*\])?\s+')
 _TYPE_NAME = re.compile(r'^([a-zA-Z][a-zA-Z0-9_]*)/(?:msg/)?([a-zA-Z][a-zA-Z0-9_]*)$')
 
 
-class RecordingError(ValueError):
-    """A recording cannot be written or read; the message names the file or type and why."""
+class RecordingError(LinkageError):
+    """A recording cannot be written or read: RecordingError(file or type, problem)."""
 
 
 # --- message definitions -------------------------------------------------------------------
@@ -73,7 +74,7 @@ def _split_type(type_name):
     """'pkg/msg/Type' or 'pkg/Type' -> (pkg, Type); RecordingError for anything else."""
     match = _TYPE_NAME.match(type_name)
     if not match:
-        raise RecordingError(f'type {type_name!r}: expected a ROS 2 message type like '
+        raise RecordingError(f'type {type_name!r}', "expected a ROS 2 message type like "
                              "'std_msgs/msg/Float64'")
     return match.group(1), match.group(2)
 
@@ -85,8 +86,8 @@ def _interface_file(type_name, suffix):
         if path.is_file():
             return path
     searched = ', '.join(str(s / package / 'msg') for s in share_dirs())
-    raise RecordingError(f'type {type_name!r}: no {name}{suffix} found (searched {searched}); '
-                         'is the message package installed?')
+    raise RecordingError(f'type {type_name!r}', f'no {name}{suffix} found (searched '
+                         f'{searched}); is the message package installed?')
 
 
 def msg_dependencies(text, package):
@@ -218,7 +219,7 @@ class McapRecorder:
             self.path.parent.mkdir(parents=True, exist_ok=True)
             self._file = _RawFile(self.path)
         except OSError as exc:
-            raise RecordingError(f'{path}: cannot write ({exc.strerror or exc})') from None
+            raise RecordingError(path, f'cannot write ({exc.strerror or exc})') from None
         self._qos = {qualified(k): qos_profile_dict(v) for k, v in (qos or {}).items()}
         self._custom = {str(k): str(v) for k, v in (custom_data or {}).items()}
         self._writer = Writer(self._file, chunk_size=chunk_size,
@@ -248,10 +249,10 @@ class McapRecorder:
         data = to_cdr(data)
         with self._lock:
             if self._closed:
-                raise RecordingError(f'{self.path}: recording is closed')
+                raise RecordingError(self.path, 'recording is closed')
             entry = self._topics.get(topic) or self._add_topic(topic, type_name)
             if entry.type_name != type_name:
-                raise RecordingError(f'{self.path}: topic {entry.name} is recorded as '
+                raise RecordingError(self.path, f'topic {entry.name} is recorded as '
                                      f'{entry.type_name}, got a {type_name}')
             entry.count += 1
             self._writer.add_message(entry.channel_id, log_time=int(receive_ns), data=data,
@@ -386,13 +387,13 @@ def read_bag(path, topics=None):
     try:
         stream = open(path, 'rb')
     except OSError as exc:
-        raise RecordingError(f'{path}: cannot read ({exc.strerror or exc})') from None
+        raise RecordingError(path, f'cannot read ({exc.strerror or exc})') from None
     bag = Bag(path)
     schemas, channels = {}, {}
     wanted = None if topics is None else {qualified(t) for t in topics}
     with stream:
         if stream.read(len(MCAP_MAGIC)) != MCAP_MAGIC:
-            raise RecordingError(f'{path}: not an MCAP file (it does not start with the MCAP '
+            raise RecordingError(path, 'not an MCAP file (it does not start with the MCAP '
                                  'magic bytes)')
         stream.seek(0)
         records = StreamReader(stream, validate_crcs=True).records
@@ -433,7 +434,7 @@ def _bag_file(path):
     files = sorted(path.glob('*.mcap'))
     if len(files) != 1:
         found = ', '.join(f.name for f in files) or 'none'
-        raise RecordingError(f'{path}: a bag folder must hold exactly one .mcap file (found: '
+        raise RecordingError(path, f'a bag folder must hold exactly one .mcap file (found: '
                              f'{found})')
     return files[0]
 

@@ -1,0 +1,17 @@
+"""The kinematics of a suspension corner, ROS-free: scene and vehicle files, the mechanism,
+the compiled solver kernels, the paper's method, continuation, alignment.
+
+Imports numpy, scipy, PyYAML and numba only. The public names:
+
+    load_scene(name_or_path) -> Scene                    scene files (mm), SceneError if bad
+    Continuation(scene, method='fast').solve(travel_mm) -> Solution   one command at a time
+    sweep(scene, travels_mm, method='fast') -> Sweep     a table of positions
+    LinkageError                                         base of every bad-input error
+"""
+
+from .errors import LinkageError
+from .kinematics import Continuation, Settings, Solution, Sweep, sweep
+from .scene import load_scene, Scene, SceneError
+
+__all__ = ['Continuation', 'LinkageError', 'load_scene', 'Scene', 'SceneError', 'Settings',
+           'Solution', 'Sweep', 'sweep']

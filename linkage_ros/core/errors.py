@@ -1,0 +1,11 @@
+"""The one base class of the errors linkage_ros raises for bad input (scene and vehicle files,
+parameters, recordings, bags): a ValueError whose message names where the problem is and
+what it is, built from the offending value."""
+
+
+class LinkageError(ValueError):
+    """Bad input: where (a file, a field, a parameter) and what is wrong with it."""
+
+    def __init__(self, where, problem):
+        self.where, self.problem = str(where), str(problem)
+        super().__init__(f'{where}: {problem}')

@@ -1,0 +1,1 @@
+"""Command-line programs: linkage-sweep, linkage-replay, linkage-rerun, the plots."""
