@@ -43,7 +43,7 @@ setup(
             'linkage-node-bench = linkage_ros.bench.node_bench:main',
             'linkage-replay = linkage_ros.tools.replay:main',
             'linkage-rerun = linkage_ros.tools.rerun_convert:main',
-            'linkage-bench = linkage_ros.bench.solvers:main',
+            'linkage-bench = linkage_ros.bench.accuracy:main',
         ],
     },
 )

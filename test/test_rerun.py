@@ -18,8 +18,10 @@ import yaml
 
 from linkage_ros.core.kinematics import sweep, travel_range
 from linkage_ros.tools.rerun_convert import main
-from linkage_ros.record.rerun_view import (carrier_points, link_points, link_strips, RerunRecorder,
-                                    rotation_from_quaternion, wheel_circle)
+from linkage_ros.core.geometry import carrier_points
+from linkage_ros.core.scene import link_polylines
+from linkage_ros.record.rerun_view import (link_points, RerunRecorder, rotation_from_quaternion,
+                                           wheel_circle)
 from linkage_ros.core.scene import load_scene
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -64,13 +66,14 @@ def test_carrier_points_from_the_pose_alone_are_the_solved_joints(name):
     result = sweep(scene, travel_range(-40, 40, 5))
     rotation = rotation_from_quaternion(result.quaternion)
     assert np.allclose(rotation, result.rotation, atol=1e-12)
-    assert np.allclose(carrier_points(scene, result.wheel_center, rotation), result.joints,
+    assert np.allclose(carrier_points(scene.carrier_offsets, result.wheel_center, rotation),
+                       result.joints,
                        atol=1e-9)
 
 
 def test_at_design_the_carrier_points_are_the_scene_points():
     scene = load_scene('double_wishbone')
-    points = carrier_points(scene, scene.wheel_center, np.eye(3))
+    points = carrier_points(scene.carrier_offsets, scene.wheel_center, np.eye(3))
     assert np.array_equal(points, np.array([c.carrier for c in scene.constraints]))
 
 
@@ -82,7 +85,7 @@ def test_at_design_the_carrier_points_are_the_scene_points():
 def test_each_constraint_is_one_line_strip_from_the_body_to_the_carrier(name, shapes):
     scene = load_scene(name)
     joints = np.array([c.carrier for c in scene.constraints])
-    strips = link_strips(scene, joints)
+    strips = link_polylines(scene, joints)
     assert [len(s) for s in strips] == shapes
     for c, strip, joint in zip(scene.constraints, strips, joints):
         assert np.array_equal(strip[0], c.base[0]) and np.array_equal(strip[1], joint)
@@ -96,7 +99,7 @@ def test_batched_link_points_are_the_strips_of_each_pose_end_to_end(name):
     result = sweep(scene, travel_range(-20, 20, 10))
     points = link_points(scene, result.joints)
     for pose, joints in zip(points, result.joints):
-        assert np.array_equal(pose, np.vstack(link_strips(scene, joints)))
+        assert np.array_equal(pose, np.vstack(link_polylines(scene, joints)))
 
 
 def test_the_wheel_is_a_circle_of_the_scene_radius_square_to_the_spin_axis():

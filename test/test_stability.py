@@ -17,7 +17,7 @@ import pytest
 from rclpy.parameter import Parameter
 
 from linkage_ros.bench import reference
-from linkage_ros.bench.solvers import hardpoint_count, perturbed, random_walk
+from linkage_ros.bench.stress import hardpoint_count, perturbed, random_walk
 from linkage_ros.core.kinematics import Continuation, Settings, sweep, travel_range
 from linkage_ros.ros.messages import status_values
 from linkage_ros.core.pose_newton import FREE

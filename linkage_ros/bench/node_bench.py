@@ -281,15 +281,15 @@ def us(values, q=50):
 
 def bench_core(args):
     """One command at a time: Continuation.solve beside exudyn, alternating rounds."""
-    from . import solvers
+    from . import peers
     from ..core.kinematics import Continuation
     from ..core.scene import load_scene
     scene = load_scene(args.scene)
     count = args.count * args.scale
     travels = 60.0 * np.sin(np.arange(count) * 0.0125)      # mm, steps of up to 0.75 mm
     entries = {'linkage_ros': Continuation(scene)}
-    if solvers.exudyn_version():
-        entries['exudyn'] = solvers.ExudynSolver(scene, 1e-10)
+    if peers.exudyn_version():
+        entries['exudyn'] = peers.ExudynSolver(scene, 1e-10)
     else:
         progress('exudyn is not installed (pip install -e .[bench]): core alone')
     times = {name: [] for name in entries}

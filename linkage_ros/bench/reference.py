@@ -1,4 +1,4 @@
-"""An independent reference for the kinematics core, and the solvers a user would write first.
+"""An independent reference for the kinematics core, in extended precision.
 
 Reference: the plain 6-DOF pose formulation (wheel centre M and carrier rotation R, 6
 unknowns; the 5 guidance equations as true lengths plus the travel equation Z_M - Z_M0 = t),
@@ -8,13 +8,6 @@ the bundled scenes) and polished in extended precision
 evaluated in longdouble; each Newton correction is solved in float64 (mixed-precision
 iterative refinement), which converges to the longdouble solution because only the residual
 needs the extra digits. It shares no code with the core solvers: only the Scene loader.
-
-Baselines (what the benchmark compares the core with), each a stateful solver whose
-solve(travel) starts from its previous answer (continuation without a predictor):
-    LUNewton            the paper's 8 equations (paper_method.system), np.linalg.solve (LU)
-    RootHybr            scipy.optimize.root (MINPACK hybrj) on the core's 5 pose equations
-    LeastSquares6Dof    scipy.optimize.least_squares on the 6-DOF pose (translation + rotation
-                        vector), numeric Jacobian: what a user would write first
 All lengths in mm, vehicle frame (ISO 8855: x forward, y left, z up); angles in rad.
 """
 
@@ -22,11 +15,7 @@ from dataclasses import dataclass
 import math
 
 import numpy as np
-from scipy.optimize import least_squares, root
-from scipy.spatial.transform import Rotation
-
-from ..core import paper_method
-from ..core.mechanism import compile_scene, linearize
+from scipy.optimize import least_squares
 
 LD = np.longdouble
 REF_STEP = 1e-3          # longest step of the reference walk, as a fraction of the scene size
@@ -301,124 +290,6 @@ def reachable_limit(scene, direction, resolution=1e-4, step=None, far=1e4):
         else:
             bad = mid
     return 0.5 * (good + bad), pose
-
-
-# --- baselines ----------------------------------------------------------------------------
-
-class LUNewton:
-    """The paper's 8-unknown system (eqs. 1-4, 5-7, 10) solved by np.linalg.solve (LU).
-
-    Same equations and stopping test (eqs. 11-12: largest coordinate change <= tol) as the
-    paper variant; each solve starts from the previous answer, no predictor, no substeps.
-    solve(travel) -> (center, rotation, iterations, converged).
-    """
-
-    def __init__(self, scene, tol, max_iter=25):
-        self.model = paper_method.build(scene, compile_scene(scene))
-        self.tol, self.max_iter = tol, max_iter
-        m0, n0, p0 = self.model.m0, self.model.n0, self.model.p0
-        self.x = np.concatenate((m0[:2], n0, p0))
-
-    def solve(self, travel):
-        z_m = self.model.m0[2] + travel
-        x = self.x.copy()
-        for iteration in range(1, self.max_iter + 1):
-            f, jac = paper_method.system(self.model, x, z_m)
-            if f is None:
-                return None, None, iteration, False
-            try:
-                dx = np.linalg.solve(jac, -f)
-            except np.linalg.LinAlgError:
-                return None, None, iteration, False
-            x = x + dx
-            step = np.max(np.abs(dx))
-            if not np.isfinite(step):
-                return None, None, iteration, False
-            if step <= self.tol:
-                self.x = x
-                m, n, p = paper_method.unpack(x, z_m)
-                center, rotation = paper_method.pose_of_points(self.model, m, n, p)
-                return center, rotation, iteration, True
-        return None, None, self.max_iter, False
-
-
-class RootHybr:
-    """scipy.optimize.root (method 'hybr', MINPACK hybrj) on the core's 5 pose equations.
-
-    Unknowns u = (x_M, y_M, w): the carrier is exp(w) R_prev. The analytic Jacobian is the
-    core's (mechanism.linearize) times the left Jacobian of SO(3), exact for any w.
-    xtol (relative, MINPACK's test) is tol / |u|, so the last step is about tol mm.
-    solve(travel) -> (center, rotation, iterations (Jacobian evaluations), converged).
-    """
-
-    def __init__(self, scene, tol):
-        self.mech = compile_scene(scene)
-        self.tol = tol
-        self.center, self.rotation = self.mech.design_center.copy(), np.eye(3)
-
-    def solve(self, travel):
-        z = self.mech.design_center[2] + travel
-        rotation0 = self.rotation
-
-        def fun(u):
-            center = np.array([u[0], u[1], z])
-            f, jac = linearize(self.mech, center, exp_so3(u[2:]) @ rotation0)
-            return f, np.hstack((jac[:, :2], jac[:, 3:] @ _left_jacobian(u[2:])))
-
-        u0 = np.concatenate((self.center[:2], np.zeros(3)))
-        xtol = max(self.tol / max(np.linalg.norm(u0), 1.0), 1e-16)
-        out = root(fun, u0, jac=True, method='hybr', options={'xtol': xtol})
-        if not out.success or not np.all(np.isfinite(out.x)):
-            return None, None, int(out.get('njev', 0)), False
-        self.center = np.array([out.x[0], out.x[1], z])
-        self.rotation = exp_so3(out.x[2:]) @ rotation0
-        return self.center, self.rotation, int(out.njev), True
-
-
-class LeastSquares6Dof:
-    """scipy.optimize.least_squares on the plain 6-DOF pose: what a user would write first.
-
-    x = (M, rotation vector of the carrier relative to design); residuals = the 5 guidance
-    equations (true lengths) and Z_M - Z_M0 - travel; default method 'trf' and the default
-    numeric ('2-point') Jacobian. xtol (relative) is tol / |x|; ftol and gtol are off so the
-    step test alone stops it, as in the other entries.
-    solve(travel) -> (center, rotation, iterations (function evaluations), converged).
-    """
-
-    def __init__(self, scene, tol):
-        self.model = build(scene)
-        self.m0 = self.model.m0.astype(float)
-        self.f64 = _float_model(self.model)
-        self.tol = tol
-        self.x = np.concatenate((self.m0, np.zeros(3)))
-
-    def solve(self, travel):
-        def fun(x):
-            return equations(self.f64, x[:3], Rotation.from_rotvec(x[3:]).as_matrix(), travel)
-
-        xtol = max(self.tol / max(np.linalg.norm(self.x), 1.0), 1e-16)
-        out = least_squares(fun, self.x, xtol=xtol, ftol=None, gtol=None)
-        if out.status <= 0 or not np.all(np.isfinite(out.x)):
-            return None, None, int(out.nfev), False
-        self.x = out.x
-        return out.x[:3].copy(), Rotation.from_rotvec(out.x[3:]).as_matrix(), int(out.nfev), True
-
-
-def _float_model(model):
-    """The PoseModel in float64 (for baselines that a user would write in double)."""
-    fields = {k: (np.asarray(v, float) if isinstance(v, np.ndarray) and v.dtype == LD else v)
-              for k, v in model.__dict__.items()}
-    return PoseModel(**fields)
-
-
-def _left_jacobian(w):
-    """Left Jacobian of SO(3): d(exp(w)) = [J(w) dw]x exp(w)."""
-    t2 = float(w @ w)
-    k = np.array([[0, -w[2], w[1]], [w[2], 0, -w[0]], [-w[1], w[0], 0]])
-    if t2 < 1e-12:
-        return np.eye(3) + 0.5 * k + k @ k / 6
-    t = math.sqrt(t2)
-    return np.eye(3) + (1 - math.cos(t)) / t2 * k + (t - math.sin(t)) / (t2 * t) * (k @ k)
 
 
 def _unit(v):

@@ -14,6 +14,21 @@ def unit(v):
     return v / np.linalg.norm(v, axis=-1, keepdims=True)
 
 
+def perpendicular(axis):
+    """A unit vector square to axis (3,): axis x z, or axis x x when axis is near z."""
+    axis = unit(axis)
+    helper = [0.0, 0.0, 1.0] if abs(axis[2]) < 0.9 else [1.0, 0.0, 0.0]
+    return unit(np.cross(axis, helper))
+
+
+def carrier_points(offsets, center, rotation):
+    """Carrier points M + R b of a pose: offsets b = b0 - M0 (m, 3) of the design points
+    from the design wheel centre, wheel centre M (..., 3) and rotation R (..., 3, 3) relative
+    to design. Returns (..., m, 3), same units as offsets and center (mm)."""
+    return np.asarray(center)[..., None, :] + np.asarray(offsets) @ np.swapaxes(
+        np.asarray(rotation), -1, -2)
+
+
 def cross(a, b):
     """Cross product along the last axis; faster than np.cross for small arrays."""
     out = np.empty(a.shape if a.shape == b.shape else np.broadcast_shapes(a.shape, b.shape))

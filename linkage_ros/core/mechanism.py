@@ -15,7 +15,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import kernel
+from . import geometry, kernel
 from .geometry import unit
 
 
@@ -87,7 +87,7 @@ def line_normals(direction, spin_axis):
 
 def carrier_points(mech, center, rotation):
     """Carrier points (m, 3) of the pose; batched: center (n, 3), rotation (n, 3, 3)."""
-    return center[..., None, :] + mech.offsets @ np.swapaxes(rotation, -1, -2)
+    return geometry.carrier_points(mech.offsets, center, rotation)
 
 
 def poses(center, rotation, rack=0.0):

@@ -13,6 +13,7 @@ import numpy as np
 import yaml
 
 from .errors import LinkageError
+from .geometry import perpendicular, unit
 
 UNITS_TO_MM = {'mm': 1.0, 'm': 1000.0}
 EQUATIONS_PER_TYPE = {'sphere': 1, 'circle': 2, 'line': 2}
@@ -83,8 +84,28 @@ class Scene:
         pts += [c.carrier for c in self.constraints] + [b for c in self.constraints for b in c.base]
         return float(max(np.max(np.abs(p)) for p in pts))
 
+    @property
+    def carrier_offsets(self):
+        """Carrier points relative to the wheel centre at design, (m, 3) mm: b0 - M0, in
+        constraint order (geometry.carrier_points places them at a pose)."""
+        return np.array([c.carrier for c in self.constraints]) - self.wheel_center
+
     def to_mm(self, value):
         return value * UNITS_TO_MM[self.units]
+
+
+def link_polylines(scene, joints):
+    """The drawn links of a scene for its carrier joints (..., m, 3) mm in constraint order:
+    one polyline (..., k, 3) per constraint, base -> joint for a link (sphere) or a strut
+    (line), axis[0] -> joint -> axis[1] for an arm (circle)."""
+    joints = np.asarray(joints, dtype=float)
+    lines = []
+    for j, c in enumerate(scene.constraints):
+        ends = c.base if c.type == 'circle' else c.base[:1]
+        joint = joints[..., j, :]
+        points = [ends[0], joint] + ([ends[1]] if len(ends) == 2 else [])
+        lines.append(np.stack(np.broadcast_arrays(*points), axis=-2))
+    return lines
 
 
 def bundled_scenes():
@@ -179,9 +200,8 @@ def choose_third_point(wheel_center, spin_point, carrier_points):
     joint is in the M-N-P plane, so the plane is turned about the spin axis to keep every
     joint as far from it as possible. P sits one M-N distance from M, square to the axis.
     """
-    axis = _unit(wheel_center - spin_point)
-    e1 = _unit(np.cross(axis, [0.0, 0.0, 1.0]) if abs(axis[2]) < 0.9
-               else np.cross(axis, [1.0, 0.0, 0.0]))
+    axis = unit(wheel_center - spin_point)
+    e1 = perpendicular(axis)
     e2 = np.cross(axis, e1)
     offsets = np.array([p - wheel_center for p in carrier_points]).reshape(-1, 3)
     angles = np.radians(np.arange(0.0, 180.0, 0.5))
@@ -250,7 +270,7 @@ def _check_geometry(check, wheel_center, spin_point, constraints, size):
         if c.type == 'circle':
             if np.linalg.norm(c.base[1] - c.base[0]) <= tiny:
                 check.fail(f'{where}.axis', 'the two axis points coincide: no revolute axis')
-            u = _unit(c.base[1] - c.base[0])
+            u = unit(c.base[1] - c.base[0])
             arm = c.carrier - c.base[0]
             if np.linalg.norm(arm - (arm @ u) * u) <= tiny:
                 check.fail(f'{where}.carrier', 'lies on the revolute axis: zero-length arm')
@@ -265,7 +285,7 @@ def _check_third_point(check, wheel_center, spin_point, third_point, constraints
     if height <= 1e-3 * max(np.linalg.norm(axis), np.linalg.norm(offset)):
         check.fail(where, 'wheel_center, spin_axis_point and third_point are (nearly) '
                    f'collinear (triangle height {height:.3g} mm): too thin to define a frame')
-    normal = _unit(np.cross(axis, offset))
+    normal = unit(np.cross(axis, offset))
     for i, c in enumerate(constraints):
         if abs((c.carrier - wheel_center) @ normal) <= THIN * size:
             problem = (f'constraints[{i}] ({c.name}).carrier lies in the plane of wheel_center, '
@@ -277,10 +297,6 @@ def _check_third_point(check, wheel_center, spin_point, third_point, constraints
 
 def _size(points):
     return float(max(np.max(np.abs(p)) for p in points))
-
-
-def _unit(v):
-    return np.asarray(v, dtype=float) / np.linalg.norm(v)
 
 
 class _Checker:

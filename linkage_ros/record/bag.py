@@ -367,7 +367,6 @@ class Bag:
     topics: dict = field(default_factory=dict)    # topic -> type name
     encodings: dict = field(default_factory=dict)  # topic -> message encoding ('cdr')
     qos: dict = field(default_factory=dict)       # topic -> first offered QoS profile (dict)
-    counts: dict = field(default_factory=dict)    # topic -> messages read
     custom_data: dict = field(default_factory=dict)   # from the 'rosbag2' metadata record
     messages: list = field(default_factory=list)  # BagMessage, in file order
     truncated: bool = False
@@ -418,7 +417,6 @@ def read_bag(path, topics=None):
                     bag.messages.append(BagMessage(channel.topic, bag.topics[channel.topic],
                                                    bytes(record.data), record.log_time,
                                                    record.publish_time))
-                    bag.counts[channel.topic] = bag.counts.get(channel.topic, 0) + 1
                 elif isinstance(record, Metadata) and record.name == 'rosbag2':
                     bag.custom_data = _custom_data(record.metadata)
         except Exception as exc:  # truncated or damaged: keep what was read

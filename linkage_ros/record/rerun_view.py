@@ -28,8 +28,9 @@ import rerun.blueprint as rrb
 from rerun.components import LineStrip3DBatch
 from rerun.encodings import Vec3DBatch
 
-from ..core.geometry import unit
-from ..ros.messages import float64_of, pose_of, to_cdr
+from ..core.geometry import carrier_points, perpendicular, unit
+from ..core.scene import link_polylines
+from ..ros.messages import float64_of, MM_PER_M, pose_of, to_cdr
 
 APP_ID = 'linkage_ros'
 TIME = 'ros_time'
@@ -62,50 +63,11 @@ def rotation_from_quaternion(q):
     ], -2)
 
 
-def carrier_offsets(scene):
-    """Carrier joints relative to the wheel centre at design, (m, 3) mm: b0 - M0."""
-    return np.array([c.carrier for c in scene.constraints]) - scene.wheel_center
-
-
-def carrier_points(scene, center, rotation):
-    """Carrier joints in the vehicle frame, mm: M + R (b0 - M0).
-
-    center (3,) or (n, 3) mm; rotation (3, 3) or (n, 3, 3) relative to design.
-    Returns (m, 3) or (n, m, 3). At design (M = M0, R = I) these are the scene's carrier points.
-    """
-    offsets = carrier_offsets(scene)
-    return np.asarray(center)[..., None, :] + np.einsum('...ij,mj->...mi', rotation, offsets)
-
-
-def link_strips(scene, joints):
-    """One polyline per constraint (list of (k, 3) mm) for carrier joints (m, 3) in order.
-
-    sphere and line (link, strut): base -> carrier point; circle (arm): the triangle
-    axis[0] -> carrier point -> axis[1].
-    """
-    strips = []
-    for c, joint in zip(scene.constraints, joints):
-        if c.type == 'circle':
-            strips.append(np.array([c.base[0], joint, c.base[1]]))
-        else:
-            strips.append(np.array([c.base[0], joint]))
-    return strips
-
-
 def link_points(scene, joints):
-    """The polylines of link_strips for many poses as one array: joints (n, m, 3) mm ->
-    (n, sum of strip lengths, 3), strips one after another in constraint order."""
-    joints = np.asarray(joints, dtype=float)
-    lengths = strip_lengths(scene)
-    points = np.empty((len(joints), int(lengths.sum()), 3))
-    start = 0
-    for j, (c, length) in enumerate(zip(scene.constraints, lengths)):
-        points[:, start] = c.base[0]
-        points[:, start + 1] = joints[:, j]
-        if length == 3:
-            points[:, start + 2] = c.base[1]
-        start += length
-    return points
+    """The link polylines (core.scene.link_polylines) of many poses as one array: joints
+    (n, m, 3) mm -> (n, sum of polyline lengths, 3), polylines one after another in
+    constraint order."""
+    return np.concatenate(link_polylines(scene, joints), axis=-2)
 
 
 def strip_lengths(scene):
@@ -119,8 +81,7 @@ def wheel_circle(scene, segments=WHEEL_SEGMENTS):
     if scene.wheel_radius <= 0:
         return None
     axis = unit(scene.wheel_center - scene.spin_axis_point)
-    helper = np.array([0.0, 0.0, 1.0]) if abs(axis[2]) < 0.9 else np.array([1.0, 0.0, 0.0])
-    e1 = unit(np.cross(axis, helper))
+    e1 = perpendicular(axis)
     e2 = np.cross(axis, e1)
     angle = np.linspace(0.0, 2.0 * math.pi, segments + 1)
     return scene.wheel_radius * (np.cos(angle)[:, None] * e1 + np.sin(angle)[:, None] * e2)
@@ -167,7 +128,7 @@ def plot(root, name):
 def eye(scenes):
     """(position, look target) in mm of a camera that shows every scene (corner) of a list."""
     points = np.vstack([p for scene in scenes for p in (
-        base_points(scene)[0], carrier_offsets(scene) + scene.wheel_center,
+        base_points(scene)[0], scene.carrier_offsets + scene.wheel_center,
         scene.wheel_center - [0.0, 0.0, scene.wheel_radius],
         scene.wheel_center + [0.0, 0.0, scene.wheel_radius])])
     low, high = points.min(axis=0), points.max(axis=0)
@@ -212,7 +173,7 @@ def log_scene(rec, scene, root=''):
             static=True)
     rec.log(entity(root, 'suspension/carrier'), rr.TransformAxes3D(AXES_LENGTH), static=True)
     rec.log(entity(root, 'suspension/carrier/joints'),
-            rr.Points3D(carrier_offsets(scene), labels=[c.name for c in scene.constraints],
+            rr.Points3D(scene.carrier_offsets, labels=[c.name for c in scene.constraints],
                         radii=POINT_RADIUS, colors=COLORS['joint'], show_labels=False),
             static=True)
     circle = wheel_circle(scene)
@@ -228,25 +189,6 @@ def log_scene(rec, scene, root=''):
                 static=True)
 
 
-def set_times(rec, time_ns, sequence):
-    rec.set_time(TIME, timestamp=np.datetime64(int(time_ns), 'ns'))
-    rec.set_time(SEQUENCE, sequence=int(sequence))
-
-
-def log_pose(rec, scene, center, quaternion, root=''):
-    """Carrier frame and links of one pose: center (3,) mm, quaternion (x, y, z, w)."""
-    rotation = rotation_from_quaternion(quaternion)
-    rec.log(entity(root, 'suspension/carrier'), rr.Transform3D(
-        translation=center, quaternion=rr.Quaternion(xyzw=quaternion)))
-    rec.log(entity(root, 'suspension/links'), rr.LineStrips3D.from_fields(
-        strips=link_strips(scene, carrier_points(scene, center, rotation))))
-
-
-def log_value(rec, name, value, root=''):
-    """One sample of a plot (name in SERIES)."""
-    rec.log(plot(root, name), rr.Scalars(value))
-
-
 def send_poses(rec, scene, times_ns, sequence, centers, quaternions, root=''):
     """Columns of poses: times_ns (n,), sequence (n,), centers (n, 3) mm, quaternions (n, 4)."""
     if len(times_ns) == 0:
@@ -255,7 +197,8 @@ def send_poses(rec, scene, times_ns, sequence, centers, quaternions, root=''):
     rec.send_columns(entity(root, 'suspension/carrier'), indexes=indexes,
                      columns=rr.Transform3D.columns(translation=centers,
                                                     quaternion=quaternions))
-    joints = carrier_points(scene, np.asarray(centers), rotation_from_quaternion(quaternions))
+    joints = carrier_points(scene.carrier_offsets, np.asarray(centers),
+                            rotation_from_quaternion(quaternions))
     rec.send_columns(entity(root, 'suspension/links'), indexes=indexes,
                      columns=rr.LineStrips3D.columns(
                          strips=_strips_array(scene, link_points(scene, joints))).partition(
@@ -335,10 +278,10 @@ class RerunRecorder:
             msg = to_cdr(msg)
         if role == 'pose':
             (x, y, z), q = pose_of(msg)
-            value = (x * 1000.0, y * 1000.0, z * 1000.0, *q)
+            value = (x * MM_PER_M, y * MM_PER_M, z * MM_PER_M, *q)
         elif role == 'travel':
             self.sequence += 1
-            value = 1000.0 * float64_of(msg)
+            value = MM_PER_M * float64_of(msg)
         else:
             value = math.degrees(float64_of(msg))
         self._rows.setdefault((root, role), []).append((receive_ns, self.sequence, value))

@@ -7,8 +7,7 @@ Imported by the node only when its parameter markers is true. Two markers, in fr
     ns 'joints' (id 1) SPHERE_LIST: the carrier joints, in the scene's constraint order
 
 Carrier joints are M + R (b0 - M0) (wheel centre M, rotation R relative to design, design
-joint b0 and centre M0), the same geometry as rerun_view.carrier_points, which is not
-imported here because it pulls in rerun.
+joint b0 and centre M0): core.geometry.carrier_points, drawn as core.scene.link_polylines.
 """
 
 from geometry_msgs.msg import Point
@@ -16,31 +15,29 @@ import numpy as np
 from std_msgs.msg import ColorRGBA
 from visualization_msgs.msg import Marker, MarkerArray
 
-M_PER_MM = 1e-3
+from .messages import M_PER_MM
+from ..core.geometry import carrier_points
+from ..core.scene import link_polylines
+
 LINE_WIDTH = 0.004     # of the scene size: thin lines that stay visible at any scene scale
 JOINT_SIZE = 0.015     # sphere diameter, of the scene size
 LINK_COLOR = ColorRGBA(r=0.27, g=0.51, b=0.86, a=1.0)
 JOINT_COLOR = ColorRGBA(r=0.86, g=0.27, b=0.27, a=1.0)
 
 
-def carrier_joints(scene, center, rotation):
-    """Carrier joints (m, 3) mm in the vehicle frame, constraint order, of the pose (M, R)."""
-    offsets = np.array([c.carrier for c in scene.constraints]) - scene.wheel_center
-    return np.asarray(center) + offsets @ np.asarray(rotation).T
-
-
 def link_segments(scene, joints):
-    """Line-list point pairs (k, 3) mm of the links, arms and struts for joints (m, 3) mm."""
-    points = []
-    for c, joint in zip(scene.constraints, joints):
-        for base in (c.base if c.type == 'circle' else c.base[:1]):
-            points.extend((base, joint))
-    return np.array(points)
+    """Line-list point pairs (k, 3) mm of the links, arms and struts for joints (m, 3) mm:
+    from each body point of a polyline (core.scene.link_polylines: its ends) to its joint
+    (the second point)."""
+    pairs = []
+    for line in link_polylines(scene, joints):
+        pairs += [(base, line[1]) for base in (line[0], *line[2:])]
+    return np.array(pairs).reshape(-1, 3)
 
 
 def marker_array(scene, solution, stamp, frame_id):
     """The links and joints of a solved position as a MarkerArray (m, in frame_id)."""
-    joints = carrier_joints(scene, solution.wheel_center, solution.rotation)
+    joints = carrier_points(scene.carrier_offsets, solution.wheel_center, solution.rotation)
     size = scene.size * M_PER_MM
     links = _marker('links', 0, Marker.LINE_LIST, link_segments(scene, joints), stamp,
                     frame_id, LINK_COLOR)
