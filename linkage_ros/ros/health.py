@@ -23,6 +23,7 @@ class Health:
     level: int = OK
     message: str = 'no command yet'
     last: object = None            # the Solution of the last command
+    sent: str = ''                 # the last command as it was sent, if it failed
     fault: str = ''                # a fault outside the solver (sets ERROR while it holds)
     commands_total: int = 0        # since start
     failures_total: int = 0
@@ -34,12 +35,17 @@ class Health:
     iterations_max: int = 0
     substeps_max: int = 0
 
-    def add(self, solution):
-        """Count one answered command (a kinematics Solution). Returns True if /diagnostics
-        should say so at once: the command failed, or the level changed."""
+    def add(self, solution, sent=''):
+        """
+        Count one answered command (a kinematics Solution).
+
+        sent: the command as it was sent (e.g. '/wheel_travel 0.5 m'), which the message about
+        a failure starts with. Returns True if /diagnostics should say so at once: the command
+        failed, or the level changed.
+        """
         self.commands += 1
         self.commands_total += 1
-        self.last = solution
+        self.last, self.sent = solution, sent
         if solution.success:
             # max() would drop a NaN; a residual or condition that is NaN must show.
             if not solution.residual <= self.residual_max:
@@ -73,7 +79,7 @@ class Health:
         if solution is None:
             return OK, 'no command yet'
         if not solution.success:
-            return ERROR, solution.message
+            return ERROR, f'{self.sent}: {solution.message}' if self.sent else solution.message
         if not solution.condition <= self.condition_warn:
             return WARN, (f'near a singular position: Jacobian condition number '
                           f'{solution.condition:.3g} above {self.condition_warn:.3g}')

@@ -41,8 +41,12 @@ Sinks (recorders, viewers) receive every command and every published message; th
 Rerun modules are imported only when record_mcap or rerun_rrd is set.
 """
 
+import difflib
 import math
+import signal
 import sys
+import textwrap
+import time
 
 from builtin_interfaces.msg import Time
 from diagnostic_msgs.msg import DiagnosticArray
@@ -60,12 +64,14 @@ from visualization_msgs.msg import MarkerArray
 
 from . import messages
 from .health import Health
+from ..cli import missing_package, writable_file
 from ..core.errors import LinkageError
 from ..core.kinematics import Continuation
 from ..core.scene import load_scene
 
 NODE_NAME = 'suspension_kinematics'
 QOS_DEPTH = 1000
+BAD_COMMAND_PERIOD = 5.0   # s: the console names each kind of bad command at most this often
 QOS = QoSProfile(history=HistoryPolicy.KEEP_LAST, depth=QOS_DEPTH,
                  reliability=ReliabilityPolicy.RELIABLE, durability=DurabilityPolicy.VOLATILE)
 OUTPUTS = {'wheel_carrier_pose': PoseStamped, 'camber': Float64, 'toe': Float64}
@@ -160,29 +166,44 @@ class Corner:
 
     def on_travel(self, data):
         stamp = self.node.received(self.travel_sub, data)
-        self.answer(messages.command_mm(data), None, stamp)
+        self.answer(messages.command_mm(data), None, stamp,
+                    lambda: f'{self.travel_sub.topic_name} {messages.float64_of(data)!r} m')
 
     def on_rack(self, data):
         # A new rack at the last travel: Continuation keeps the travel it was last solved at.
         stamp = self.node.received(self.rack_sub, data)
-        self.answer(self.solver.travel, messages.command_mm(data), stamp)
+        self.answer(None, messages.command_mm(data), stamp,
+                    lambda: f'{self.rack_sub.topic_name} {messages.float64_of(data)!r} m')
 
     def on_joint_states(self, msg):
         stamp = self.node.received(self.joint_sub, msg, msg.header.stamp)
         travel_mm = messages.joint_travel_mm(msg, self.joint)
         if travel_mm is not None:   # other joints' messages are not commands: no answer
-            self.answer(travel_mm, None, stamp)
+            self.answer(travel_mm, None, stamp, lambda: joints_sent(
+                self.joint_sub.topic_name, msg, [self.joint]))
 
-    def answer(self, travel_mm, rack_mm, stamp):
-        """Solve travel_mm at rack_mm (None = unchanged) and publish the answer at stamp
-        (sec, nanosec); a failure or a change of level goes to /diagnostics at once."""
-        solution = self.solver.solve(travel_mm, rack_mm)
+    def answer(self, travel_mm, rack_mm, stamp, sent):
+        """
+        Solve a command and publish the answer.
+
+        travel_mm and rack_mm: the command (None = unchanged); stamp: (sec, nanosec) of the
+        answer; sent: a function that says what was sent where (e.g. '/wheel_travel 0.5 m'),
+        called for the messages about a bad command. A failure or a change of level goes to
+        /diagnostics at once, and a failure to the console too (once per kind of mistake and
+        throttle period), with the value sent in the unit it was sent in (m).
+        """
+        travel = self.solver.travel if travel_mm is None else travel_mm
+        solution = self.solver.solve(travel, rack_mm)
         if solution.success:
             for name, data in messages.answer(solution, stamp, self.node.frame_id):
                 self.node.publish(self.publishers[name], data)
             for publisher, build in self.extras:
                 self.node.publish(publisher, build(solution, stamp))
-        if self.health.add(solution):
+            said = ''
+        else:
+            said = sent()
+            self.node.bad_command(said, solution.message)
+        if self.health.add(solution, said):
             self.node.report([self])
 
     def status(self):
@@ -199,7 +220,7 @@ class SuspensionNode(Node):
         publish_ns) and close(), after those the parameters turn on. kwargs go to rclpy
         Node."""
         super().__init__(NODE_NAME, **kwargs)
-        self.sinks = []
+        self.sinks, self.faults, self._bad_said = [], [], {}
         self.clock = self.get_clock()
         try:
             params = self._declare_parameters()
@@ -247,13 +268,36 @@ class SuspensionNode(Node):
             rack_mm = messages.joint_travel_mm(msg, corner.rack_joint) if corner.rack_joint \
                 else None
             if travel_mm is not None or rack_mm is not None:
-                corner.answer(corner.solver.travel if travel_mm is None else travel_mm,
-                              rack_mm, stamp)
+                corner.answer(travel_mm, rack_mm, stamp, lambda corner=corner: joints_sent(
+                    self.joint_states_sub.topic_name, msg,
+                    [corner.travel_joint, corner.rack_joint]))
 
     def on_diagnostic_period(self):
+        for sink in list(self.sinks):      # a recorder writing in the background may fail
+            if getattr(sink, 'error', None):
+                self._drop(sink, sink.error)
         self.report(self.corners.values())
         for corner in self.corners.values():
             corner.health.reset_period()
+
+    def bad_command(self, sent, why):
+        """
+        Say on the console that a command could not be answered.
+
+        Once per kind of mistake (not a number, out of reach, other) and BAD_COMMAND_PERIOD s,
+        with the count of the same kind held back since: a stream of bad commands must not
+        flood the console; /diagnostics reports every one.
+        """
+        kind = ('not a number' if 'not a finite number' in why else
+                'out of reach' if 'out of reach' in why else 'other')
+        now = time.monotonic()
+        last, held = self._bad_said.get(kind, (-math.inf, 0))
+        if now - last < BAD_COMMAND_PERIOD:
+            self._bad_said[kind] = (last, held + 1)
+            return
+        more = f' ({held} more like it in the last {now - last:.0f} s)' if held else ''
+        self.get_logger().error(f'{sent}: {why}{more}')
+        self._bad_said[kind] = (now, 0)
 
     def report(self, corners):
         """Publish the status of each of corners on /diagnostics, stamped now."""
@@ -275,9 +319,27 @@ class SuspensionNode(Node):
             try:
                 sink.record(topic, messages.type_name(msg_type), data, receive_ns, publish_ns)
             except Exception as exc:  # a broken recorder must not stop the node
-                self.get_logger().error(f'{type(sink).__name__} failed ({exc}); dropped')
-                self.sinks.remove(sink)
-                self._close(sink)
+                self._drop(sink, getattr(sink, 'error', None) or str(exc))
+
+    def _drop(self, sink, reason):
+        """
+        Stop feeding a sink that failed, and say so until the node stops.
+
+        Every corner's status turns ERROR, naming the file, the reason and the time, at once
+        and in every report after it: data is no longer being recorded. The node goes on
+        answering commands.
+        """
+        self.sinks.remove(sink)
+        self._close(sink)
+        when = self.clock.now().nanoseconds / 1e9
+        fault = (f'{type(sink).__name__} {getattr(sink, "path", "")} stopped at t = '
+                 f'{when:.3f} s ({time.strftime("%Y-%m-%d %H:%M:%S UTC", time.gmtime(when))}):'
+                 f' {reason}; nothing is recorded since')
+        self.get_logger().error(fault)
+        self.faults.append(fault)
+        for corner in self.corners.values():
+            corner.health.set_fault('; '.join(self.faults))
+        self.report(self.corners.values())
 
     def close_sinks(self):
         """Close every sink once (files are finished here); later calls do nothing."""
@@ -313,7 +375,26 @@ class SuspensionNode(Node):
                                              dynamic_typing=numeric)
             value = self.declare_parameter(name, default, descriptor).value
             values[name] = positive_number(name, value) if numeric else value
+        # rclpy ignores an override of a parameter nobody declares: a misspelt -p would be
+        # silently without effect. rclpy keeps the overrides only in this attribute.
+        for name in self._parameter_overrides:
+            if not self.has_parameter(name) and not name.startswith('qos_overrides.'):
+                raise LinkageError(f'parameter {name}', unknown_parameter(name))
         return values
+
+
+def unknown_parameter(name):
+    """Say that a parameter name is unknown, suggest the closest, list the known ones."""
+    close = difflib.get_close_matches(name, PARAMETERS, n=1)
+    guess = f'did you mean {close[0]}? ' if close else ''
+    return f'not a parameter of suspension_node ({guess}known: {", ".join(PARAMETERS)})'
+
+
+def joints_sent(topic, msg, joints):
+    """Say what a JointState sent for joints: '/joint_states front_left_travel 0.02 m'."""
+    positions = dict(zip(msg.name, msg.position))
+    return f'{topic} ' + ', '.join(f'{joint} {positions[joint]!r} m' for joint in joints
+                                   if joint in positions)
 
 
 def positive_number(name, value):
@@ -326,29 +407,35 @@ def positive_number(name, value):
 
 
 def open_sinks(params, scenes, qos):
-    """The sinks the parameters turn on; their modules are imported only then.
+    """
+    Open the sinks the parameters turn on; their modules are imported only then.
 
     scenes: {topic prefix: Scene} of load_corners. qos: {topic: QoSProfile} the node offers,
     stored in the MCAP channel metadata. With a vehicle, the one Rerun recording draws every
-    corner under its name.
+    corner under its name. An output that cannot be written or a missing package raises
+    LinkageError naming the parameter, before any command is taken.
     """
+    for name in ('record_mcap', 'rerun_rrd'):
+        problem = params[name] and writable_file(params[name])
+        if problem:
+            raise LinkageError(name, problem)
     sinks = []
     try:
         if params['record_mcap']:
             try:
                 from ..record.bag import McapRecorder
             except ImportError as exc:
-                raise ImportError(f'record_mcap: cannot record ({exc}); install the record '
-                                  'extra: pip install "linkage_ros[record]"') from exc
+                raise LinkageError('record_mcap', missing_package(exc, 'record')) from None
             about = {k: str(params[k]) for k in ('scene', 'vehicle', 'method', 'frame_id',
                                                 'max_step_mm')}
             sinks.append(McapRecorder(params['record_mcap'], qos=qos, custom_data=about))
         if params['rerun_rrd']:
             try:
                 from ..record.rerun_view import RerunRecorder
-            except ImportError as exc:
-                raise ImportError(f'rerun_rrd: cannot mirror to Rerun ({exc}); install the '
-                                  'view extra: pip install "linkage_ros[view]"') from exc
+            except ImportError as exc:   # pyarrow comes with rerun-sdk: name the package
+                raise LinkageError('rerun_rrd', missing_package(
+                    ImportError(name='rerun-sdk') if exc.name in ('pyarrow', 'rerun') else exc,
+                    'view')) from None
             if '' in scenes:
                 sinks.append(RerunRecorder(params['rerun_rrd'], scenes['']))
             else:
@@ -369,12 +456,63 @@ def spin_until_shutdown(executor):
         executor.spin_once(timeout_sec=3600.0)
 
 
+HELP = """usage: suspension_node [--help] [--ros-args -p NAME:=VALUE ... --params-file FILE]
+
+Wheel travel in; wheel-carrier pose, camber, toe and solver health out (ROS 2, SI units).
+
+parameters (-p NAME:=VALUE after --ros-args, or a params file under /**: ros__parameters:):
+{parameters}
+topics (relative names; a vehicle puts each corner's under its name, e.g. front_left/):
+  in   wheel_travel        std_msgs/Float64           m, + = bump
+  in   steering_rack       std_msgs/Float64           m, + = rack to the left (scenes with a
+                                                      steer: rack link)
+  in   joint_states        sensor_msgs/JointState     travel_joint's position, m (and the
+                                                      joints a vehicle file names)
+  out  wheel_carrier_pose  geometry_msgs/PoseStamped  wheel centre (m) in frame_id, rotation
+                                                      relative to design
+  out  camber, toe         std_msgs/Float64           rad, + = top outboard, + = toe-in
+  out  /diagnostics        diagnostic_msgs/DiagnosticArray  every diagnostic_period, and at
+                                                      once for a bad command or a new level
+  out  alignment, markers  Float64MultiArray, MarkerArray (when turned on)
+
+example:
+  ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST suspension_node --ros-args -p scene:=macpherson \\
+      -p record_mcap:=run.mcap
+
+exit status: 0 stopped by Ctrl-C (SIGINT) or SIGTERM, recordings closed;
+             2 a mistake: unknown parameter, bad value, bad scene or vehicle file, an output
+               file that cannot be written, a missing optional package (one line on stderr)
+"""
+
+
+def help_text():
+    """Return the text of suspension_node --help: the parameters with their defaults."""
+    lines = []
+    for name, (default, text) in PARAMETERS.items():
+        lines += textwrap.wrap(f'{name:<18} {default!r:<12} {text}', 92,
+                               initial_indent='  ', subsequent_indent=' ' * 34)
+    return HELP.format(parameters='\n'.join(lines))
+
+
 def main(args=None):
-    rclpy.init(args=args)
+    """Run suspension_node until SIGINT or SIGTERM; return the exit status."""
+    argv = sys.argv[1:] if args is None else list(args)
+    own = argv[:argv.index('--ros-args')] if '--ros-args' in argv else argv
+    if {'-h', '--help'} & set(own):          # before ROS starts
+        print(help_text(), end='')
+        return 0
+    if own:
+        print(f'suspension_node: unknown argument {own[0]!r}: parameters go after --ros-args, '
+              'as -p name:=value (see suspension_node --help)', file=sys.stderr)
+        return 2
+    # A file-size limit (ulimit -f) would kill the process at the limit: make it an error of
+    # the write instead, which stops the recording and is reported, while the node goes on.
+    signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
+    rclpy.init(args=None if args is None else ['suspension_node', *argv])
     try:
         node = SuspensionNode()
     except (ValueError, OSError, ImportError, ParameterException) as exc:
-        # SceneError is a ValueError: its message names the file, field and problem.
+        # LinkageError (a ValueError): its message names the file, field or parameter.
         print(f'suspension_node: {exc}', file=sys.stderr)
         rclpy.try_shutdown()
         return 2

@@ -1,0 +1,73 @@
+"""suspension_node as a first-time user meets it: --help, mistakes, and bad commands.
+
+Each mistake gets one line on stderr naming it and exit status 2 before ROS answers anything;
+a bad command is said on the console once per kind (not a number, out of reach), with the
+value in the unit it was sent in.
+"""
+
+import math
+import signal
+import subprocess
+import sys
+
+import pytest
+
+from linkage_ros.ros.node import PARAMETERS
+
+from conftest import connect, Probe, spin_until
+
+
+def run_node(*args, timeout=60):
+    """Run the suspension_node console script to its end; (status, stdout, stderr)."""
+    from linkage_ros.ros.testing import node_script
+    done = subprocess.run([str(node_script()), *args], capture_output=True, text=True,
+                          timeout=timeout)
+    return done.returncode, done.stdout, done.stderr
+
+
+def test_help_lists_every_parameter_with_its_default_topics_and_exit_statuses():
+    status, out, err = run_node('--help')
+    assert status == 0 and err == ''
+    for name, (default, _) in PARAMETERS.items():
+        assert f'  {name} ' in out and repr(default) in out
+    for topic in ('wheel_travel', 'wheel_carrier_pose', 'camber', 'toe', '/diagnostics'):
+        assert topic in out
+    assert 'example:' in out and 'exit status: 0' in out and '2 a mistake' in out
+
+
+@pytest.mark.parametrize('args, says', [
+    (['--ros-args', '-p', 'sceen:=macpherson'],
+     'parameter sceen: not a parameter of suspension_node (did you mean scene?'),
+    (['--ros-args', '-p', 'record_mcap:=/no/such/folder/run.mcap'],
+     'record_mcap: cannot write /no/such/folder/run.mcap: no folder /no/such/folder'),
+    (['--ros-args', '-p', 'rerun_rrd:=/'], 'rerun_rrd: / is a folder, not a file'),
+    (['--ros-args', '-p', 'max_step_mm:=-1.0'], 'max_step_mm: must be a finite number above 0'),
+    (['--ros-args', '-p', 'scene:=no_such_scene'], 'scene: no such file, and not a bundled scene'),
+    (['scene:=five_link'], "unknown argument 'scene:=five_link': parameters go after --ros-args"),
+])
+def test_a_mistake_is_one_line_and_status_2(args, says):
+    status, out, err = run_node(*args)
+    assert status == 2 and out == ''
+    assert err.startswith('suspension_node: ') and err.count('\n') == 1, err
+    assert says in err
+
+
+def test_a_bad_command_is_said_on_the_console_once_per_kind_with_its_unit(
+        node_process, localhost_context, localhost_executor):
+    process = node_process('-p', 'diagnostic_period:=3600.0')
+    probe = Probe(localhost_context, localhost_executor)
+    connect(localhost_executor, probe)
+    probe.send(math.nan, math.nan, 0.5, 1e308, 0.5, math.inf, 0.01)
+    assert spin_until(localhost_executor, lambda: len(probe.poses) >= 2 and sum(
+        s.level == b'\x02' for s in probe.statuses) == 6, 20.0)
+    status, _, err = process.stop(signal.SIGINT)
+    assert status == 0
+    said = [line for line in err.splitlines() if 'ERROR' in line]
+    # Two kinds, each said once (the repeats within the throttle period are held back):
+    assert len(said) == 2, said
+    assert '/wheel_travel nan m: travel nan is not a finite number' in said[0]
+    assert '/wheel_travel 0.5 m: travel 500 mm is out of reach' in said[1]
+    # /diagnostics reports every one, with the value as it was sent:
+    errors = [s.message for s in probe.statuses if s.level == b'\x02']
+    assert errors[3].startswith('/wheel_travel 1e+308 m: ')
+    assert errors[5].startswith('/wheel_travel inf m: ')
