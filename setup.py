@@ -44,6 +44,8 @@ setup(
             'linkage-replay = linkage_ros.tools.replay:main',
             'linkage-rerun = linkage_ros.tools.rerun_convert:main',
             'linkage-bench = linkage_ros.bench.accuracy:main',
+            'linkage-plot = linkage_ros.tools.plot:main',
+            'linkage-soak = linkage_ros.bench.soak:main',
         ],
     },
 )

@@ -11,7 +11,8 @@ import os
 from pathlib import Path
 import sys
 
-EXIT_STATUS = '2: a mistake in the command (unknown option, bad value, missing file or package)'
+EXIT_STATUS = ('2 a mistake in the command: an unknown option, a bad value, a missing or '
+               'unwritable file, a missing optional package (one line on stderr)')
 
 
 class Parser(argparse.ArgumentParser):

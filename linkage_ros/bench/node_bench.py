@@ -508,31 +508,6 @@ def bench_callback(args):
     table(['callback', 'commands', 'median_us', 'mean_us', 'ratio_to_plain', 'close_s'], rows)
 
 
-def plot_ladder(ladder, path):
-    """Median and p99 latency against command rate, node and echo, as a PNG."""
-    import matplotlib
-    matplotlib.use('Agg')
-    import matplotlib.pyplot as plt
-    fig, ax = plt.subplots(figsize=(6.5, 4))
-    for name, color in (('node', 'C0'), ('echo', 'C1')):
-        rows = [r for r in ladder if r[0] == name and r[3]]
-        rates = [r[1] for r in rows]
-        ax.plot(rates, [r[7] / 1000.0 for r in rows], 'o-', color=color,
-                label=f'{"suspension_node" if name == "node" else "bare rclpy echo"} median')
-        ax.plot(rates, [r[8] / 1000.0 for r in rows], 'o--', color=color, alpha=0.6,
-                label='p99')
-    ax.set_xscale('log')
-    ax.set_yscale('log')
-    ax.set_xlabel('command rate, Hz')
-    ax.set_ylabel('latency, ms (command to pose)')
-    ax.grid(True, which='both', alpha=0.3)
-    ax.legend(fontsize=8)
-    ax.set_title('Latency against command rate, across processes')
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-
-
 def node_script():
     return str(Path(sys.executable).parent / 'suspension_node')
 
@@ -600,7 +575,9 @@ def main(argv=None):
         if 'latency' in args.only:
             ladder = bench_latency(args, log_dir, first + 2)
             if args.plot:
-                plot_ladder(ladder, args.plot)
+                from ..tools.plot import plot_latency
+                plot_latency({name: [(r[1], r[7], r[8]) for r in ladder if r[0] == name and r[3]]
+                              for name in ('node', 'echo')}, args.plot)
                 progress(f'wrote {args.plot}')
         if 'vehicle' in args.only:
             bench_vehicle(args, log_dir, first + 4)

@@ -1,15 +1,21 @@
-"""Camber and toe against wheel travel for scenes, as a PNG (needs matplotlib: the plot extra).
+"""
+linkage-plot: the pictures of the README, as PNG files (needs matplotlib: the plot extra).
 
-    python -m linkage_ros.tools.plot OUT.png [--alignment] [SCENE ...]
-    (default scenes: five_link, double_wishbone, macpherson; --alignment: the alignment set)
+    linkage-plot camber-toe OUT.png [SCENE ...]    camber and toe against travel
+    linkage-plot alignment OUT.png [SCENE ...]     the alignment set against travel
+    linkage-plot latency BENCH.csv OUT.png         latency against command rate, node and echo,
+                                                   from the tables a linkage-node-bench run wrote
+Default scenes: five_link, double_wishbone, macpherson, in that order (one colour each).
 """
 
+import csv
 import sys
 
 import numpy as np
 
 from ..core.kinematics import sweep, travel_range
-from ..core.scene import load_scene
+from ..cli import EXIT_STATUS, fail, missing_package, Parser, writable_file
+from ..core.scene import load_scene, SceneError
 
 
 def plot_camber_toe(scenes, path):
@@ -78,19 +84,107 @@ def plot_alignment(scenes, path):
     plt.close(fig)
 
 
+def read_ladder(path):
+    """
+    Read the rate table of a linkage-node-bench output (its CSV tables).
+
+    Returns {node name: [(rate Hz, median us, p99 us)]} for the rates where commands were
+    answered.
+    """
+    ladder, in_table = {}, False
+    with open(path, newline='') as stream:
+        for row in csv.reader(stream):
+            if not row:
+                in_table = False
+            elif row[0] == 'rate':
+                in_table = True
+                columns = row
+            elif in_table:
+                values = dict(zip(columns, row))
+                if int(values['answered']):
+                    ladder.setdefault(row[0], []).append((
+                        float(values['hz']), float(values['median_us']),
+                        float(values['p99_us'])))
+    return ladder
+
+
+def plot_latency(ladder, path):
+    """Write median and p99 latency (ms) against command rate (Hz), node and echo, as PNG."""
+    import matplotlib
+    matplotlib.use('Agg')
+    import matplotlib.pyplot as plt
+    from matplotlib.ticker import ScalarFormatter
+    fig, ax = plt.subplots(figsize=(6.5, 4))
+    for name, label, color in (('node', 'suspension_node', 'C0'),
+                               ('echo', 'bare rclpy echo node', 'C1')):
+        rates, median, p99 = np.array(ladder.get(name, [])).reshape(-1, 3).T
+        ax.plot(rates, median / 1000.0, 'o-', color=color, label=f'{label}, median')
+        ax.plot(rates, p99 / 1000.0, 'o--', color=color, alpha=0.6, label=f'{label}, p99')
+    ax.set_xscale('log')
+    ax.set_yscale('log')
+    ax.set_xticks(sorted({r for rows in ladder.values() for r, _, _ in rows}))
+    ax.xaxis.set_major_formatter(ScalarFormatter())
+    ax.xaxis.set_minor_formatter(plt.NullFormatter())
+    ax.yaxis.set_major_formatter(ScalarFormatter())
+    ax.set_xlabel('command rate, Hz')
+    ax.set_ylabel('latency, ms (command sent to pose received)')
+    ax.grid(True, which='both', alpha=0.3)
+    ax.legend(fontsize=8)
+    ax.set_title('suspension_node and a bare echo node, across processes')
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+DEFAULT_SCENES = ['five_link', 'double_wishbone', 'macpherson']
+
+
+def parse_args(argv):
+    parser = Parser('linkage-plot', __doc__, 'examples:\n'
+                    '  linkage-plot camber-toe bags/plots/camber_toe.png\n'
+                    '  linkage-plot latency doc/bench/node_bench.csv bags/plots/node_latency.png'
+                    f'\n\nexit status: 0 written; {EXIT_STATUS}')
+    parser.add_argument('what', choices=('camber-toe', 'alignment', 'latency'),
+                        help='which picture')
+    parser.add_argument('paths', nargs='+', metavar='PATH',
+                        help='OUT.png [SCENE ...]; for latency: BENCH.csv OUT.png')
+    return parser.parse_args(argv)
+
+
 def main(argv=None):
-    argv = sys.argv[1:] if argv is None else argv
-    if not argv:
-        print(__doc__, file=sys.stderr)
-        return 2
-    names = [n for n in argv[1:] if n != '--alignment'] or ['five_link', 'double_wishbone',
-                                                              'macpherson']
-    scenes = [load_scene(n) for n in names]
-    if '--alignment' in argv:
-        plot_alignment(scenes, argv[0])
+    """Run linkage-plot; return the exit status."""
+    args = parse_args(argv)
+    prog = 'linkage-plot'
+    if args.what == 'latency':
+        if len(args.paths) != 2:
+            return fail(prog, 'latency: expected BENCH.csv OUT.png')
+        source, out = args.paths
+        try:
+            ladder = read_ladder(source)
+        except (OSError, KeyError, ValueError) as exc:
+            return fail(prog, f'{source}: not the output of linkage-node-bench ({exc})')
+        if not ladder:
+            return fail(prog, f'{source}: no rate table (run linkage-node-bench with latency)')
     else:
-        plot_camber_toe(scenes, argv[0])
-    print(f'wrote {argv[0]}', file=sys.stderr)
+        out, names = args.paths[0], args.paths[1:] or DEFAULT_SCENES
+        try:
+            scenes = [load_scene(n) for n in names]
+        except SceneError as exc:
+            return fail(prog, exc)
+    problem = writable_file(out)
+    if problem:
+        return fail(prog, problem)
+    try:
+        import matplotlib  # noqa: F401 (only to name it if it is missing)
+    except ImportError as exc:
+        return fail(prog, missing_package(exc, 'plot'))
+    if args.what == 'latency':
+        plot_latency(ladder, out)
+    elif args.what == 'alignment':
+        plot_alignment(scenes, out)
+    else:
+        plot_camber_toe(scenes, out)
+    print(f'{prog}: wrote {out}', file=sys.stderr)
     return 0
 
 

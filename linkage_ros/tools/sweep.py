@@ -1,18 +1,21 @@
-"""linkage-sweep: solve a scene over a travel range and print a CSV table (mm, deg).
+"""
+linkage-sweep: solve a scene over a travel range and write a CSV table (mm, deg).
 
-Data goes to stdout (or --csv PATH), progress and errors to stderr.
+The table goes to stdout (or to --csv PATH), progress and errors to stderr. Travels default
+to the scene's own travel block (for the bundled scenes -80 to +80 mm in 1 mm steps).
 """
 
-import argparse
 import sys
 import time
 
 import numpy as np
 
+from ..cli import EXIT_STATUS, fail, Parser, writable_file
 from ..core.errors import LinkageError
 from ..core.kinematics import Continuation, METHODS, sweep, travel_range
 from ..core.scene import load_scene, SceneError
 
+PROG = 'linkage-sweep'
 COLUMNS = ['travel_mm', 'camber_deg', 'toe_deg', 'wheel_center_x_mm', 'wheel_center_y_mm',
            'wheel_center_z_mm', 'qx', 'qy', 'qz', 'qw', 'residual_mm', 'iterations']
 
@@ -67,14 +70,33 @@ def write_csv(results, stream, scene=None, with_rack=False):
         stream.writelines(row_format % tuple(row) for row in rows.tolist())
 
 
+EPILOG = """columns: travel_mm, camber_deg (+ = top outboard), toe_deg (+ = toe-in), wheel centre
+  x, y, z in mm (vehicle frame: x forward, y left, z up), the carrier rotation relative to
+  design as a quaternion qx, qy, qz, qw, residual_mm, iterations; then rack_mm with --rack or
+  --grid, and the alignment set with --alignment.
+
+examples:
+  linkage-sweep five_link --csv five_link_sweep.csv
+  linkage-sweep double_wishbone --from -40 --to 40 --step 10 --rack 5 --alignment
+  linkage-sweep my_corner.yaml --grid=-20:20:10 > grid.csv
+
+exit status: 0 every travel solved; 1 a travel is out of reach (the rows solved before it
+are written, the message names the limit); """ + EXIT_STATUS
+
+
 def parse_args(argv):
-    parser = argparse.ArgumentParser(prog='linkage-sweep', description=__doc__)
+    parser = Parser('linkage-sweep', __doc__, EPILOG)
     parser.add_argument('scene', help='bundled scene name (e.g. five_link) or path to a YAML file')
-    parser.add_argument('--from', dest='start', type=float, help='first travel, mm')
-    parser.add_argument('--to', dest='stop', type=float, help='last travel, mm')
-    parser.add_argument('--step', type=float, help='travel step, mm (> 0)')
-    parser.add_argument('--method', choices=METHODS, default='fast')
-    parser.add_argument('--csv', help='write the table here instead of stdout')
+    parser.add_argument('--from', dest='start', type=float,
+                        help="first travel, mm (default: the scene's travel block)")
+    parser.add_argument('--to', dest='stop', type=float,
+                        help="last travel, mm (default: the scene's travel block)")
+    parser.add_argument('--step', type=float,
+                        help="travel step, mm, > 0 (default: the scene's travel block)")
+    parser.add_argument('--method', choices=METHODS, default='fast',
+                        help='fast (pose Newton, compiled) or paper (Alexandru 2018); '
+                        'default fast')
+    parser.add_argument('--csv', help='write the table to this file (default: stdout)')
     parser.add_argument('--rack', type=float, default=None,
                         help='steering rack travel, mm (+ = rack to the left); adds rack_mm')
     parser.add_argument('--grid', metavar='FROM:TO:STEP',
@@ -85,7 +107,10 @@ def parse_args(argv):
     parser.add_argument('--benchmark', type=int, metavar='ROUNDS', default=0,
                         help='instead of a table, time paper and fast sweeps side by side '
                         'over ROUNDS interleaved rounds and print the median per position')
-    return parser.parse_args(argv)
+    args = parser.parse_args(argv)
+    if args.benchmark < 0:
+        parser.error(f'--benchmark: expected a number of rounds >= 0, got {args.benchmark}')
+    return args
 
 
 def benchmark(scene, travels, rounds):
@@ -119,20 +144,22 @@ def benchmark(scene, travels, rounds):
 
 
 def main(argv=None):
+    """Run linkage-sweep; return the exit status."""
     args = parse_args(argv)
     try:
         scene = load_scene(args.scene)
     except SceneError as exc:
-        print(f'linkage-sweep: {exc}', file=sys.stderr)
-        return 2
+        return fail(PROG, exc)
+    problem = args.csv and writable_file(args.csv)
+    if problem:
+        return fail(PROG, f'--csv: {problem}')
     low, high, step = scene.travel
     start = low if args.start is None else args.start
     stop = high if args.stop is None else args.stop
     step = step if args.step is None else args.step
     if not (step > 0 and np.isfinite([start, stop, step]).all()):
-        print(f'linkage-sweep: --from, --to and --step must be finite and --step > 0 '
-              f'(got {start}, {stop}, {step})', file=sys.stderr)
-        return 2
+        return fail(PROG, f'--from, --to and --step must be finite and --step > 0 (got '
+                          f'{start}, {stop}, {step})')
     travels = travel_range(start, stop, step)
     if args.benchmark:
         benchmark(scene, travels, args.benchmark)
@@ -142,12 +169,10 @@ def main(argv=None):
     try:
         racks = rack_values(args)
     except LinkageError as exc:
-        print(f'linkage-sweep: {exc}', file=sys.stderr)
-        return 2
+        return fail(PROG, exc)
     if racks != [0.0] and not any(c.steer == 'rack' for c in scene.constraints):
-        print(f'linkage-sweep: {scene.name}: no constraint is marked steer: rack, so a rack '
-              'input moves nothing', file=sys.stderr)
-        return 2
+        return fail(PROG, f'{scene.name}: no constraint is marked steer: rack, so a rack input '
+                          'moves nothing')
     results = []
     for i, rack in enumerate(racks):
         results.append(sweep(scene, travels, method=args.method, rack=rack))
