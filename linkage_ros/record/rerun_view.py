@@ -19,6 +19,9 @@ concept, the blueprint, and RerunRecorder: the node's sink that logs message by 
 """
 
 import math
+import os
+import resource
+import struct
 import time
 
 import numpy as np
@@ -238,6 +241,52 @@ ROLES = {'wheel_travel': 'travel', 'wheel_carrier_pose': 'pose', 'camber': 'camb
          'toe': 'toe'}
 BATCH_ROWS = 256       # rows buffered before they are sent as columns
 BATCH_DELAY = 0.5      # s (wall clock): or once the oldest buffered row is this old
+FLUSH_TIMEOUT = 2.0    # s: a flush of the .rrd that takes longer means its writer stopped
+LIMIT_MARGIN = 1 << 20   # bytes: this close to a size limit or free space is "reached"
+
+
+def cut_to_whole_messages(path):
+    """
+    Cut a .rrd whose writing failed after its last whole message, so that readers read it.
+
+    The file is a 12-byte header (b'RRF2', version, options) and messages, each a 16-byte
+    header (kind, length: two little-endian uint64) and its payload; a write that failed
+    leaves a message cut short at the end, which Rerun's readers refuse whole.
+    """
+    try:
+        with open(path, 'r+b') as stream:
+            size = os.fstat(stream.fileno()).st_size
+            end = 12
+            stream.seek(end)
+            while end + 16 <= size:
+                _, length = struct.unpack('<QQ', stream.read(16))
+                if end + 16 + length > size:
+                    break
+                end += 16 + length
+                stream.seek(end)
+            stream.truncate(min(end, size))
+    except OSError:
+        pass   # nothing more can be done: the failure is reported already
+
+
+def write_failure(path):
+    """
+    Say why writing path probably failed, from what the system shows.
+
+    A file-size limit (ulimit -f) reached, a full file system, the file gone; else only that
+    the writer stopped.
+    """
+    try:
+        size = os.path.getsize(path)
+    except OSError:
+        return f'{path} is gone'
+    limit = resource.getrlimit(resource.RLIMIT_FSIZE)[0]
+    if limit != resource.RLIM_INFINITY and size + LIMIT_MARGIN >= limit:
+        return f'file size limit reached ({limit} bytes, ulimit -f)'
+    space = os.statvfs(os.path.dirname(os.path.abspath(path)))
+    if space.f_bavail * space.f_frsize < LIMIT_MARGIN:
+        return 'no space left on the device'
+    return 'a write failed'
 
 
 class RerunRecorder:
@@ -267,6 +316,7 @@ class RerunRecorder:
         self._buffered = 0
         self._oldest = None
         self._closed = False
+        self._error = None
 
     def record(self, topic, type_name, msg, receive_ns, publish_ns):
         """Buffer one message (CDR bytes or an rclpy message) by its topic's role; times in
@@ -317,14 +367,35 @@ class RerunRecorder:
         self._buffered = 0
         self._oldest = None
 
+    @property
+    def error(self):
+        """
+        Say why the .rrd is no longer written, or None while it is.
+
+        Rerun writes the file from a thread of its own and only logs a failed write; what
+        shows here is that its flush cannot complete any more. Checked on each call (the node
+        asks once a diagnostic period): a flush waits for what is buffered to be written.
+        """
+        if self._error is None and not self._closed:
+            try:
+                self._rec.flush(timeout_sec=FLUSH_TIMEOUT)
+            except RuntimeError:
+                self._error = f'the .rrd writer stopped: {write_failure(self.path)}'
+        return self._error
+
     def close(self):
         """Send what is buffered and end the file. Idempotent."""
         if self._closed:
             return
         self.flush()
         self._closed = True
-        self._rec.flush()
+        try:
+            self._rec.flush(timeout_sec=FLUSH_TIMEOUT)
+        except RuntimeError:   # the writer failed before: the file holds what it wrote
+            self._error = self._error or f'the .rrd writer stopped: {write_failure(self.path)}'
         self._rec.disconnect()
+        if self._error:
+            cut_to_whole_messages(self.path)
 
     def __enter__(self):
         return self

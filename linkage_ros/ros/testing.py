@@ -241,12 +241,18 @@ def connect(executor, probe, timeout=20.0):
 class NodeProcess:
     """suspension_node (or another console script) in a subprocess on a given domain."""
 
-    def __init__(self, ros_args, domain_id, script='suspension_node'):
+    def __init__(self, ros_args, domain_id, script='suspension_node', file_size=None):
+        """file_size: a limit (bytes) on the files the process writes (ulimit -f), or None."""
         env = dict(os.environ, ROS_DOMAIN_ID=str(domain_id),
                    ROS_AUTOMATIC_DISCOVERY_RANGE='LOCALHOST')
+
+        def limit():
+            import resource
+            resource.setrlimit(resource.RLIMIT_FSIZE, (file_size, file_size))
+
         self.popen = subprocess.Popen([str(node_script(script)), '--ros-args', *ros_args],
                                       env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                                      text=True)
+                                      text=True, preexec_fn=limit if file_size else None)
 
     def stop(self, sig=signal.SIGINT, timeout=WAIT):
         """Send sig, wait for the exit; returns (exit code, stdout, stderr)."""
@@ -364,11 +370,12 @@ def send_travel(probe):
 
 @_fixture
 def node_process(ros_environment, domain_id):
-    """Factory: node_process(*ros_args) starts suspension_node on the test's domain id."""
+    """Factory: node_process(*ros_args, file_size=None) starts suspension_node on the test's
+    domain id (file_size: a limit in bytes on the files it writes, as ulimit -f sets)."""
     started = []
 
-    def start(*ros_args, script='suspension_node'):
-        started.append(NodeProcess(ros_args, domain_id, script))
+    def start(*ros_args, script='suspension_node', file_size=None):
+        started.append(NodeProcess(ros_args, domain_id, script, file_size))
         return started[-1]
 
     yield start
