@@ -32,6 +32,7 @@ from rerun.components import LineStrip3DBatch
 from rerun.encodings import Vec3DBatch
 
 from ..core.geometry import carrier_points, perpendicular, unit
+from ..core.kinematics import sweep, travel_range
 from ..core.scene import link_polylines
 from ..ros.messages import float64_of, MM_PER_M, pose_of, to_cdr
 
@@ -141,17 +142,53 @@ def eye(scenes):
     return target + EYE_DISTANCE * float(np.max(high - low)) * direction, target
 
 
+def plot_ranges(scenes):
+    """
+    Frame each plot on the scenes' travel blocks.
+
+    {series name: (low, high)}: the travel block (mm) and the camber and toe (deg) over it,
+    framed so that the plots open on the whole motion with readable ticks.
+    """
+    travel, camber, toe = [], [], []
+    for scene in scenes:
+        low, high, step = scene.travel
+        result = sweep(scene, travel_range(low, high, max(step, (high - low) / 64)))
+        travel += [low, high]
+        camber += list(np.degrees(result.camber))
+        toe += list(np.degrees(result.toe))
+
+    return {'travel_mm': framed(travel), 'camber_deg': framed(camber), 'toe_deg': framed(toe)}
+
+
+def framed(values):
+    """
+    Frame values for a plot with at least three labelled ticks.
+
+    The plot labels round steps (1, 2 or 5 times a power of ten) only where they fall inside
+    its range: the range is widened to the round step beyond each end, plus a little.
+    """
+    low, high = min(values), max(values)
+    span = high - low or 1.0
+    step = 10.0 ** math.floor(math.log10(span / 2))
+    step *= next((f for f in (1, 2, 5) if span / (f * step) <= 4), 10)
+    low, high = math.floor(low / step) * step, math.ceil(high / step) * step
+    return (low - 0.1 * step, high + 0.1 * step)
+
+
 def blueprint(scenes):
     """3D view of the scenes ({root: Scene}) beside the travel, camber and toe plots (one line
     per corner), on the ROS time."""
     position, target = eye(list(scenes.values()))
+    ranges = plot_ranges(list(scenes.values()))
     if '' in scenes:
-        plots = [rrb.TimeSeriesView(origin=f'/plots/{name}', name=title)
+        plots = [rrb.TimeSeriesView(origin=f'/plots/{name}', name=title,
+                                    axis_y=rrb.ScalarAxis(range=ranges[name]))
                  for name, title in SERIES.items()]
         origin, contents, name = '/suspension', '$origin/**', scenes[''].name
     else:
         plots = [rrb.TimeSeriesView(origin='/plots', name=title,
-                                    contents=[f'/{plot(root, name)}' for root in scenes])
+                                    contents=[f'/{plot(root, name)}' for root in scenes],
+                                    axis_y=rrb.ScalarAxis(range=ranges[name]))
                  for name, title in SERIES.items()]
         origin, contents = '/', [f'/{entity(root, "suspension")}/**' for root in scenes]
         name = 'vehicle'
@@ -172,7 +209,7 @@ def log_scene(rec, scene, root=''):
     points, labels = base_points(scene)
     rec.log(entity(root, 'suspension/base_points'),
             rr.Points3D(points, labels=labels, radii=POINT_RADIUS, colors=COLORS['base'],
-                        show_labels=False),
+                        show_labels=True),
             static=True)
     rec.log(entity(root, 'suspension/carrier'), rr.TransformAxes3D(AXES_LENGTH), static=True)
     rec.log(entity(root, 'suspension/carrier/joints'),
@@ -184,9 +221,10 @@ def log_scene(rec, scene, root=''):
         rec.log(entity(root, 'suspension/carrier/wheel'),
                 rr.LineStrips3D([circle], radii=WHEEL_LINE_RADIUS, colors=COLORS['wheel']),
                 static=True)
+    # Labelled at the body-side points, which lie apart; at the links' middles they overlap.
     rec.log(entity(root, 'suspension/links'), rr.LineStrips3D.from_fields(
         radii=LINK_RADIUS, colors=[COLORS[c.type] for c in scene.constraints],
-        labels=[c.name for c in scene.constraints]), static=True)
+        labels=[c.name for c in scene.constraints], show_labels=False), static=True)
     for name, title in SERIES.items():
         rec.log(plot(root, name), rr.SeriesLines(names=f'{root} {title}' if root else title),
                 static=True)
