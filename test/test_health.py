@@ -6,11 +6,10 @@ period summarising it, and a report at once for a failed command or a change of 
 
 import math
 
-import pytest
-
-from linkage_ros.ros.health import ERROR, Health, OK, WARN
 from linkage_ros.core.kinematics import Continuation
 from linkage_ros.core.scene import load_scene
+from linkage_ros.ros.health import ERROR, Health, OK, WARN
+import pytest
 
 
 @pytest.fixture(scope='module')

@@ -7,12 +7,11 @@ stress scene, float64 round-off alone is 1.7e-9 mm, so the bound scales with the
 
 from pathlib import Path
 
-import numpy as np
-import pytest
-
 from linkage_ros.core.kinematics import Continuation, sweep
 from linkage_ros.core.mechanism import carrier_points
 from linkage_ros.core.scene import bundled_scenes, load_scene
+import numpy as np
+import pytest
 
 STRESS = Path(__file__).resolve().parent.parent / 'config' / 'stress'
 SCENES = bundled_scenes() + sorted(str(p) for p in STRESS.glob('*.yaml'))
@@ -38,7 +37,7 @@ def reachable_travels(scene, settings, count=33):
 def scaled(scene):
     """Default settings for a scene of about 1 m, scaled to this one's size."""
     scale = max(scene.size / 1000.0, 1e-6)
-    return dict(tol=1e-10 * scale, max_step=5.0 * scale, min_step=0.005 * scale)
+    return {'tol': 1e-10 * scale, 'max_step': 5.0 * scale, 'min_step': 0.005 * scale}
 
 
 @pytest.mark.parametrize('name', SCENES, ids=lambda n: Path(n).stem)

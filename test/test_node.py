@@ -11,21 +11,19 @@ import signal
 import subprocess
 import sys
 
+from conftest import connect, PARAMS_FILE, Probe, spin_until, stamp_ns
 from diagnostic_msgs.msg import DiagnosticStatus
+from geometry_msgs.msg import PoseStamped
+from linkage_ros.core.kinematics import Continuation, sweep
+from linkage_ros.core.scene import load_scene, SceneError
+from linkage_ros.ros.messages import status_values
+from linkage_ros.ros.node import PARAMETERS, QOS, QOS_DEPTH, SuspensionNode
 import numpy as np
 import pytest
-from geometry_msgs.msg import PoseStamped
 from rclpy.parameter import Parameter
 from rclpy.serialization import deserialize_message
 from std_msgs.msg import Float64
 import yaml
-
-from linkage_ros.core.kinematics import Continuation, sweep
-from linkage_ros.ros.messages import status_values
-from linkage_ros.ros.node import NODE_NAME, PARAMETERS, QOS, QOS_DEPTH, SuspensionNode
-from linkage_ros.core.scene import load_scene, SceneError
-
-from conftest import connect, PARAMS_FILE, Probe, spin_until, stamp_ns
 
 TRAVELS_M = [0.02, 0.045, -0.03, -0.0625, 0.0, 0.07]     # jumps up to 132 mm between commands
 BAD_COMMANDS_M = {'nan': math.nan, 'inf': math.inf, '-inf': -math.inf,
@@ -86,6 +84,7 @@ class ListSink:
 
     def close(self):
         self.closed += 1
+
 
 # --- in process: the node and a probe node in one EventsExecutor ---------------------------
 # Tests that count statuses set a diagnostic_period of an hour: then every status they see
@@ -370,7 +369,7 @@ def test_node_process_answers_a_burst_of_1000_in_order(node_process, localhost_c
 def test_bad_scene_exits_non_zero_with_the_loader_message(node_process, tmp_path, scene,
                                                           error):
     (tmp_path / 'broken.yaml').write_text('units: furlong\nside: left\n')
-    process = node_process('-p', f"scene:={scene.format(tmp=tmp_path)}")
+    process = node_process('-p', f'scene:={scene.format(tmp=tmp_path)}')
     code, _, err = process.finish()
     assert code == 2
     assert err.strip().splitlines() == [err.strip()]            # one line, no traceback

@@ -8,19 +8,18 @@ commands, solved in the same order.
 import math
 
 from diagnostic_msgs.msg import DiagnosticStatus
+from linkage_ros.core.alignment import alignment
+from linkage_ros.core.kinematics import Continuation
+from linkage_ros.core.scene import load_scene
+from linkage_ros.ros import messages
+from linkage_ros.ros.markers import marker_points
+from linkage_ros.ros.node import QOS, SuspensionNode
+from linkage_ros.ros.testing import spin_until
 import numpy as np
 import pytest
 from rclpy.parameter import Parameter
 from std_msgs.msg import Float64, Float64MultiArray
 from visualization_msgs.msg import MarkerArray
-
-from linkage_ros.ros import messages
-from linkage_ros.core.alignment import alignment
-from linkage_ros.core.kinematics import Continuation
-from linkage_ros.ros.markers import marker_points
-from linkage_ros.ros.node import QOS, SuspensionNode
-from linkage_ros.core.scene import load_scene
-from linkage_ros.ros.testing import spin_until
 
 
 STEERED = 'double_wishbone'     # tie_rod has steer: rack
@@ -99,7 +98,7 @@ def test_steering_rack_is_subscribed_only_when_the_scene_has_a_rack_link(
 
 
 def test_rack_commands_solve_at_the_last_travel_and_equal_the_core(make_node, commander,
-                                                                    executor, probe):
+                                                                   executor, probe):
     make_node(scene=STEERED, diagnostic_period=0.05)
     spin_until(executor, lambda: commander.rack.get_subscription_count() > 0)
     _, expected = core_solutions(STEERED, COMMANDS)

@@ -107,10 +107,10 @@ def measure(scene, tol, step, chosen, legs, table, refs, repeats):
         center, rotation, its, ok = last[entry.name]
         ref = refs[entry.kind]
         t_us = np.array(times[entry.name]) * 1e6
-        row = dict(scene=scene.name, entry=entry.name, tol_mm=tol, step_mm=step,
-                   positions=len(ref.travel), ok=bool(ok),
-                   median_us=float(np.median(t_us)) if len(t_us) else math.nan,
-                   p95_us=float(np.percentile(t_us, 95)) if len(t_us) else math.nan)
+        row = {'scene': scene.name, 'entry': entry.name, 'tol_mm': tol, 'step_mm': step,
+               'positions': len(ref.travel), 'ok': bool(ok),
+               'median_us': float(np.median(t_us)) if len(t_us) else math.nan,
+               'p95_us': float(np.percentile(t_us, 95)) if len(t_us) else math.nan}
         if ok:
             err = reference.errors(ref, center, rotation)
             row.update(err, iterations_mean=float(np.mean(its)),

@@ -265,5 +265,3 @@ def _left_jacobian(w):
         return np.eye(3) + 0.5 * k + k @ k / 6
     t = math.sqrt(t2)
     return np.eye(3) + (1 - math.cos(t)) / t2 * k + (t - math.sin(t)) / (t2 * t) * (k @ k)
-
-

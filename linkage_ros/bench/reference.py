@@ -20,8 +20,9 @@ from scipy.optimize import least_squares
 LD = np.longdouble
 REF_STEP = 1e-3          # longest step of the reference walk, as a fraction of the scene size
 REF_MAX_ITER = 40        # Newton iterations per reference step
-ZERO_RESIDUAL = 1e-11    # fraction of the scene size: a least-squares minimum below this is a
-                         # solution (fold search); about 1e-8 mm in the bundled scenes
+# fraction of the scene size: a least-squares minimum below this is a solution (fold search);
+# about 1e-8 mm in the bundled scenes
+ZERO_RESIDUAL = 1e-11
 
 
 @dataclass(frozen=True)
@@ -232,16 +233,16 @@ def errors(ref, center, rotation, where=None):
     center = np.asarray(center, dtype=float)[mask].astype(LD)
     rotation = np.asarray(rotation, dtype=float)[mask].astype(LD)
     if not len(center):
-        return dict(residual_mm=math.nan, wheel_center_mm=math.nan, camber_deg=math.nan,
-                    toe_deg=math.nan)
+        return {'residual_mm': math.nan, 'wheel_center_mm': math.nan, 'camber_deg': math.nan,
+                'toe_deg': math.nan}
     residual = max(float(np.max(np.abs(guidance(ref.model, c, r))))
                    for c, r in zip(center, rotation))
     dev = np.sqrt(np.sum((center - ref.center[mask]) ** 2, axis=1))
     camber, toe = wheel_angles(ref.model, rotation)
     camber_ref, toe_ref = wheel_angles(ref.model, ref.rotation[mask])
-    return dict(residual_mm=residual, wheel_center_mm=float(np.max(dev)),
-                camber_deg=float(np.degrees(np.max(np.abs(camber - camber_ref)))),
-                toe_deg=float(np.degrees(np.max(np.abs(toe - toe_ref)))))
+    return {'residual_mm': residual, 'wheel_center_mm': float(np.max(dev)),
+            'camber_deg': float(np.degrees(np.max(np.abs(camber - camber_ref)))),
+            'toe_deg': float(np.degrees(np.max(np.abs(toe - toe_ref))))}
 
 
 def has_solution(model, pose, travel):

@@ -91,7 +91,7 @@ def goal_lines(rows, scenes, names):
 def default_setting_lines(rows, scenes):
     """Why the node's default (Settings(): tol 1e-10 mm, max_step 5 mm) is what it is."""
     d = Settings()
-    lines = [f'The node solves each command with `Continuation(scene, method=\'fast\')` and the '
+    lines = [f"The node solves each command with `Continuation(scene, method='fast')` and the "
              f'default `Settings()`: tol {d.tol:g} mm (largest residual of a guidance '
              f'equation, a length), max_step {d.max_step:g} mm (longest continuation substep), '
              f'max_iter {d.max_iter}. Measured here, fast at step {d.max_step:g} mm:', '',
@@ -185,7 +185,7 @@ def report(rows, scenes, chosen, args, stress, elapsed):
              f'Run time {elapsed:.0f} s.', '',
              f'Grid: tolerances {", ".join(f"{t:g}" for t in args.tols)} mm; continuation steps '
              f'{", ".join(f"{s:g}" for s in args.steps)} mm; one-call entries: up to '
-             f'{args.positions} positions next to each end of each scene\'s travel range; fast '
+             f"{args.positions} positions next to each end of each scene's travel range; fast "
              f'sweep: the whole range at each step; {args.repeats} interleaved repeats. Error: '
              'the larger of the largest guidance-equation residual (evaluated in extended '
              'precision) and the largest wheel-centre deviation from the 6-DOF '
@@ -200,7 +200,7 @@ def report(rows, scenes, chosen, args, stress, elapsed):
               'error, not the tolerance, is what the table and the plot compare.', '',
               '## Error against run time', '', '![front](bench_front.png)', '',
               'Fastest setting of each entry reaching each accuracy level (x fast: median time '
-              'over the fast entry\'s fastest setting at that level):', '']
+              "over the fast entry's fastest setting at that level):", '']
     lines += level_table(rows, scenes, names)
     lines += ['', '## Goal check', '']
     lines += goal_lines(rows, scenes, names)
@@ -210,5 +210,3 @@ def report(rows, scenes, chosen, args, stress, elapsed):
         lines += ['', '## Stiff and extreme cases', '']
         lines += stress
     return '\n'.join(lines) + '\n'
-
-

@@ -129,9 +129,9 @@ def stress_scaling():
         ref = reference.reference_poses(scene, travels)
         scale = scene.size / 1000.0
         for method in ('fast', 'paper'):
-            for label, options in (('default', {}), ('scaled', dict(
-                    tol=Settings().tol * scale, max_step=Settings().max_step * scale,
-                    min_step=Settings().min_step * scale))):
+            scaled = {'tol': Settings().tol * scale, 'max_step': Settings().max_step * scale,
+                      'min_step': Settings().min_step * scale}
+            for label, options in (('default', {}), ('scaled', scaled)):
                 result = sweep(scene, travels, method=method, **options)
                 error = math.nan
                 if result.success:
@@ -176,5 +176,3 @@ def random_walk(count, low, high, seed=0, largest=5.0):
             here = 2 * low - here
         out[i] = here
     return out
-
-

@@ -116,5 +116,3 @@ def ground_point(point, direction, height):
     """Where lines (point, direction) meet the horizontal planes z = height."""
     t = (height - point[:, 2]) / direction[:, 2]
     return point + t[:, None] * direction
-
-

@@ -65,9 +65,12 @@ def exp_so3(x, y, z, out):
     else:
         t = math.sqrt(t2)
         a, b = math.sin(t) / t, (1.0 - math.cos(t)) / t2
-    out[0, 0], out[0, 1], out[0, 2] = 1.0 - b * (y * y + z * z), b * x * y - a * z, b * x * z + a * y
-    out[1, 0], out[1, 1], out[1, 2] = b * x * y + a * z, 1.0 - b * (x * x + z * z), b * y * z - a * x
-    out[2, 0], out[2, 1], out[2, 2] = b * x * z - a * y, b * y * z + a * x, 1.0 - b * (x * x + y * y)
+    out[0, 0], out[0, 1], out[0, 2] = (
+        1.0 - b * (y * y + z * z), b * x * y - a * z, b * x * z + a * y)
+    out[1, 0], out[1, 1], out[1, 2] = (
+        b * x * y + a * z, 1.0 - b * (x * x + z * z), b * y * z - a * x)
+    out[2, 0], out[2, 1], out[2, 2] = (
+        b * x * z - a * y, b * y * z + a * x, 1.0 - b * (x * x + y * y))
 
 
 @jit
@@ -88,16 +91,20 @@ def quaternion(rotation, out):
     trace = m[0, 0] + m[1, 1] + m[2, 2]
     if trace >= m[0, 0] and trace >= m[1, 1] and trace >= m[2, 2]:
         s = 2.0 * math.sqrt(1.0 + trace)
-        x, y, z, w = (m[2, 1] - m[1, 2]) / s, (m[0, 2] - m[2, 0]) / s, (m[1, 0] - m[0, 1]) / s, s / 4
+        x, y, z, w = ((m[2, 1] - m[1, 2]) / s, (m[0, 2] - m[2, 0]) / s,
+                      (m[1, 0] - m[0, 1]) / s, s / 4)
     elif m[0, 0] >= m[1, 1] and m[0, 0] >= m[2, 2]:
         s = 2.0 * math.sqrt(1.0 + m[0, 0] - m[1, 1] - m[2, 2])
-        x, y, z, w = s / 4, (m[0, 1] + m[1, 0]) / s, (m[0, 2] + m[2, 0]) / s, (m[2, 1] - m[1, 2]) / s
+        x, y, z, w = (s / 4, (m[0, 1] + m[1, 0]) / s, (m[0, 2] + m[2, 0]) / s,
+                      (m[2, 1] - m[1, 2]) / s)
     elif m[1, 1] >= m[2, 2]:
         s = 2.0 * math.sqrt(1.0 - m[0, 0] + m[1, 1] - m[2, 2])
-        x, y, z, w = (m[0, 1] + m[1, 0]) / s, s / 4, (m[1, 2] + m[2, 1]) / s, (m[0, 2] - m[2, 0]) / s
+        x, y, z, w = ((m[0, 1] + m[1, 0]) / s, s / 4, (m[1, 2] + m[2, 1]) / s,
+                      (m[0, 2] - m[2, 0]) / s)
     else:
         s = 2.0 * math.sqrt(1.0 - m[0, 0] - m[1, 1] + m[2, 2])
-        x, y, z, w = (m[0, 2] + m[2, 0]) / s, (m[1, 2] + m[2, 1]) / s, s / 4, (m[1, 0] - m[0, 1]) / s
+        x, y, z, w = ((m[0, 2] + m[2, 0]) / s, (m[1, 2] + m[2, 1]) / s, s / 4,
+                      (m[1, 0] - m[0, 1]) / s)
     sign = 1.0 if w >= 0.0 else -1.0
     out[0], out[1], out[2], out[3] = sign * x, sign * y, sign * z, sign * w
 
@@ -129,7 +136,8 @@ def linearize(eqs, center, rotation, rack, f, jac):
             f[i] = (dx * dx + dy * dy + dz * dz - length * length) * (0.5 / length)
             dx, dy, dz = dx / length, dy / length, dz / length
             jac[i, 0], jac[i, 1], jac[i, 2] = dx, dy, dz
-            jac[i, 3], jac[i, 4], jac[i, 5] = ry * dz - rz * dy, rz * dx - rx * dz, rx * dy - ry * dx
+            jac[i, 3], jac[i, 4], jac[i, 5] = (
+                ry * dz - rz * dy, rz * dx - rx * dz, rx * dy - ry * dx)
         else:
             # F = (T - C) . n, n = R n0; dF = -n . dM + omega . (n x (T - C) - r x n)
             nx, ny, nz = rotate(rotation, e[NORMAL], e[NORMAL + 1], e[NORMAL + 2])

@@ -35,8 +35,9 @@ class Settings:
     """Solver settings. Lengths in mm."""
 
     method: str = 'fast'
-    tol: float = 1e-10        # paper: largest coordinate change in the last iteration (eqs.
-                              # 11-12); fast: largest constraint residual (a length)
+    # paper: largest coordinate change in the last iteration (eqs. 11-12); fast: largest
+    # constraint residual (a length)
+    tol: float = 1e-10
     max_iter: int = 25        # Newton iterations per step
     max_step: float = 5.0     # longest continuation step
     min_step: float = 0.005   # below this a failing step means out of reach (limit to 0.01)
@@ -103,7 +104,7 @@ class Continuation:
         self.settings = replace(settings, tol=max(settings.tol, self.floor),
                                 knot_tol=max(settings.knot_tol, self.floor))
         if self.settings.method not in METHODS:
-            raise LinkageError('method', f"unknown value {self.settings.method!r} (expected "
+            raise LinkageError('method', f'unknown value {self.settings.method!r} (expected '
                                f"one of: {', '.join(METHODS)})")
         self.mech = compile_scene(scene)
         self._paper = (paper_method.build(scene, self.mech) if self.settings.method == 'paper'

@@ -45,7 +45,7 @@ class Constraint:
     """
 
     name: str
-    type: str
+    type: str             # noqa: A003 (the scene files' key; public field of Constraint)
     base: np.ndarray      # (k, 3): k = 1 for sphere and line, 2 for circle
     carrier: np.ndarray   # (3,)
     steer: str = ''
@@ -81,7 +81,8 @@ class Scene:
     def size(self):
         """Largest hardpoint coordinate magnitude (mm): sets the scale of tolerances."""
         pts = [self.wheel_center, self.spin_axis_point]
-        pts += [c.carrier for c in self.constraints] + [b for c in self.constraints for b in c.base]
+        pts += [c.carrier for c in self.constraints]
+        pts += [b for c in self.constraints for b in c.base]
         return float(max(np.max(np.abs(p)) for p in pts))
 
     @property
@@ -138,8 +139,8 @@ def resolve_scene_path(name_or_path):
     candidate = scene_dir() / f'{name_or_path}.yaml'
     if candidate.exists():
         return candidate
-    raise SceneError(name_or_path, 'scene',
-                     f'no such file, and not a bundled scene (bundled: {", ".join(bundled_scenes())})')
+    raise SceneError(name_or_path, 'scene', 'no such file, and not a bundled scene '
+                     f'(bundled: {", ".join(bundled_scenes())})')
 
 
 def load_scene(name_or_path):

@@ -21,7 +21,7 @@ import re
 
 import yaml
 
-from .scene import (load_scene, mirror, resolve_scene_path, config_dir, SceneError, translate,
+from .scene import (config_dir, load_scene, mirror, resolve_scene_path, SceneError, translate,
                     UNITS_TO_MM)
 
 CORNER_NAME = re.compile(r'^[a-z][a-z0-9_]*$')   # becomes a ROS namespace
@@ -32,8 +32,8 @@ class Vehicle:
     name: str
     source: str
     corners: dict      # corner name -> Scene, in vehicle coordinates (mm)
-    joints: dict = field(default_factory=dict)   # corner name -> (travel_joint, rack_joint),
-                                                 # '' where not named
+    # corner name -> (travel_joint, rack_joint), '' where not named
+    joints: dict = field(default_factory=dict)
 
 
 def vehicle_dir():
@@ -96,7 +96,8 @@ def _corner(path, corner, spec, scale):
     if spec.get('mirror', False) is True:
         scene = mirror(scene)
     elif spec.get('mirror', False) is not False:
-        raise SceneError(path, f'{where}.mirror', f"expected true or false, got {spec['mirror']!r}")
+        raise SceneError(path, f'{where}.mirror',
+                         f"expected true or false, got {spec['mirror']!r}")
     offset = spec.get('offset', [0.0, 0.0, 0.0])
     if (not isinstance(offset, list) or len(offset) != 3
             or not all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in offset)):

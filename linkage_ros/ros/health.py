@@ -78,4 +78,3 @@ class Health:
             return WARN, (f'near a singular position: Jacobian condition number '
                           f'{solution.condition:.3g} above {self.condition_warn:.3g}')
         return OK, 'ok'
-

@@ -73,7 +73,7 @@ OUTPUTS = {'wheel_carrier_pose': PoseStamped, 'camber': Float64, 'toe': Float64}
 # name: (default, description). Numbers accept integers too (a YAML 5 means 5.0).
 PARAMETERS = {
     'scene': ('five_link', 'bundled scene name or path to a scene YAML file'),
-    'frame_id': ('base_link', 'frame of wheel_carrier_pose (the scene\'s vehicle frame)'),
+    'frame_id': ('base_link', "frame of wheel_carrier_pose (the scene's vehicle frame)"),
     'method': ('fast', 'solver: fast (pose Newton) or paper (Gauss-Jordan, Alexandru 2018)'),
     'max_step_mm': (5.0, 'longest continuation substep, mm (> 0)'),
     'condition_warn': (1e4, 'Jacobian condition number above which diagnostics say WARN'),
@@ -340,8 +340,8 @@ def open_sinks(params, scenes, qos):
             except ImportError as exc:
                 raise ImportError(f'record_mcap: cannot record ({exc}); install the record '
                                   'extra: pip install "linkage_ros[record]"') from exc
-            about = {k: str(params[k]) for k in ('scene', 'vehicle', 'method', 'frame_id',
-                                                'max_step_mm')}
+            about = {k: str(params[k])
+                     for k in ('scene', 'vehicle', 'method', 'frame_id', 'max_step_mm')}
             sinks.append(McapRecorder(params['record_mcap'], qos=qos, custom_data=about))
         if params['rerun_rrd']:
             try:

@@ -29,7 +29,8 @@ def plot_camber_toe(scenes, path):
             rows = np.array(reference['rows'], dtype=float)
             ax_camber.plot(rows[:, 0], rows[:, 1], 'k.', ms=5)
             ax_toe.plot(rows[:, 0], rows[:, 2], 'k.', ms=5)
-    for ax, what in ((ax_camber, 'camber_deg (+ = top outboard)'), (ax_toe, 'toe_deg (+ = toe-in)')):
+    for ax, what in ((ax_camber, 'camber_deg (+ = top outboard)'),
+                     (ax_toe, 'toe_deg (+ = toe-in)')):
         ax.set_xlabel('travel_mm (+ = bump)')
         ax.set_ylabel(what)
         ax.grid(True, alpha=0.3)
@@ -44,9 +45,10 @@ def plot_camber_toe(scenes, path):
 ALIGNMENT_PANELS = [
     ('camber_gain', 'camber gain, deg/mm', True), ('bump_steer', 'bump steer, deg/mm', True),
     ('caster', 'caster, deg', True), ('kingpin_inclination', 'kingpin inclination, deg', True),
-    ('scrub_radius', 'scrub radius, mm', False), ('mechanical_trail', 'mechanical trail, mm', False),
-    ('track_change', 'track change, mm', False), ('lateral_shift', 'wheel-centre lateral shift, mm',
-                                                    False)]
+    ('scrub_radius', 'scrub radius, mm', False),
+    ('mechanical_trail', 'mechanical trail, mm', False),
+    ('track_change', 'track change, mm', False),
+    ('lateral_shift', 'wheel-centre lateral shift, mm', False)]
 
 
 def plot_alignment(scenes, path):
@@ -83,8 +85,8 @@ def main(argv=None):
     if not argv:
         print(__doc__, file=sys.stderr)
         return 2
-    names = [n for n in argv[1:] if n != '--alignment'] or ['five_link', 'double_wishbone',
-                                                              'macpherson']
+    names = ([n for n in argv[1:] if n != '--alignment']
+             or ['five_link', 'double_wishbone', 'macpherson'])
     scenes = [load_scene(n) for n in names]
     if '--alignment' in argv:
         plot_alignment(scenes, argv[0])

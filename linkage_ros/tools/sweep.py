@@ -155,8 +155,8 @@ def main(argv=None):
             print(f'linkage-sweep: rack {rack:g} mm ({i + 1}/{len(racks)})', file=sys.stderr)
         if not results[-1].success:
             break
-    table = dict(scene=scene if args.alignment else None,
-                 with_rack=args.rack is not None or args.grid is not None)
+    table = {'scene': scene if args.alignment else None,
+             'with_rack': args.rack is not None or args.grid is not None}
     if args.csv:
         with open(args.csv, 'w') as stream:
             write_csv(results, stream, **table)
