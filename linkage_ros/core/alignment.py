@@ -1,4 +1,5 @@
-"""Exact derivatives and the alignment set of solved positions (beyond the paper).
+"""
+Exact derivatives and the alignment set of solved positions (beyond the paper).
 
 At a solution the Jacobian gives, by the implicit function theorem, the carrier's velocity
 per unit of travel (and per unit of rack) exactly to rounding: camber gain, bump steer, the
@@ -46,7 +47,7 @@ class Alignment:
 
 
 def alignment(scene, mech, center, rotation, rack=0.0):
-    """The alignment set at n solved positions (see Alignment for units and signs)."""
+    """Compute the alignment set at n solved positions (see Alignment for units and signs)."""
     center, rotation = np.atleast_2d(center), np.asarray(rotation).reshape(-1, 3, 3)
     side = scene.side_sign
     _, jac = linearize(mech, center, rotation, rack)
@@ -87,7 +88,7 @@ def alignment(scene, mech, center, rotation, rack=0.0):
 
 
 def angle_rates(axis, axis_rate, side):
-    """d camber and d toe (rad per unit input) of spin axes (n, 3) moving at axis_rate."""
+    """Return the rates of camber and toe (rad per unit input) of spin axes (n, 3) at axis_rate."""
     ax, ay, az = axis[:, 0], axis[:, 1], axis[:, 2]
     dx, dy, dz = axis_rate[:, 0], axis_rate[:, 1], axis_rate[:, 2]
     h = np.hypot(ax, ay)
@@ -98,8 +99,12 @@ def angle_rates(axis, axis_rate, side):
 
 
 def screw(center, velocity, omega):
-    """Instantaneous screw axis of a twist given by the velocity of the wheel centre and the
-    angular velocity: unit direction, the axis point nearest the centre, pitch (mm/rad)."""
+    """
+    Return the instantaneous screw axis of a twist.
+
+    The twist is given by the velocity of the wheel centre and the angular velocity. Returns
+    the unit direction, the axis point nearest the centre and the pitch (mm/rad).
+    """
     w2 = np.einsum('ij,ij->i', omega, omega)
     direction = omega / np.sqrt(w2)[:, None]
     point = center + cross(omega, velocity) / w2[:, None]
@@ -107,12 +112,12 @@ def screw(center, velocity, omega):
 
 
 def contact_patch(center, axis, radius):
-    """Lowest point of a wheel of radius (mm) centred at center with spin axes (n, 3)."""
+    """Return the lowest point of a wheel of radius (mm) centred at center, spin axes (n, 3)."""
     up = np.array([0.0, 0.0, 1.0]) - axis[:, 2:3] * axis
     return center - radius * up / np.linalg.norm(up, axis=1, keepdims=True)
 
 
 def ground_point(point, direction, height):
-    """Where lines (point, direction) meet the horizontal planes z = height."""
+    """Return where lines (point, direction) meet the horizontal planes z = height."""
     t = (height - point[:, 2]) / direction[:, 2]
     return point + t[:, None] * direction

@@ -1,6 +1,10 @@
-"""The one base class of the errors linkage_ros raises for bad input (scene and vehicle files,
-parameters, recordings, bags): a ValueError whose message names where the problem is and
-what it is, built from the offending value."""
+"""
+The one base class of the errors linkage_ros raises for bad input.
+
+Bad input is a scene or vehicle file, a parameter, a recording or a bag. The error is a
+ValueError whose message names where the problem is and what it is, built from the
+offending value.
+"""
 
 
 class LinkageError(ValueError):

@@ -1,4 +1,5 @@
-"""Continuation over wheel travel: the public entry points of the kinematics core.
+"""
+Continuation over wheel travel: the public entry points of the kinematics core.
 
     Continuation(scene, method='fast').solve(travel_mm) -> Solution   (stateful; the node)
     sweep(scene, travels_mm, method='fast') -> Sweep                   (a table of positions)
@@ -46,7 +47,8 @@ class Settings:
 
 
 class Solution(NamedTuple):
-    """One solved position, vehicle frame, mm and rad. On failure the pose fields are None.
+    """
+    One solved position, vehicle frame, mm and rad. On failure the pose fields are None.
 
     Immutable (a NamedTuple: cheap to make, which matters on the node's one-command path);
     its arrays are read-only views of the solver's state.
@@ -87,7 +89,8 @@ class Sweep:
 
 
 class Continuation:
-    """Solves wheel travels one after another, each from the last good pose.
+    """
+    Solves wheel travels one after another, each from the last good pose.
 
     The last solved position is state, packed for the compiled kernels (kernel.STATE_SIZE:
     travel and rack in mm, wheel centre, rotation, Jacobian and what it reports). Each
@@ -124,7 +127,7 @@ class Continuation:
 
     @property
     def rotation(self):
-        """Carrier rotation (3, 3) relative to design of the last solved position."""
+        """Carrier orientation (3, 3) relative to design at the last solved position."""
         return self.state[kernel.ROTATION:kernel.ROTATION + 9].reshape(3, 3)
 
     @property
@@ -133,14 +136,18 @@ class Continuation:
         return self.state[kernel.JACOBIAN:kernel.JACOBIAN + 30].reshape(5, 6)
 
     def reset(self):
-        """Back to the design position (travel 0, rack 0), the paper's eq. 9 initial solution."""
+        """Go back to the design position (travel 0, rack 0): eq. 9's initial solution."""
         center, rotation = self.mech.design_center, np.eye(3)
         self._commit(self._pack(0.0, 0.0, center, rotation))
         self.reachable = (0.0, 0.0)
 
     def solve(self, travel, rack=None):
-        """Solve the pose at travel (mm) and steering rack (mm; None = unchanged) from the
-        current state; commit it if it succeeds."""
+        """
+        Solve the pose at travel (mm) and steering rack (mm; None = unchanged).
+
+        Continuation starts from the current state, and the new pose is committed if it
+        succeeds.
+        """
         rack = self.rack if rack is None else rack
         if not (is_finite_number(travel) and is_finite_number(rack)):
             name, value = ('rack', rack) if is_finite_number(travel) else ('travel', travel)
@@ -157,8 +164,11 @@ class Continuation:
         return self._solution(iterations, steps)
 
     def _walk(self, target, rack):
-        """Advance the state to (target travel, rack) along a straight line (substeps of at
-        most max_step, halved on failure); returns (steps, iterations, error message or '').
+        """
+        Advance the state to (target travel, rack) along a straight line.
+
+        Substeps are at most max_step long, halved on failure. Returns (steps, iterations,
+        error message or '').
         """
         start, start_rack = self.travel, self.rack
         if self._paper is None:
@@ -178,9 +188,12 @@ class Continuation:
             f'rack {self.rack:.3f} mm')
 
     def _paper_walk(self, target, rack):
-        """kernel.walk with the paper's corrector (paper_step), in Python: the same line, the
-        same step control (kernel.next_step, kernel.after_step). Returns (steps, iterations,
-        stalled)."""
+        """
+        Walk as kernel.walk does, with the paper's corrector (_paper_step), in Python.
+
+        The same line, the same step control (kernel.next_step, kernel.after_step). Returns
+        (steps, iterations, stalled).
+        """
         cfg = self.settings
         start, start_rack = self.travel, self.rack
         length = max(abs(target - start), abs(rack - start_rack))
@@ -200,8 +213,11 @@ class Continuation:
         return steps, iterations, False
 
     def _walk_arclength(self, start, target, steps):
-        """Continuation in travel stalled: follow the curve by arclength to the target, or
-        to the travel limit (turning point) that comes first."""
+        """
+        Follow the curve by arclength, once continuation in travel has stalled.
+
+        The walk goes to the target, or to the travel limit (turning point) that comes first.
+        """
         cfg = self.settings
         status, found = arclength.walk(self.mech, self.center, self.rotation, self.travel,
                                        target, max(ARC_TOL, self.floor), cfg.max_iter,
@@ -233,9 +249,13 @@ class Continuation:
         self.reachable = (min(low, travel), max(high, travel))
 
     def _paper_step(self, travel, rack):
-        """_step with the paper's corrector, which starts from the last pose (eq. 9's
-        continuation) and is checked against the same tangent prediction. Returns (state,
-        iterations, accepted)."""
+        """
+        Take one step with the paper's corrector.
+
+        The corrector starts from the last pose (eq. 9's continuation) and its answer is
+        checked against the same tangent prediction as kernel.step's. Returns (state,
+        iterations, accepted).
+        """
         cfg, mech = self.settings, self.mech
         h, h_rack = travel - self.travel, rack - self.rack
         guess = pose_newton.predict(mech, self.center, self.rotation, self.jacobian, h, h_rack,
@@ -250,8 +270,7 @@ class Continuation:
         return self._pack(travel, rack, center, rotation), iterations, True
 
     def _pack(self, travel, rack, center, rotation, jacobian=None):
-        """A solved position as a reported kernel state; the Jacobian is computed if not
-        given."""
+        """Pack a solved position as a reported kernel state (Jacobian computed if not given)."""
         if jacobian is None:
             jacobian = linearize(self.mech, center, rotation, rack)[1]
         state = np.zeros(kernel.STATE_SIZE)
@@ -288,17 +307,18 @@ class Continuation:
 
 
 def is_finite_number(value):
-    """True for a finite int or float (numpy floats included), False for anything else."""
+    """Tell whether value is a finite int or float (numpy floats included)."""
     return isinstance(value, (int, float, np.floating)) and math.isfinite(value)
 
 
 def sweep(scene, travels, method='fast', rack=0.0, **settings):
-    """Solve the travels (mm, in the given order) at a steering rack position (mm) by
-    continuation; returns a Sweep.
+    """
+    Solve the travels (mm, in the given order) at a steering rack position (mm).
 
-    The paper method walks the positions one after another. The fast method solves knots
-    every knot_step mm by continuation and then every position at once by batched Newton,
-    each from the tangent at its nearest knot; a position that fails there is walked.
+    By continuation; returns a Sweep. The paper method walks the positions one after
+    another. The fast method solves knots every knot_step mm by continuation and then every
+    position at once by batched Newton, each from the tangent at its nearest knot; a position
+    that fails there is walked.
     """
     travels = np.asarray(travels, dtype=float).ravel()
     cont = Continuation(scene, method=method, **settings)
@@ -342,9 +362,12 @@ def _sweep_of(cont, travel, center, rotation, iterations, rack, success=True, me
 
 
 def _batched(cont, travels):
-    """Fast sweep: knots by continuation from the state at travel 0, then every position in
-    one compiled loop, each a continuation step from its nearest knot. Returns None when a
-    knot cannot be reached (the sequential walk then finds the limit).
+    """
+    Sweep fast: knots by continuation, then every position in one compiled loop.
+
+    The knots are walked from the state at travel 0; each position is a continuation step
+    from its nearest knot. Returns None when a knot cannot be reached (the sequential walk
+    then finds the limit).
     """
     cfg, mech, rack = cont.settings, cont.mech, cont.rack
     knots = _knots(cont, min(travels.min(), 0.0), max(travels.max(), 0.0))
@@ -371,11 +394,14 @@ def _batched(cont, travels):
 
 
 def _knots(cont, low, high):
-    """States every knot_step mm from the current state (travel 0) to high and to low (mm):
-    the bump and rebound continuation chains, each step from its tangent prediction and
-    checked for a branch change. Knots hold to knot_tol only (they start the batched solve).
-    Returns an array (k, kernel.STATE_SIZE), or None if a step fails (the caller then walks,
-    halving steps, and finds any limit)."""
+    """
+    Return states every knot_step mm from the current state (travel 0) to high and low (mm).
+
+    These are the bump and rebound continuation chains, each step from its tangent prediction
+    and checked for a branch change. Knots hold to knot_tol only (they start the batched
+    solve). Returns an array (k, kernel.STATE_SIZE), or None if a step fails (the caller then
+    walks, halving steps, and finds any limit).
+    """
     cfg, mech = cont.settings, cont.mech
     knots = [cont.state]
     for end in (high, low):
@@ -396,7 +422,7 @@ def _knots(cont, low, high):
 
 
 def travel_range(start, stop, step):
-    """Travels from start to stop (mm) inclusive at step, either direction."""
+    """Return the travels from start to stop (mm) inclusive at step, either direction."""
     count = int(math.floor(abs(stop - start) / step + 1e-9))
     values = start + math.copysign(step, stop - start) * np.arange(count + 1)
     return values if values[-1] == stop else np.append(values, stop)

@@ -1,4 +1,5 @@
-"""The mechanism of a scene: its 5 guidance equations as a table, on the carrier pose (M, R).
+"""
+The mechanism of a scene: its 5 guidance equations as a table, on the carrier pose (M, R).
 
 The pose is the wheel-centre position M (mm, vehicle frame) and the carrier rotation R
 relative to design: a carrier point at design position b0 is at M + R (b0 - M0).
@@ -33,12 +34,16 @@ class Mechanism:
 
     @property
     def steered(self):
-        """True if a base point moves with the steering rack (a steer: rack link)."""
+        """Whether a base point moves with the steering rack (a steer: rack link)."""
         return bool(self.equations[:, kernel.STEER].any())
 
     def line_rows(self):
-        """(carrier point index, top mount T (3,), carrier-fixed normal (3,)) of each strut
-        line equation, at design."""
+        """
+        Return the strut line equations, at design.
+
+        One tuple (carrier point index, top mount T (3,) mm, carrier-fixed unit normal (3,))
+        per strut line equation.
+        """
         return [(int(self.equation_point[i]), row[kernel.BASE:kernel.BASE + 3],
                  row[kernel.NORMAL:kernel.NORMAL + 3])
                 for i, row in enumerate(self.equations) if row[kernel.KIND] == kernel.LINE]
@@ -78,7 +83,7 @@ def compile_scene(scene):
 
 
 def line_normals(direction, spin_axis):
-    """Two unit normals of a strut line, chosen square to each other and to the line."""
+    """Return two unit normals of a strut line, chosen square to each other and to the line."""
     d = unit(direction)
     helper = spin_axis if np.linalg.norm(np.cross(d, unit(spin_axis))) > 0.1 else [1.0, 0, 0]
     n1 = unit(np.cross(d, helper))
@@ -86,13 +91,17 @@ def line_normals(direction, spin_axis):
 
 
 def carrier_points(mech, center, rotation):
-    """Carrier points (m, 3) of the pose; batched: center (n, 3), rotation (n, 3, 3)."""
+    """Return carrier points (m, 3) mm of a pose; batched: center (n, 3), rotation (n, 3, 3)."""
     return geometry.carrier_points(mech.offsets, center, rotation)
 
 
 def poses(center, rotation, rack=0.0):
-    """(leading shape, centers (n, 3), rotations (n, 3, 3), racks (n,)): a pose or a batch of
-    poses as contiguous float64 arrays for the kernels, leading axes broadcast together."""
+    """
+    Flatten a pose or a batch of poses into contiguous float64 arrays for the kernels.
+
+    The leading axes of center, rotation and rack are broadcast together. Returns (leading
+    shape, centers (n, 3), rotations (n, 3, 3), racks (n,)).
+    """
     center, rotation = np.asarray(center, dtype=float), np.asarray(rotation, dtype=float)
     rack = np.asarray(rack, dtype=float)
     shape = np.broadcast_shapes(center.shape[:-1], rotation.shape[:-2], rack.shape)
@@ -104,7 +113,8 @@ def poses(center, rotation, rack=0.0):
 
 
 def linearize(mech, center, rotation, rack=0.0):
-    """Residuals (..., 5) and their Jacobian d/d(M, omega) (..., 5, 6) at a pose or a batch.
+    """
+    Return residuals (..., 5) and their Jacobian d/d(M, omega) (..., 5, 6) at a pose or batch.
 
     omega is a small rotation applied in the vehicle frame (R <- exp(omega) R); Jacobian
     column 2 (dZ_M) is the travel direction, kernel.FREE the unknowns. rack (mm, scalar or
@@ -119,7 +129,7 @@ def linearize(mech, center, rotation, rack=0.0):
 
 
 def length_errors(mech, center, rotation, rack=0.0):
-    """Largest constraint violation (mm) as a true length: link length error or strut offset."""
+    """Return the largest constraint violation (mm) as a length: link error or strut offset."""
     shape, centers, rotations, racks = poses(center, rotation, rack)
     out = np.empty(len(centers))
     kernel.residual_many(mech.equations, centers, rotations, racks, out)
@@ -127,7 +137,7 @@ def length_errors(mech, center, rotation, rack=0.0):
 
 
 def rack_derivative(mech, center, rotation, rack=0.0):
-    """d(residuals)/d(rack) (..., 5): the steer rows' base points move along +y."""
+    """Return d(residuals)/d(rack) (..., 5): the steer rows' base points move along +y."""
     shape, centers, rotations, racks = poses(center, rotation, rack)
     out = np.empty((len(centers), kernel.N_EQUATIONS))
     kernel.rack_column_many(mech.equations, centers, rotations, racks, out)

@@ -1,4 +1,5 @@
-"""The paper's method as written (Alexandru 2018): three points, Newton-Kantorovich, Gauss-Jordan.
+"""
+The paper's method as written (Alexandru 2018): three points, Newton-Kantorovich, Gauss-Jordan.
 
 The carrier ("rod") is located by M (wheel centre), N (inboard spin-axis point) and P (third
 point). With Z_M imposed the unknowns are
@@ -32,7 +33,7 @@ class PaperModel:
 
 
 def build(scene, mech):
-    """The paper's model of a scene: joints, their eq. 5' distances, the equations."""
+    """Build the paper's model of a scene: joints, their eq. 5' distances, the equations."""
     m0, n0, p0 = scene.wheel_center, scene.spin_axis_point, scene.third_point
     joints, equations = [], []
 
@@ -63,23 +64,23 @@ def build(scene, mech):
 
 
 def points_of_pose(model, center, rotation):
-    """M, N, P of a pose (center, rotation relative to design)."""
+    """Return M, N, P of a pose (center, rotation relative to design)."""
     return (center, center + rotation @ (model.n0 - model.m0),
             center + rotation @ (model.p0 - model.m0))
 
 
 def pose_of_points(model, m, n, p):
-    """Pose (center, rotation) of M, N, P: the rotation carries the design frame onto theirs."""
+    """Return the pose (center, rotation) of M, N, P: R carries the design frame onto theirs."""
     return m.copy(), frame_from_points(m, n, p) @ model.frame0.T
 
 
 def unpack(x, z_m):
-    """M, N, P from the unknown vector x and the imposed Z_M."""
+    """Return M, N, P from the unknown vector x and the imposed Z_M."""
     return np.array([x[0], x[1], z_m]), x[2:5], x[5:8]
 
 
 def joints_of(model, m, n, p):
-    """Joint positions by eqs. 5-7, or None where the spheres do not meet."""
+    """Return the joint positions by eqs. 5-7, or None where the spheres do not meet."""
     out = []
     for radii, sign in zip(model.radii, model.signs):
         point, _ = trilaterate(m, n, p, radii, sign)
@@ -90,9 +91,12 @@ def joints_of(model, m, n, p):
 
 
 def system(model, x, z_m, rack=0.0):
-    """F (8,) and Jacobian (8, 8) of eqs. 1-4 at x; (None, None) if a joint cannot be placed.
+    """
+    Return F (8,) and the Jacobian (8, 8) of eqs. 1-4 at x.
 
-    rack (mm) moves the base points of steer: rack links along +y."""
+    rack (mm) moves the base points of steer: rack links along +y. Returns (None, None) if a
+    joint cannot be placed.
+    """
     m, n, p = unpack(x, z_m)
     joints = joints_of(model, m, n, p)
     if joints is None:
@@ -124,7 +128,8 @@ def system(model, x, z_m, rack=0.0):
 
 
 def _chain(joint, m, n, p, grad):
-    """d(F)/d(M, N, P) (9,) of an equation with gradient grad (3,) at a trilaterated joint.
+    """
+    Return d(F)/d(M, N, P) (9,) of an equation with gradient grad (3,) at a trilaterated joint.
 
     Differentiating |B - Q_i|^2 = r_i^2 (eq. 5) gives G dB = [(B - Q_i) . dQ_i] with rows
     G_i = (B - Q_i); so dF = sum_i lambda_i (B - Q_i) . dQ_i where G^T lambda = grad.
@@ -150,7 +155,8 @@ def gauss_jordan(a, b):
 
 
 def correct(model, travel, center, rotation, tol, max_iter, rack=0.0):
-    """Newton-Kantorovich from the pose (center, rotation) to the pose at travel (mm).
+    """
+    Run Newton-Kantorovich from the pose (center, rotation) to the pose at travel (mm).
 
     Same contract as pose_newton.correct: returns (center, rotation, iterations, converged,
     jacobian); the jacobian is None (the paper's is not the pose Jacobian).

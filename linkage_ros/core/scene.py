@@ -1,4 +1,5 @@
-"""Scene files: design-position hardpoints of one suspension corner, loaded and validated.
+"""
+Scene files: design-position hardpoints of one suspension corner, loaded and validated.
 
 A scene is YAML with declared units (mm or m) and ISO 8855 axes (x forward, y left, z up).
 Everything is converted to millimetres on load; the rest of the package works in mm.
@@ -26,8 +27,7 @@ SOURCE_CONFIG = Path(__file__).resolve().parents[2] / 'config'   # in a source c
 
 
 class SceneError(LinkageError):
-    """A scene or vehicle file is malformed; the message names the file, the field and the
-    problem."""
+    """A scene or vehicle file is malformed; the message names the file, field and problem."""
 
     def __init__(self, source, field_name, problem):
         super().__init__(f'{source}: {field_name}', problem)
@@ -36,7 +36,8 @@ class SceneError(LinkageError):
 
 @dataclass(frozen=True)
 class Constraint:
-    """One guidance constraint of the carrier, in mm, vehicle frame, design position.
+    """
+    One guidance constraint of the carrier, in mm, vehicle frame, design position.
 
     type 'sphere': carrier point keeps its distance to base[0] (binary link, eq. 2).
     type 'circle': carrier point turns about the axis base[0]-base[1] (revolute arm, eqs. 3-4).
@@ -52,6 +53,7 @@ class Constraint:
 
     @property
     def equations(self):
+        """How many guidance equations the constraint gives: sphere 1, circle 2, line 2."""
         return EQUATIONS_PER_TYPE[self.type]
 
 
@@ -87,18 +89,26 @@ class Scene:
 
     @property
     def carrier_offsets(self):
-        """Carrier points relative to the wheel centre at design, (m, 3) mm: b0 - M0, in
-        constraint order (geometry.carrier_points places them at a pose)."""
+        """
+        Carrier points relative to the wheel centre at design, (m, 3) mm: b0 - M0.
+
+        In constraint order (geometry.carrier_points places them at a pose).
+        """
         return np.array([c.carrier for c in self.constraints]) - self.wheel_center
 
     def to_mm(self, value):
+        """Convert a length (or an array of them) from the scene's units to mm."""
         return value * UNITS_TO_MM[self.units]
 
 
 def link_polylines(scene, joints):
-    """The drawn links of a scene for its carrier joints (..., m, 3) mm in constraint order:
-    one polyline (..., k, 3) per constraint, base -> joint for a link (sphere) or a strut
-    (line), axis[0] -> joint -> axis[1] for an arm (circle)."""
+    """
+    Return the drawn links of a scene for its carrier joints (..., m, 3) mm.
+
+    The joints are in constraint order. One polyline (..., k, 3) per constraint: base ->
+    joint for a link (sphere) or a strut (line), axis[0] -> joint -> axis[1] for an arm
+    (circle).
+    """
     joints = np.asarray(joints, dtype=float)
     lines = []
     for j, c in enumerate(scene.constraints):
@@ -110,12 +120,12 @@ def link_polylines(scene, joints):
 
 
 def bundled_scenes():
-    """Names of the scenes shipped in config/scenes."""
+    """Return the names of the scenes shipped in config/scenes."""
     return sorted(p.stem for p in scene_dir().glob('*.yaml'))
 
 
 def config_dir():
-    """The package's config/ folder: the source tree's, or the installed share/ one."""
+    """Return the package's config/ folder: the source tree's, or the installed share/ one."""
     if SOURCE_CONFIG.is_dir():
         return SOURCE_CONFIG
     try:
@@ -127,12 +137,12 @@ def config_dir():
 
 
 def scene_dir():
-    """Folder of the bundled scenes."""
+    """Return the folder of the bundled scenes."""
     return config_dir() / 'scenes'
 
 
 def resolve_scene_path(name_or_path):
-    """A bundled scene name ('five_link') or a path to a YAML file."""
+    """Resolve a bundled scene name ('five_link') or a path to a YAML file; else SceneError."""
     path = Path(name_or_path)
     if path.suffix in ('.yaml', '.yml') or path.exists():
         return path
@@ -195,7 +205,8 @@ _KNOWN_KEYS = {'name', 'units', 'side', 'carrier', 'constraints', 'travel', 'whe
 
 
 def choose_third_point(wheel_center, spin_point, carrier_points):
-    """Choose P (mm) off the spin axis so no carrier joint lies near the M-N-P plane.
+    """
+    Choose P (mm) off the spin axis so no carrier joint lies near the M-N-P plane.
 
     Eqs. 5-7 locate a joint from its distances to M, N, P; the two roots merge when the
     joint is in the M-N-P plane, so the plane is turned about the spin axis to keep every
@@ -364,7 +375,7 @@ class _Checker:
 
 
 def mirror(scene):
-    """The scene of the opposite wheel: every point mirrored in the x-z plane (y -> -y)."""
+    """Return the scene of the opposite wheel: every point mirrored in the x-z plane (y -> -y)."""
     flip = np.array([1.0, -1.0, 1.0])
     constraints = tuple(Constraint(name=c.name, type=c.type, base=c.base * flip,
                                    carrier=c.carrier * flip, steer=c.steer)
@@ -379,7 +390,7 @@ def mirror(scene):
 
 
 def translate(scene, offset):
-    """The scene moved by offset (3,) mm: a corner placed on the vehicle."""
+    """Return the scene moved by offset (3,) mm: a corner placed on the vehicle."""
     offset = np.asarray(offset, dtype=float)
     constraints = tuple(Constraint(name=c.name, type=c.type, base=c.base + offset,
                                    carrier=c.carrier + offset, steer=c.steer)

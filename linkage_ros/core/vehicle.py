@@ -1,4 +1,5 @@
-"""Vehicle files: a scene per corner, placed on the vehicle, right corners by mirroring.
+"""
+Vehicle files: a scene per corner, placed on the vehicle, right corners by mirroring.
 
     name: demo_vehicle
     units: mm                    # of the offsets: mm | m
@@ -29,6 +30,8 @@ CORNER_NAME = re.compile(r'^[a-z][a-z0-9_]*$')   # becomes a ROS namespace
 
 @dataclass(frozen=True)
 class Vehicle:
+    """A vehicle file loaded: its corners' scenes placed on the vehicle, and their joints."""
+
     name: str
     source: str
     corners: dict      # corner name -> Scene, in vehicle coordinates (mm)
@@ -37,7 +40,7 @@ class Vehicle:
 
 
 def vehicle_dir():
-    """Folder of the bundled vehicle files."""
+    """Return the folder of the bundled vehicle files."""
     return config_dir() / 'vehicles'
 
 
@@ -68,7 +71,7 @@ def load_vehicle(name_or_path):
 
 
 def _joints(path, corner, spec, scene):
-    """(travel_joint, rack_joint) of a corner's spec, '' where not given."""
+    """Return (travel_joint, rack_joint) of a corner's spec, '' where not given."""
     names = []
     for key in ('travel_joint', 'rack_joint'):
         value = spec.get(key, '')
