@@ -1,4 +1,5 @@
-"""What /diagnostics says about one corner, kept the way diagnostic_updater keeps it.
+"""
+What /diagnostics says about one corner, kept the way diagnostic_updater keeps it.
 
 A Health counts the commands a corner answers and remembers the worst of the period
 (residual, condition number, Newton iterations, substeps); the node publishes its status
@@ -35,8 +36,12 @@ class Health:
     substeps_max: int = 0
 
     def add(self, solution):
-        """Count one answered command (a kinematics Solution). Returns True if /diagnostics
-        should say so at once: the command failed, or the level changed."""
+        """
+        Count one answered command (a kinematics Solution).
+
+        Returns True if /diagnostics should say so at once: the command failed, or the level
+        changed.
+        """
         self.commands += 1
         self.commands_total += 1
         self.last = solution
@@ -56,7 +61,7 @@ class Health:
         return not solution.success or self.level != level
 
     def set_fault(self, fault):
-        """Hold a fault (a non-empty text) or clear it (''); True if the level changed."""
+        """Hold a fault (a non-empty text) or clear it (''); return True if the level changed."""
         level, self.fault = self.level, fault
         self.level, self.message = self._assess()
         return self.level != level

@@ -1,4 +1,5 @@
-"""suspension_node: wheel travel in; wheel-carrier pose, camber, toe and solver health out.
+"""
+suspension_node: wheel travel in; wheel-carrier pose, camber, toe and solver health out.
 
 A thin adapter over the kinematics core (linkage_ros.core.kinematics.Continuation): each command
 is solved from the last good pose (large jumps walked in substeps of max_step_mm), turned
@@ -90,8 +91,11 @@ PARAMETERS = {
 
 
 def corner_topics(scene, params, prefix=''):
-    """Relative names of a corner's topics (prefix: '' or 'front_left/'), /diagnostics and
-    the vehicle's joint_states apart."""
+    """
+    Return the relative names of a corner's topics (prefix: '' or 'front_left/').
+
+    /diagnostics and the vehicle's joint_states are not among them.
+    """
     names = ['wheel_travel', *OUTPUTS]
     if params['travel_joint']:
         names.append('joint_states')
@@ -102,14 +106,17 @@ def corner_topics(scene, params, prefix=''):
 
 
 def steered(scene):
-    """True if the scene has a steer: rack link (then it takes steering_rack commands)."""
+    """Tell whether the scene has a steer: rack link (then it takes steering_rack commands)."""
     return any(c.steer == 'rack' for c in scene.constraints)
 
 
 def load_corners(params):
-    """{topic prefix: (Scene, travel joint, rack joint)}: the one scene under no prefix, or
-    every corner of the vehicle parameter under 'corner_name/' with the joint_states joints
-    its vehicle file names ('' where none)."""
+    """
+    Load the scenes the parameters name: {topic prefix: (Scene, travel joint, rack joint)}.
+
+    The one scene under no prefix, or every corner of the vehicle parameter under
+    'corner_name/' with the joint_states joints its vehicle file names ('' where none).
+    """
     if not params['vehicle']:
         return {'': (load_scene(params['scene']), '', '')}
     from ..core.vehicle import load_vehicle
@@ -119,9 +126,12 @@ def load_corners(params):
 
 
 class Corner:
-    """One wheel: its scene, its Continuation (solved independently of the other corners),
-    its Health, its input subscriptions and output publishers, topics under prefix ('' or
-    'front_left/')."""
+    """
+    One wheel of the node.
+
+    Its scene, its Continuation (solved independently of the other corners), its Health, its
+    input subscriptions and output publishers, topics under prefix ('' or 'front_left/').
+    """
 
     def __init__(self, node, scene, params, prefix='', travel_joint='', rack_joint=''):
         self.node, self.scene = node, scene
@@ -174,8 +184,11 @@ class Corner:
             self.answer(travel_mm, None, stamp)
 
     def answer(self, travel_mm, rack_mm, stamp):
-        """Solve travel_mm at rack_mm (None = unchanged) and publish the answer at stamp
-        (sec, nanosec); a failure or a change of level goes to /diagnostics at once."""
+        """
+        Solve travel_mm at rack_mm (None = unchanged) and publish the answer at stamp.
+
+        stamp is (sec, nanosec). A failure or a change of level goes to /diagnostics at once.
+        """
         solution = self.solver.solve(travel_mm, rack_mm)
         if solution.success:
             for name, data in messages.answer(solution, stamp, self.node.frame_id):
@@ -191,13 +204,19 @@ class Corner:
 
 
 class SuspensionNode(Node):
-    """Wheel travel (m) in, wheel-carrier pose (m), camber and toe (rad), diagnostics out:
-    one scene, or every corner of a vehicle (parameter vehicle), each a Corner."""
+    """
+    Wheel travel (m) in; wheel-carrier pose (m), camber and toe (rad), diagnostics out.
+
+    One scene, or every corner of a vehicle (parameter vehicle), each a Corner.
+    """
 
     def __init__(self, sinks=(), **kwargs):
-        """sinks: extra objects with record(topic, type_name, cdr_bytes, receive_ns,
-        publish_ns) and close(), after those the parameters turn on. kwargs go to rclpy
-        Node."""
+        """
+        Declare the parameters, load the scenes and open the sinks, topics and timer.
+
+        sinks: extra objects with record(topic, type_name, cdr_bytes, receive_ns, publish_ns)
+        and close(), after those the parameters turn on. kwargs go to rclpy Node.
+        """
         super().__init__(NODE_NAME, **kwargs)
         self.sinks = []
         self.clock = self.get_clock()
@@ -227,9 +246,12 @@ class SuspensionNode(Node):
                 f'frame {self.frame_id}; waiting on {corner.travel_sub.topic_name} (m)')
 
     def received(self, subscription, msg, stamp=None):
-        """Record an input that came on subscription (if recording) and return the stamp
-        (sec, nanosec) of its answer: stamp (a builtin_interfaces/Time), or the node clock's
-        time of receipt."""
+        """
+        Record an input that came on subscription (if recording); return its answer's stamp.
+
+        The stamp (sec, nanosec) is stamp's (a builtin_interfaces/Time), or the node clock's
+        time of receipt.
+        """
         if stamp is None or self.sinks:
             now = self.clock.now()
             if self.sinks:   # the input's publish time is unknown: EventsExecutor gives no info
@@ -240,7 +262,7 @@ class SuspensionNode(Node):
         return stamp.sec, stamp.nanosec
 
     def on_vehicle_joint_states(self, msg):
-        """One JointState for the whole vehicle: answer every corner whose joints it names."""
+        """Answer every corner whose joints a JointState (for the whole vehicle) names."""
         stamp = self.received(self.joint_states_sub, msg, msg.header.stamp)
         for corner in self.joint_corners:
             travel_mm = messages.joint_travel_mm(msg, corner.travel_joint)
@@ -296,8 +318,11 @@ class SuspensionNode(Node):
         super().destroy_node()
 
     def _offered_qos(self, corners, params):
-        """{resolved topic: QoS} of every topic, for the recording's metadata; corners as
-        load_corners gives them."""
+        """
+        Return {resolved topic: QoS} of every topic, for the recording's metadata.
+
+        corners as load_corners gives them.
+        """
         names = ['/diagnostics']
         for prefix, (scene, *joints) in corners.items():
             names += corner_topics(scene, params, prefix)
@@ -317,7 +342,7 @@ class SuspensionNode(Node):
 
 
 def positive_number(name, value):
-    """value as a float if it is a finite number > 0, else ValueError naming the parameter."""
+    """Return value as a float if finite and > 0, else raise a ValueError naming the parameter."""
     if isinstance(value, bool) or not isinstance(value, (int, float)):
         raise LinkageError(name, f'expected a number, got {value!r}')
     if not (math.isfinite(value) and value > 0):
@@ -326,7 +351,8 @@ def positive_number(name, value):
 
 
 def open_sinks(params, scenes, qos):
-    """The sinks the parameters turn on; their modules are imported only then.
+    """
+    Open the sinks the parameters turn on; their modules are imported only then.
 
     scenes: {topic prefix: Scene} of load_corners. qos: {topic: QoSProfile} the node offers,
     stored in the MCAP channel metadata. With a vehicle, the one Rerun recording draws every
@@ -370,6 +396,7 @@ def spin_until_shutdown(executor):
 
 
 def main(args=None):
+    """Run suspension_node: 2 if it cannot start (bad parameter or scene), else 0 when stopped."""
     rclpy.init(args=args)
     try:
         node = SuspensionNode()
