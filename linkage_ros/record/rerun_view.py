@@ -1,4 +1,5 @@
-"""Rerun mirror of a run: the scene in 3D and the travel, camber and toe plots, in a .rrd file.
+"""
+Rerun mirror of a run: the scene in 3D and the travel, camber and toe plots, in a .rrd file.
 
 Shows what the scene has and nothing else: base points, one line strip per constraint (a
 link or strut: base to carrier point; an arm: axis[0], carrier point, axis[1]), the wheel
@@ -52,7 +53,7 @@ EYE_DISTANCE = 1.7      # times the size of the scene's bounding box
 # --- geometry (pure) -----------------------------------------------------------------------
 
 def rotation_from_quaternion(q):
-    """Rotation matrices (..., 3, 3) of unit quaternions (..., 4) given as (x, y, z, w)."""
+    """Return the rotation matrices (..., 3, 3) of unit quaternions (..., 4) as (x, y, z, w)."""
     q = np.asarray(q, dtype=float)
     q = q / np.linalg.norm(q, axis=-1, keepdims=True)
     x, y, z, w = np.moveaxis(q, -1, 0)
@@ -64,20 +65,27 @@ def rotation_from_quaternion(q):
 
 
 def link_points(scene, joints):
-    """The link polylines (core.scene.link_polylines) of many poses as one array: joints
-    (n, m, 3) mm -> (n, sum of polyline lengths, 3), polylines one after another in
-    constraint order."""
+    """
+    Return the link polylines (core.scene.link_polylines) of many poses as one array.
+
+    joints (n, m, 3) mm -> (n, sum of polyline lengths, 3) mm, polylines one after another
+    in constraint order.
+    """
     return np.concatenate(link_polylines(scene, joints), axis=-2)
 
 
 def strip_lengths(scene):
-    """Points per constraint polyline: 3 for an arm (circle), 2 for a link or strut."""
+    """Return the points per constraint polyline: 3 for an arm (circle), 2 for a link or strut."""
     return np.array([3 if c.type == 'circle' else 2 for c in scene.constraints])
 
 
 def wheel_circle(scene, segments=WHEEL_SEGMENTS):
-    """Closed circle (segments + 1, 3) mm of radius scene.wheel_radius about the spin axis,
-    relative to the wheel centre at design (carrier frame); None if the scene has no radius."""
+    """
+    Return the wheel as a closed circle (segments + 1, 3) mm of radius scene.wheel_radius.
+
+    The circle is about the spin axis, relative to the wheel centre at design (carrier
+    frame); None if the scene has no radius.
+    """
     if scene.wheel_radius <= 0:
         return None
     axis = unit(scene.wheel_center - scene.spin_axis_point)
@@ -88,7 +96,7 @@ def wheel_circle(scene, segments=WHEEL_SEGMENTS):
 
 
 def base_points(scene):
-    """(points (k, 3) mm, labels) of every body-side point of the scene."""
+    """Return (points (k, 3) mm, labels) of every body-side point of the scene."""
     points, labels = [], []
     for c in scene.constraints:
         for i, b in enumerate(c.base):
@@ -100,7 +108,8 @@ def base_points(scene):
 # --- logging -------------------------------------------------------------------------------
 
 def new_recording(path, scenes, recording_id=None):
-    """A RecordingStream that writes to path (file sink, no viewer) with the blueprint.
+    """
+    Open a RecordingStream that writes to path (file sink, no viewer) with the blueprint.
 
     scenes: {root: Scene}, root '' for the single scene or a corner name for each corner.
     """
@@ -116,17 +125,17 @@ def new_recording(path, scenes, recording_id=None):
 
 
 def entity(root, path):
-    """Entity path of a scene's entity (path like 'suspension/links') under root ('' = none)."""
+    """Return the entity path of path (like 'suspension/links') under root ('' = none)."""
     return f'{root}/{path}' if root else path
 
 
 def plot(root, name):
-    """Entity path of a plot (name in SERIES): plots/name, or plots/root/name."""
+    """Return the entity path of the plot of name (in SERIES): plots/name or plots/root/name."""
     return f'plots/{root}/{name}' if root else f'plots/{name}'
 
 
 def eye(scenes):
-    """(position, look target) in mm of a camera that shows every scene (corner) of a list."""
+    """Return (position, look target) in mm of a camera that shows every scene (corner) given."""
     points = np.vstack([p for scene in scenes for p in (
         base_points(scene)[0], scene.carrier_offsets + scene.wheel_center,
         scene.wheel_center - [0.0, 0.0, scene.wheel_radius],
@@ -139,8 +148,11 @@ def eye(scenes):
 
 
 def blueprint(scenes):
-    """3D view of the scenes ({root: Scene}) beside the travel, camber and toe plots (one line
-    per corner), on the ROS time."""
+    """
+    Return the blueprint: a 3D view of the scenes ({root: Scene}) beside the plots.
+
+    The travel, camber and toe plots have one line per corner, on the ROS time.
+    """
     position, target = eye(list(scenes.values()))
     if '' in scenes:
         plots = [rrb.TimeSeriesView(origin=f'/plots/{name}', name=title)
@@ -163,8 +175,12 @@ def blueprint(scenes):
 
 
 def log_scene(rec, scene, root=''):
-    """Static: axes convention, base points, carrier joints and wheel in the carrier frame,
-    under root ('' or a corner name)."""
+    """
+    Log what does not move, under root ('' or a corner name).
+
+    That is the axes convention, the base points, and the carrier joints and wheel in the
+    carrier frame.
+    """
     rec.log(entity(root, 'suspension'), rr.ViewCoordinates.RIGHT_HAND_Z_UP, static=True)
     points, labels = base_points(scene)
     rec.log(entity(root, 'suspension/base_points'),
@@ -190,7 +206,11 @@ def log_scene(rec, scene, root=''):
 
 
 def send_poses(rec, scene, times_ns, sequence, centers, quaternions, root=''):
-    """Columns of poses: times_ns (n,), sequence (n,), centers (n, 3) mm, quaternions (n, 4)."""
+    """
+    Send poses as columns, under root.
+
+    times_ns (n,), sequence (n,), centers (n, 3) mm, quaternions (n, 4) as (x, y, z, w).
+    """
     if len(times_ns) == 0:
         return
     indexes = _indexes(times_ns, sequence)
@@ -206,8 +226,12 @@ def send_poses(rec, scene, times_ns, sequence, centers, quaternions, root=''):
 
 
 def _strips_array(scene, points):
-    """Arrow array of the strips of link_points (n poses): built from one numpy array and
-    offsets, about 10 times faster than from a list of per-strip arrays."""
+    """
+    Return the Arrow array of the strips of link_points (n poses).
+
+    Built from one numpy array and offsets: about 10 times faster than from a list of
+    per-strip arrays.
+    """
     lengths = np.tile(strip_lengths(scene), len(points))
     offsets = np.concatenate([[0], np.cumsum(lengths)]).astype(np.int32)
     inner = Vec3DBatch(points.reshape(-1, 3).astype(np.float32)).as_arrow_array()
@@ -215,7 +239,7 @@ def _strips_array(scene, points):
 
 
 def send_values(rec, name, times_ns, sequence, values, root=''):
-    """Columns of one plot: times_ns (n,), sequence (n,), values (n,)."""
+    """Send the columns of one plot: times_ns (n,), sequence (n,), values (n,)."""
     if len(times_ns) == 0:
         return
     rec.send_columns(plot(root, name), indexes=_indexes(times_ns, sequence),
@@ -230,7 +254,7 @@ def _indexes(times_ns, sequence):
 # --- the node's sink -----------------------------------------------------------------------
 
 def topic_role(topic):
-    """What a topic carries, from its last name: 'travel', 'pose', 'camber', 'toe' or None."""
+    """Return what a topic carries, from its last name: 'travel', 'pose', 'camber', 'toe', None."""
     return ROLES.get(topic.rstrip('/').rsplit('/', 1)[-1])
 
 
@@ -241,7 +265,8 @@ BATCH_DELAY = 0.5      # s (wall clock): or once the oldest buffered row is this
 
 
 class RerunRecorder:
-    """Mirrors the node's messages to a .rrd file (same calls as McapRecorder).
+    """
+    A sink that mirrors the node's messages to a .rrd file (same calls as McapRecorder).
 
     scene: the one scene drawn, fed its topics from any namespace; or corners: {corner name:
     Scene} of a vehicle, all in this one file, each corner under its name and fed the topics
@@ -269,8 +294,7 @@ class RerunRecorder:
         self._closed = False
 
     def record(self, topic, type_name, msg, receive_ns, publish_ns):
-        """Buffer one message (CDR bytes or an rclpy message) by its topic's role; times in
-        ns."""
+        """Buffer one message (CDR bytes or an rclpy message) by its topic's role; times in ns."""
         role, root = topic_role(topic), self._root(topic)
         if role is None or root is None or self._closed:
             return
@@ -293,8 +317,12 @@ class RerunRecorder:
             self.flush()
 
     def _root(self, topic):
-        """'' for the single scene; the corner a topic (/.../corner/name) belongs to, or None
-        if it is no corner of this recording."""
+        """
+        Return the root a topic (/.../corner/name) is drawn under.
+
+        '' for the single scene; else the corner it belongs to, or None if it is no corner of
+        this recording.
+        """
         if '' in self.scenes:
             return ''
         parts = topic.rstrip('/').rsplit('/', 2)
