@@ -1,4 +1,5 @@
-"""linkage-bench: error against run time of the kinematics solvers, on every bundled scene.
+"""
+linkage-bench: error against run time of the kinematics solvers, on every bundled scene.
 
     linkage-bench [--out bench-report] [--quick] [--scenes five_link ...] [--tols 1e-3 ...]
                   [--steps 0.1 ...] [--repeats 3] [--positions 40] [--no-stress]
@@ -47,7 +48,7 @@ WARMUP_STEP = 2.0        # mm: untimed walk from design to a timing window
 # --- measuring ----------------------------------------------------------------------------
 
 def windows(scene, step, positions):
-    """Timing windows (mm): per end of the travel range, (untimed walk, timed travels)."""
+    """Return per end of the travel range a timing window (mm): (untimed walk, timed travels)."""
     out = []
     for end in (scene.travel[1], scene.travel[0]):
         if end == 0:
@@ -61,8 +62,12 @@ def windows(scene, step, positions):
 
 
 def run_entry(entry, scene, tol, step, legs, table):
-    """Solve with one entry: per-call entries the legs (untimed walk, timed window), batch
-    entries the whole table of travels. Returns (center, rotation, iterations, ok, times s)."""
+    """
+    Solve with one entry.
+
+    Per-call entries solve the legs (untimed walk, timed window), batch entries the whole
+    table of travels. Returns (center, rotation, iterations, ok, times s).
+    """
     if entry.kind == 'batch':
         run = entry.make(scene, tol, step)
         start = time.perf_counter()
@@ -90,7 +95,8 @@ def run_entry(entry, scene, tol, step, legs, table):
 
 
 def measure(scene, tol, step, chosen, legs, table, refs, repeats):
-    """One grid point: every entry, interleaved repeats; returns a list of result dicts.
+    """
+    Measure one grid point: every entry, interleaved repeats; return a list of result dicts.
 
     refs: {'call': reference at the windows' travels, 'batch': at the table's travels}.
     """
@@ -126,7 +132,7 @@ def measure(scene, tol, step, chosen, legs, table, refs, repeats):
 
 
 def run_grid(scenes, chosen, tols, steps, repeats, positions):
-    """Every scene x step x tol; returns the result rows."""
+    """Measure every scene x step x tol; return the result rows."""
     rows = []
     total = len(scenes) * len(steps) * len(tols)
     done = 0

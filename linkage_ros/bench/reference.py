@@ -1,4 +1,5 @@
-"""An independent reference for the kinematics core, in extended precision.
+"""
+An independent reference for the kinematics core, in extended precision.
 
 Reference: the plain 6-DOF pose formulation (wheel centre M and carrier rotation R, 6
 unknowns; the 5 guidance equations as true lengths plus the travel equation Z_M - Z_M0 = t),
@@ -43,7 +44,7 @@ class PoseModel:
 
 
 def build(scene):
-    """PoseModel of a Scene, in longdouble so extended-precision residuals are exact."""
+    """Build the PoseModel of a Scene, in longdouble so extended-precision residuals are exact."""
     m0 = scene.wheel_center.astype(LD)
     offsets, dist_point, dist_base, dist_length = [], [], [], []
     line_point, line_base, line_normal = [], [], []
@@ -78,7 +79,8 @@ def build(scene):
 
 
 def guidance(model, center, rotation):
-    """The 5 guidance equations (mm) of a pose: link length errors, strut offsets.
+    """
+    Evaluate the 5 guidance equations (mm) of a pose: link length errors, strut offsets.
 
     Sphere and circle: |B - A| - l, a true length. Line: the top mount's offset from the
     carrier-fixed strut line along its two carrier-fixed normals. Works in the dtype given.
@@ -93,7 +95,7 @@ def guidance(model, center, rotation):
 
 
 def equations(model, center, rotation, travel):
-    """The 6 equations of the 6-DOF formulation: guidance (5) and Z_M - Z_M0 - travel."""
+    """Evaluate the 6 equations of the 6-DOF formulation: guidance (5), Z_M - Z_M0 - travel."""
     return np.concatenate((guidance(model, center, rotation),
                            [center[2] - model.m0[2] - travel]))
 
@@ -142,7 +144,8 @@ class ReferencePoses:
 
 
 def reference_poses(scene, travels, step=None):
-    """Extended-precision poses at travels (mm) by a 6-DOF walk from the design position.
+    """
+    Extended-precision poses at travels (mm) by a 6-DOF walk from the design position.
 
     Each leg (bump, rebound) walks from travel 0 in steps of at most `step` mm (default
     REF_STEP times the scene size), each Newton solve starting from the last pose, so the
@@ -183,7 +186,8 @@ def walk(model, pose, start, target, step):
 
 
 def refine(model, pose, travel, max_iter=REF_MAX_ITER):
-    """Newton on the 6 equations in longdouble with float64 solves; returns (pose, converged).
+    """
+    Newton on the 6 equations in longdouble with float64 solves; returns (pose, converged).
 
     Stops when a correction no longer shrinks and is below 1e-15 of the scene size, i.e.
     at the longdouble round-off floor (about 1e-19 of the size).
@@ -223,7 +227,8 @@ def wheel_angles(model, rotation):
 
 
 def errors(ref, center, rotation, where=None):
-    """Deviation of poses (float64, (n, 3) and (n, 3, 3)) from the reference.
+    """
+    Deviation of poses (float64, (n, 3) and (n, 3, 3)) from the reference.
 
     Returns a dict of the largest values over the positions (where: bool mask, default all
     positions the reference reached): 'residual_mm' (largest guidance-equation violation of
@@ -246,7 +251,8 @@ def errors(ref, center, rotation, where=None):
 
 
 def has_solution(model, pose, travel):
-    """Smallest guidance violation (mm) over poses with Z_M at travel, by least squares.
+    """
+    Smallest guidance violation (mm) over poses with Z_M at travel, by least squares.
 
     Starts from pose (a nearby pose on the branch); zero (ZERO_RESIDUAL * size) means the
     travel is reachable there. Unknowns: x_M, y_M and a rotation vector applied to pose.
@@ -266,7 +272,8 @@ def has_solution(model, pose, travel):
 
 
 def reachable_limit(scene, direction, resolution=1e-4, step=None, far=1e4):
-    """Travel limit (mm) in direction (+1 bump, -1 rebound) found independently of the core.
+    """
+    Travel limit (mm) in direction (+1 bump, -1 rebound) found independently of the core.
 
     Walks the 6-DOF reference until a step fails (or `far` mm), then bisects on whether a
     least-squares pose with zero guidance violation exists (has_solution) near the last

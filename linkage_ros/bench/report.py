@@ -1,6 +1,9 @@
-"""The summaries of linkage-bench: the best setting of each entry per accuracy level, the
-fastest setting that meets the goal, the default setting, the CSV, the error-against-time
-front (PNG) and report.md."""
+"""
+The summaries of linkage-bench.
+
+The best setting of each entry per accuracy level, the fastest setting that meets the goal,
+the default setting, the CSV, the error-against-time front (PNG) and report.md.
+"""
 
 import csv
 import math
@@ -27,14 +30,14 @@ def progress(text):
 
 
 def best_at_level(rows, scene, entry, level):
-    """The fastest row of an entry on a scene whose error is at most level (mm), or None."""
+    """Return the fastest row of an entry on a scene whose error is at most level (mm), or None."""
     good = [r for r in rows if r['scene'] == scene and r['entry'] == entry and r['ok']
             and r['error_mm'] <= level]
     return min(good, key=lambda r: r['median_us']) if good else None
 
 
 def pareto(points):
-    """The (time, error) points not beaten in both, sorted by time."""
+    """Return the (time, error) points not beaten in both, sorted by time."""
     front, best = [], math.inf
     for t, e in sorted(points):
         if e < best:
@@ -64,7 +67,7 @@ def level_table(rows, scenes, names):
 
 
 def goal_lines(rows, scenes, names):
-    """Is the fast variant the fastest entry at every level; 1e-9 mm within 20 us?"""
+    """Tell whether the fast variant is the fastest entry at every level; 1e-9 mm within 20 us."""
     lines = []
     for scene in scenes:
         for level in LEVELS:
@@ -165,7 +168,7 @@ def plot_front(rows, scenes, names, path):
 
 
 def cpu_name():
-    """The CPU model (Linux /proc/cpuinfo) and core count, else the platform's name."""
+    """Return the CPU model (Linux /proc/cpuinfo) and core count, else the platform's name."""
     try:
         for line in Path('/proc/cpuinfo').read_text().splitlines():
             if line.startswith('model name'):

@@ -1,4 +1,5 @@
-"""Camber and toe against wheel travel for scenes, as a PNG (needs matplotlib: the plot extra).
+"""
+Camber and toe against wheel travel for scenes, as a PNG (needs matplotlib: the plot extra).
 
     python -m linkage_ros.tools.plot OUT.png [--alignment] [SCENE ...]
     (default scenes: five_link, double_wishbone, macpherson; --alignment: the alignment set)
@@ -83,7 +84,8 @@ def plot_alignment(scenes, path):
 def main(argv=None):
     argv = sys.argv[1:] if argv is None else argv
     if not argv:
-        print(__doc__, file=sys.stderr)
+        # the usage: the docstring without its first newline
+        print(__doc__.lstrip('\n'), file=sys.stderr)
         return 2
     names = ([n for n in argv[1:] if n != '--alignment']
              or ['five_link', 'double_wishbone', 'macpherson'])

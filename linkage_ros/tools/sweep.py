@@ -1,4 +1,5 @@
-"""linkage-sweep: solve a scene over a travel range and print a CSV table (mm, deg).
+"""
+linkage-sweep: solve a scene over a travel range and print a CSV table (mm, deg).
 
 Data goes to stdout (or --csv PATH), progress and errors to stderr.
 """
@@ -29,8 +30,12 @@ ALIGNMENT_COLUMNS = [
 
 
 def table(result, scene=None, with_rack=False):
-    """The table (n, columns) of a Sweep in mm and deg: COLUMNS, then rack_mm if with_rack,
-    then the alignment columns if a scene is given. Built column-wise: linear in n."""
+    """
+    Return the values of a Sweep in mm and deg as an (n, columns) array.
+
+    The columns are COLUMNS, then rack_mm if with_rack, then the alignment columns if a scene
+    is given. Built column-wise: linear in n.
+    """
     n = len(result.travel)
     columns = [result.travel, np.degrees(result.camber), np.degrees(result.toe),
                result.wheel_center, result.quaternion, result.residual, result.iterations]
@@ -42,7 +47,7 @@ def table(result, scene=None, with_rack=False):
 
 
 def alignment_table(scene, result):
-    """The ALIGNMENT_COLUMNS of a Sweep, shape (n, len(ALIGNMENT_COLUMNS))."""
+    """Return the ALIGNMENT_COLUMNS of a Sweep, shape (n, len(ALIGNMENT_COLUMNS))."""
     from ..core.alignment import alignment
     from ..core.mechanism import compile_scene
     a = alignment(scene, compile_scene(scene), result.wheel_center, result.rotation,
@@ -56,8 +61,11 @@ def alignment_table(scene, result):
 
 
 def write_csv(results, stream, scene=None, with_rack=False):
-    """Write Sweeps (one or several, e.g. a rack grid) as one CSV table, values to 10
-    significant digits."""
+    """
+    Write Sweeps (one or several, e.g. a rack grid) as one CSV table.
+
+    Values are written to 10 significant digits.
+    """
     header = COLUMNS + (RACK_COLUMNS if with_rack else []) + (
         ALIGNMENT_COLUMNS if scene is not None else [])
     row_format = ','.join(['%.10g'] * len(header)) + '\n'
@@ -89,8 +97,12 @@ def parse_args(argv):
 
 
 def benchmark(scene, travels, rounds):
-    """Median time per solved position (us) of each way of solving, timed side by side:
-    paper and fast sweeps, and the fast method one command at a time (the node's path)."""
+    """
+    Return the median time per solved position (us) of each way of solving.
+
+    Timed side by side: paper and fast sweeps, and the fast method one command at a time (the
+    node's path).
+    """
     def one_by_one():
         cont = Continuation(scene)
         for travel in travels:
