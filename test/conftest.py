@@ -1,4 +1,5 @@
-"""The project's tests use the fixtures of its pytest plugin, linkage_ros.ros.testing.
+"""
+The project's tests use the fixtures of its pytest plugin, linkage_ros.ros.testing.
 
 They are imported by name rather than through pytest_plugins: once the pytest11 entry point
 of an installed linkage_ros registers the same module, pytest_plugins would register it a

@@ -1,4 +1,5 @@
-"""linkage_ros.ros.health: what /diagnostics says about a corner, without ROS.
+"""
+linkage_ros.ros.health: what /diagnostics says about a corner, without ROS.
 
 Expected behaviour is the diagnostic_updater convention the node follows: a report every
 period summarising it, and a report at once for a failed command or a change of level.

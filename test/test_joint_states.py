@@ -1,4 +1,5 @@
-"""suspension_node's joint_states input (sensor_msgs/JointState), over real DDS in process.
+"""
+suspension_node's joint_states input (sensor_msgs/JointState), over real DDS in process.
 
 The parameter travel_joint names the joint whose position is the wheel travel (m, + = bump);
 answers carry the JointState's header stamp, not the time of receipt.
@@ -24,7 +25,7 @@ def joint_state(names, positions, sec=0, nanosec=0):
 
 @pytest.fixture
 def joint_states(probe):
-    """Publisher of sensor_msgs/JointState on joint_states, in the probe's node."""
+    """Give a publisher of sensor_msgs/JointState on joint_states, in the probe's node."""
     return probe.node.create_publisher(JointState, 'joint_states', QOS)
 
 
@@ -79,6 +80,8 @@ def test_a_joint_state_input_is_recorded_with_its_type(suspension_node, executor
     records = []
 
     class Sink:
+        """A sink that keeps the topic and type name of everything it is given."""
+
         def record(self, topic, type_name, msg, receive_ns, publish_ns):
             records.append((topic, type_name))
 

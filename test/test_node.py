@@ -1,4 +1,5 @@
-"""suspension_node over real rclpy and DDS: in-process (one executor) and cross-process.
+"""
+suspension_node over real rclpy and DDS: in-process (one executor) and cross-process.
 
 Expected values come from the kinematics core (sweep) for the same travels; the node must
 publish exactly those, in SI units.
@@ -34,7 +35,7 @@ BAD_WHY = {'nan': 'not a finite number', 'inf': 'not a finite number',
 
 
 def core(scene_name, travels_m, method='fast'):
-    """The core's answer (Sweep, mm and rad) for travels given in metres, in order."""
+    """Return the core's answer (Sweep, mm and rad) for travels given in metres, in order."""
     return sweep(load_scene(scene_name), np.asarray(travels_m) * 1000.0, method=method)
 
 
@@ -49,9 +50,13 @@ def assert_counts(probe, n):
 
 
 def assert_outputs_equal_core(probe, expected, frame_id='base_link'):
-    """probe's poses, cambers and toes (the last len(expected) of each) equal the core's
-    sweep: positions to 1 nm, angles and quaternions to 1e-9. One lost message shifts the
-    tail of its topic, so this also checks that none of the commands was lost."""
+    """
+    Check that the probe's outputs equal the core's sweep expected.
+
+    The last len(expected) poses, cambers and toes: positions to 1 nm, angles and quaternions
+    to 1e-9. One lost message shifts the tail of its topic, so this also checks that none of
+    the commands was lost.
+    """
     n = len(expected.travel)
     poses = probe.poses[-n:]
     positions = [[p.pose.position.x, p.pose.position.y, p.pose.position.z] for p in poses]

@@ -1,4 +1,5 @@
-"""suspension_node's steering input and its optional outputs over real rclpy and DDS.
+"""
+suspension_node's steering input and its optional outputs over real rclpy and DDS.
 
 steering_rack (scenes with a steer: rack link), alignment (Float64MultiArray) and markers
 (MarkerArray). Expected values come from the core (Continuation, alignment) for the same
@@ -31,8 +32,12 @@ BAD_WHY = {'nan': 'not a finite number', 'inf': 'not a finite number',
 
 
 def core_solutions(scene_name, commands):
-    """The core's Solutions for commands (kind, m), each from the last: a rack command solves
-    at the last travel with the new rack, a travel command at the last rack."""
+    """
+    Return the core's Solutions for commands (kind, m), each from the last.
+
+    A rack command solves at the last travel with the new rack, a travel command at the last
+    rack.
+    """
     cont = Continuation(load_scene(scene_name))
     solutions = []
     for kind, value in commands:
@@ -57,10 +62,13 @@ def make_node(ros_context, executor):
 
 @pytest.fixture
 def commander(probe, executor):
-    """send(*(kind, value m)) on wheel_travel or steering_rack, from the probe node, one at a
-    time: each is sent once the previous one is answered (its pose, or its ERROR status
-    arrived), because two topics have no order between them (a burst on both could be taken
-    in any order)."""
+    """
+    Give send(*(kind, value m)): commands on wheel_travel or steering_rack, one at a time.
+
+    They go from the probe node, each once the previous one is answered (its pose, or its
+    ERROR status arrived), because two topics have no order between them (a burst on both
+    could be taken in any order).
+    """
     rack = probe.node.create_publisher(Float64, 'steering_rack', QOS)
 
     def answers():
@@ -76,7 +84,7 @@ def commander(probe, executor):
 
 
 def collect(probe, msg_type, topic):
-    """A list that receives every message of topic on the probe node."""
+    """Return a list that receives every message of topic on the probe node."""
     received = []
     probe.node.create_subscription(msg_type, topic, received.append, QOS)
     return received

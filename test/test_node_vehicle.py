@@ -1,4 +1,5 @@
-"""suspension_node with parameter vehicle: one node, every corner of a vehicle file over DDS.
+"""
+suspension_node with parameter vehicle: one node, every corner of a vehicle file over DDS.
 
 Each corner has its own topics under its name and its own Continuation; expected values come
 from the core for the vehicle's corner scenes (right corners are the left scenes mirrored).
@@ -126,7 +127,7 @@ def test_only_steered_corners_take_steering_rack(vehicle_node, executor):
 # --- one JointState per simulation step ----------------------------------------------------
 
 def vehicle_step(positions, sec=7, nanosec=250_000_000):
-    """A sensor_msgs/JointState of demo_vehicle's joints ({joint: m}), stamped."""
+    """Return a sensor_msgs/JointState of demo_vehicle's joints ({joint: m}), stamped."""
     msg = JointState(name=list(positions), position=[float(v) for v in positions.values()])
     msg.header.stamp.sec, msg.header.stamp.nanosec = sec, nanosec
     return msg

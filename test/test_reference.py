@@ -1,4 +1,5 @@
-"""The extended-precision 6-DOF reference and the baseline solvers of linkage-bench.
+"""
+The extended-precision 6-DOF reference and the baseline solvers of linkage-bench.
 
 Expected values: the published reference rows of the bundled scenes (refdata, agreed by
 independent solvers), the analytic toggle of a trailing arm, and identities (design pose at

@@ -1,4 +1,5 @@
-"""Rerun mirror: geometry drawn from the pose alone, and the .rrd read back headless.
+"""
+Rerun mirror: geometry drawn from the pose alone, and the .rrd read back headless.
 
 The .rrd files are opened with rerun's own reader (rerun.chunk.RrdReader) and checked with
 the rerun binary (`rerun rrd verify`), never with project code.

@@ -1,4 +1,5 @@
-"""use_sim_time: with a /clock publisher every stamp suspension_node writes is simulated time.
+"""
+use_sim_time: with a /clock publisher every stamp suspension_node writes is simulated time.
 
 In process over real DDS: a test node publishes rosgraph_msgs/Clock on /clock and jumps it
 from 100 s to 5000 s; cross process: linkage-replay --publish --clock drives the node's clock

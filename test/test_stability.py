@@ -1,5 +1,7 @@
-"""Stiff and extreme cases of the kinematics core: toggles, jumps, reversals, bad scaling,
-perturbed hardpoints, random scenes.
+"""
+Stiff and extreme cases of the kinematics core.
+
+Toggles, jumps, reversals, bad scaling, perturbed hardpoints, random scenes.
 
 Expected values come from outside the core: an analytic toggle, the extended-precision 6-DOF
 reference (linkage_ros.bench.reference, its own formulation), or an identity (the pose is a
@@ -180,7 +182,7 @@ def test_300_random_commands_with_the_paper_method_keep_the_pose_a_function_of_t
 # --- badly scaled scenes ------------------------------------------------------------------
 
 def scaled_settings(scene, method):
-    """Settings whose lengths follow the scene size (the defaults are for about 1 m)."""
+    """Return settings whose lengths follow the scene size (the defaults are for about 1 m)."""
     scale = scene.size / 1000.0
     return {'method': method, 'tol': TOL * scale, 'max_step': 5.0 * scale,
             'min_step': 0.005 * scale}
