@@ -7,9 +7,17 @@ offending value.
 """
 
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from os import PathLike
+
+
 class LinkageError(ValueError):
     """Bad input: where (a file, a field, a parameter) and what is wrong with it."""
 
-    def __init__(self, where, problem):
+    def __init__(self, where: str | PathLike, problem: str) -> None:
         self.where, self.problem = str(where), str(problem)
         super().__init__(f'{where}: {problem}')

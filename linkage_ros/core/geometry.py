@@ -4,25 +4,32 @@ Small pure functions on points, frames and rotations. Arrays in, arrays out; no 
 Units are whatever the caller passes (the package uses mm); angles in radians.
 """
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from . import kernel
 
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
 
-def unit(v):
+
+def unit(v: ArrayLike) -> np.ndarray:
     """Return v / |v| along the last axis."""
     v = np.asarray(v, dtype=float)
     return v / np.linalg.norm(v, axis=-1, keepdims=True)
 
 
-def perpendicular(axis):
+def perpendicular(axis: ArrayLike) -> np.ndarray:
     """Return a unit vector square to axis (3,): axis x z, or axis x x when axis is near z."""
     axis = unit(axis)
     helper = [0.0, 0.0, 1.0] if abs(axis[2]) < 0.9 else [1.0, 0.0, 0.0]
     return unit(np.cross(axis, helper))
 
 
-def carrier_points(offsets, center, rotation):
+def carrier_points(offsets: ArrayLike, center: ArrayLike, rotation: ArrayLike) -> np.ndarray:
     """
     Return the carrier points M + R b of a pose.
 
@@ -34,7 +41,7 @@ def carrier_points(offsets, center, rotation):
         np.asarray(rotation), -1, -2)
 
 
-def cross(a, b):
+def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """Return the cross product along the last axis; faster than np.cross for small arrays."""
     out = np.empty(a.shape if a.shape == b.shape else np.broadcast_shapes(a.shape, b.shape))
     out[..., 0] = a[..., 1] * b[..., 2] - a[..., 2] * b[..., 1]
@@ -43,7 +50,7 @@ def cross(a, b):
     return out
 
 
-def exp_so3(omega):
+def exp_so3(omega: ArrayLike) -> np.ndarray:
     """
     Return the rotation matrix of rotation vector omega (Rodrigues): (..., 3) -> (..., 3, 3).
 
@@ -57,7 +64,7 @@ def exp_so3(omega):
     return out.reshape(omega.shape[:-1] + (3, 3))
 
 
-def quaternion_from_matrix(rot):
+def quaternion_from_matrix(rot: ArrayLike) -> np.ndarray:
     """Return unit quaternions (x, y, z, w) of rotation matrices (..., 3, 3), w >= 0 (Shepperd)."""
     rot = np.asarray(rot, dtype=float)
     flat = np.ascontiguousarray(rot.reshape(-1, 3, 3))
@@ -66,7 +73,7 @@ def quaternion_from_matrix(rot):
     return out.reshape(rot.shape[:-2] + (4,))
 
 
-def frame_from_points(m, n, p):
+def frame_from_points(m: np.ndarray, n: np.ndarray, p: np.ndarray) -> np.ndarray:
     """
     Return the orthonormal frame (columns e_x, e_y, e_z) of three non-collinear points.
 
@@ -78,7 +85,8 @@ def frame_from_points(m, n, p):
     return np.column_stack((ex, ey, np.cross(ex, ey)))
 
 
-def trilaterate(m, n, p, radii, sign):
+def trilaterate(m: np.ndarray, n: np.ndarray, p: np.ndarray, radii: ArrayLike,
+                sign: float) -> tuple[np.ndarray | None, float]:
     """
     Locate the point at distances radii = (|BM|, |BN|, |BP|) from M, N, P (eqs. 5-7).
 
@@ -100,12 +108,14 @@ def trilaterate(m, n, p, radii, sign):
     return m + frame @ np.array([x, y, sign * np.sqrt(disc)]), disc
 
 
-def local_coordinates(m, n, p, point):
+def local_coordinates(m: np.ndarray, n: np.ndarray, p: np.ndarray,
+                      point: np.ndarray) -> np.ndarray:
     """Return the coordinates of point in the frame_from_points(m, n, p) frame, origin M."""
     return frame_from_points(m, n, p).T @ (point - m)
 
 
-def camber_toe(spin_axis, side_sign):
+def camber_toe(spin_axis: ArrayLike,
+               side_sign: float) -> tuple[float | np.ndarray, float | np.ndarray]:
     """
     Return camber and toe (rad) of outboard spin-axis unit vector(s), shape (..., 3).
 

@@ -12,9 +12,11 @@ falls below min_step, the travel is out of reach and the reachable limit found i
 Nothing here raises for numerics: a Solution or Sweep carries success and a message.
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass, field, replace
 import math
-from typing import NamedTuple
+from typing import Any, NamedTuple, TYPE_CHECKING
 
 import numpy as np
 
@@ -25,6 +27,11 @@ from . import pose_newton
 from .errors import LinkageError
 from .geometry import camber_toe, quaternion_from_matrix
 from .mechanism import carrier_points, compile_scene, length_errors, linearize
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
+
+    from .scene import Scene
 
 METHODS = ('paper', 'fast')
 ARC_TOL = 1e-9   # mm: residual tolerance on the arclength path to a travel limit
@@ -57,17 +64,17 @@ class Solution(NamedTuple):
     travel: float                # imposed wheel-centre z change, + = bump (mm)
     success: bool
     message: str
-    wheel_center: np.ndarray = None   # (3,) mm
-    rotation: np.ndarray = None       # (3, 3) carrier orientation relative to design
+    wheel_center: np.ndarray | None = None   # (3,) mm
+    rotation: np.ndarray | None = None       # (3, 3) carrier orientation relative to design
     camber: float = math.nan     # rad, + = top of the wheel outboard
     toe: float = math.nan        # rad, + = toe-in
     iterations: int = 0          # Newton iterations of the last step
     residual: float = math.nan   # largest constraint violation (mm)
     substeps: int = 0            # continuation steps walked for this position
     condition: float = math.nan  # condition number of the Jacobian at the solution
-    reachable: tuple = (0.0, 0.0)   # travel range (mm) known to be reachable so far
+    reachable: tuple[float, float] = (0.0, 0.0)   # travel range (mm) known reachable so far
     rack: float = 0.0            # steering rack travel (mm), + = rack to the left
-    quaternion: np.ndarray = None     # (4,) (x, y, z, w) of rotation, w >= 0
+    quaternion: np.ndarray | None = None     # (4,) (x, y, z, w) of rotation, w >= 0
 
 
 @dataclass(frozen=True)
@@ -83,9 +90,9 @@ class Sweep:
     residual: np.ndarray         # (n,) mm
     success: bool = True
     message: str = ''
-    joints: np.ndarray = field(default=None, repr=False)   # (n, m, 3) carrier points, mm
+    joints: np.ndarray | None = field(default=None, repr=False)   # (n, m, 3) carrier points, mm
     rack: float = 0.0            # steering rack travel of the sweep (mm)
-    quaternion: np.ndarray = field(default=None, repr=False)   # (n, 4) (x, y, z, w), w >= 0
+    quaternion: np.ndarray | None = field(default=None, repr=False)   # (n, 4) xyzw, w >= 0
 
 
 class Continuation:
@@ -98,7 +105,8 @@ class Continuation:
     views of it, such as a Solution's arrays, stay valid.
     """
 
-    def __init__(self, scene, settings=None, **overrides):
+    def __init__(self, scene: Scene, settings: Settings | None = None,
+                 **overrides: Any) -> None:
         self.scene = scene
         settings = settings or Settings(**overrides)
         # Float64 round-off of coordinates of size L is about eps * L: a tolerance below it
@@ -121,27 +129,27 @@ class Continuation:
         self.reset()
 
     @property
-    def center(self):
+    def center(self) -> np.ndarray:
         """Wheel centre (3,) mm of the last solved position."""
         return self.state[kernel.CENTER:kernel.CENTER + 3]
 
     @property
-    def rotation(self):
+    def rotation(self) -> np.ndarray:
         """Carrier orientation (3, 3) relative to design at the last solved position."""
         return self.state[kernel.ROTATION:kernel.ROTATION + 9].reshape(3, 3)
 
     @property
-    def jacobian(self):
+    def jacobian(self) -> np.ndarray:
         """Jacobian (5, 6) of the guidance equations at the last solved position."""
         return self.state[kernel.JACOBIAN:kernel.JACOBIAN + 30].reshape(5, 6)
 
-    def reset(self):
+    def reset(self) -> None:
         """Go back to the design position (travel 0, rack 0): eq. 9's initial solution."""
         center, rotation = self.mech.design_center, np.eye(3)
         self._commit(self._pack(0.0, 0.0, center, rotation))
         self.reachable = (0.0, 0.0)
 
-    def solve(self, travel, rack=None):
+    def solve(self, travel: float, rack: float | None = None) -> Solution:
         """
         Solve the pose at travel (mm) and steering rack (mm; None = unchanged).
 
@@ -300,18 +308,19 @@ class Continuation:
         return Solution(travel=travel, success=False, message=message, substeps=steps,
                         reachable=reachable or tuple(self.reachable), rack=self.rack)
 
-    def joints(self, solution):
+    def joints(self, solution: Solution) -> dict[str, np.ndarray]:
         """Carrier joint positions {name: (3,) mm} of a solved position."""
         pts = carrier_points(self.mech, solution.wheel_center, solution.rotation)
         return dict(zip(self.mech.point_names, pts))
 
 
-def is_finite_number(value):
+def is_finite_number(value: object) -> bool:
     """Tell whether value is a finite int or float (numpy floats included)."""
     return isinstance(value, (int, float, np.floating)) and math.isfinite(value)
 
 
-def sweep(scene, travels, method='fast', rack=0.0, **settings):
+def sweep(scene: Scene, travels: ArrayLike, method: str = 'fast', rack: float = 0.0,
+          **settings: Any) -> Sweep:
     """
     Solve the travels (mm, in the given order) at a steering rack position (mm).
 
@@ -421,7 +430,7 @@ def _knots(cont, low, high):
     return np.array(knots)
 
 
-def travel_range(start, stop, step):
+def travel_range(start: float, stop: float, step: float) -> np.ndarray:
     """Return the travels from start to stop (mm) inclusive at step, either direction."""
     count = int(math.floor(abs(stop - start) / step + 1e-9))
     values = start + math.copysign(step, stop - start) * np.arange(count + 1)

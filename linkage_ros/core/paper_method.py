@@ -11,11 +11,20 @@ chain rule. Each Newton step is solved by Gauss-Jordan elimination and iteration
 the step test of eqs. 11-12.
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from .geometry import frame_from_points, local_coordinates, trilaterate
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
+
+    from .mechanism import Mechanism
+    from .scene import Scene
 
 
 @dataclass(frozen=True)
@@ -32,7 +41,7 @@ class PaperModel:
     frame0: np.ndarray     # design frame of M, N, P
 
 
-def build(scene, mech):
+def build(scene: Scene, mech: Mechanism) -> PaperModel:
     """Build the paper's model of a scene: joints, their eq. 5' distances, the equations."""
     m0, n0, p0 = scene.wheel_center, scene.spin_axis_point, scene.third_point
     joints, equations = [], []
@@ -63,23 +72,26 @@ def build(scene, mech):
                       frame0=frame_from_points(m0, n0, p0))
 
 
-def points_of_pose(model, center, rotation):
+def points_of_pose(model: PaperModel, center: np.ndarray,
+                   rotation: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Return M, N, P of a pose (center, rotation relative to design)."""
     return (center, center + rotation @ (model.n0 - model.m0),
             center + rotation @ (model.p0 - model.m0))
 
 
-def pose_of_points(model, m, n, p):
+def pose_of_points(model: PaperModel, m: np.ndarray, n: np.ndarray,
+                   p: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Return the pose (center, rotation) of M, N, P: R carries the design frame onto theirs."""
     return m.copy(), frame_from_points(m, n, p) @ model.frame0.T
 
 
-def unpack(x, z_m):
+def unpack(x: np.ndarray, z_m: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Return M, N, P from the unknown vector x and the imposed Z_M."""
     return np.array([x[0], x[1], z_m]), x[2:5], x[5:8]
 
 
-def joints_of(model, m, n, p):
+def joints_of(model: PaperModel, m: np.ndarray, n: np.ndarray,
+              p: np.ndarray) -> np.ndarray | None:
     """Return the joint positions by eqs. 5-7, or None where the spheres do not meet."""
     out = []
     for radii, sign in zip(model.radii, model.signs):
@@ -90,7 +102,8 @@ def joints_of(model, m, n, p):
     return np.array(out)
 
 
-def system(model, x, z_m, rack=0.0):
+def system(model: PaperModel, x: np.ndarray, z_m: float,
+           rack: float = 0.0) -> tuple[np.ndarray, np.ndarray] | tuple[None, None]:
     """
     Return F (8,) and the Jacobian (8, 8) of eqs. 1-4 at x.
 
@@ -139,7 +152,7 @@ def _chain(joint, m, n, p, grad):
     return (lam[:, None] * arms).ravel()
 
 
-def gauss_jordan(a, b):
+def gauss_jordan(a: ArrayLike, b: ArrayLike) -> np.ndarray:
     """Solve a x = b by Gauss-Jordan elimination with partial pivoting (reduced row echelon)."""
     aug = np.column_stack((np.array(a, dtype=float), np.array(b, dtype=float)))
     size = len(aug)
@@ -154,7 +167,9 @@ def gauss_jordan(a, b):
     return aug[:, -1]
 
 
-def correct(model, travel, center, rotation, tol, max_iter, rack=0.0):
+def correct(model: PaperModel, travel: float, center: np.ndarray, rotation: np.ndarray,
+            tol: float, max_iter: int,
+            rack: float = 0.0) -> tuple[np.ndarray, np.ndarray, int, bool, None]:
     """
     Run Newton-Kantorovich from the pose (center, rotation) to the pose at travel (mm).
 

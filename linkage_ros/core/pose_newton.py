@@ -10,15 +10,26 @@ The iterations run compiled (kernel.py); these are their Python faces, one pose 
 the implicit-function-theorem slopes of a batch of solved poses (alignment.py).
 """
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from . import kernel
 from .mechanism import linearize
 
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
+
+    from .mechanism import Mechanism
+
 FREE = list(kernel.FREE)   # Jacobian columns of the unknowns; column 2 is dZ_M (travel)
 
 
-def correct(mech, travel, center, rotation, tol, max_iter, rack=0.0):
+def correct(mech: Mechanism, travel: float, center: ArrayLike, rotation: ArrayLike,
+            tol: float, max_iter: int,
+            rack: float = 0.0) -> tuple[np.ndarray, np.ndarray, int, bool, np.ndarray | None]:
     """
     Run Newton iterations from (center, rotation) to the pose at travel and rack (mm).
 
@@ -35,7 +46,9 @@ def correct(mech, travel, center, rotation, tol, max_iter, rack=0.0):
     return center, rotation, iterations, converged, jac if converged else None
 
 
-def predict(mech, center, rotation, jac, travel_step, rack_step=0.0, rack=0.0):
+def predict(mech: Mechanism, center: np.ndarray, rotation: np.ndarray, jac: np.ndarray,
+            travel_step: float, rack_step: float = 0.0,
+            rack: float = 0.0) -> tuple[np.ndarray, np.ndarray] | None:
     """
     Guess to first order (tangent) the pose travel_step and rack_step (mm) further on.
 
@@ -49,7 +62,7 @@ def predict(mech, center, rotation, jac, travel_step, rack_step=0.0, rack=0.0):
     return guess_center, guess_rotation
 
 
-def slope_of(jac):
+def slope_of(jac: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """
     Return d(center)/d(travel) (..., 3) and d(omega)/d(travel) (..., 3) at a solution.
 
@@ -61,12 +74,13 @@ def slope_of(jac):
     return d_center, dx[..., 2:]
 
 
-def tangent(mech, center, rotation, rack=0.0):
+def tangent(mech: Mechanism, center: ArrayLike, rotation: ArrayLike,
+            rack: ArrayLike = 0.0) -> tuple[np.ndarray, np.ndarray]:
     """Return slope_of() at the pose (center, rotation)."""
     return slope_of(linearize(mech, center, rotation, rack)[1])
 
 
-def rack_slope_of(jac, rack_column):
+def rack_slope_of(jac: np.ndarray, rack_column: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """
     Return d(center)/d(rack) (..., 3) and d(omega)/d(rack) (..., 3) at fixed travel.
 

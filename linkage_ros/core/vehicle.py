@@ -16,14 +16,22 @@ a steer: rack link, the steering rack: suspension_node then answers every named 
 joint_states message at once. Errors raise SceneError naming the vehicle file and the field.
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 import re
+from typing import TYPE_CHECKING
 
 import yaml
 
 from .scene import (config_dir, load_scene, mirror, resolve_scene_path, SceneError, translate,
                     UNITS_TO_MM)
+
+if TYPE_CHECKING:
+    from os import PathLike
+
+    from .scene import Scene
 
 CORNER_NAME = re.compile(r'^[a-z][a-z0-9_]*$')   # becomes a ROS namespace
 
@@ -34,17 +42,17 @@ class Vehicle:
 
     name: str
     source: str
-    corners: dict      # corner name -> Scene, in vehicle coordinates (mm)
+    corners: dict[str, Scene]      # corner name -> Scene, in vehicle coordinates (mm)
     # corner name -> (travel_joint, rack_joint), '' where not named
-    joints: dict = field(default_factory=dict)
+    joints: dict[str, tuple[str, str]] = field(default_factory=dict)
 
 
-def vehicle_dir():
+def vehicle_dir() -> Path:
     """Return the folder of the bundled vehicle files."""
     return config_dir() / 'vehicles'
 
 
-def load_vehicle(name_or_path):
+def load_vehicle(name_or_path: str | PathLike) -> Vehicle:
     """Load a vehicle file (bundled name under config/vehicles, or a path)."""
     path = Path(name_or_path)
     if not path.exists() and path.suffix not in ('.yaml', '.yml'):
