@@ -182,7 +182,8 @@ def parse_args(argv):
     return args
 
 
-def main(argv=None):
+def main(argv: list[str] | None = None) -> int:
+    """Run linkage-bench: 0 when the report is written, 2 for a bad scene or entry."""
     args = parse_args(argv)
     try:
         scenes = [load_scene(s) for s in (args.scenes or bundled_scenes())]

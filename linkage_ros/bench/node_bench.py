@@ -105,7 +105,7 @@ class EchoNode(Node):
                 self.answer(pub, positions[f'{corner}_travel'])
 
 
-def echo_main(vehicle, args=None):
+def echo_main(vehicle: bool, args: list[str] | None = None) -> int:
     """Run an echo node process: same executor and spin loop as suspension_node."""
     rclpy.init(args=args)
     return run(EchoNode(tuple(f'{c}/' for c in CORNERS) if vehicle else ('',)))
@@ -603,7 +603,8 @@ def parse_args(argv):
     return args, ros_args
 
 
-def main(argv=None):
+def main(argv: list[str] | None = None) -> int:
+    """Run linkage-node-bench, or one of the processes it starts (--echo, --start-once)."""
     args, ros_args = parse_args(sys.argv[1:] if argv is None else argv)
     if args.echo or args.echo_vehicle:      # an echo node process started by the bench
         return echo_main(args.echo_vehicle, ['echo', *ros_args])

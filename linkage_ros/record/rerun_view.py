@@ -19,8 +19,11 @@ Pure geometry functions first (no rerun import needed), then one log_* function 
 concept, the blueprint, and RerunRecorder: the node's sink that logs message by message.
 """
 
+from __future__ import annotations
+
 import math
 import time
+from typing import Any, TYPE_CHECKING
 
 import numpy as np
 import pyarrow as pa
@@ -32,6 +35,14 @@ from rerun.encodings import Vec3DBatch
 from ..core.geometry import carrier_points, perpendicular, unit
 from ..core.scene import link_polylines
 from ..ros.messages import float64_of, MM_PER_M, pose_of, to_cdr
+
+if TYPE_CHECKING:
+    from collections.abc import Sequence
+    from os import PathLike
+
+    from numpy.typing import ArrayLike
+
+    from ..core.scene import Scene
 
 APP_ID = 'linkage_ros'
 TIME = 'ros_time'
@@ -52,7 +63,7 @@ EYE_DISTANCE = 1.7      # times the size of the scene's bounding box
 
 # --- geometry (pure) -----------------------------------------------------------------------
 
-def rotation_from_quaternion(q):
+def rotation_from_quaternion(q: ArrayLike) -> np.ndarray:
     """Return the rotation matrices (..., 3, 3) of unit quaternions (..., 4) as (x, y, z, w)."""
     q = np.asarray(q, dtype=float)
     q = q / np.linalg.norm(q, axis=-1, keepdims=True)
@@ -64,7 +75,7 @@ def rotation_from_quaternion(q):
     ], -2)
 
 
-def link_points(scene, joints):
+def link_points(scene: Scene, joints: ArrayLike) -> np.ndarray:
     """
     Return the link polylines (core.scene.link_polylines) of many poses as one array.
 
@@ -74,12 +85,12 @@ def link_points(scene, joints):
     return np.concatenate(link_polylines(scene, joints), axis=-2)
 
 
-def strip_lengths(scene):
+def strip_lengths(scene: Scene) -> np.ndarray:
     """Return the points per constraint polyline: 3 for an arm (circle), 2 for a link or strut."""
     return np.array([3 if c.type == 'circle' else 2 for c in scene.constraints])
 
 
-def wheel_circle(scene, segments=WHEEL_SEGMENTS):
+def wheel_circle(scene: Scene, segments: int = WHEEL_SEGMENTS) -> np.ndarray | None:
     """
     Return the wheel as a closed circle (segments + 1, 3) mm of radius scene.wheel_radius.
 
@@ -95,7 +106,7 @@ def wheel_circle(scene, segments=WHEEL_SEGMENTS):
     return scene.wheel_radius * (np.cos(angle)[:, None] * e1 + np.sin(angle)[:, None] * e2)
 
 
-def base_points(scene):
+def base_points(scene: Scene) -> tuple[np.ndarray, list[str]]:
     """Return (points (k, 3) mm, labels) of every body-side point of the scene."""
     points, labels = [], []
     for c in scene.constraints:
@@ -107,7 +118,8 @@ def base_points(scene):
 
 # --- logging -------------------------------------------------------------------------------
 
-def new_recording(path, scenes, recording_id=None):
+def new_recording(path: str | PathLike, scenes: dict[str, Scene],
+                  recording_id: str | None = None) -> rr.RecordingStream:
     """
     Open a RecordingStream that writes to path (file sink, no viewer) with the blueprint.
 
@@ -124,17 +136,17 @@ def new_recording(path, scenes, recording_id=None):
     return rec
 
 
-def entity(root, path):
+def entity(root: str, path: str) -> str:
     """Return the entity path of path (like 'suspension/links') under root ('' = none)."""
     return f'{root}/{path}' if root else path
 
 
-def plot(root, name):
+def plot(root: str, name: str) -> str:
     """Return the entity path of the plot of name (in SERIES): plots/name or plots/root/name."""
     return f'plots/{root}/{name}' if root else f'plots/{name}'
 
 
-def eye(scenes):
+def eye(scenes: Sequence[Scene]) -> tuple[np.ndarray, np.ndarray]:
     """Return (position, look target) in mm of a camera that shows every scene (corner) given."""
     points = np.vstack([p for scene in scenes for p in (
         base_points(scene)[0], scene.carrier_offsets + scene.wheel_center,
@@ -147,7 +159,7 @@ def eye(scenes):
     return target + EYE_DISTANCE * float(np.max(high - low)) * direction, target
 
 
-def blueprint(scenes):
+def blueprint(scenes: dict[str, Scene]) -> rrb.Blueprint:
     """
     Return the blueprint: a 3D view of the scenes ({root: Scene}) beside the plots.
 
@@ -174,7 +186,7 @@ def blueprint(scenes):
         collapse_panels=True)
 
 
-def log_scene(rec, scene, root=''):
+def log_scene(rec: rr.RecordingStream, scene: Scene, root: str = '') -> None:
     """
     Log what does not move, under root ('' or a corner name).
 
@@ -205,7 +217,9 @@ def log_scene(rec, scene, root=''):
                 static=True)
 
 
-def send_poses(rec, scene, times_ns, sequence, centers, quaternions, root=''):
+def send_poses(rec: rr.RecordingStream, scene: Scene, times_ns: Sequence[int],
+               sequence: Sequence[int], centers: ArrayLike, quaternions: ArrayLike,
+               root: str = '') -> None:
     """
     Send poses as columns, under root.
 
@@ -238,7 +252,8 @@ def _strips_array(scene, points):
     return pa.ListArray.from_arrays(offsets, inner, type=LineStrip3DBatch._ARROW_DATATYPE)
 
 
-def send_values(rec, name, times_ns, sequence, values, root=''):
+def send_values(rec: rr.RecordingStream, name: str, times_ns: Sequence[int],
+                sequence: Sequence[int], values: ArrayLike, root: str = '') -> None:
     """Send the columns of one plot: times_ns (n,), sequence (n,), values (n,)."""
     if len(times_ns) == 0:
         return
@@ -253,7 +268,7 @@ def _indexes(times_ns, sequence):
 
 # --- the node's sink -----------------------------------------------------------------------
 
-def topic_role(topic):
+def topic_role(topic: str) -> str | None:
     """Return what a topic carries, from its last name: 'travel', 'pose', 'camber', 'toe', None."""
     return ROLES.get(topic.rstrip('/').rsplit('/', 1)[-1])
 
@@ -278,8 +293,10 @@ class RerunRecorder:
     row by row costs about 10 times more per command.
     """
 
-    def __init__(self, path, scene=None, recording_id=None, batch_rows=BATCH_ROWS,
-                 batch_delay=BATCH_DELAY, corners=None):
+    def __init__(self, path: str | PathLike, scene: Scene | None = None,
+                 recording_id: str | None = None, batch_rows: int = BATCH_ROWS,
+                 batch_delay: float = BATCH_DELAY,
+                 corners: dict[str, Scene] | None = None) -> None:
         if (scene is None) == (not corners):
             raise ValueError('RerunRecorder: give either scene or corners, exactly one')
         self.scenes = {'': scene} if scene is not None else dict(corners)
@@ -293,7 +310,8 @@ class RerunRecorder:
         self._oldest = None
         self._closed = False
 
-    def record(self, topic, type_name, msg, receive_ns, publish_ns):
+    def record(self, topic: str, type_name: str, msg: Any, receive_ns: int,
+               publish_ns: int) -> None:
         """Buffer one message (CDR bytes or an rclpy message) by its topic's role; times in ns."""
         role, root = topic_role(topic), self._root(topic)
         if role is None or root is None or self._closed:
@@ -328,7 +346,7 @@ class RerunRecorder:
         parts = topic.rstrip('/').rsplit('/', 2)
         return parts[1] if len(parts) == 3 and parts[1] in self.scenes else None
 
-    def flush(self):
+    def flush(self) -> None:
         """Send the buffered rows as columns."""
         for (root, role), rows in self._rows.items():
             if not rows:
@@ -345,7 +363,7 @@ class RerunRecorder:
         self._buffered = 0
         self._oldest = None
 
-    def close(self):
+    def close(self) -> None:
         """Send what is buffered and end the file. Idempotent."""
         if self._closed:
             return
@@ -354,8 +372,8 @@ class RerunRecorder:
         self._rec.flush()
         self._rec.disconnect()
 
-    def __enter__(self):
+    def __enter__(self) -> RerunRecorder:
         return self
 
-    def __exit__(self, *exc):
+    def __exit__(self, *exc: object) -> None:
         self.close()

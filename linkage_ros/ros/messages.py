@@ -23,25 +23,38 @@ A failed Solution (NaN, inf or out-of-reach command) has no pose: answer refuses
 can reach a pose topic; its Health says ERROR with the reason.
 """
 
+from __future__ import annotations
+
 import functools
 import importlib
 import struct
+from typing import Any, TYPE_CHECKING
 
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
 from std_msgs.msg import Float64MultiArray, MultiArrayDimension, MultiArrayLayout
 
 from ..core.errors import LinkageError
 
+if TYPE_CHECKING:
+    from collections.abc import Iterable
+
+    from builtin_interfaces.msg import Time
+    from sensor_msgs.msg import JointState
+
+    from .health import Health
+    from ..core.alignment import Alignment
+    from ..core.kinematics import Solution
+
 M_PER_MM = 1e-3
 MM_PER_M = 1e3
 
 
-def command_mm(data):
+def command_mm(data: bytes) -> float:
     """Read a Float64 command in CDR bytes (wheel travel or steering rack, m) in mm (core unit)."""
     return float64_of(data) * MM_PER_M
 
 
-def joint_travel_mm(msg, joint):
+def joint_travel_mm(msg: JointState, joint: str) -> float | None:
     """
     Return the wheel travel (mm, + = bump) of a sensor_msgs/JointState.
 
@@ -78,7 +91,7 @@ ALIGNMENT_FIELDS = {
 }
 
 
-def alignment_array(alignment):
+def alignment_array(alignment: Alignment) -> Float64MultiArray:
     """
     Return the alignment set of one solved position as a Float64MultiArray in SI.
 
@@ -96,7 +109,7 @@ def alignment_array(alignment):
     return Float64MultiArray(layout=layout, data=data)
 
 
-def alignment_values(msg):
+def alignment_values(msg: Float64MultiArray) -> dict[str, float]:
     """Return {label: value} of an alignment message, for its readers."""
     return {dim.label: value for dim, value in zip(msg.layout.dim, msg.data)}
 
@@ -111,7 +124,8 @@ ANSWER_TYPES = {'wheel_carrier_pose': 'geometry_msgs/msg/PoseStamped',
                 'camber': 'std_msgs/msg/Float64', 'toe': 'std_msgs/msg/Float64'}
 
 
-def answer(solution, stamp, frame_id):
+def answer(solution: Solution, stamp: tuple[int, int],
+           frame_id: str) -> list[tuple[str, bytes]]:
     """
     Return the messages answering one solved command, as CDR bytes in publishing order.
 
@@ -125,7 +139,7 @@ def answer(solution, stamp, frame_id):
             ('camber', float64_cdr(solution.camber)), ('toe', float64_cdr(solution.toe))]
 
 
-def pose_stamped_cdr(solution, stamp, frame_id):
+def pose_stamped_cdr(solution: Solution, stamp: tuple[int, int], frame_id: str) -> bytes:
     """
     Return the geometry_msgs/PoseStamped (CDR bytes) of a solved position.
 
@@ -139,7 +153,7 @@ def pose_stamped_cdr(solution, stamp, frame_id):
                        y * M_PER_MM, z * M_PER_MM, *solution.quaternion.tolist())
 
 
-def float64_cdr(value):
+def float64_cdr(value: float) -> bytes:
     """Return a std_msgs/Float64 (CDR bytes) holding value."""
     return _FLOAT64.pack(CDR_LE, value)
 
@@ -153,12 +167,12 @@ def _pose_layout(frame_id):
     return struct.Struct(f'<4siII{len(frame)}s{pad}x7d'), frame
 
 
-def float64_of(data):
+def float64_of(data: bytes) -> float:
     """Read the value of a std_msgs/Float64 in CDR bytes (either byte order)."""
     return struct.unpack_from('<d' if data[1] else '>d', data, 4)[0]
 
 
-def pose_of(data):
+def pose_of(data: bytes) -> tuple[tuple[float, ...], tuple[float, ...]]:
     """
     Read (position (x, y, z), orientation (x, y, z, w)) of a geometry_msgs/PoseStamped.
 
@@ -171,13 +185,13 @@ def pose_of(data):
     return values[:3], values[3:]
 
 
-def from_cdr(type_name, data):
+def from_cdr(type_name: str, data: bytes) -> Any:
     """Return the rclpy message of type_name ('pkg/msg/Type') held in CDR bytes."""
     from rclpy.serialization import deserialize_message
     return deserialize_message(data, message_class(type_name))
 
 
-def to_cdr(msg):
+def to_cdr(msg: Any) -> bytes:
     """Return the CDR bytes of an rclpy message (bytes are passed through)."""
     if isinstance(msg, bytes):
         return msg
@@ -185,7 +199,7 @@ def to_cdr(msg):
     return serialize_message(msg)
 
 
-def message_class(type_name):
+def message_class(type_name: str) -> type:
     """Return the rclpy message class of 'pkg/msg/Type'; LinkageError if none is installed."""
     package, _, name = type_name.partition('/msg/')
     try:
@@ -195,7 +209,8 @@ def message_class(type_name):
                            f'{package}.msg.{name} is installed') from None
 
 
-def health_status(health, name, hardware_id, method):
+def health_status(health: Health, name: str, hardware_id: str,
+                  method: str) -> DiagnosticStatus:
     """
     Return a corner's Health (linkage_ros.ros.health) as a DiagnosticStatus.
 
@@ -233,20 +248,20 @@ def health_status(health, name, hardware_id, method):
                             values=[KeyValue(key=k, value=v) for k, v in values.items()])
 
 
-def diagnostics(statuses, stamp):
+def diagnostics(statuses: Iterable[DiagnosticStatus], stamp: Time) -> DiagnosticArray:
     """Return a DiagnosticArray of DiagnosticStatus messages, stamped."""
     msg = DiagnosticArray(status=list(statuses))
     msg.header.stamp = stamp
     return msg
 
 
-def type_name(message):
+def type_name(message: object) -> str:
     """Return the ROS type name of a message class or instance: 'geometry_msgs/msg/PoseStamped'."""
     kind = message if isinstance(message, type) else type(message)
     return f"{kind.__module__.split('.')[0]}/msg/{kind.__name__}"
 
 
-def status_values(status):
+def status_values(status: DiagnosticStatus) -> dict[str, str]:
     """Return {key: value} of a DiagnosticStatus, for readers of the diagnostics."""
     return {kv.key: kv.value for kv in status.values}
 

@@ -395,7 +395,7 @@ def spin_until_shutdown(executor):
         executor.spin_once(timeout_sec=3600.0)
 
 
-def main(args=None):
+def main(args: list[str] | None = None) -> int:
     """Run suspension_node: 2 if it cannot start (bad parameter or scene), else 0 when stopped."""
     rclpy.init(args=args)
     try:

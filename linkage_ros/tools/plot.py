@@ -81,7 +81,8 @@ def plot_alignment(scenes, path):
     plt.close(fig)
 
 
-def main(argv=None):
+def main(argv: list[str] | None = None) -> int:
+    """Write the plot named on the command line: 0 when written, 2 without arguments."""
     argv = sys.argv[1:] if argv is None else argv
     if not argv:
         # the usage: the docstring without its first newline

@@ -130,7 +130,8 @@ def benchmark(scene, travels, rounds):
               f'{np.median(values) / fast:>15.1f}')
 
 
-def main(argv=None):
+def main(argv: list[str] | None = None) -> int:
+    """Run linkage-sweep: 0 when done, 1 if a position failed, 2 for bad input."""
     args = parse_args(argv)
     try:
         scene = load_scene(args.scene)
