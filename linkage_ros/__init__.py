@@ -1,4 +1,5 @@
-"""linkage_ros: kinematics of spatial multi-link suspensions (Alexandru 2018) for ROS 2.
+"""
+linkage_ros: kinematics of spatial multi-link suspensions (Alexandru 2018) for ROS 2.
 
     linkage_ros.core     the kinematics, ROS-free (its public names are re-exported here)
     linkage_ros.ros      suspension_node, its messages and diagnostics, the pytest plugin

@@ -1,13 +1,12 @@
 """Exact derivatives and the alignment set, checked against finite differences of sweeps."""
 
-import numpy as np
-import pytest
-from scipy.spatial.transform import Rotation
-
 from linkage_ros.core.alignment import alignment
 from linkage_ros.core.kinematics import Continuation, sweep, travel_range
 from linkage_ros.core.mechanism import compile_scene
 from linkage_ros.core.scene import load_scene
+import numpy as np
+import pytest
+from scipy.spatial.transform import Rotation
 
 TRAVEL = travel_range(-60.0, 60.0, 0.5)
 H = 0.5   # mm: central differences of the sweep have an O(H^2) error of about 1e-9 rad/mm

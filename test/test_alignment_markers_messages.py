@@ -1,15 +1,14 @@
 """The alignment and marker message builders, pure: no DDS."""
 
 from builtin_interfaces.msg import Time
+from linkage_ros.core.alignment import alignment
+from linkage_ros.core.kinematics import Continuation
+from linkage_ros.core.scene import load_scene
+from linkage_ros.ros import messages
+from linkage_ros.ros.markers import marker_array, marker_points
 import numpy as np
 import pytest
 from visualization_msgs.msg import Marker
-
-from linkage_ros.ros import messages
-from linkage_ros.core.alignment import alignment
-from linkage_ros.core.kinematics import Continuation
-from linkage_ros.ros.markers import marker_array, marker_points
-from linkage_ros.core.scene import load_scene
 
 LABELS = ['camber_gain_rad_per_m', 'bump_steer_rad_per_m', 'caster_rad',
           'kingpin_inclination_rad', 'scrub_radius_m', 'mechanical_trail_m', 'track_change_m',

@@ -1,4 +1,5 @@
-"""linkage_ros.ros.health: what /diagnostics says about a corner, without ROS.
+"""
+linkage_ros.ros.health: what /diagnostics says about a corner, without ROS.
 
 Expected behaviour is the diagnostic_updater convention the node follows: a report every
 period summarising it, and a report at once for a failed command or a change of level.
@@ -6,11 +7,10 @@ period summarising it, and a report at once for a failed command or a change of 
 
 import math
 
-import pytest
-
-from linkage_ros.ros.health import ERROR, Health, OK, WARN
 from linkage_ros.core.kinematics import Continuation
 from linkage_ros.core.scene import load_scene
+from linkage_ros.ros.health import ERROR, Health, OK, WARN
+import pytest
 
 
 @pytest.fixture(scope='module')

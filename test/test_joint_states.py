@@ -1,18 +1,18 @@
-"""suspension_node's joint_states input (sensor_msgs/JointState), over real DDS in process.
+"""
+suspension_node's joint_states input (sensor_msgs/JointState), over real DDS in process.
 
 The parameter travel_joint names the joint whose position is the wheel travel (m, + = bump);
 answers carry the JointState's header stamp, not the time of receipt.
 """
 
+from linkage_ros.core.kinematics import sweep
+from linkage_ros.core.scene import load_scene
+from linkage_ros.ros.messages import status_values
+from linkage_ros.ros.node import QOS
+from linkage_ros.ros.testing import spin_until, stamp_ns
 import numpy as np
 import pytest
 from sensor_msgs.msg import JointState
-
-from linkage_ros.core.kinematics import sweep
-from linkage_ros.ros.messages import status_values
-from linkage_ros.ros.node import QOS
-from linkage_ros.core.scene import load_scene
-from linkage_ros.ros.testing import spin_until, stamp_ns
 
 JOINT = 'wheel_travel_fl'
 
@@ -25,7 +25,7 @@ def joint_state(names, positions, sec=0, nanosec=0):
 
 @pytest.fixture
 def joint_states(probe):
-    """Publisher of sensor_msgs/JointState on joint_states, in the probe's node."""
+    """Give a publisher of sensor_msgs/JointState on joint_states, in the probe's node."""
     return probe.node.create_publisher(JointState, 'joint_states', QOS)
 
 
@@ -44,7 +44,7 @@ def test_travel_joint_position_is_answered_like_the_core(suspension_node, execut
 
 
 def test_answers_to_a_joint_state_carry_its_header_stamp(suspension_node, executor, probe,
-                                                        joint_states):
+                                                         joint_states):
     suspension_node(travel_joint=JOINT)
     assert spin_until(executor, lambda: joint_states.get_subscription_count() > 0)
     joint_states.publish(joint_state([JOINT], [0.01], sec=42, nanosec=5))
@@ -76,10 +76,12 @@ def test_without_travel_joint_joint_states_is_not_subscribed(suspension_node):
 
 
 def test_a_joint_state_input_is_recorded_with_its_type(suspension_node, executor, probe,
-                                                      joint_states):
+                                                       joint_states):
     records = []
 
     class Sink:
+        """A sink that keeps the topic and type name of everything it is given."""
+
         def record(self, topic, type_name, msg, receive_ns, publish_ns):
             records.append((topic, type_name))
 

@@ -1,5 +1,8 @@
-"""The compiled one-command path (kernel.walk under Continuation.solve) against the batched
-sweep (kernel.step_many) and the paper's method, on every bundled and stress scene.
+"""
+The compiled one-command path against the batched sweep and the paper's method.
+
+The one-command path is kernel.walk under Continuation.solve, the batched sweep
+kernel.step_many; on every bundled and stress scene.
 
 Expected: the same carrier joints to 1e-9 mm (scenes of about a metre; for the kilometre
 stress scene, float64 round-off alone is 1.7e-9 mm, so the bound scales with the size).
@@ -7,12 +10,11 @@ stress scene, float64 round-off alone is 1.7e-9 mm, so the bound scales with the
 
 from pathlib import Path
 
-import numpy as np
-import pytest
-
 from linkage_ros.core.kinematics import Continuation, sweep
 from linkage_ros.core.mechanism import carrier_points
 from linkage_ros.core.scene import bundled_scenes, load_scene
+import numpy as np
+import pytest
 
 STRESS = Path(__file__).resolve().parent.parent / 'config' / 'stress'
 SCENES = bundled_scenes() + sorted(str(p) for p in STRESS.glob('*.yaml'))
@@ -24,8 +26,12 @@ PAPER_BOUND = {'five_link_p_near_axis': 1e-7}
 
 
 def reachable_travels(scene, settings, count=33):
-    """count travels across the scene's travel block, stopping 1 mm (scaled) short of a
-    travel limit inside it (the toggle and vertical-link stress scenes have one)."""
+    """
+    Return count travels across the scene's travel block.
+
+    They stop 1 mm (scaled) short of a travel limit inside it (the toggle and vertical-link
+    stress scenes have one).
+    """
     scale = settings['max_step'] / 5.0
     ends = []
     for end in scene.travel[:2]:
@@ -36,9 +42,9 @@ def reachable_travels(scene, settings, count=33):
 
 
 def scaled(scene):
-    """Default settings for a scene of about 1 m, scaled to this one's size."""
+    """Return the default settings for a scene of about 1 m, scaled to this one's size."""
     scale = max(scene.size / 1000.0, 1e-6)
-    return dict(tol=1e-10 * scale, max_step=5.0 * scale, min_step=0.005 * scale)
+    return {'tol': 1e-10 * scale, 'max_step': 5.0 * scale, 'min_step': 0.005 * scale}
 
 
 @pytest.mark.parametrize('name', SCENES, ids=lambda n: Path(n).stem)

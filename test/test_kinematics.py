@@ -4,15 +4,14 @@ from pathlib import Path
 import subprocess
 import sys
 
-import numpy as np
-import pytest
-import yaml
-
 from linkage_ros.core import paper_method, pose_newton
 from linkage_ros.core.geometry import camber_toe, exp_so3, trilaterate
 from linkage_ros.core.kinematics import Continuation, METHODS, sweep, travel_range
 from linkage_ros.core.mechanism import carrier_points, compile_scene, linearize
 from linkage_ros.core.scene import bundled_scenes, load_scene, mirror
+import numpy as np
+import pytest
+import yaml
 
 SCENES = ['five_link', 'double_wishbone', 'macpherson']
 FULL = travel_range(-80.0, 80.0, 1.0)

@@ -4,16 +4,15 @@ import math
 
 from builtin_interfaces.msg import Time
 from diagnostic_msgs.msg import DiagnosticStatus
-import numpy as np
-import pytest
 from geometry_msgs.msg import PoseStamped
-from rclpy.serialization import deserialize_message, serialize_message
-from std_msgs.msg import Float64
-
-from linkage_ros.ros import messages
-from linkage_ros.ros.health import Health
 from linkage_ros.core.kinematics import Continuation
 from linkage_ros.core.scene import load_scene
+from linkage_ros.ros import messages
+from linkage_ros.ros.health import Health
+import numpy as np
+import pytest
+from rclpy.serialization import deserialize_message, serialize_message
+from std_msgs.msg import Float64
 
 STAMP = Time(sec=1_700_000_000, nanosec=123_456_789)
 
@@ -88,8 +87,8 @@ def test_design_position_has_the_identity_orientation(scene):
 def test_pose_header_carries_stamp_and_frame_of_any_length(solved, frame_id):
     # The frame name's length moves the pose's alignment padding: every length mod 8 here.
     message = answered(solved, frame_id)['wheel_carrier_pose']
-    assert (message.header.stamp.sec, message.header.stamp.nanosec) == (1_700_000_000,
-                                                                         123_456_789)
+    stamp = message.header.stamp
+    assert (stamp.sec, stamp.nanosec) == (1_700_000_000, 123_456_789)
     assert message.header.frame_id == frame_id
     assert message.pose.position.x == solved.wheel_center[0] / 1000.0
 
@@ -117,8 +116,8 @@ def test_pose_and_float64_are_read_back_in_place_from_any_cdr(solved):
     pose = PoseStamped()
     pose.header.frame_id = 'abc'
     pose.pose.position.x, pose.pose.orientation.w = 1.25, -0.5
-    assert messages.pose_of(serialize_message(pose)) == ((1.25, 0.0, 0.0), (0.0, 0.0, 0.0,
-                                                                              -0.5))
+    assert messages.pose_of(serialize_message(pose)) == ((1.25, 0.0, 0.0),
+                                                         (0.0, 0.0, 0.0, -0.5))
     assert messages.float64_of(serialize_message(Float64(data=-2.5))) == -2.5
 
 

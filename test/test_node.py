@@ -1,4 +1,5 @@
-"""suspension_node over real rclpy and DDS: in-process (one executor) and cross-process.
+"""
+suspension_node over real rclpy and DDS: in-process (one executor) and cross-process.
 
 Expected values come from the kinematics core (sweep) for the same travels; the node must
 publish exactly those, in SI units.
@@ -11,21 +12,19 @@ import signal
 import subprocess
 import sys
 
+from conftest import connect, PARAMS_FILE, Probe, spin_until, stamp_ns
 from diagnostic_msgs.msg import DiagnosticStatus
+from geometry_msgs.msg import PoseStamped
+from linkage_ros.core.kinematics import Continuation, sweep
+from linkage_ros.core.scene import load_scene, SceneError
+from linkage_ros.ros.messages import status_values
+from linkage_ros.ros.node import PARAMETERS, QOS, QOS_DEPTH, SuspensionNode
 import numpy as np
 import pytest
-from geometry_msgs.msg import PoseStamped
 from rclpy.parameter import Parameter
 from rclpy.serialization import deserialize_message
 from std_msgs.msg import Float64
 import yaml
-
-from linkage_ros.core.kinematics import Continuation, sweep
-from linkage_ros.ros.messages import status_values
-from linkage_ros.ros.node import NODE_NAME, PARAMETERS, QOS, QOS_DEPTH, SuspensionNode
-from linkage_ros.core.scene import load_scene, SceneError
-
-from conftest import connect, PARAMS_FILE, Probe, spin_until, stamp_ns
 
 TRAVELS_M = [0.02, 0.045, -0.03, -0.0625, 0.0, 0.07]     # jumps up to 132 mm between commands
 BAD_COMMANDS_M = {'nan': math.nan, 'inf': math.inf, '-inf': -math.inf,
@@ -36,7 +35,7 @@ BAD_WHY = {'nan': 'not a finite number', 'inf': 'not a finite number',
 
 
 def core(scene_name, travels_m, method='fast'):
-    """The core's answer (Sweep, mm and rad) for travels given in metres, in order."""
+    """Return the core's answer (Sweep, mm and rad) for travels given in metres, in order."""
     return sweep(load_scene(scene_name), np.asarray(travels_m) * 1000.0, method=method)
 
 
@@ -51,9 +50,13 @@ def assert_counts(probe, n):
 
 
 def assert_outputs_equal_core(probe, expected, frame_id='base_link'):
-    """probe's poses, cambers and toes (the last len(expected) of each) equal the core's
-    sweep: positions to 1 nm, angles and quaternions to 1e-9. One lost message shifts the
-    tail of its topic, so this also checks that none of the commands was lost."""
+    """
+    Check that the probe's outputs equal the core's sweep expected.
+
+    The last len(expected) poses, cambers and toes: positions to 1 nm, angles and quaternions
+    to 1e-9. One lost message shifts the tail of its topic, so this also checks that none of
+    the commands was lost.
+    """
     n = len(expected.travel)
     poses = probe.poses[-n:]
     positions = [[p.pose.position.x, p.pose.position.y, p.pose.position.z] for p in poses]
@@ -86,6 +89,7 @@ class ListSink:
 
     def close(self):
         self.closed += 1
+
 
 # --- in process: the node and a probe node in one EventsExecutor ---------------------------
 # Tests that count statuses set a diagnostic_period of an hour: then every status they see
@@ -370,7 +374,7 @@ def test_node_process_answers_a_burst_of_1000_in_order(node_process, localhost_c
 def test_bad_scene_exits_non_zero_with_the_loader_message(node_process, tmp_path, scene,
                                                           error):
     (tmp_path / 'broken.yaml').write_text('units: furlong\nside: left\n')
-    process = node_process('-p', f"scene:={scene.format(tmp=tmp_path)}")
+    process = node_process('-p', f'scene:={scene.format(tmp=tmp_path)}')
     code, _, err = process.finish()
     assert code == 2
     assert err.strip().splitlines() == [err.strip()]            # one line, no traceback

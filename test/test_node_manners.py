@@ -1,4 +1,5 @@
-"""suspension_node as a first-time user meets it: --help, mistakes, and bad commands.
+"""
+suspension_node as a first-time user meets it: --help, mistakes, and bad commands.
 
 Each mistake gets one line on stderr naming it and exit status 2 before ROS answers anything;
 a bad command is said on the console once per kind (not a number, out of reach), with the
@@ -8,18 +9,15 @@ value in the unit it was sent in.
 import math
 import signal
 import subprocess
-import sys
-
-import pytest
-
-from linkage_ros.ros.node import PARAMETERS
 
 from conftest import connect, Probe, spin_until
+from linkage_ros.ros.node import PARAMETERS
+from linkage_ros.ros.testing import node_script
+import pytest
 
 
 def run_node(*args, timeout=60):
     """Run the suspension_node console script to its end; (status, stdout, stderr)."""
-    from linkage_ros.ros.testing import node_script
     done = subprocess.run([str(node_script()), *args], capture_output=True, text=True,
                           timeout=timeout)
     return done.returncode, done.stdout, done.stderr

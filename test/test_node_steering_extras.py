@@ -1,4 +1,5 @@
-"""suspension_node's steering input and its optional outputs over real rclpy and DDS.
+"""
+suspension_node's steering input and its optional outputs over real rclpy and DDS.
 
 steering_rack (scenes with a steer: rack link), alignment (Float64MultiArray) and markers
 (MarkerArray). Expected values come from the core (Continuation, alignment) for the same
@@ -8,19 +9,18 @@ commands, solved in the same order.
 import math
 
 from diagnostic_msgs.msg import DiagnosticStatus
+from linkage_ros.core.alignment import alignment
+from linkage_ros.core.kinematics import Continuation
+from linkage_ros.core.scene import load_scene
+from linkage_ros.ros import messages
+from linkage_ros.ros.markers import marker_points
+from linkage_ros.ros.node import QOS, SuspensionNode
+from linkage_ros.ros.testing import spin_until
 import numpy as np
 import pytest
 from rclpy.parameter import Parameter
 from std_msgs.msg import Float64, Float64MultiArray
 from visualization_msgs.msg import MarkerArray
-
-from linkage_ros.ros import messages
-from linkage_ros.core.alignment import alignment
-from linkage_ros.core.kinematics import Continuation
-from linkage_ros.ros.markers import marker_points
-from linkage_ros.ros.node import QOS, SuspensionNode
-from linkage_ros.core.scene import load_scene
-from linkage_ros.ros.testing import spin_until
 
 
 STEERED = 'double_wishbone'     # tie_rod has steer: rack
@@ -32,8 +32,12 @@ BAD_WHY = {'nan': 'not a finite number', 'inf': 'not a finite number',
 
 
 def core_solutions(scene_name, commands):
-    """The core's Solutions for commands (kind, m), each from the last: a rack command solves
-    at the last travel with the new rack, a travel command at the last rack."""
+    """
+    Return the core's Solutions for commands (kind, m), each from the last.
+
+    A rack command solves at the last travel with the new rack, a travel command at the last
+    rack.
+    """
     cont = Continuation(load_scene(scene_name))
     solutions = []
     for kind, value in commands:
@@ -58,10 +62,13 @@ def make_node(ros_context, executor):
 
 @pytest.fixture
 def commander(probe, executor):
-    """send(*(kind, value m)) on wheel_travel or steering_rack, from the probe node, one at a
-    time: each is sent once the previous one is answered (its pose, or its ERROR status
-    arrived), because two topics have no order between them (a burst on both could be taken
-    in any order)."""
+    """
+    Give send(*(kind, value m)): commands on wheel_travel or steering_rack, one at a time.
+
+    They go from the probe node, each once the previous one is answered (its pose, or its
+    ERROR status arrived), because two topics have no order between them (a burst on both
+    could be taken in any order).
+    """
     rack = probe.node.create_publisher(Float64, 'steering_rack', QOS)
 
     def answers():
@@ -77,7 +84,7 @@ def commander(probe, executor):
 
 
 def collect(probe, msg_type, topic):
-    """A list that receives every message of topic on the probe node."""
+    """Return a list that receives every message of topic on the probe node."""
     received = []
     probe.node.create_subscription(msg_type, topic, received.append, QOS)
     return received
@@ -99,7 +106,7 @@ def test_steering_rack_is_subscribed_only_when_the_scene_has_a_rack_link(
 
 
 def test_rack_commands_solve_at_the_last_travel_and_equal_the_core(make_node, commander,
-                                                                    executor, probe):
+                                                                   executor, probe):
     make_node(scene=STEERED, diagnostic_period=0.05)
     spin_until(executor, lambda: commander.rack.get_subscription_count() > 0)
     _, expected = core_solutions(STEERED, COMMANDS)

@@ -1,4 +1,5 @@
-"""suspension_node with parameter vehicle: one node, every corner of a vehicle file over DDS.
+"""
+suspension_node with parameter vehicle: one node, every corner of a vehicle file over DDS.
 
 Each corner has its own topics under its name and its own Continuation; expected values come
 from the core for the vehicle's corner scenes (right corners are the left scenes mirrored).
@@ -6,16 +7,15 @@ from the core for the vehicle's corner scenes (right corners are the left scenes
 
 from diagnostic_msgs.msg import DiagnosticArray
 from geometry_msgs.msg import PoseStamped
+from linkage_ros.core.kinematics import Continuation
+from linkage_ros.core.vehicle import load_vehicle
+from linkage_ros.ros.messages import status_values
+from linkage_ros.ros.node import QOS, SuspensionNode
+from linkage_ros.ros.testing import spin_until
 import pytest
 from rclpy.parameter import Parameter
 from sensor_msgs.msg import JointState
 from std_msgs.msg import Float64
-
-from linkage_ros.core.kinematics import Continuation
-from linkage_ros.ros.messages import status_values
-from linkage_ros.ros.node import NODE_NAME, QOS, SuspensionNode
-from linkage_ros.ros.testing import spin_until
-from linkage_ros.core.vehicle import load_vehicle
 
 
 CORNERS = ['front_left', 'front_right', 'rear_left', 'rear_right']
@@ -127,14 +127,14 @@ def test_only_steered_corners_take_steering_rack(vehicle_node, executor):
 # --- one JointState per simulation step ----------------------------------------------------
 
 def vehicle_step(positions, sec=7, nanosec=250_000_000):
-    """A sensor_msgs/JointState of demo_vehicle's joints ({joint: m}), stamped."""
+    """Return a sensor_msgs/JointState of demo_vehicle's joints ({joint: m}), stamped."""
     msg = JointState(name=list(positions), position=[float(v) for v in positions.values()])
     msg.header.stamp.sec, msg.header.stamp.nanosec = sec, nanosec
     return msg
 
 
 def test_one_joint_state_answers_every_corner_it_names_at_its_stamp(vehicle_node, executor,
-                                                                     probe):
+                                                                    probe):
     _, corners, _ = vehicle_node
     step = probe.node.create_publisher(JointState, 'joint_states', QOS)
     assert spin_until(executor, lambda: step.get_subscription_count() > 0)
@@ -171,7 +171,7 @@ def test_an_unknown_vehicle_is_refused_naming_the_file(ros_context):
 
 
 def test_record_mcap_records_every_corner_under_its_name(ros_context, executor, probe,
-                                                          tmp_path):
+                                                         tmp_path):
     from mcap.reader import make_reader
     from mcap_ros2.decoder import DecoderFactory
     path = tmp_path / 'vehicle.mcap'
@@ -199,7 +199,7 @@ def test_record_mcap_records_every_corner_under_its_name(ros_context, executor, 
 
 
 def test_rerun_rrd_writes_one_file_with_every_corner_under_its_name(ros_context, executor,
-                                                                   probe, tmp_path):
+                                                                    probe, tmp_path):
     import collections
     from rerun.chunk import RrdReader
     node = SuspensionNode(context=ros_context, parameter_overrides=[

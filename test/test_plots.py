@@ -1,4 +1,5 @@
-"""The README's pictures are what their commands make today, from the data in the repository.
+"""
+The README's pictures are what their commands make today, from the repository's data.
 
 Each is made again here into a temporary folder by the command printed under it in the
 README, and compared with the committed file (matplotlib's image comparison, RMS of the
@@ -8,10 +9,9 @@ makes this fail until the picture is made again and committed.
 
 from pathlib import Path
 
+from linkage_ros.tools.plot import main
 from matplotlib.testing.compare import compare_images
 import pytest
-
-from linkage_ros.tools.plot import main
 
 ROOT = Path(__file__).resolve().parent.parent
 README = (ROOT / 'README.md').read_text()

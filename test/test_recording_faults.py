@@ -1,4 +1,5 @@
-"""Recording failures in the field: loud, and nothing lost that was written.
+"""
+Recording failures in the field: loud, and nothing lost that was written.
 
 The node runs in its own process under a real file-size limit (ulimit -f, RLIMIT_FSIZE): the
 disk "fills" during the run. Expected: /diagnostics turns ERROR naming the recording, the
@@ -8,12 +9,10 @@ file holds what was written before, read back by the writing library's own reade
 
 import signal
 
+from conftest import connect, Probe, spin_until
+from linkage_ros.ros.messages import float64_of
 from mcap.stream_reader import StreamReader
 from rerun.chunk import RrdReader
-
-from linkage_ros.ros.messages import float64_of
-
-from conftest import connect, Probe, spin_until
 
 LIMIT = 60_000     # bytes: a few chunks of the run's MCAP, a few batches of its .rrd
 
@@ -23,8 +22,7 @@ def errors(probe):
 
 
 def drive_until_it_fails(probe, executor, failure):
-    """Send slow sine commands until an ERROR status saying failure comes; return their
-    travels (m)."""
+    """Send commands until an ERROR status saying failure comes; return their travels (m)."""
     sent = []
     for i in range(20000):
         travel = 0.05 * ((i % 200) / 100.0 - 1.0)
@@ -64,7 +62,7 @@ def test_a_recording_that_hits_a_file_size_limit_is_reported_and_keeps_what_it_w
 
 
 def read_commands(path):
-    """The /wheel_travel values (m) that mcap's StreamReader reads before the file ends."""
+    """Return the /wheel_travel values (m) that mcap's StreamReader reads of path."""
     channels, values = {}, []
     with open(path, 'rb') as stream:
         try:

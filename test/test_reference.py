@@ -1,4 +1,5 @@
-"""The extended-precision 6-DOF reference and the baseline solvers of linkage-bench.
+"""
+The extended-precision 6-DOF reference and the baseline solvers of linkage-bench.
 
 Expected values: the published reference rows of the bundled scenes (refdata, agreed by
 independent solvers), the analytic toggle of a trailing arm, and identities (design pose at
@@ -8,13 +9,11 @@ travel 0, orthonormal rotations, a known displacement measured as such).
 import math
 from pathlib import Path
 
-import numpy as np
-import pytest
-
 from linkage_ros.bench import peers, reference
 from linkage_ros.core.kinematics import sweep, travel_range
 from linkage_ros.core.scene import load_scene
-
+import numpy as np
+import pytest
 from test_stability import stress_scene, TOGGLE_LIMIT_MM
 
 

@@ -1,4 +1,5 @@
-"""Rerun mirror: geometry drawn from the pose alone, and the .rrd read back headless.
+"""
+Rerun mirror: geometry drawn from the pose alone, and the .rrd read back headless.
 
 The .rrd files are opened with rerun's own reader (rerun.chunk.RrdReader) and checked with
 the rerun binary (`rerun rrd verify`), never with project code.
@@ -11,18 +12,16 @@ from pathlib import Path
 import subprocess
 import sys
 
+from linkage_ros.core.geometry import carrier_points
+from linkage_ros.core.kinematics import sweep, travel_range
+from linkage_ros.core.scene import link_polylines, load_scene
+from linkage_ros.record.rerun_view import (link_points, RerunRecorder, rotation_from_quaternion,
+                                           wheel_circle)
+from linkage_ros.tools.rerun_convert import main
 import numpy as np
 import pytest
 from rerun.chunk import RrdReader
 import yaml
-
-from linkage_ros.core.kinematics import sweep, travel_range
-from linkage_ros.tools.rerun_convert import main
-from linkage_ros.core.geometry import carrier_points
-from linkage_ros.core.scene import link_polylines
-from linkage_ros.record.rerun_view import (link_points, RerunRecorder, rotation_from_quaternion,
-                                           wheel_circle)
-from linkage_ros.core.scene import load_scene
 
 ROOT = Path(__file__).resolve().parent.parent
 EXAMPLE = ROOT / 'bags' / 'five_link_sweep.mcap'

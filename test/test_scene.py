@@ -2,11 +2,10 @@
 
 import copy
 
+from linkage_ros.core.scene import bundled_scenes, load_scene, mirror, SceneError
 import numpy as np
 import pytest
 import yaml
-
-from linkage_ros.core.scene import bundled_scenes, load_scene, mirror, SceneError
 
 VALID = {
     'name': 'probe',
@@ -14,11 +13,16 @@ VALID = {
     'side': 'left',
     'carrier': {'wheel_center': [0.0, 760.0, 300.0], 'spin_axis_point': [0.0, 660.0, 300.0]},
     'constraints': [
-        {'name': 'upper_front', 'type': 'sphere', 'base': [80, 350, 450], 'carrier': [15, 640, 485]},
-        {'name': 'upper_rear', 'type': 'sphere', 'base': [-120, 360, 440], 'carrier': [-15, 635, 475]},
-        {'name': 'lower_front', 'type': 'sphere', 'base': [150, 250, 180], 'carrier': [25, 700, 160]},
-        {'name': 'lower_rear', 'type': 'sphere', 'base': [-150, 250, 185], 'carrier': [-10, 695, 162]},
-        {'name': 'tie_rod', 'type': 'sphere', 'base': [-150, 300, 250], 'carrier': [-140, 690, 260]},
+        {'name': 'upper_front', 'type': 'sphere',
+         'base': [80, 350, 450], 'carrier': [15, 640, 485]},
+        {'name': 'upper_rear', 'type': 'sphere',
+         'base': [-120, 360, 440], 'carrier': [-15, 635, 475]},
+        {'name': 'lower_front', 'type': 'sphere',
+         'base': [150, 250, 180], 'carrier': [25, 700, 160]},
+        {'name': 'lower_rear', 'type': 'sphere',
+         'base': [-150, 250, 185], 'carrier': [-10, 695, 162]},
+        {'name': 'tie_rod', 'type': 'sphere',
+         'base': [-150, 300, 250], 'carrier': [-140, 690, 260]},
     ],
     'travel': {'min': -80, 'max': 80, 'step': 1},
 }

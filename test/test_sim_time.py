@@ -1,4 +1,5 @@
-"""use_sim_time: with a /clock publisher every stamp suspension_node writes is simulated time.
+"""
+use_sim_time: with a /clock publisher every stamp suspension_node writes is simulated time.
 
 In process over real DDS: a test node publishes rosgraph_msgs/Clock on /clock and jumps it
 from 100 s to 5000 s; cross process: linkage-replay --publish --clock drives the node's clock
@@ -10,16 +11,15 @@ import subprocess
 import sys
 
 from builtin_interfaces.msg import Time
+from linkage_ros.record.bag import McapRecorder
+from linkage_ros.ros.messages import status_values
+from linkage_ros.ros.node import SuspensionNode
+from linkage_ros.ros.testing import Probe, spin_until, stamp_ns
 import pytest
 from rclpy.parameter import Parameter
 from rclpy.qos import QoSProfile
 from rosgraph_msgs.msg import Clock
 from std_msgs.msg import Float64
-
-from linkage_ros.ros.messages import status_values
-from linkage_ros.ros.node import SuspensionNode
-from linkage_ros.record.bag import McapRecorder
-from linkage_ros.ros.testing import Probe, spin_until, stamp_ns
 
 S = 1_000_000_000     # ns per s
 
@@ -110,9 +110,9 @@ def test_replay_publish_clock_makes_a_sim_time_node_stamp_with_the_recorded_time
     probe = Probe(localhost_context, localhost_executor)
     env = dict(os.environ, ROS_DOMAIN_ID=str(domain_id),
                ROS_AUTOMATIC_DISCOVERY_RANGE='LOCALHOST')
-    replay = subprocess.Popen([sys.executable, '-m', 'linkage_ros.tools.replay', str(bag), '--publish',
-                               '--clock', '--wait', '20'], env=env, stderr=subprocess.PIPE,
-                              text=True)
+    replay = subprocess.Popen([sys.executable, '-m', 'linkage_ros.tools.replay', str(bag),
+                               '--publish', '--clock', '--wait', '20'],
+                              env=env, stderr=subprocess.PIPE, text=True)
     try:
         assert spin_until(localhost_executor, lambda: len(probe.poses) == len(travels), 30.0)
     finally:

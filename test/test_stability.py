@@ -1,5 +1,7 @@
-"""Stiff and extreme cases of the kinematics core: toggles, jumps, reversals, bad scaling,
-perturbed hardpoints, random scenes.
+"""
+Stiff and extreme cases of the kinematics core.
+
+Toggles, jumps, reversals, bad scaling, perturbed hardpoints, random scenes.
 
 Expected values come from outside the core: an analytic toggle, the extended-precision 6-DOF
 reference (linkage_ros.bench.reference, its own formulation), or an identity (the pose is a
@@ -12,16 +14,15 @@ from pathlib import Path
 
 from diagnostic_msgs.msg import DiagnosticStatus
 from hypothesis import assume, given, HealthCheck, settings, strategies as st
-import numpy as np
-import pytest
-from rclpy.parameter import Parameter
-
 from linkage_ros.bench import reference
 from linkage_ros.bench.stress import hardpoint_count, perturbed, random_walk
 from linkage_ros.core.kinematics import Continuation, Settings, sweep, travel_range
-from linkage_ros.ros.messages import status_values
 from linkage_ros.core.pose_newton import FREE
 from linkage_ros.core.scene import bundled_scenes, load_scene, SceneError
+from linkage_ros.ros.messages import status_values
+import numpy as np
+import pytest
+from rclpy.parameter import Parameter
 
 STRESS = Path(__file__).resolve().parent.parent / 'config' / 'stress'
 # trailing_arm_toggle: M turns about the arm axis at radius hypot(150, 400) mm from an axis
@@ -106,7 +107,7 @@ def test_reported_condition_number_is_that_of_an_independent_jacobian(travel):
 
 
 def test_node_warns_near_the_toggle_with_its_default_condition_warn(ros_context, executor,
-                                                                     probe):
+                                                                    probe):
     from conftest import spin_until
     from linkage_ros.ros.node import SuspensionNode
     path = str(STRESS / 'trailing_arm_toggle.yaml')
@@ -127,7 +128,7 @@ def test_node_warns_near_the_toggle_with_its_default_condition_warn(ros_context,
 @pytest.mark.parametrize('method', METHODS)
 @pytest.mark.parametrize('name', bundled_scenes())
 def test_one_command_from_minus_80_to_plus_80_lands_on_the_fine_continuation_pose(name,
-                                                                                   method):
+                                                                                  method):
     scene = load_scene(name)
     low, high, _ = scene.travel
     fine = sweep(scene, travel_range(0.0, high, 0.25), method='fast')
@@ -181,9 +182,10 @@ def test_300_random_commands_with_the_paper_method_keep_the_pose_a_function_of_t
 # --- badly scaled scenes ------------------------------------------------------------------
 
 def scaled_settings(scene, method):
-    """Settings whose lengths follow the scene size (the defaults are for about 1 m)."""
+    """Return settings whose lengths follow the scene size (the defaults are for about 1 m)."""
     scale = scene.size / 1000.0
-    return dict(method=method, tol=TOL * scale, max_step=5.0 * scale, min_step=0.005 * scale)
+    return {'method': method, 'tol': TOL * scale, 'max_step': 5.0 * scale,
+            'min_step': 0.005 * scale}
 
 
 @pytest.mark.parametrize('method', METHODS)

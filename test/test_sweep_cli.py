@@ -5,10 +5,9 @@ import io
 import subprocess
 import sys
 
+from linkage_ros.tools.sweep import COLUMNS, main
 import numpy as np
 import pytest
-
-from linkage_ros.tools.sweep import COLUMNS, main
 
 LEADING = ('travel_mm,camber_deg,toe_deg,wheel_center_x_mm,wheel_center_y_mm,'
            'wheel_center_z_mm,qx,qy,qz,qw,residual_mm,iterations')

@@ -8,12 +8,11 @@ import subprocess
 import sys
 
 from diagnostic_msgs.msg import DiagnosticStatus
-import numpy as np
-import pytest
-
-from linkage_ros.ros import testing
 from linkage_ros.core.kinematics import sweep
 from linkage_ros.core.scene import load_scene
+from linkage_ros.ros import testing
+import numpy as np
+import pytest
 
 EXAMPLE = Path(__file__).resolve().parent / 'test_plugin_example.py'
 

@@ -1,11 +1,10 @@
 """Vehicle files: four corners, right-hand side by mirroring, placed by offsets."""
 
-import numpy as np
-import pytest
-
 from linkage_ros.core.kinematics import sweep
 from linkage_ros.core.scene import SceneError
 from linkage_ros.core.vehicle import load_vehicle
+import numpy as np
+import pytest
 
 
 def test_demo_vehicle_has_four_corners_with_mirrored_right_side():

@@ -1,2 +1,5 @@
-"""Benchmarks and their references: the extended-precision reference, the peer solvers,
-linkage-bench and linkage-node-bench."""
+"""
+Benchmarks and their references.
+
+The extended-precision reference, the peer solvers, linkage-bench and linkage-node-bench.
+"""

@@ -1,4 +1,5 @@
-"""linkage-bench: error against run time of the kinematics solvers, on every bundled scene.
+"""
+linkage-bench: error against run time of the kinematics solvers, on every bundled scene.
 
     linkage-bench [--out bench-report] [--quick] [--scenes five_link ...] [--tols 1e-3 ...]
                   [--steps 0.1 ...] [--repeats 3] [--positions 40] [--no-stress]
@@ -47,7 +48,7 @@ WARMUP_STEP = 2.0        # mm: untimed walk from design to a timing window
 # --- measuring ----------------------------------------------------------------------------
 
 def windows(scene, step, positions):
-    """Timing windows (mm): per end of the travel range, (untimed walk, timed travels)."""
+    """Return per end of the travel range a timing window (mm): (untimed walk, timed travels)."""
     out = []
     for end in (scene.travel[1], scene.travel[0]):
         if end == 0:
@@ -61,8 +62,12 @@ def windows(scene, step, positions):
 
 
 def run_entry(entry, scene, tol, step, legs, table):
-    """Solve with one entry: per-call entries the legs (untimed walk, timed window), batch
-    entries the whole table of travels. Returns (center, rotation, iterations, ok, times s)."""
+    """
+    Solve with one entry.
+
+    Per-call entries solve the legs (untimed walk, timed window), batch entries the whole
+    table of travels. Returns (center, rotation, iterations, ok, times s).
+    """
     if entry.kind == 'batch':
         run = entry.make(scene, tol, step)
         start = time.perf_counter()
@@ -90,7 +95,8 @@ def run_entry(entry, scene, tol, step, legs, table):
 
 
 def measure(scene, tol, step, chosen, legs, table, refs, repeats):
-    """One grid point: every entry, interleaved repeats; returns a list of result dicts.
+    """
+    Measure one grid point: every entry, interleaved repeats; return a list of result dicts.
 
     refs: {'call': reference at the windows' travels, 'batch': at the table's travels}.
     """
@@ -107,10 +113,10 @@ def measure(scene, tol, step, chosen, legs, table, refs, repeats):
         center, rotation, its, ok = last[entry.name]
         ref = refs[entry.kind]
         t_us = np.array(times[entry.name]) * 1e6
-        row = dict(scene=scene.name, entry=entry.name, tol_mm=tol, step_mm=step,
-                   positions=len(ref.travel), ok=bool(ok),
-                   median_us=float(np.median(t_us)) if len(t_us) else math.nan,
-                   p95_us=float(np.percentile(t_us, 95)) if len(t_us) else math.nan)
+        row = {'scene': scene.name, 'entry': entry.name, 'tol_mm': tol, 'step_mm': step,
+               'positions': len(ref.travel), 'ok': bool(ok),
+               'median_us': float(np.median(t_us)) if len(t_us) else math.nan,
+               'p95_us': float(np.percentile(t_us, 95)) if len(t_us) else math.nan}
         if ok:
             err = reference.errors(ref, center, rotation)
             row.update(err, iterations_mean=float(np.mean(its)),
@@ -126,7 +132,7 @@ def measure(scene, tol, step, chosen, legs, table, refs, repeats):
 
 
 def run_grid(scenes, chosen, tols, steps, repeats, positions):
-    """Every scene x step x tol; returns the result rows."""
+    """Measure every scene x step x tol; return the result rows."""
     rows = []
     total = len(scenes) * len(steps) * len(tols)
     done = 0
@@ -176,7 +182,8 @@ def parse_args(argv):
     return args
 
 
-def main(argv=None):
+def main(argv: list[str] | None = None) -> int:
+    """Run linkage-bench: 0 when the report is written, 2 for a bad scene or entry."""
     args = parse_args(argv)
     try:
         scenes = [load_scene(s) for s in (args.scenes or bundled_scenes())]

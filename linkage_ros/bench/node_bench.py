@@ -1,4 +1,5 @@
-"""linkage-node-bench: speed on the paths users take, side by side with what it must beat.
+"""
+linkage-node-bench: speed on the paths users take, side by side with what it must beat.
 
 Sections (all by default; --only picks some), sizes multiplied by --scale (run 1, 10, 100):
 
@@ -71,9 +72,13 @@ def table(header, rows):
 # --- the bare references ---------------------------------------------------------------------
 
 class EchoNode(Node):
-    """The bare reference: each wheel_travel (Float64) is answered by a PoseStamped with
-    z = travel, under every corner prefix; a joint_states message naming '<corner>_travel'
-    joints is answered by one pose per corner it names. Transport and executor cost only."""
+    """
+    The bare reference: transport and executor cost only.
+
+    Each wheel_travel (Float64) is answered by a PoseStamped with z = travel, under every
+    corner prefix; a joint_states message naming '<corner>_travel' joints is answered by one
+    pose per corner it names.
+    """
 
     def __init__(self, prefixes=('',), **kwargs):
         super().__init__('echo', **kwargs)
@@ -100,14 +105,15 @@ class EchoNode(Node):
                 self.answer(pub, positions[f'{corner}_travel'])
 
 
-def echo_main(vehicle, args=None):
-    """An echo node process: same executor and spin loop as suspension_node."""
+def echo_main(vehicle: bool, args: list[str] | None = None) -> int:
+    """Run an echo node process: same executor and spin loop as suspension_node."""
     rclpy.init(args=args)
     return run(EchoNode(tuple(f'{c}/' for c in CORNERS) if vehicle else ('',)))
 
 
 class Driver:
-    """Sends steps of commands to one node process and times the poses that answer them.
+    """
+    Sends steps of commands to one node process and times the poses that answer them.
 
     prefixes: '' for one scene, '<corner>/' for each corner of a vehicle. A step is one
     Float64 per corner, or (joint_states=True) one JointState naming every corner's travel
@@ -133,7 +139,7 @@ class Driver:
         self.executor.add_node(self.node)
 
     def answered(self):
-        """Steps answered by every corner."""
+        """Count the steps answered by every corner."""
         return min(len(times) for times in self.arrivals.values())
 
     def clear(self):
@@ -160,8 +166,11 @@ class Driver:
                 pub.publish(data)
 
     def connect(self, joint_states=False, timeout=20.0, ping_period=0.5):
-        """Wait until the node answers every corner (a ping every ping_period s), then until
-        no answer is in flight."""
+        """
+        Wait until the node answers every corner, then until no answer is in flight.
+
+        A ping goes every ping_period s until then.
+        """
         pubs = [self.joint_pub] if joint_states else self.pubs
         if not self.spin_until(lambda: all(p.get_subscription_count() for p in pubs)
                                and all(s.get_publisher_count() for s in self.subs), timeout):
@@ -192,8 +201,12 @@ class Driver:
         return np.array(times)
 
     def paced(self, travels, rate, joint_states=False, drain=3.0):
-        """Send one step per travel at rate (Hz). Returns (steps sent, steps answered, lag of
-        the last answer after the last step (s), step latencies (s))."""
+        """
+        Send one step per travel at rate (Hz).
+
+        Returns (steps sent, steps answered, lag of the last answer after the last step (s),
+        step latencies (s)).
+        """
         self.clear()
         sent, period = [], 1.0 / rate
         due = time.perf_counter()
@@ -234,9 +247,12 @@ class Target:
 
 
 def joint_state_layout(names):
-    """A function travel (m) -> CDR of a sensor_msgs/JointState (zero stamp) giving every
-    joint of names that position; the positions' place found in, and checked against,
-    rclpy's own serialization."""
+    """
+    Return a function travel (m) -> CDR of a sensor_msgs/JointState (zero stamp).
+
+    The message gives every joint of names that position; the positions' place is found in,
+    and checked against, rclpy's own serialization.
+    """
     from rclpy.serialization import deserialize_message, serialize_message
     marker = struct.pack(f'<{len(names)}d', *range(1, len(names) + 1))
     template = serialize_message(JointState(name=names, position=list(range(1, len(names) + 1))))
@@ -342,9 +358,12 @@ def bench_sweep(args):
 
 
 def bench_start(args, log_dir, domain_id):
-    """Launch to first answer: warm and cold (empty) numba cache, default and quick
-    discovery. Each launch is timed from a fresh process, whose DDS participant (the client)
-    reads the discovery profile as the node does: Fast DDS reads it once per process."""
+    """
+    Time launch to first answer: warm and cold (empty) numba cache, default and quick discovery.
+
+    Each launch is timed from a fresh process, whose DDS participant (the client) reads the
+    discovery profile as the node does: Fast DDS reads it once per process.
+    """
     quick = {'FASTRTPS_DEFAULT_PROFILES_FILE': str(QUICK_DISCOVERY)}
     cases = [('core', 'warm', {}), ('suspension_node', 'warm', {}),
              ('suspension_node', 'warm quick-discovery', quick),
@@ -370,8 +389,12 @@ def bench_start(args, log_dir, domain_id):
 
 
 def start_once(what, scene, domain_id):
-    """Print the seconds from launch to the first answer of the core (and in process) or of
-    suspension_node (a pose over DDS, pinged every 20 ms)."""
+    """
+    Print the seconds from launch to the first answer.
+
+    That is the core's (and in process) or suspension_node's (a pose over DDS, pinged every
+    20 ms).
+    """
     if what == 'core':
         code = ('import time; t = time.perf_counter(); '
                 'from linkage_ros import Continuation, load_scene; '
@@ -473,7 +496,7 @@ def bench_vehicle(args, log_dir, first_domain):
 
 
 def bench_callback(args):
-    """The travel callback in process, with each optional output or sink."""
+    """Time the travel callback in process, with each optional output or sink."""
     from rclpy.parameter import Parameter
 
     from ..ros.node import SuspensionNode
@@ -557,7 +580,8 @@ def parse_args(argv):
     return args, ros_args
 
 
-def main(argv=None):
+def main(argv: list[str] | None = None) -> int:
+    """Run linkage-node-bench, or one of the processes it starts (--echo, --start-once)."""
     args, ros_args = parse_args(sys.argv[1:] if argv is None else argv)
     if args.echo or args.echo_vehicle:      # an echo node process started by the bench
         return echo_main(args.echo_vehicle, ['echo', *ros_args])

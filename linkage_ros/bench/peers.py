@@ -1,7 +1,9 @@
-"""The solvers linkage-bench compares: the core's methods, the baselines a user would write
-first, and exudyn, each a stateful solver whose solve(travel) starts from its previous answer
-(continuation), returning (center, rotation, iterations, converged); and the catalogue of
-entries (Entry) that runs them.
+"""
+The solvers linkage-bench compares, and the catalogue of entries (Entry) that runs them.
+
+The solvers are the core's methods, the baselines a user would write first, and exudyn, each
+a stateful solver whose solve(travel) starts from its previous answer (continuation),
+returning (center, rotation, iterations, converged).
 
 Baselines:
     LUNewton            the paper's 8 equations (paper_method.system), np.linalg.solve (LU)
@@ -36,9 +38,13 @@ class CoreSolver:
 
 
 class ExudynSolver:
-    """exudyn (multibody engine) static solves: the carrier as one rigid body (Euler
-    parameters) held by distance constraints (sphere, circle), a GenericJoint that frees
-    only the translation along the strut (line), and a coordinate constraint on Z_M."""
+    """
+    Static solves by exudyn (a multibody engine).
+
+    The carrier is one rigid body (Euler parameters) held by distance constraints (sphere,
+    circle), a GenericJoint that frees only the translation along the strut (line), and a
+    coordinate constraint on Z_M.
+    """
 
     def __init__(self, scene, tol):
         import exudyn as exu
@@ -102,7 +108,7 @@ class ExudynSolver:
 
 
 def exudyn_version():
-    """exudyn's version, or None when the optional 'bench' extra is not installed."""
+    """Return exudyn's version, or None when the optional 'bench' extra is not installed."""
     try:
         import exudyn
     except ImportError:
@@ -112,8 +118,12 @@ def exudyn_version():
 
 @dataclass(frozen=True)
 class Entry:
-    """One solver in the comparison. make(scene, tol, step) returns a solve(travel) object
-    ('call') or a run(travels) -> (center, rotation, iterations, ok) function ('batch')."""
+    """
+    One solver in the comparison.
+
+    make(scene, tol, step) returns a solve(travel) object ('call') or a run(travels) ->
+    (center, rotation, iterations, ok) function ('batch').
+    """
 
     name: str
     kind: str
@@ -122,7 +132,7 @@ class Entry:
 
 
 def entries(include_exudyn=True):
-    """The entries compared, in report order."""
+    """Return the entries compared, in report order."""
     out = [
         Entry('fast', 'call', lambda s, tol, step: CoreSolver(s, 'fast', tol, step),
               'pose Newton (5 unknowns, LU), tangent predictor; stops on the residual'),
@@ -152,7 +162,8 @@ def _batch_sweep(scene, tol):
 
 
 class LUNewton:
-    """The paper's 8-unknown system (eqs. 1-4, 5-7, 10) solved by np.linalg.solve (LU).
+    """
+    The paper's 8-unknown system (eqs. 1-4, 5-7, 10) solved by np.linalg.solve (LU).
 
     Same equations and stopping test (eqs. 11-12: largest coordinate change <= tol) as the
     paper variant; each solve starts from the previous answer, no predictor, no substeps.
@@ -189,7 +200,8 @@ class LUNewton:
 
 
 class RootHybr:
-    """scipy.optimize.root (method 'hybr', MINPACK hybrj) on the core's 5 pose equations.
+    """
+    scipy.optimize.root (method 'hybr', MINPACK hybrj) on the core's 5 pose equations.
 
     Unknowns u = (x_M, y_M, w): the carrier is exp(w) R_prev. The analytic Jacobian is the
     core's (mechanism.linearize) times the left Jacobian of SO(3), exact for any w.
@@ -222,7 +234,8 @@ class RootHybr:
 
 
 class LeastSquares6Dof:
-    """scipy.optimize.least_squares on the plain 6-DOF pose: what a user would write first.
+    """
+    scipy.optimize.least_squares on the plain 6-DOF pose: what a user would write first.
 
     x = (M, rotation vector of the carrier relative to design); residuals = the 5 guidance
     equations (true lengths) and Z_M - Z_M0 - travel; default method 'trf' and the default
@@ -251,7 +264,7 @@ class LeastSquares6Dof:
 
 
 def _float_model(model):
-    """The PoseModel in float64 (for baselines that a user would write in double)."""
+    """Return the PoseModel in float64 (for baselines that a user would write in double)."""
     fields = {k: (np.asarray(v, float) if isinstance(v, np.ndarray) and v.dtype == LD else v)
               for k, v in model.__dict__.items()}
     return PoseModel(**fields)
@@ -265,5 +278,3 @@ def _left_jacobian(w):
         return np.eye(3) + 0.5 * k + k @ k / 6
     t = math.sqrt(t2)
     return np.eye(3) + (1 - math.cos(t)) / t2 * k + (t - math.sin(t)) / (t2 * t) * (k @ k)
-
-

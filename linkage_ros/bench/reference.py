@@ -1,4 +1,5 @@
-"""An independent reference for the kinematics core, in extended precision.
+"""
+An independent reference for the kinematics core, in extended precision.
 
 Reference: the plain 6-DOF pose formulation (wheel centre M and carrier rotation R, 6
 unknowns; the 5 guidance equations as true lengths plus the travel equation Z_M - Z_M0 = t),
@@ -20,8 +21,9 @@ from scipy.optimize import least_squares
 LD = np.longdouble
 REF_STEP = 1e-3          # longest step of the reference walk, as a fraction of the scene size
 REF_MAX_ITER = 40        # Newton iterations per reference step
-ZERO_RESIDUAL = 1e-11    # fraction of the scene size: a least-squares minimum below this is a
-                         # solution (fold search); about 1e-8 mm in the bundled scenes
+# fraction of the scene size: a least-squares minimum below this is a solution (fold search);
+# about 1e-8 mm in the bundled scenes
+ZERO_RESIDUAL = 1e-11
 
 
 @dataclass(frozen=True)
@@ -42,7 +44,7 @@ class PoseModel:
 
 
 def build(scene):
-    """PoseModel of a Scene, in longdouble so extended-precision residuals are exact."""
+    """Build the PoseModel of a Scene, in longdouble so extended-precision residuals are exact."""
     m0 = scene.wheel_center.astype(LD)
     offsets, dist_point, dist_base, dist_length = [], [], [], []
     line_point, line_base, line_normal = [], [], []
@@ -77,7 +79,8 @@ def build(scene):
 
 
 def guidance(model, center, rotation):
-    """The 5 guidance equations (mm) of a pose: link length errors, strut offsets.
+    """
+    Evaluate the 5 guidance equations (mm) of a pose: link length errors, strut offsets.
 
     Sphere and circle: |B - A| - l, a true length. Line: the top mount's offset from the
     carrier-fixed strut line along its two carrier-fixed normals. Works in the dtype given.
@@ -92,7 +95,7 @@ def guidance(model, center, rotation):
 
 
 def equations(model, center, rotation, travel):
-    """The 6 equations of the 6-DOF formulation: guidance (5) and Z_M - Z_M0 - travel."""
+    """Evaluate the 6 equations of the 6-DOF formulation: guidance (5), Z_M - Z_M0 - travel."""
     return np.concatenate((guidance(model, center, rotation),
                            [center[2] - model.m0[2] - travel]))
 
@@ -141,7 +144,8 @@ class ReferencePoses:
 
 
 def reference_poses(scene, travels, step=None):
-    """Extended-precision poses at travels (mm) by a 6-DOF walk from the design position.
+    """
+    Extended-precision poses at travels (mm) by a 6-DOF walk from the design position.
 
     Each leg (bump, rebound) walks from travel 0 in steps of at most `step` mm (default
     REF_STEP times the scene size), each Newton solve starting from the last pose, so the
@@ -182,7 +186,8 @@ def walk(model, pose, start, target, step):
 
 
 def refine(model, pose, travel, max_iter=REF_MAX_ITER):
-    """Newton on the 6 equations in longdouble with float64 solves; returns (pose, converged).
+    """
+    Newton on the 6 equations in longdouble with float64 solves; returns (pose, converged).
 
     Stops when a correction no longer shrinks and is below 1e-15 of the scene size, i.e.
     at the longdouble round-off floor (about 1e-19 of the size).
@@ -222,7 +227,8 @@ def wheel_angles(model, rotation):
 
 
 def errors(ref, center, rotation, where=None):
-    """Deviation of poses (float64, (n, 3) and (n, 3, 3)) from the reference.
+    """
+    Deviation of poses (float64, (n, 3) and (n, 3, 3)) from the reference.
 
     Returns a dict of the largest values over the positions (where: bool mask, default all
     positions the reference reached): 'residual_mm' (largest guidance-equation violation of
@@ -232,20 +238,21 @@ def errors(ref, center, rotation, where=None):
     center = np.asarray(center, dtype=float)[mask].astype(LD)
     rotation = np.asarray(rotation, dtype=float)[mask].astype(LD)
     if not len(center):
-        return dict(residual_mm=math.nan, wheel_center_mm=math.nan, camber_deg=math.nan,
-                    toe_deg=math.nan)
+        return {'residual_mm': math.nan, 'wheel_center_mm': math.nan, 'camber_deg': math.nan,
+                'toe_deg': math.nan}
     residual = max(float(np.max(np.abs(guidance(ref.model, c, r))))
                    for c, r in zip(center, rotation))
     dev = np.sqrt(np.sum((center - ref.center[mask]) ** 2, axis=1))
     camber, toe = wheel_angles(ref.model, rotation)
     camber_ref, toe_ref = wheel_angles(ref.model, ref.rotation[mask])
-    return dict(residual_mm=residual, wheel_center_mm=float(np.max(dev)),
-                camber_deg=float(np.degrees(np.max(np.abs(camber - camber_ref)))),
-                toe_deg=float(np.degrees(np.max(np.abs(toe - toe_ref)))))
+    return {'residual_mm': residual, 'wheel_center_mm': float(np.max(dev)),
+            'camber_deg': float(np.degrees(np.max(np.abs(camber - camber_ref)))),
+            'toe_deg': float(np.degrees(np.max(np.abs(toe - toe_ref))))}
 
 
 def has_solution(model, pose, travel):
-    """Smallest guidance violation (mm) over poses with Z_M at travel, by least squares.
+    """
+    Smallest guidance violation (mm) over poses with Z_M at travel, by least squares.
 
     Starts from pose (a nearby pose on the branch); zero (ZERO_RESIDUAL * size) means the
     travel is reachable there. Unknowns: x_M, y_M and a rotation vector applied to pose.
@@ -265,7 +272,8 @@ def has_solution(model, pose, travel):
 
 
 def reachable_limit(scene, direction, resolution=1e-4, step=None, far=1e4):
-    """Travel limit (mm) in direction (+1 bump, -1 rebound) found independently of the core.
+    """
+    Travel limit (mm) in direction (+1 bump, -1 rebound) found independently of the core.
 
     Walks the 6-DOF reference until a step fails (or `far` mm), then bisects on whether a
     least-squares pose with zero guidance violation exists (has_solution) near the last

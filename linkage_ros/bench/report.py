@@ -1,6 +1,9 @@
-"""The summaries of linkage-bench: the best setting of each entry per accuracy level, the
-fastest setting that meets the goal, the default setting, the CSV, the error-against-time
-front (PNG) and report.md."""
+"""
+The summaries of linkage-bench.
+
+The best setting of each entry per accuracy level, the fastest setting that meets the goal,
+the default setting, the CSV, the error-against-time front (PNG) and report.md.
+"""
 
 import csv
 import math
@@ -27,14 +30,14 @@ def progress(text):
 
 
 def best_at_level(rows, scene, entry, level):
-    """The fastest row of an entry on a scene whose error is at most level (mm), or None."""
+    """Return the fastest row of an entry on a scene whose error is at most level (mm), or None."""
     good = [r for r in rows if r['scene'] == scene and r['entry'] == entry and r['ok']
             and r['error_mm'] <= level]
     return min(good, key=lambda r: r['median_us']) if good else None
 
 
 def pareto(points):
-    """The (time, error) points not beaten in both, sorted by time."""
+    """Return the (time, error) points not beaten in both, sorted by time."""
     front, best = [], math.inf
     for t, e in sorted(points):
         if e < best:
@@ -64,7 +67,7 @@ def level_table(rows, scenes, names):
 
 
 def goal_lines(rows, scenes, names):
-    """Is the fast variant the fastest entry at every level; 1e-9 mm within 20 us?"""
+    """Tell whether the fast variant is the fastest entry at every level; 1e-9 mm within 20 us."""
     lines = []
     for scene in scenes:
         for level in LEVELS:
@@ -91,7 +94,7 @@ def goal_lines(rows, scenes, names):
 def default_setting_lines(rows, scenes):
     """Why the node's default (Settings(): tol 1e-10 mm, max_step 5 mm) is what it is."""
     d = Settings()
-    lines = [f'The node solves each command with `Continuation(scene, method=\'fast\')` and the '
+    lines = [f"The node solves each command with `Continuation(scene, method='fast')` and the "
              f'default `Settings()`: tol {d.tol:g} mm (largest residual of a guidance '
              f'equation, a length), max_step {d.max_step:g} mm (longest continuation substep), '
              f'max_iter {d.max_iter}. Measured here, fast at step {d.max_step:g} mm:', '',
@@ -165,7 +168,7 @@ def plot_front(rows, scenes, names, path):
 
 
 def cpu_name():
-    """The CPU model (Linux /proc/cpuinfo) and core count, else the platform's name."""
+    """Return the CPU model (Linux /proc/cpuinfo) and core count, else the platform's name."""
     try:
         for line in Path('/proc/cpuinfo').read_text().splitlines():
             if line.startswith('model name'):
@@ -185,7 +188,7 @@ def report(rows, scenes, chosen, args, stress, elapsed):
              f'Run time {elapsed:.0f} s.', '',
              f'Grid: tolerances {", ".join(f"{t:g}" for t in args.tols)} mm; continuation steps '
              f'{", ".join(f"{s:g}" for s in args.steps)} mm; one-call entries: up to '
-             f'{args.positions} positions next to each end of each scene\'s travel range; fast '
+             f"{args.positions} positions next to each end of each scene's travel range; fast "
              f'sweep: the whole range at each step; {args.repeats} interleaved repeats. Error: '
              'the larger of the largest guidance-equation residual (evaluated in extended '
              'precision) and the largest wheel-centre deviation from the 6-DOF '
@@ -200,7 +203,7 @@ def report(rows, scenes, chosen, args, stress, elapsed):
               'error, not the tolerance, is what the table and the plot compare.', '',
               '## Error against run time', '', '![front](bench_front.png)', '',
               'Fastest setting of each entry reaching each accuracy level (x fast: median time '
-              'over the fast entry\'s fastest setting at that level):', '']
+              "over the fast entry's fastest setting at that level):", '']
     lines += level_table(rows, scenes, names)
     lines += ['', '## Goal check', '']
     lines += goal_lines(rows, scenes, names)
@@ -210,5 +213,3 @@ def report(rows, scenes, chosen, args, stress, elapsed):
         lines += ['', '## Stiff and extreme cases', '']
         lines += stress
     return '\n'.join(lines) + '\n'
-
-

@@ -1,5 +1,9 @@
-"""Stiff and extreme cases of linkage-bench: toggles, jumps, reversals, scaled scenes,
-perturbed hardpoints (config/stress). Each returns lines of the report."""
+"""
+Stiff and extreme cases of linkage-bench.
+
+Toggles, jumps, reversals, scaled scenes, perturbed hardpoints (config/stress). Each returns
+lines of the report.
+"""
 
 import math
 import time
@@ -15,13 +19,18 @@ STRESS_DIR = config_dir() / 'stress'
 
 
 def stress_scene(name):
+    """Load the stress scene name from config/stress."""
     return load_scene(STRESS_DIR / f'{name}.yaml')
 
 
 def perturbed(scene, offsets):
-    """scene with every hardpoint moved by offsets (k, 3) mm, in the order: wheel centre,
-    spin-axis point, then each constraint's base points and carrier point. Re-validated
-    (SceneError if the result is not a valid scene); the design pose stays assembled."""
+    """
+    Return scene with every hardpoint moved by offsets (k, 3) mm.
+
+    The order is: wheel centre, spin-axis point, then each constraint's base points and
+    carrier point. Re-validated (SceneError if the result is not a valid scene); the design
+    pose stays assembled.
+    """
     offsets = np.asarray(offsets, dtype=float).reshape(-1, 3)
     it = iter(offsets)
     point = lambda p: [float(v) for v in np.asarray(p) + next(it)]   # noqa: E731
@@ -58,8 +67,12 @@ def stress_lines(reversals=100_000):
 
 
 def stress_toggles():
-    """Travel limits at toggles: the core against the analytic fold and an independent
-    bisection (reference.reachable_limit)."""
+    """
+    Compare travel limits at toggles.
+
+    The core against the analytic fold and an independent bisection
+    (reference.reachable_limit).
+    """
     arm, vertical = stress_scene('trailing_arm_toggle'), stress_scene('five_link_vertical_link')
     cases = ((arm, -100.0 + math.hypot(150.0, 400.0) - 300.0, 'analytic'),
              (vertical, reference.reachable_limit(vertical, 1)[0], 'bisection'))
@@ -99,7 +112,7 @@ def stress_jumps():
 
 
 def stress_reversals(count):
-    """A random walk of commands on five_link against a batched sweep of the same travels."""
+    """Compare a random walk of commands on five_link with a batched sweep of the same travels."""
     scene = load_scene('five_link')
     travels = random_walk(count, scene.travel[0], scene.travel[1], seed=5)
     cont = Continuation(scene, method='fast')
@@ -129,9 +142,9 @@ def stress_scaling():
         ref = reference.reference_poses(scene, travels)
         scale = scene.size / 1000.0
         for method in ('fast', 'paper'):
-            for label, options in (('default', {}), ('scaled', dict(
-                    tol=Settings().tol * scale, max_step=Settings().max_step * scale,
-                    min_step=Settings().min_step * scale))):
+            scaled = {'tol': Settings().tol * scale, 'max_step': Settings().max_step * scale,
+                      'min_step': Settings().min_step * scale}
+            for label, options in (('default', {}), ('scaled', scaled)):
                 result = sweep(scene, travels, method=method, **options)
                 error = math.nan
                 if result.success:
@@ -161,9 +174,12 @@ def stress_perturbation():
 
 
 def random_walk(count, low, high, seed=0, largest=5.0):
-    """count travels (mm) by a random walk of steps up to `largest` mm in either direction,
-    reflected at the travel range [low, high]: the direction reverses about every other
-    command."""
+    """
+    Return count travels (mm) by a random walk of steps up to `largest` mm either way.
+
+    The walk is reflected at the travel range [low, high]: the direction reverses about every
+    other command.
+    """
     rng = np.random.default_rng(seed)
     steps = rng.uniform(-largest, largest, count)
     out = np.empty(count)
@@ -176,5 +192,3 @@ def random_walk(count, low, high, seed=0, largest=5.0):
             here = 2 * low - here
         out[i] = here
     return out
-
-

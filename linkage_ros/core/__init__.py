@@ -1,5 +1,8 @@
-"""The kinematics of a suspension corner, ROS-free: scene and vehicle files, the mechanism,
-the compiled solver kernels, the paper's method, continuation, alignment.
+"""
+The kinematics of a suspension corner, ROS-free.
+
+Scene and vehicle files, the mechanism, the compiled solver kernels, the paper's method,
+continuation, alignment.
 
 Imports numpy, scipy, PyYAML and numba only. The public names:
 

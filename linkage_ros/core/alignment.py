@@ -1,4 +1,5 @@
-"""Exact derivatives and the alignment set of solved positions (beyond the paper).
+"""
+Exact derivatives and the alignment set of solved positions (beyond the paper).
 
 At a solution the Jacobian gives, by the implicit function theorem, the carrier's velocity
 per unit of travel (and per unit of rack) exactly to rounding: camber gain, bump steer, the
@@ -11,13 +12,22 @@ Frames and units: vehicle frame (x forward, y left, z up), mm, rad, rad/mm. Batc
 n positions: center (n, 3), rotation (n, 3, 3).
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from .geometry import cross
 from .mechanism import linearize, rack_derivative
 from .pose_newton import rack_slope_of, slope_of
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
+
+    from .mechanism import Mechanism
+    from .scene import Scene
 
 
 @dataclass(frozen=True)
@@ -45,8 +55,9 @@ class Alignment:
     front_view_ic: np.ndarray          # (n, 2) instant centre (y, z) in the front view, mm
 
 
-def alignment(scene, mech, center, rotation, rack=0.0):
-    """The alignment set at n solved positions (see Alignment for units and signs)."""
+def alignment(scene: Scene, mech: Mechanism, center: ArrayLike, rotation: ArrayLike,
+              rack: float = 0.0) -> Alignment:
+    """Compute the alignment set at n solved positions (see Alignment for units and signs)."""
     center, rotation = np.atleast_2d(center), np.asarray(rotation).reshape(-1, 3, 3)
     side = scene.side_sign
     _, jac = linearize(mech, center, rotation, rack)
@@ -86,8 +97,9 @@ def alignment(scene, mech, center, rotation, rack=0.0):
                                        center[:, 2] + v_bump[:, 1] / w_bump[:, 0])))
 
 
-def angle_rates(axis, axis_rate, side):
-    """d camber and d toe (rad per unit input) of spin axes (n, 3) moving at axis_rate."""
+def angle_rates(axis: np.ndarray, axis_rate: np.ndarray,
+                side: float) -> tuple[np.ndarray, np.ndarray]:
+    """Return the rates of camber and toe (rad per unit input) of spin axes (n, 3) at axis_rate."""
     ax, ay, az = axis[:, 0], axis[:, 1], axis[:, 2]
     dx, dy, dz = axis_rate[:, 0], axis_rate[:, 1], axis_rate[:, 2]
     h = np.hypot(ax, ay)
@@ -97,24 +109,27 @@ def angle_rates(axis, axis_rate, side):
     return camber_rate, toe_rate
 
 
-def screw(center, velocity, omega):
-    """Instantaneous screw axis of a twist given by the velocity of the wheel centre and the
-    angular velocity: unit direction, the axis point nearest the centre, pitch (mm/rad)."""
+def screw(center: np.ndarray, velocity: np.ndarray,
+          omega: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """
+    Return the instantaneous screw axis of a twist.
+
+    The twist is given by the velocity of the wheel centre and the angular velocity. Returns
+    the unit direction, the axis point nearest the centre and the pitch (mm/rad).
+    """
     w2 = np.einsum('ij,ij->i', omega, omega)
     direction = omega / np.sqrt(w2)[:, None]
     point = center + cross(omega, velocity) / w2[:, None]
     return direction, point, np.einsum('ij,ij->i', omega, velocity) / w2
 
 
-def contact_patch(center, axis, radius):
-    """Lowest point of a wheel of radius (mm) centred at center with spin axes (n, 3)."""
+def contact_patch(center: np.ndarray, axis: np.ndarray, radius: float) -> np.ndarray:
+    """Return the lowest point of a wheel of radius (mm) centred at center, spin axes (n, 3)."""
     up = np.array([0.0, 0.0, 1.0]) - axis[:, 2:3] * axis
     return center - radius * up / np.linalg.norm(up, axis=1, keepdims=True)
 
 
-def ground_point(point, direction, height):
-    """Where lines (point, direction) meet the horizontal planes z = height."""
+def ground_point(point: np.ndarray, direction: np.ndarray, height: np.ndarray) -> np.ndarray:
+    """Return where lines (point, direction) meet the horizontal planes z = height."""
     t = (height - point[:, 2]) / direction[:, 2]
     return point + t[:, None] * direction
-
-

@@ -1,4 +1,5 @@
-"""Pseudo-arclength continuation: following the solution curve through its travel limits.
+"""
+Pseudo-arclength continuation: following the solution curve through its travel limits.
 
 Near a turning point (fold) of the travel, the carrier moves like sqrt(limit - travel) and
 continuation in travel stalls short of the limit. Parametrized by arclength along the
@@ -10,28 +11,39 @@ Curve coordinates, all in mm: wheel-centre x, y; rotation increment times the me
 lever (so a unit step moves the carrier by about 1 mm); travel.
 """
 
+from __future__ import annotations
+
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from .geometry import exp_so3
 from .mechanism import linearize
 
+if TYPE_CHECKING:
+    from .mechanism import Mechanism
 
-def curve_system(mech, center, rotation, rack=0.0):
-    """Residuals (5,) and the (5, 6) Jacobian in curve coordinates at a pose."""
+# A point of the solution curve: (center (3,) mm, rotation (3, 3) relative to design, travel mm).
+CurvePoint = tuple[np.ndarray, np.ndarray, float]
+
+
+def curve_system(mech: Mechanism, center: np.ndarray, rotation: np.ndarray,
+                 rack: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
+    """Return the residuals (5,) and the (5, 6) Jacobian in curve coordinates at a pose."""
     f, jac = linearize(mech, center, rotation, rack)
     return f, np.column_stack((jac[:, :2], jac[:, 3:6] / mech.lever, jac[:, 2]))
 
 
-def curve_tangent(jac, previous):
-    """Unit null vector of jac (5, 6), oriented along previous (6,)."""
+def curve_tangent(jac: np.ndarray, previous: np.ndarray) -> np.ndarray:
+    """Return the unit null vector of jac (5, 6), oriented along previous (6,)."""
     t = np.linalg.solve(np.vstack((jac, previous)), np.eye(6)[5])
     return t / np.linalg.norm(t)
 
 
-def move(mech, center, rotation, travel, dy):
-    """The pose and travel moved by a curve-coordinate increment dy (6,)."""
+def move(mech: Mechanism, center: np.ndarray, rotation: np.ndarray, travel: float,
+         dy: np.ndarray) -> CurvePoint:
+    """Return the pose and travel moved by a curve-coordinate increment dy (6,)."""
     center = center.copy()
     center[:2] += dy[:2]
     travel = travel + dy[5]
@@ -39,8 +51,10 @@ def move(mech, center, rotation, travel, dy):
     return center, exp_so3(dy[2:5] / mech.lever) @ rotation, travel
 
 
-def arc_step(mech, point, tangent, dsigma, tol, max_iter, rack=0.0):
-    """One predictor-corrector step of length dsigma along tangent from point.
+def arc_step(mech: Mechanism, point: CurvePoint, tangent: np.ndarray, dsigma: float, tol: float,
+             max_iter: int, rack: float = 0.0) -> tuple[CurvePoint, np.ndarray] | None:
+    """
+    Take one predictor-corrector step of length dsigma along tangent from point.
 
     point = (center, rotation, travel). The corrector stays on the hyperplane square to the
     tangent through the predicted point. Returns (point, jacobian) or None if it fails.
@@ -59,9 +73,12 @@ def arc_step(mech, point, tangent, dsigma, tol, max_iter, rack=0.0):
     return None
 
 
-def walk(mech, center, rotation, travel, target, tol, max_iter, rack=0.0, start_step=0.05,
-         max_step=2.0, resolution=0.02, max_steps=2000):
-    """Follow the solution curve from the pose at travel towards target (mm), rack fixed.
+def walk(mech: Mechanism, center: np.ndarray, rotation: np.ndarray, travel: float,
+         target: float, tol: float, max_iter: int, rack: float = 0.0, start_step: float = 0.05,
+         max_step: float = 2.0, resolution: float = 0.02,
+         max_steps: int = 2000) -> tuple[str, tuple[CurvePoint, float] | float]:
+    """
+    Follow the solution curve from the pose at travel towards target (mm), rack fixed.
 
     Returns ('reached', ((center, rotation, travel), step)) with the curve point just beyond
     target and the arclength of the last step (the pose at target lies on the curve within
@@ -98,9 +115,13 @@ def walk(mech, center, rotation, travel, target, tol, max_iter, rack=0.0, start_
     return 'stalled', point[2]
 
 
-def hermite_peak(s0, s1, slope0, slope1, length):
-    """Extreme value of the cubic s(sigma) on [0, length] with s(0) = s0, s(length) = s1 and
-    ds/dsigma = slope0, slope1 at the ends (the slopes have opposite signs)."""
+def hermite_peak(s0: float, s1: float, slope0: float, slope1: float, length: float) -> float:
+    """
+    Return the extreme value of the cubic Hermite s(sigma) on [0, length].
+
+    The cubic has s(0) = s0, s(length) = s1 and ds/dsigma = slope0, slope1 at the ends (the
+    slopes have opposite signs).
+    """
     def cubic(u):
         h00, h10 = 2 * u**3 - 3 * u**2 + 1, u**3 - 2 * u**2 + u
         h01, h11 = -2 * u**3 + 3 * u**2, u**3 - u**2

@@ -1,36 +1,48 @@
-"""Small pure functions on points, frames and rotations. Arrays in, arrays out; no state.
+"""
+Small pure functions on points, frames and rotations. Arrays in, arrays out; no state.
 
 Units are whatever the caller passes (the package uses mm); angles in radians.
 """
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from . import kernel
 
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
 
-def unit(v):
-    """v / |v| along the last axis."""
+
+def unit(v: ArrayLike) -> np.ndarray:
+    """Return v / |v| along the last axis."""
     v = np.asarray(v, dtype=float)
     return v / np.linalg.norm(v, axis=-1, keepdims=True)
 
 
-def perpendicular(axis):
-    """A unit vector square to axis (3,): axis x z, or axis x x when axis is near z."""
+def perpendicular(axis: ArrayLike) -> np.ndarray:
+    """Return a unit vector square to axis (3,): axis x z, or axis x x when axis is near z."""
     axis = unit(axis)
     helper = [0.0, 0.0, 1.0] if abs(axis[2]) < 0.9 else [1.0, 0.0, 0.0]
     return unit(np.cross(axis, helper))
 
 
-def carrier_points(offsets, center, rotation):
-    """Carrier points M + R b of a pose: offsets b = b0 - M0 (m, 3) of the design points
-    from the design wheel centre, wheel centre M (..., 3) and rotation R (..., 3, 3) relative
-    to design. Returns (..., m, 3), same units as offsets and center (mm)."""
+def carrier_points(offsets: ArrayLike, center: ArrayLike, rotation: ArrayLike) -> np.ndarray:
+    """
+    Return the carrier points M + R b of a pose.
+
+    offsets b = b0 - M0 (m, 3) are the design points' offsets from the design wheel centre,
+    M (..., 3) the wheel centre and R (..., 3, 3) the rotation relative to design. Returns
+    (..., m, 3), same units as offsets and center (mm).
+    """
     return np.asarray(center)[..., None, :] + np.asarray(offsets) @ np.swapaxes(
         np.asarray(rotation), -1, -2)
 
 
-def cross(a, b):
-    """Cross product along the last axis; faster than np.cross for small arrays."""
+def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Return the cross product along the last axis; faster than np.cross for small arrays."""
     out = np.empty(a.shape if a.shape == b.shape else np.broadcast_shapes(a.shape, b.shape))
     out[..., 0] = a[..., 1] * b[..., 2] - a[..., 2] * b[..., 1]
     out[..., 1] = a[..., 2] * b[..., 0] - a[..., 0] * b[..., 2]
@@ -38,8 +50,9 @@ def cross(a, b):
     return out
 
 
-def exp_so3(omega):
-    """Rotation matrix of the rotation vector omega (Rodrigues), shape (..., 3) -> (..., 3, 3).
+def exp_so3(omega: ArrayLike) -> np.ndarray:
+    """
+    Return the rotation matrix of rotation vector omega (Rodrigues): (..., 3) -> (..., 3, 3).
 
     >>> bool(np.allclose(exp_so3(np.array([0, 0, np.pi / 2])) @ [1, 0, 0], [0, 1, 0]))
     True
@@ -51,8 +64,8 @@ def exp_so3(omega):
     return out.reshape(omega.shape[:-1] + (3, 3))
 
 
-def quaternion_from_matrix(rot):
-    """Unit quaternion(s) (x, y, z, w) of rotation matrices (..., 3, 3), w >= 0 (Shepperd)."""
+def quaternion_from_matrix(rot: ArrayLike) -> np.ndarray:
+    """Return unit quaternions (x, y, z, w) of rotation matrices (..., 3, 3), w >= 0 (Shepperd)."""
     rot = np.asarray(rot, dtype=float)
     flat = np.ascontiguousarray(rot.reshape(-1, 3, 3))
     out = np.empty((len(flat), 4))
@@ -60,8 +73,9 @@ def quaternion_from_matrix(rot):
     return out.reshape(rot.shape[:-2] + (4,))
 
 
-def frame_from_points(m, n, p):
-    """Orthonormal frame (columns e_x, e_y, e_z) of three non-collinear points.
+def frame_from_points(m: np.ndarray, n: np.ndarray, p: np.ndarray) -> np.ndarray:
+    """
+    Return the orthonormal frame (columns e_x, e_y, e_z) of three non-collinear points.
 
     e_x along N - M, e_y in the M-N-P plane towards P, e_z = e_x x e_y.
     """
@@ -71,8 +85,10 @@ def frame_from_points(m, n, p):
     return np.column_stack((ex, ey, np.cross(ex, ey)))
 
 
-def trilaterate(m, n, p, radii, sign):
-    """Point at distances radii = (|BM|, |BN|, |BP|) from M, N, P: eqs. 5-7 of the paper.
+def trilaterate(m: np.ndarray, n: np.ndarray, p: np.ndarray, radii: ArrayLike,
+                sign: float) -> tuple[np.ndarray | None, float]:
+    """
+    Locate the point at distances radii = (|BM|, |BN|, |BP|) from M, N, P (eqs. 5-7).
 
     Subtracting the first sphere equation from the other two leaves two linear equations
     (eq. 6); the first then gives a quadratic for the remaining coordinate (eq. 7). Solved
@@ -92,13 +108,16 @@ def trilaterate(m, n, p, radii, sign):
     return m + frame @ np.array([x, y, sign * np.sqrt(disc)]), disc
 
 
-def local_coordinates(m, n, p, point):
-    """Coordinates of point in the frame_from_points(m, n, p) frame, origin M."""
+def local_coordinates(m: np.ndarray, n: np.ndarray, p: np.ndarray,
+                      point: np.ndarray) -> np.ndarray:
+    """Return the coordinates of point in the frame_from_points(m, n, p) frame, origin M."""
     return frame_from_points(m, n, p).T @ (point - m)
 
 
-def camber_toe(spin_axis, side_sign):
-    """Camber and toe (rad) of outboard spin-axis unit vector(s), shape (..., 3).
+def camber_toe(spin_axis: ArrayLike,
+               side_sign: float) -> tuple[float | np.ndarray, float | np.ndarray]:
+    """
+    Return camber and toe (rad) of outboard spin-axis unit vector(s), shape (..., 3).
 
     camber = -atan2(a_z, |a_xy|): + = top of the wheel outboard (eq. 14 made side-aware).
     toe = atan2(a_x, a_y_outboard): + = toe-in. side_sign: +1 left wheel, -1 right wheel.

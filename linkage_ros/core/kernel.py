@@ -1,5 +1,8 @@
-"""Compiled kernels of the fast method: the guidance equations on the carrier pose, Newton,
-the tangent predictor, the branch check, the residual and the condition number.
+"""
+Compiled kernels of the fast method.
+
+The guidance equations on the carrier pose, Newton, the tangent predictor, the branch check,
+the residual and the condition number.
 
 Every function here is numba-compiled (njit, cache=True) and works on plain float64 arrays
 and scalars, one pose at a time, without a numpy call per operation: a single command is a
@@ -47,7 +50,7 @@ jit = njit(cache=True, nogil=True, error_model='numpy')
 
 @jit
 def rotate(rotation, x, y, z):
-    """R v of v = (x, y, z), as three floats."""
+    """Return R v for v = (x, y, z), as three floats."""
     return (rotation[0, 0] * x + rotation[0, 1] * y + rotation[0, 2] * z,
             rotation[1, 0] * x + rotation[1, 1] * y + rotation[1, 2] * z,
             rotation[2, 0] * x + rotation[2, 1] * y + rotation[2, 2] * z)
@@ -55,7 +58,8 @@ def rotate(rotation, x, y, z):
 
 @jit
 def exp_so3(x, y, z, out):
-    """out (3, 3) = rotation matrix of the rotation vector (x, y, z) (Rodrigues).
+    """
+    Write into out (3, 3) the rotation matrix of the rotation vector (x, y, z) (Rodrigues).
 
     R = I + a K + b (w w^T - |w|^2 I), K = [w]x, a = sin t / t, b = (1 - cos t) / t^2.
     """
@@ -65,14 +69,17 @@ def exp_so3(x, y, z, out):
     else:
         t = math.sqrt(t2)
         a, b = math.sin(t) / t, (1.0 - math.cos(t)) / t2
-    out[0, 0], out[0, 1], out[0, 2] = 1.0 - b * (y * y + z * z), b * x * y - a * z, b * x * z + a * y
-    out[1, 0], out[1, 1], out[1, 2] = b * x * y + a * z, 1.0 - b * (x * x + z * z), b * y * z - a * x
-    out[2, 0], out[2, 1], out[2, 2] = b * x * z - a * y, b * y * z + a * x, 1.0 - b * (x * x + y * y)
+    out[0, 0], out[0, 1], out[0, 2] = (
+        1.0 - b * (y * y + z * z), b * x * y - a * z, b * x * z + a * y)
+    out[1, 0], out[1, 1], out[1, 2] = (
+        b * x * y + a * z, 1.0 - b * (x * x + z * z), b * y * z - a * x)
+    out[2, 0], out[2, 1], out[2, 2] = (
+        b * x * z - a * y, b * y * z + a * x, 1.0 - b * (x * x + y * y))
 
 
 @jit
 def turn(x, y, z, rotation, out):
-    """out = exp_so3(x, y, z) @ rotation; out may be rotation itself."""
+    """Write exp_so3(x, y, z) @ rotation into out (3, 3); out may be rotation itself."""
     step = np.empty((3, 3))
     exp_so3(x, y, z, step)
     for j in range(3):   # column by column, so that out may be rotation
@@ -83,28 +90,33 @@ def turn(x, y, z, rotation, out):
 
 @jit
 def quaternion(rotation, out):
-    """out (4,) = unit quaternion (x, y, z, w) of a rotation matrix, w >= 0 (Shepperd)."""
+    """Write into out (4,) the unit quaternion of rotation as x, y, z, w; w >= 0 (Shepperd)."""
     m = rotation
     trace = m[0, 0] + m[1, 1] + m[2, 2]
     if trace >= m[0, 0] and trace >= m[1, 1] and trace >= m[2, 2]:
         s = 2.0 * math.sqrt(1.0 + trace)
-        x, y, z, w = (m[2, 1] - m[1, 2]) / s, (m[0, 2] - m[2, 0]) / s, (m[1, 0] - m[0, 1]) / s, s / 4
+        x, y, z, w = ((m[2, 1] - m[1, 2]) / s, (m[0, 2] - m[2, 0]) / s,
+                      (m[1, 0] - m[0, 1]) / s, s / 4)
     elif m[0, 0] >= m[1, 1] and m[0, 0] >= m[2, 2]:
         s = 2.0 * math.sqrt(1.0 + m[0, 0] - m[1, 1] - m[2, 2])
-        x, y, z, w = s / 4, (m[0, 1] + m[1, 0]) / s, (m[0, 2] + m[2, 0]) / s, (m[2, 1] - m[1, 2]) / s
+        x, y, z, w = (s / 4, (m[0, 1] + m[1, 0]) / s, (m[0, 2] + m[2, 0]) / s,
+                      (m[2, 1] - m[1, 2]) / s)
     elif m[1, 1] >= m[2, 2]:
         s = 2.0 * math.sqrt(1.0 - m[0, 0] + m[1, 1] - m[2, 2])
-        x, y, z, w = (m[0, 1] + m[1, 0]) / s, s / 4, (m[1, 2] + m[2, 1]) / s, (m[0, 2] - m[2, 0]) / s
+        x, y, z, w = ((m[0, 1] + m[1, 0]) / s, s / 4, (m[1, 2] + m[2, 1]) / s,
+                      (m[0, 2] - m[2, 0]) / s)
     else:
         s = 2.0 * math.sqrt(1.0 - m[0, 0] - m[1, 1] + m[2, 2])
-        x, y, z, w = (m[0, 2] + m[2, 0]) / s, (m[1, 2] + m[2, 1]) / s, s / 4, (m[1, 0] - m[0, 1]) / s
+        x, y, z, w = ((m[0, 2] + m[2, 0]) / s, (m[1, 2] + m[2, 1]) / s, s / 4,
+                      (m[1, 0] - m[0, 1]) / s)
     sign = 1.0 if w >= 0.0 else -1.0
     out[0], out[1], out[2], out[3] = sign * x, sign * y, sign * z, sign * w
 
 
 @jit
 def camber_toe(ax, ay, az, side_sign):
-    """Camber and toe (rad) of an outboard spin-axis vector a (any length).
+    """
+    Return camber and toe (rad) of an outboard spin-axis vector a (any length).
 
     camber = -atan2(a_z, |a_xy|): + = top of the wheel outboard (eq. 14 made side-aware);
     toe = atan2(a_x, a_y_outboard): + = toe-in. side_sign: +1 left wheel, -1 right wheel.
@@ -116,7 +128,7 @@ def camber_toe(ax, ay, az, side_sign):
 
 @jit
 def linearize(eqs, center, rotation, rack, f, jac):
-    """Residuals f (5,) and Jacobian jac (5, 6) at the pose (center, rotation), rack (mm)."""
+    """Write residuals f (5,) and Jacobian jac (5, 6) at pose (center, rotation), rack (mm)."""
     for i in range(eqs.shape[0]):
         e = eqs[i]
         rx, ry, rz = rotate(rotation, e[POINT], e[POINT + 1], e[POINT + 2])
@@ -129,7 +141,8 @@ def linearize(eqs, center, rotation, rack, f, jac):
             f[i] = (dx * dx + dy * dy + dz * dz - length * length) * (0.5 / length)
             dx, dy, dz = dx / length, dy / length, dz / length
             jac[i, 0], jac[i, 1], jac[i, 2] = dx, dy, dz
-            jac[i, 3], jac[i, 4], jac[i, 5] = ry * dz - rz * dy, rz * dx - rx * dz, rx * dy - ry * dx
+            jac[i, 3], jac[i, 4], jac[i, 5] = (
+                ry * dz - rz * dy, rz * dx - rx * dz, rx * dy - ry * dx)
         else:
             # F = (T - C) . n, n = R n0; dF = -n . dM + omega . (n x (T - C) - r x n)
             nx, ny, nz = rotate(rotation, e[NORMAL], e[NORMAL + 1], e[NORMAL + 2])
@@ -145,8 +158,12 @@ def linearize(eqs, center, rotation, rack, f, jac):
 
 @jit
 def residual(eqs, center, rotation, rack):
-    """Largest constraint violation (mm) as a true length: link length error or the strut
-    line's distance from its top mount. NaN if any is NaN."""
+    """
+    Return the largest constraint violation (mm) as a true length.
+
+    The violation is a link's length error or the strut line's distance from its top mount.
+    NaN if any is NaN.
+    """
     worst = 0.0
     for i in range(eqs.shape[0]):
         e = eqs[i]
@@ -167,7 +184,7 @@ def residual(eqs, center, rotation, rack):
 
 @jit
 def rack_column(eqs, center, rotation, rack, out):
-    """out (5,) = d(residuals)/d(rack): the steer rows' base points move along +y."""
+    """Write d(residuals)/d(rack) into out (5,): the steer rows' base points move along +y."""
     for i in range(eqs.shape[0]):
         e = eqs[i]
         out[i] = 0.0
@@ -179,7 +196,7 @@ def rack_column(eqs, center, rotation, rack, out):
 
 @jit
 def carrier_shift(eqs, center, rotation, other_center, other_rotation):
-    """Largest displacement (mm, along any axis) of a carrier point between two poses."""
+    """Return the largest displacement (mm, along any axis) of a carrier point between poses."""
     worst = 0.0
     for i in range(eqs.shape[0]):
         e = eqs[i]
@@ -196,8 +213,12 @@ def carrier_shift(eqs, center, rotation, other_center, other_rotation):
 
 @jit
 def solve_free(jac, rhs, x):
-    """x (5,) solving J_free x = rhs, J_free the FREE columns of jac (5, 6), by Gaussian
-    elimination with partial pivoting. False if J_free is singular or not finite."""
+    """
+    Solve J_free x = rhs into x (5,), J_free the FREE columns of jac (5, 6).
+
+    By Gaussian elimination with partial pivoting. Returns False if J_free is singular or not
+    finite, else True.
+    """
     a = np.empty((5, 6))
     for i in range(5):
         for j in range(5):
@@ -227,8 +248,12 @@ def solve_free(jac, rhs, x):
 
 @jit
 def condition(jac):
-    """2-norm condition number of J_free (the FREE columns of jac), by one-sided Jacobi
-    (Hestenes) SVD: accurate to rounding for the small singular values too. inf if singular."""
+    """
+    Return the 2-norm condition number of J_free (the FREE columns of jac (5, 6)).
+
+    By one-sided Jacobi (Hestenes) SVD: accurate to rounding for the small singular values
+    too. inf if singular.
+    """
     a = np.empty((5, 5))
     for i in range(5):
         for j in range(5):
@@ -268,12 +293,13 @@ def condition(jac):
 
 @jit
 def correct(eqs, z0, travel, rack, center, rotation, tol, max_iter, jac):
-    """Newton iterations from the pose (center, rotation), in place, to the pose at travel
-    and rack (mm): Z_M = z0 + travel is imposed, x, y of M and the rotation are solved.
+    """
+    Correct the pose (center, rotation) in place by Newton to the pose at travel and rack.
 
-    Stops when every guidance equation holds to tol (mm). jac receives the Jacobian at the
-    last pose (the converged one: it serves the next tangent and the condition number).
-    Returns (iterations, converged).
+    Travel and rack are in mm: Z_M = z0 + travel is imposed, x, y of M and the rotation are
+    solved. Stops when every guidance equation holds to tol (mm). jac (5, 6) receives the
+    Jacobian at the last pose (the converged one: it serves the next tangent and the
+    condition number). Returns (iterations, converged).
     """
     f = np.empty(5)
     rhs = np.empty(5)
@@ -301,10 +327,13 @@ def correct(eqs, z0, travel, rack, center, rotation, tol, max_iter, jac):
 
 @jit
 def predict(eqs, center0, rotation0, jac0, rack0, h, h_rack, center, rotation):
-    """First-order (tangent) guess of the pose h mm of travel and h_rack mm of rack on from
-    the solved pose (center0, rotation0) with Jacobian jac0, by the implicit function
-    theorem (J_free dx = -J_travel h - J_rack h_rack). Writes center, rotation; False if the
-    Jacobian is singular."""
+    """
+    Guess to first order (tangent) the pose h mm of travel and h_rack mm of rack further on.
+
+    From the solved pose (center0, rotation0) with Jacobian jac0, by the implicit function
+    theorem (J_free dx = -J_travel h - J_rack h_rack). Writes center (3,) and rotation (3, 3);
+    returns False if the Jacobian is singular, else True.
+    """
     column = np.empty(5)
     slope = np.empty(5)
     for i in range(5):
@@ -327,16 +356,19 @@ def predict(eqs, center0, rotation0, jac0, rack0, h, h_rack, center, rotation):
 
 @jit
 def views(state):
-    """(center (3,), rotation (3, 3), jacobian (5, 6)) views of a packed state."""
+    """Return views of a packed state: center (3,), rotation (3, 3), jacobian (5, 6)."""
     return (state[CENTER:CENTER + 3], state[ROTATION:ROTATION + 9].reshape((3, 3)),
             state[JACOBIAN:JACOBIAN + 30].reshape((5, 6)))
 
 
 @jit
 def step(eqs, z0, tol, max_iter, slack, state0, travel, rack, state):
-    """One continuation step from the solved state0 to (travel, rack) (mm): tangent
-    prediction, Newton correction to tol, branch check (on_branch, with slack mm). Writes
-    the new position into state (not its report). Returns (iterations, accepted)."""
+    """
+    Take one continuation step from the solved state0 to (travel, rack) (mm).
+
+    Tangent prediction, Newton correction to tol, branch check (on_branch, with slack mm).
+    Writes the new position into state (not its report). Returns (iterations, accepted).
+    """
     center0, rotation0, jac0 = views(state0)
     center, rotation, jac = views(state)
     guess_center, guess_rotation = np.empty(3), np.empty((3, 3))
@@ -354,7 +386,8 @@ def step(eqs, z0, tol, max_iter, slack, state0, travel, rack, state):
 
 @jit
 def on_branch(eqs, guess_center, guess_rotation, center, rotation, step_length, slack):
-    """True if the converged pose is where continuation along the branch predicts it.
+    """
+    Tell whether the converged pose is where continuation along the branch predicts it.
 
     A tangent prediction misses by O(step^2); a jump to another assembly branch moves the
     carrier by a link-length scale. Half the step (mm, plus a slack for the tolerance the
@@ -366,16 +399,22 @@ def on_branch(eqs, guess_center, guess_rotation, center, rotation, step_length, 
 
 @jit
 def next_step(length, done, step_length):
-    """The next substep of a walk along a line of length mm with done mm walked: (its
-    length, the fraction of the line reached at its end; exactly 1.0 at the end)."""
+    """
+    Return the next substep of a walk along a line of length mm with done mm walked.
+
+    Returns (its length, the fraction of the line reached at its end; exactly 1.0 at the end).
+    """
     step_length = min(step_length, length - done)
     return step_length, 1.0 if step_length == length - done else (done + step_length) / length
 
 
 @jit
 def after_step(accepted, length, done, step_length, fraction, max_step):
-    """(done, next step length) after a substep: an accepted step advances and doubles the
-    step (up to max_step); a rejected one halves it."""
+    """
+    Return (done, next step length) (mm) after a substep.
+
+    An accepted step advances and doubles the step (up to max_step); a rejected one halves it.
+    """
     if accepted:
         return length if fraction == 1.0 else done + step_length, min(2 * step_length, max_step)
     return done, step_length / 2
@@ -384,8 +423,10 @@ def after_step(accepted, length, done, step_length, fraction, max_step):
 @jit
 def walk(eqs, spin_axis, side_sign, z0, tol, max_iter, slack, max_step, min_step, state0,
          target, rack, low, high):
-    """Continuation from the solved state0 to (target travel, rack) (mm) along a straight
-    line, in steps of at most max_step, halved on failure and doubled on success.
+    """
+    Continue from the solved state0 to (target travel, rack) (mm) along a straight line.
+
+    The steps are at most max_step long, halved on failure and doubled on success.
 
     Returns (state, steps, iterations of the last step, stalled, low, high): the last state
     reached (reported if the walk got to the target), the steps accepted, True if a step fell
@@ -415,9 +456,13 @@ def walk(eqs, spin_axis, side_sign, z0, tol, max_iter, slack, max_step, min_step
 
 @jit
 def report(eqs, spin_axis, side_sign, state):
-    """Fill in what a solved state reports: residual (mm), condition number of the Jacobian,
-    camber and toe (rad) of the spin axis (spin_axis at design, side_sign +1 left, -1 right),
-    and the carrier orientation as a quaternion (x, y, z, w)."""
+    """
+    Fill in what a solved state reports.
+
+    That is the residual (mm), the condition number of the Jacobian, camber and toe (rad) of
+    the spin axis (spin_axis (3,) at design, side_sign +1 left, -1 right), and the carrier
+    orientation as a quaternion (x, y, z, w).
+    """
     center, rotation, jac = views(state)
     ax, ay, az = rotate(rotation, spin_axis[0], spin_axis[1], spin_axis[2])
     state[CAMBER], state[TOE] = camber_toe(ax, ay, az, side_sign)
@@ -430,37 +475,42 @@ def report(eqs, spin_axis, side_sign, state):
 
 @jit
 def linearize_many(eqs, centers, rotations, racks, f, jac):
-    """linearize at n poses: centers (n, 3), rotations (n, 3, 3), racks (n,)."""
+    """Run linearize at n poses: centers (n, 3), rotations (n, 3, 3), racks (n,) (mm)."""
     for n in range(centers.shape[0]):
         linearize(eqs, centers[n], rotations[n], racks[n], f[n], jac[n])
 
 
 @jit
 def rack_column_many(eqs, centers, rotations, racks, out):
+    """Run rack_column at n poses: centers (n, 3), rotations (n, 3, 3), racks (n,), out (n, 5)."""
     for n in range(centers.shape[0]):
         rack_column(eqs, centers[n], rotations[n], racks[n], out[n])
 
 
 @jit
 def residual_many(eqs, centers, rotations, racks, out):
+    """Write the residual (mm) of n poses into out (n,): centers (n, 3), rotations (n, 3, 3)."""
     for n in range(centers.shape[0]):
         out[n] = residual(eqs, centers[n], rotations[n], racks[n])
 
 
 @jit
 def exp_so3_many(omegas, out):
+    """Write the rotation matrices of n rotation vectors omegas (n, 3) into out (n, 3, 3)."""
     for n in range(omegas.shape[0]):
         exp_so3(omegas[n, 0], omegas[n, 1], omegas[n, 2], out[n])
 
 
 @jit
 def quaternion_many(rotations, out):
+    """Write the quaternions (x, y, z, w) of rotations (n, 3, 3) into out (n, 4)."""
     for n in range(rotations.shape[0]):
         quaternion(rotations[n], out[n])
 
 
 @jit
 def camber_toe_many(axes, side_sign, camber, toe):
+    """Write camber and toe (rad) of n spin-axis vectors axes (n, 3) into camber, toe (n,)."""
     for n in range(axes.shape[0]):
         camber[n], toe[n] = camber_toe(axes[n, 0], axes[n, 1], axes[n, 2], side_sign)
 
@@ -468,8 +518,12 @@ def camber_toe_many(axes, side_sign, camber, toe):
 @jit
 def step_many(eqs, z0, tol, max_iter, slack, start, start_states, travels, rack, states,
               iterations, accepted):
-    """step() to each of n travels at one rack (mm), position n from the solved state
-    start_states[start[n]]; states (n, STATE_SIZE) receive the results, without report."""
+    """
+    Take step() to each of n travels (n,) at one rack (mm).
+
+    Position n starts from the solved state start_states[start[n]]; states (n, STATE_SIZE)
+    receive the results, without report; iterations and accepted (n,) what step() returns.
+    """
     for n in range(travels.shape[0]):
         iterations[n], accepted[n] = step(eqs, z0, tol, max_iter, slack, start_states[start[n]],
                                           travels[n], rack, states[n])

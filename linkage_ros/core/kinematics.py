@@ -1,4 +1,5 @@
-"""Continuation over wheel travel: the public entry points of the kinematics core.
+"""
+Continuation over wheel travel: the public entry points of the kinematics core.
 
     Continuation(scene, method='fast').solve(travel_mm) -> Solution   (stateful; the node)
     sweep(scene, travels_mm, method='fast') -> Sweep                   (a table of positions)
@@ -11,9 +12,11 @@ falls below min_step, the travel is out of reach and the reachable limit found i
 Nothing here raises for numerics: a Solution or Sweep carries success and a message.
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass, field, replace
 import math
-from typing import NamedTuple
+from typing import Any, NamedTuple, TYPE_CHECKING
 
 import numpy as np
 
@@ -25,6 +28,11 @@ from .errors import LinkageError
 from .geometry import camber_toe, quaternion_from_matrix
 from .mechanism import carrier_points, compile_scene, length_errors, linearize
 
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
+
+    from .scene import Scene
+
 METHODS = ('paper', 'fast')
 ARC_TOL = 1e-9   # mm: residual tolerance on the arclength path to a travel limit
 ROUND_OFF = 64 * np.finfo(float).eps   # tolerance floor per mm of scene size
@@ -35,8 +43,9 @@ class Settings:
     """Solver settings. Lengths in mm."""
 
     method: str = 'fast'
-    tol: float = 1e-10        # paper: largest coordinate change in the last iteration (eqs.
-                              # 11-12); fast: largest constraint residual (a length)
+    # paper: largest coordinate change in the last iteration (eqs. 11-12); fast: largest
+    # constraint residual (a length)
+    tol: float = 1e-10
     max_iter: int = 25        # Newton iterations per step
     max_step: float = 5.0     # longest continuation step
     min_step: float = 0.005   # below this a failing step means out of reach (limit to 0.01)
@@ -45,7 +54,8 @@ class Settings:
 
 
 class Solution(NamedTuple):
-    """One solved position, vehicle frame, mm and rad. On failure the pose fields are None.
+    """
+    One solved position, vehicle frame, mm and rad. On failure the pose fields are None.
 
     Immutable (a NamedTuple: cheap to make, which matters on the node's one-command path);
     its arrays are read-only views of the solver's state.
@@ -54,17 +64,17 @@ class Solution(NamedTuple):
     travel: float                # imposed wheel-centre z change, + = bump (mm)
     success: bool
     message: str
-    wheel_center: np.ndarray = None   # (3,) mm
-    rotation: np.ndarray = None       # (3, 3) carrier orientation relative to design
+    wheel_center: np.ndarray | None = None   # (3,) mm
+    rotation: np.ndarray | None = None       # (3, 3) carrier orientation relative to design
     camber: float = math.nan     # rad, + = top of the wheel outboard
     toe: float = math.nan        # rad, + = toe-in
     iterations: int = 0          # Newton iterations of the last step
     residual: float = math.nan   # largest constraint violation (mm)
     substeps: int = 0            # continuation steps walked for this position
     condition: float = math.nan  # condition number of the Jacobian at the solution
-    reachable: tuple = (0.0, 0.0)   # travel range (mm) known to be reachable so far
+    reachable: tuple[float, float] = (0.0, 0.0)   # travel range (mm) known reachable so far
     rack: float = 0.0            # steering rack travel (mm), + = rack to the left
-    quaternion: np.ndarray = None     # (4,) (x, y, z, w) of rotation, w >= 0
+    quaternion: np.ndarray | None = None     # (4,) (x, y, z, w) of rotation, w >= 0
 
 
 @dataclass(frozen=True)
@@ -80,13 +90,14 @@ class Sweep:
     residual: np.ndarray         # (n,) mm
     success: bool = True
     message: str = ''
-    joints: np.ndarray = field(default=None, repr=False)   # (n, m, 3) carrier points, mm
+    joints: np.ndarray | None = field(default=None, repr=False)   # (n, m, 3) carrier points, mm
     rack: float = 0.0            # steering rack travel of the sweep (mm)
-    quaternion: np.ndarray = field(default=None, repr=False)   # (n, 4) (x, y, z, w), w >= 0
+    quaternion: np.ndarray | None = field(default=None, repr=False)   # (n, 4) xyzw, w >= 0
 
 
 class Continuation:
-    """Solves wheel travels one after another, each from the last good pose.
+    """
+    Solves wheel travels one after another, each from the last good pose.
 
     The last solved position is state, packed for the compiled kernels (kernel.STATE_SIZE:
     travel and rack in mm, wheel centre, rotation, Jacobian and what it reports). Each
@@ -94,7 +105,8 @@ class Continuation:
     views of it, such as a Solution's arrays, stay valid.
     """
 
-    def __init__(self, scene, settings=None, **overrides):
+    def __init__(self, scene: Scene, settings: Settings | None = None,
+                 **overrides: Any) -> None:
         self.scene = scene
         settings = settings or Settings(**overrides)
         # Float64 round-off of coordinates of size L is about eps * L: a tolerance below it
@@ -103,7 +115,7 @@ class Continuation:
         self.settings = replace(settings, tol=max(settings.tol, self.floor),
                                 knot_tol=max(settings.knot_tol, self.floor))
         if self.settings.method not in METHODS:
-            raise LinkageError('method', f"unknown value {self.settings.method!r} (expected "
+            raise LinkageError('method', f'unknown value {self.settings.method!r} (expected '
                                f"one of: {', '.join(METHODS)})")
         self.mech = compile_scene(scene)
         self._paper = (paper_method.build(scene, self.mech) if self.settings.method == 'paper'
@@ -117,29 +129,33 @@ class Continuation:
         self.reset()
 
     @property
-    def center(self):
+    def center(self) -> np.ndarray:
         """Wheel centre (3,) mm of the last solved position."""
         return self.state[kernel.CENTER:kernel.CENTER + 3]
 
     @property
-    def rotation(self):
-        """Carrier rotation (3, 3) relative to design of the last solved position."""
+    def rotation(self) -> np.ndarray:
+        """Carrier orientation (3, 3) relative to design at the last solved position."""
         return self.state[kernel.ROTATION:kernel.ROTATION + 9].reshape(3, 3)
 
     @property
-    def jacobian(self):
+    def jacobian(self) -> np.ndarray:
         """Jacobian (5, 6) of the guidance equations at the last solved position."""
         return self.state[kernel.JACOBIAN:kernel.JACOBIAN + 30].reshape(5, 6)
 
-    def reset(self):
-        """Back to the design position (travel 0, rack 0), the paper's eq. 9 initial solution."""
+    def reset(self) -> None:
+        """Go back to the design position (travel 0, rack 0): eq. 9's initial solution."""
         center, rotation = self.mech.design_center, np.eye(3)
         self._commit(self._pack(0.0, 0.0, center, rotation))
         self.reachable = (0.0, 0.0)
 
-    def solve(self, travel, rack=None):
-        """Solve the pose at travel (mm) and steering rack (mm; None = unchanged) from the
-        current state; commit it if it succeeds."""
+    def solve(self, travel: float, rack: float | None = None) -> Solution:
+        """
+        Solve the pose at travel (mm) and steering rack (mm; None = unchanged).
+
+        Continuation starts from the current state, and the new pose is committed if it
+        succeeds.
+        """
         rack = self.rack if rack is None else rack
         if not (is_finite_number(travel) and is_finite_number(rack)):
             name, value = ('rack', rack) if is_finite_number(travel) else ('travel', travel)
@@ -156,8 +172,11 @@ class Continuation:
         return self._solution(iterations, steps)
 
     def _walk(self, target, rack):
-        """Advance the state to (target travel, rack) along a straight line (substeps of at
-        most max_step, halved on failure); returns (steps, iterations, error message or '').
+        """
+        Advance the state to (target travel, rack) along a straight line.
+
+        Substeps are at most max_step long, halved on failure. Returns (steps, iterations,
+        error message or '').
         """
         start, start_rack = self.travel, self.rack
         if self._paper is None:
@@ -177,9 +196,12 @@ class Continuation:
             f'rack {self.rack:.3f} mm')
 
     def _paper_walk(self, target, rack):
-        """kernel.walk with the paper's corrector (paper_step), in Python: the same line, the
-        same step control (kernel.next_step, kernel.after_step). Returns (steps, iterations,
-        stalled)."""
+        """
+        Walk as kernel.walk does, with the paper's corrector (_paper_step), in Python.
+
+        The same line, the same step control (kernel.next_step, kernel.after_step). Returns
+        (steps, iterations, stalled).
+        """
         cfg = self.settings
         start, start_rack = self.travel, self.rack
         length = max(abs(target - start), abs(rack - start_rack))
@@ -199,8 +221,11 @@ class Continuation:
         return steps, iterations, False
 
     def _walk_arclength(self, start, target, steps):
-        """Continuation in travel stalled: follow the curve by arclength to the target, or
-        to the travel limit (turning point) that comes first."""
+        """
+        Follow the curve by arclength, once continuation in travel has stalled.
+
+        The walk goes to the target, or to the travel limit (turning point) that comes first.
+        """
         cfg = self.settings
         status, found = arclength.walk(self.mech, self.center, self.rotation, self.travel,
                                        target, max(ARC_TOL, self.floor), cfg.max_iter,
@@ -232,9 +257,13 @@ class Continuation:
         self.reachable = (min(low, travel), max(high, travel))
 
     def _paper_step(self, travel, rack):
-        """_step with the paper's corrector, which starts from the last pose (eq. 9's
-        continuation) and is checked against the same tangent prediction. Returns (state,
-        iterations, accepted)."""
+        """
+        Take one step with the paper's corrector.
+
+        The corrector starts from the last pose (eq. 9's continuation) and its answer is
+        checked against the same tangent prediction as kernel.step's. Returns (state,
+        iterations, accepted).
+        """
         cfg, mech = self.settings, self.mech
         h, h_rack = travel - self.travel, rack - self.rack
         guess = pose_newton.predict(mech, self.center, self.rotation, self.jacobian, h, h_rack,
@@ -249,8 +278,7 @@ class Continuation:
         return self._pack(travel, rack, center, rotation), iterations, True
 
     def _pack(self, travel, rack, center, rotation, jacobian=None):
-        """A solved position as a reported kernel state; the Jacobian is computed if not
-        given."""
+        """Pack a solved position as a reported kernel state (Jacobian computed if not given)."""
         if jacobian is None:
             jacobian = linearize(self.mech, center, rotation, rack)[1]
         state = np.zeros(kernel.STATE_SIZE)
@@ -280,24 +308,26 @@ class Continuation:
         return Solution(travel=travel, success=False, message=message, substeps=steps,
                         reachable=reachable or tuple(self.reachable), rack=self.rack)
 
-    def joints(self, solution):
+    def joints(self, solution: Solution) -> dict[str, np.ndarray]:
         """Carrier joint positions {name: (3,) mm} of a solved position."""
         pts = carrier_points(self.mech, solution.wheel_center, solution.rotation)
         return dict(zip(self.mech.point_names, pts))
 
 
-def is_finite_number(value):
-    """True for a finite int or float (numpy floats included), False for anything else."""
+def is_finite_number(value: object) -> bool:
+    """Tell whether value is a finite int or float (numpy floats included)."""
     return isinstance(value, (int, float, np.floating)) and math.isfinite(value)
 
 
-def sweep(scene, travels, method='fast', rack=0.0, **settings):
-    """Solve the travels (mm, in the given order) at a steering rack position (mm) by
-    continuation; returns a Sweep.
+def sweep(scene: Scene, travels: ArrayLike, method: str = 'fast', rack: float = 0.0,
+          **settings: Any) -> Sweep:
+    """
+    Solve the travels (mm, in the given order) at a steering rack position (mm).
 
-    The paper method walks the positions one after another. The fast method solves knots
-    every knot_step mm by continuation and then every position at once by batched Newton,
-    each from the tangent at its nearest knot; a position that fails there is walked.
+    By continuation; returns a Sweep. The paper method walks the positions one after
+    another. The fast method solves knots every knot_step mm by continuation and then every
+    position at once by batched Newton, each from the tangent at its nearest knot; a position
+    that fails there is walked.
     """
     travels = np.asarray(travels, dtype=float).ravel()
     cont = Continuation(scene, method=method, **settings)
@@ -341,9 +371,12 @@ def _sweep_of(cont, travel, center, rotation, iterations, rack, success=True, me
 
 
 def _batched(cont, travels):
-    """Fast sweep: knots by continuation from the state at travel 0, then every position in
-    one compiled loop, each a continuation step from its nearest knot. Returns None when a
-    knot cannot be reached (the sequential walk then finds the limit).
+    """
+    Sweep fast: knots by continuation, then every position in one compiled loop.
+
+    The knots are walked from the state at travel 0; each position is a continuation step
+    from its nearest knot. Returns None when a knot cannot be reached (the sequential walk
+    then finds the limit).
     """
     cfg, mech, rack = cont.settings, cont.mech, cont.rack
     knots = _knots(cont, min(travels.min(), 0.0), max(travels.max(), 0.0))
@@ -370,11 +403,14 @@ def _batched(cont, travels):
 
 
 def _knots(cont, low, high):
-    """States every knot_step mm from the current state (travel 0) to high and to low (mm):
-    the bump and rebound continuation chains, each step from its tangent prediction and
-    checked for a branch change. Knots hold to knot_tol only (they start the batched solve).
-    Returns an array (k, kernel.STATE_SIZE), or None if a step fails (the caller then walks,
-    halving steps, and finds any limit)."""
+    """
+    Return states every knot_step mm from the current state (travel 0) to high and low (mm).
+
+    These are the bump and rebound continuation chains, each step from its tangent prediction
+    and checked for a branch change. Knots hold to knot_tol only (they start the batched
+    solve). Returns an array (k, kernel.STATE_SIZE), or None if a step fails (the caller then
+    walks, halving steps, and finds any limit).
+    """
     cfg, mech = cont.settings, cont.mech
     knots = [cont.state]
     for end in (high, low):
@@ -394,8 +430,8 @@ def _knots(cont, low, high):
     return np.array(knots)
 
 
-def travel_range(start, stop, step):
-    """Travels from start to stop (mm) inclusive at step, either direction."""
+def travel_range(start: float, stop: float, step: float) -> np.ndarray:
+    """Return the travels from start to stop (mm) inclusive at step, either direction."""
     count = int(math.floor(abs(stop - start) / step + 1e-9))
     values = start + math.copysign(step, stop - start) * np.arange(count + 1)
     return values if values[-1] == stop else np.append(values, stop)

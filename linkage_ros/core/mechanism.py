@@ -1,4 +1,5 @@
-"""The mechanism of a scene: its 5 guidance equations as a table, on the carrier pose (M, R).
+"""
+The mechanism of a scene: its 5 guidance equations as a table, on the carrier pose (M, R).
 
 The pose is the wheel-centre position M (mm, vehicle frame) and the carrier rotation R
 relative to design: a carrier point at design position b0 is at M + R (b0 - M0).
@@ -11,12 +12,20 @@ The equations themselves are written once, compiled, in kernel.py; the functions
 them to one pose or to a batch (leading axes of center (..., 3) and rotation (..., 3, 3)).
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from . import geometry, kernel
 from .geometry import unit
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
+
+    from .scene import Scene
 
 
 @dataclass(frozen=True)
@@ -25,26 +34,30 @@ class Mechanism:
 
     design_center: np.ndarray    # M0 (3,)
     offsets: np.ndarray          # (m, 3) carrier points minus M0, carrier frame = design frame
-    point_names: tuple           # (m,) names of the carrier points
+    point_names: tuple[str, ...]   # (m,) names of the carrier points
     equations: np.ndarray        # (5, kernel.COLUMNS) one row per guidance equation
     equation_point: np.ndarray   # (5,) index into offsets of each equation's carrier point
     spin_axis: np.ndarray        # (3,) design outboard spin-axis unit vector
     lever: float                 # mm: largest |offset|, turns a rotation step into mm
 
     @property
-    def steered(self):
-        """True if a base point moves with the steering rack (a steer: rack link)."""
+    def steered(self) -> bool:
+        """Whether a base point moves with the steering rack (a steer: rack link)."""
         return bool(self.equations[:, kernel.STEER].any())
 
-    def line_rows(self):
-        """(carrier point index, top mount T (3,), carrier-fixed normal (3,)) of each strut
-        line equation, at design."""
+    def line_rows(self) -> list[tuple[int, np.ndarray, np.ndarray]]:
+        """
+        Return the strut line equations, at design.
+
+        One tuple (carrier point index, top mount T (3,) mm, carrier-fixed unit normal (3,))
+        per strut line equation.
+        """
         return [(int(self.equation_point[i]), row[kernel.BASE:kernel.BASE + 3],
                  row[kernel.NORMAL:kernel.NORMAL + 3])
                 for i, row in enumerate(self.equations) if row[kernel.KIND] == kernel.LINE]
 
 
-def compile_scene(scene):
+def compile_scene(scene: Scene) -> Mechanism:
     """Build the Mechanism of a validated Scene: sphere rows first, then strut line rows."""
     m0 = scene.wheel_center
     offsets = np.array([c.carrier - m0 for c in scene.constraints])
@@ -77,22 +90,27 @@ def compile_scene(scene):
         lever=float(np.max(np.linalg.norm(offsets, axis=1))))
 
 
-def line_normals(direction, spin_axis):
-    """Two unit normals of a strut line, chosen square to each other and to the line."""
+def line_normals(direction: ArrayLike, spin_axis: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
+    """Return two unit normals of a strut line, chosen square to each other and to the line."""
     d = unit(direction)
     helper = spin_axis if np.linalg.norm(np.cross(d, unit(spin_axis))) > 0.1 else [1.0, 0, 0]
     n1 = unit(np.cross(d, helper))
     return n1, np.cross(d, n1)
 
 
-def carrier_points(mech, center, rotation):
-    """Carrier points (m, 3) of the pose; batched: center (n, 3), rotation (n, 3, 3)."""
+def carrier_points(mech: Mechanism, center: ArrayLike, rotation: ArrayLike) -> np.ndarray:
+    """Return carrier points (m, 3) mm of a pose; batched: center (n, 3), rotation (n, 3, 3)."""
     return geometry.carrier_points(mech.offsets, center, rotation)
 
 
-def poses(center, rotation, rack=0.0):
-    """(leading shape, centers (n, 3), rotations (n, 3, 3), racks (n,)): a pose or a batch of
-    poses as contiguous float64 arrays for the kernels, leading axes broadcast together."""
+def poses(center: ArrayLike, rotation: ArrayLike,
+          rack: ArrayLike = 0.0) -> tuple[tuple[int, ...], np.ndarray, np.ndarray, np.ndarray]:
+    """
+    Flatten a pose or a batch of poses into contiguous float64 arrays for the kernels.
+
+    The leading axes of center, rotation and rack are broadcast together. Returns (leading
+    shape, centers (n, 3), rotations (n, 3, 3), racks (n,)).
+    """
     center, rotation = np.asarray(center, dtype=float), np.asarray(rotation, dtype=float)
     rack = np.asarray(rack, dtype=float)
     shape = np.broadcast_shapes(center.shape[:-1], rotation.shape[:-2], rack.shape)
@@ -103,8 +121,10 @@ def poses(center, rotation, rack=0.0):
             np.ascontiguousarray(np.broadcast_to(rack, shape).reshape(n)))
 
 
-def linearize(mech, center, rotation, rack=0.0):
-    """Residuals (..., 5) and their Jacobian d/d(M, omega) (..., 5, 6) at a pose or a batch.
+def linearize(mech: Mechanism, center: ArrayLike, rotation: ArrayLike,
+              rack: ArrayLike = 0.0) -> tuple[np.ndarray, np.ndarray]:
+    """
+    Return residuals (..., 5) and their Jacobian d/d(M, omega) (..., 5, 6) at a pose or batch.
 
     omega is a small rotation applied in the vehicle frame (R <- exp(omega) R); Jacobian
     column 2 (dZ_M) is the travel direction, kernel.FREE the unknowns. rack (mm, scalar or
@@ -118,16 +138,18 @@ def linearize(mech, center, rotation, rack=0.0):
     return f.reshape(shape + (kernel.N_EQUATIONS,)), jac.reshape(shape + (kernel.N_EQUATIONS, 6))
 
 
-def length_errors(mech, center, rotation, rack=0.0):
-    """Largest constraint violation (mm) as a true length: link length error or strut offset."""
+def length_errors(mech: Mechanism, center: ArrayLike, rotation: ArrayLike,
+                  rack: ArrayLike = 0.0) -> np.ndarray | float:
+    """Return the largest constraint violation (mm) as a length: link error or strut offset."""
     shape, centers, rotations, racks = poses(center, rotation, rack)
     out = np.empty(len(centers))
     kernel.residual_many(mech.equations, centers, rotations, racks, out)
     return out.reshape(shape) if shape else float(out[0])
 
 
-def rack_derivative(mech, center, rotation, rack=0.0):
-    """d(residuals)/d(rack) (..., 5): the steer rows' base points move along +y."""
+def rack_derivative(mech: Mechanism, center: ArrayLike, rotation: ArrayLike,
+                    rack: ArrayLike = 0.0) -> np.ndarray:
+    """Return d(residuals)/d(rack) (..., 5): the steer rows' base points move along +y."""
     shape, centers, rotations, racks = poses(center, rotation, rack)
     out = np.empty((len(centers), kernel.N_EQUATIONS))
     kernel.rack_column_many(mech.equations, centers, rotations, racks, out)

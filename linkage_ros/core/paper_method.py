@@ -1,4 +1,5 @@
-"""The paper's method as written (Alexandru 2018): three points, Newton-Kantorovich, Gauss-Jordan.
+"""
+The paper's method as written (Alexandru 2018): three points, Newton-Kantorovich, Gauss-Jordan.
 
 The carrier ("rod") is located by M (wheel centre), N (inboard spin-axis point) and P (third
 point). With Z_M imposed the unknowns are
@@ -10,11 +11,20 @@ chain rule. Each Newton step is solved by Gauss-Jordan elimination and iteration
 the step test of eqs. 11-12.
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from .geometry import frame_from_points, local_coordinates, trilaterate
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
+
+    from .mechanism import Mechanism
+    from .scene import Scene
 
 
 @dataclass(frozen=True)
@@ -31,8 +41,8 @@ class PaperModel:
     frame0: np.ndarray     # design frame of M, N, P
 
 
-def build(scene, mech):
-    """The paper's model of a scene: joints, their eq. 5' distances, the equations."""
+def build(scene: Scene, mech: Mechanism) -> PaperModel:
+    """Build the paper's model of a scene: joints, their eq. 5' distances, the equations."""
     m0, n0, p0 = scene.wheel_center, scene.spin_axis_point, scene.third_point
     joints, equations = [], []
 
@@ -62,24 +72,27 @@ def build(scene, mech):
                       frame0=frame_from_points(m0, n0, p0))
 
 
-def points_of_pose(model, center, rotation):
-    """M, N, P of a pose (center, rotation relative to design)."""
+def points_of_pose(model: PaperModel, center: np.ndarray,
+                   rotation: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Return M, N, P of a pose (center, rotation relative to design)."""
     return (center, center + rotation @ (model.n0 - model.m0),
             center + rotation @ (model.p0 - model.m0))
 
 
-def pose_of_points(model, m, n, p):
-    """Pose (center, rotation) of M, N, P: the rotation carries the design frame onto theirs."""
+def pose_of_points(model: PaperModel, m: np.ndarray, n: np.ndarray,
+                   p: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Return the pose (center, rotation) of M, N, P: R carries the design frame onto theirs."""
     return m.copy(), frame_from_points(m, n, p) @ model.frame0.T
 
 
-def unpack(x, z_m):
-    """M, N, P from the unknown vector x and the imposed Z_M."""
+def unpack(x: np.ndarray, z_m: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Return M, N, P from the unknown vector x and the imposed Z_M."""
     return np.array([x[0], x[1], z_m]), x[2:5], x[5:8]
 
 
-def joints_of(model, m, n, p):
-    """Joint positions by eqs. 5-7, or None where the spheres do not meet."""
+def joints_of(model: PaperModel, m: np.ndarray, n: np.ndarray,
+              p: np.ndarray) -> np.ndarray | None:
+    """Return the joint positions by eqs. 5-7, or None where the spheres do not meet."""
     out = []
     for radii, sign in zip(model.radii, model.signs):
         point, _ = trilaterate(m, n, p, radii, sign)
@@ -89,10 +102,14 @@ def joints_of(model, m, n, p):
     return np.array(out)
 
 
-def system(model, x, z_m, rack=0.0):
-    """F (8,) and Jacobian (8, 8) of eqs. 1-4 at x; (None, None) if a joint cannot be placed.
+def system(model: PaperModel, x: np.ndarray, z_m: float,
+           rack: float = 0.0) -> tuple[np.ndarray, np.ndarray] | tuple[None, None]:
+    """
+    Return F (8,) and the Jacobian (8, 8) of eqs. 1-4 at x.
 
-    rack (mm) moves the base points of steer: rack links along +y."""
+    rack (mm) moves the base points of steer: rack links along +y. Returns (None, None) if a
+    joint cannot be placed.
+    """
     m, n, p = unpack(x, z_m)
     joints = joints_of(model, m, n, p)
     if joints is None:
@@ -124,7 +141,8 @@ def system(model, x, z_m, rack=0.0):
 
 
 def _chain(joint, m, n, p, grad):
-    """d(F)/d(M, N, P) (9,) of an equation with gradient grad (3,) at a trilaterated joint.
+    """
+    Return d(F)/d(M, N, P) (9,) of an equation with gradient grad (3,) at a trilaterated joint.
 
     Differentiating |B - Q_i|^2 = r_i^2 (eq. 5) gives G dB = [(B - Q_i) . dQ_i] with rows
     G_i = (B - Q_i); so dF = sum_i lambda_i (B - Q_i) . dQ_i where G^T lambda = grad.
@@ -134,7 +152,7 @@ def _chain(joint, m, n, p, grad):
     return (lam[:, None] * arms).ravel()
 
 
-def gauss_jordan(a, b):
+def gauss_jordan(a: ArrayLike, b: ArrayLike) -> np.ndarray:
     """Solve a x = b by Gauss-Jordan elimination with partial pivoting (reduced row echelon)."""
     aug = np.column_stack((np.array(a, dtype=float), np.array(b, dtype=float)))
     size = len(aug)
@@ -149,8 +167,11 @@ def gauss_jordan(a, b):
     return aug[:, -1]
 
 
-def correct(model, travel, center, rotation, tol, max_iter, rack=0.0):
-    """Newton-Kantorovich from the pose (center, rotation) to the pose at travel (mm).
+def correct(model: PaperModel, travel: float, center: np.ndarray, rotation: np.ndarray,
+            tol: float, max_iter: int,
+            rack: float = 0.0) -> tuple[np.ndarray, np.ndarray, int, bool, None]:
+    """
+    Run Newton-Kantorovich from the pose (center, rotation) to the pose at travel (mm).
 
     Same contract as pose_newton.correct: returns (center, rotation, iterations, converged,
     jacobian); the jacobian is None (the paper's is not the pose Jacobian).

@@ -1,4 +1,5 @@
-"""The fast variant: Newton on the carrier pose, tangent predictor, branch-checked steps.
+"""
+The fast variant: Newton on the carrier pose, tangent predictor, branch-checked steps.
 
 Unknowns: the wheel-centre x, y and a rotation increment omega (5 in all; Z_M is imposed).
 The carrier is rigid by construction, so the paper's eq. 1 and eqs. 5-7 drop out and the
@@ -9,16 +10,28 @@ The iterations run compiled (kernel.py); these are their Python faces, one pose 
 the implicit-function-theorem slopes of a batch of solved poses (alignment.py).
 """
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from . import kernel
 from .mechanism import linearize
 
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
+
+    from .mechanism import Mechanism
+
 FREE = list(kernel.FREE)   # Jacobian columns of the unknowns; column 2 is dZ_M (travel)
 
 
-def correct(mech, travel, center, rotation, tol, max_iter, rack=0.0):
-    """Newton iterations from (center, rotation) to the pose at travel and rack (mm).
+def correct(mech: Mechanism, travel: float, center: ArrayLike, rotation: ArrayLike,
+            tol: float, max_iter: int,
+            rack: float = 0.0) -> tuple[np.ndarray, np.ndarray, int, bool, np.ndarray | None]:
+    """
+    Run Newton iterations from (center, rotation) to the pose at travel and rack (mm).
 
     Stops when every guidance equation holds to tol (mm, a length). Returns (center,
     rotation, iterations, converged, jacobian at the returned pose): the Jacobian serves
@@ -33,10 +46,15 @@ def correct(mech, travel, center, rotation, tol, max_iter, rack=0.0):
     return center, rotation, iterations, converged, jac if converged else None
 
 
-def predict(mech, center, rotation, jac, travel_step, rack_step=0.0, rack=0.0):
-    """First-order (tangent) guess (center, rotation) of the pose travel_step and rack_step
-    (mm) on from the solved pose (center, rotation) at rack (mm) whose Jacobian is jac; None
-    if the Jacobian is singular."""
+def predict(mech: Mechanism, center: np.ndarray, rotation: np.ndarray, jac: np.ndarray,
+            travel_step: float, rack_step: float = 0.0,
+            rack: float = 0.0) -> tuple[np.ndarray, np.ndarray] | None:
+    """
+    Guess to first order (tangent) the pose travel_step and rack_step (mm) further on.
+
+    From the solved pose (center, rotation) at rack (mm) whose Jacobian is jac. Returns the
+    guess (center, rotation), or None if the Jacobian is singular.
+    """
     guess_center, guess_rotation = np.empty(3), np.empty((3, 3))
     if not kernel.predict(mech.equations, center, rotation, jac, float(rack),
                           float(travel_step), float(rack_step), guess_center, guess_rotation):
@@ -44,22 +62,30 @@ def predict(mech, center, rotation, jac, travel_step, rack_step=0.0, rack=0.0):
     return guess_center, guess_rotation
 
 
-def slope_of(jac):
-    """d(center)/d(travel) (..., 3) and d(omega)/d(travel) (..., 3) from the Jacobian at a
-    solution, by the implicit function theorem: J_free dx = -J_travel. Batched."""
+def slope_of(jac: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """
+    Return d(center)/d(travel) (..., 3) and d(omega)/d(travel) (..., 3) at a solution.
+
+    From the Jacobian there, by the implicit function theorem: J_free dx = -J_travel.
+    Batched.
+    """
     dx = np.linalg.solve(jac[..., FREE], -jac[..., 2:3])[..., 0]
     d_center = np.concatenate((dx[..., :2], np.ones(dx.shape[:-1] + (1,))), axis=-1)
     return d_center, dx[..., 2:]
 
 
-def tangent(mech, center, rotation, rack=0.0):
-    """slope_of() at the pose (center, rotation)."""
+def tangent(mech: Mechanism, center: ArrayLike, rotation: ArrayLike,
+            rack: ArrayLike = 0.0) -> tuple[np.ndarray, np.ndarray]:
+    """Return slope_of() at the pose (center, rotation)."""
     return slope_of(linearize(mech, center, rotation, rack)[1])
 
 
-def rack_slope_of(jac, rack_column):
-    """d(center)/d(rack) (..., 3) and d(omega)/d(rack) (..., 3) at fixed travel, from the
-    Jacobian and the rack column (mechanism.rack_derivative) at a solution."""
+def rack_slope_of(jac: np.ndarray, rack_column: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """
+    Return d(center)/d(rack) (..., 3) and d(omega)/d(rack) (..., 3) at fixed travel.
+
+    From the Jacobian and the rack column (mechanism.rack_derivative) at a solution.
+    """
     dx = np.linalg.solve(jac[..., FREE], -rack_column[..., None])[..., 0]
     d_center = np.concatenate((dx[..., :2], np.zeros(dx.shape[:-1] + (1,))), axis=-1)
     return d_center, dx[..., 2:]

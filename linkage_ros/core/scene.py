@@ -1,19 +1,29 @@
-"""Scene files: design-position hardpoints of one suspension corner, loaded and validated.
+"""
+Scene files: design-position hardpoints of one suspension corner, loaded and validated.
 
 A scene is YAML with declared units (mm or m) and ISO 8855 axes (x forward, y left, z up).
 Everything is converted to millimetres on load; the rest of the package works in mm.
 A malformed scene raises SceneError naming the file, the field and the problem.
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass, field, replace
 import math
 from pathlib import Path
+from typing import Any, TYPE_CHECKING
 
 import numpy as np
 import yaml
 
 from .errors import LinkageError
 from .geometry import perpendicular, unit
+
+if TYPE_CHECKING:
+    from collections.abc import Sequence
+    from os import PathLike
+
+    from numpy.typing import ArrayLike
 
 UNITS_TO_MM = {'mm': 1.0, 'm': 1000.0}
 EQUATIONS_PER_TYPE = {'sphere': 1, 'circle': 2, 'line': 2}
@@ -26,17 +36,17 @@ SOURCE_CONFIG = Path(__file__).resolve().parents[2] / 'config'   # in a source c
 
 
 class SceneError(LinkageError):
-    """A scene or vehicle file is malformed; the message names the file, the field and the
-    problem."""
+    """A scene or vehicle file is malformed; the message names the file, field and problem."""
 
-    def __init__(self, source, field_name, problem):
+    def __init__(self, source: str | PathLike, field_name: str, problem: str) -> None:
         super().__init__(f'{source}: {field_name}', problem)
         self.source, self.field = str(source), field_name
 
 
 @dataclass(frozen=True)
 class Constraint:
-    """One guidance constraint of the carrier, in mm, vehicle frame, design position.
+    """
+    One guidance constraint of the carrier, in mm, vehicle frame, design position.
 
     type 'sphere': carrier point keeps its distance to base[0] (binary link, eq. 2).
     type 'circle': carrier point turns about the axis base[0]-base[1] (revolute arm, eqs. 3-4).
@@ -45,13 +55,14 @@ class Constraint:
     """
 
     name: str
-    type: str
+    type: str             # noqa: A003 (the scene files' key; public field of Constraint)
     base: np.ndarray      # (k, 3): k = 1 for sphere and line, 2 for circle
     carrier: np.ndarray   # (3,)
     steer: str = ''
 
     @property
-    def equations(self):
+    def equations(self) -> int:
+        """How many guidance equations the constraint gives: sphere 1, circle 2, line 2."""
         return EQUATIONS_PER_TYPE[self.type]
 
 
@@ -66,38 +77,47 @@ class Scene:
     wheel_center: np.ndarray      # M, (3,)
     spin_axis_point: np.ndarray   # N, (3,), inboard on the spin axis
     third_point: np.ndarray       # P, (3,), given or chosen off the spin axis
-    constraints: tuple
-    travel: tuple                 # (min, max, step) in mm
+    constraints: tuple[Constraint, ...]
+    travel: tuple[float, float, float]   # (min, max, step) in mm
     wheel_radius: float = 0.0     # mm; 0 = not given
     description: str = ''
     extras: dict = field(default_factory=dict, compare=False)
 
     @property
-    def side_sign(self):
+    def side_sign(self) -> float:
         """+1 for a left wheel, -1 for a right wheel (outboard direction along y)."""
         return 1.0 if self.side == 'left' else -1.0
 
     @property
-    def size(self):
+    def size(self) -> float:
         """Largest hardpoint coordinate magnitude (mm): sets the scale of tolerances."""
         pts = [self.wheel_center, self.spin_axis_point]
-        pts += [c.carrier for c in self.constraints] + [b for c in self.constraints for b in c.base]
+        pts += [c.carrier for c in self.constraints]
+        pts += [b for c in self.constraints for b in c.base]
         return float(max(np.max(np.abs(p)) for p in pts))
 
     @property
-    def carrier_offsets(self):
-        """Carrier points relative to the wheel centre at design, (m, 3) mm: b0 - M0, in
-        constraint order (geometry.carrier_points places them at a pose)."""
+    def carrier_offsets(self) -> np.ndarray:
+        """
+        Carrier points relative to the wheel centre at design, (m, 3) mm: b0 - M0.
+
+        In constraint order (geometry.carrier_points places them at a pose).
+        """
         return np.array([c.carrier for c in self.constraints]) - self.wheel_center
 
-    def to_mm(self, value):
+    def to_mm(self, value: float | np.ndarray) -> float | np.ndarray:
+        """Convert a length (or an array of them) from the scene's units to mm."""
         return value * UNITS_TO_MM[self.units]
 
 
-def link_polylines(scene, joints):
-    """The drawn links of a scene for its carrier joints (..., m, 3) mm in constraint order:
-    one polyline (..., k, 3) per constraint, base -> joint for a link (sphere) or a strut
-    (line), axis[0] -> joint -> axis[1] for an arm (circle)."""
+def link_polylines(scene: Scene, joints: ArrayLike) -> list[np.ndarray]:
+    """
+    Return the drawn links of a scene for its carrier joints (..., m, 3) mm.
+
+    The joints are in constraint order. One polyline (..., k, 3) per constraint: base ->
+    joint for a link (sphere) or a strut (line), axis[0] -> joint -> axis[1] for an arm
+    (circle).
+    """
     joints = np.asarray(joints, dtype=float)
     lines = []
     for j, c in enumerate(scene.constraints):
@@ -108,13 +128,13 @@ def link_polylines(scene, joints):
     return lines
 
 
-def bundled_scenes():
-    """Names of the scenes shipped in config/scenes."""
+def bundled_scenes() -> list[str]:
+    """Return the names of the scenes shipped in config/scenes."""
     return sorted(p.stem for p in scene_dir().glob('*.yaml'))
 
 
-def config_dir():
-    """The package's config/ folder: the source tree's, or the installed share/ one."""
+def config_dir() -> Path:
+    """Return the package's config/ folder: the source tree's, or the installed share/ one."""
     if SOURCE_CONFIG.is_dir():
         return SOURCE_CONFIG
     try:
@@ -125,24 +145,24 @@ def config_dir():
         return Path(sys.prefix) / 'share' / 'linkage_ros' / 'config'
 
 
-def scene_dir():
-    """Folder of the bundled scenes."""
+def scene_dir() -> Path:
+    """Return the folder of the bundled scenes."""
     return config_dir() / 'scenes'
 
 
-def resolve_scene_path(name_or_path):
-    """A bundled scene name ('five_link') or a path to a YAML file."""
+def resolve_scene_path(name_or_path: str | PathLike) -> Path:
+    """Resolve a bundled scene name ('five_link') or a path to a YAML file; else SceneError."""
     path = Path(name_or_path)
     if path.suffix in ('.yaml', '.yml') or path.exists():
         return path
     candidate = scene_dir() / f'{name_or_path}.yaml'
     if candidate.exists():
         return candidate
-    raise SceneError(name_or_path, 'scene',
-                     f'no such file, and not a bundled scene (bundled: {", ".join(bundled_scenes())})')
+    raise SceneError(name_or_path, 'scene', 'no such file, and not a bundled scene '
+                     f'(bundled: {", ".join(bundled_scenes())})')
 
 
-def load_scene(name_or_path):
+def load_scene(name_or_path: str | PathLike) -> Scene:
     """Load and validate a scene file; returns a Scene in mm. Raises SceneError."""
     path = resolve_scene_path(name_or_path)
     try:
@@ -156,7 +176,7 @@ def load_scene(name_or_path):
     return parse_scene(data, source=str(path))
 
 
-def parse_scene(data, source='<scene>'):
+def parse_scene(data: Any, source: str = '<scene>') -> Scene:
     """Validate a scene mapping (as read from YAML) and return a Scene in mm."""
     check = _Checker(source)
     if not isinstance(data, dict):
@@ -193,8 +213,10 @@ _KNOWN_KEYS = {'name', 'units', 'side', 'carrier', 'constraints', 'travel', 'whe
                'description'}
 
 
-def choose_third_point(wheel_center, spin_point, carrier_points):
-    """Choose P (mm) off the spin axis so no carrier joint lies near the M-N-P plane.
+def choose_third_point(wheel_center: np.ndarray, spin_point: np.ndarray,
+                       carrier_points: Sequence[np.ndarray]) -> np.ndarray:
+    """
+    Choose P (mm) off the spin axis so no carrier joint lies near the M-N-P plane.
 
     Eqs. 5-7 locate a joint from its distances to M, N, P; the two roots merge when the
     joint is in the M-N-P plane, so the plane is turned about the spin axis to keep every
@@ -362,8 +384,8 @@ class _Checker:
         return np.array(value, dtype=float)
 
 
-def mirror(scene):
-    """The scene of the opposite wheel: every point mirrored in the x-z plane (y -> -y)."""
+def mirror(scene: Scene) -> Scene:
+    """Return the scene of the opposite wheel: every point mirrored in the x-z plane (y -> -y)."""
     flip = np.array([1.0, -1.0, 1.0])
     constraints = tuple(Constraint(name=c.name, type=c.type, base=c.base * flip,
                                    carrier=c.carrier * flip, steer=c.steer)
@@ -377,8 +399,8 @@ def mirror(scene):
                  description=scene.description, extras=scene.extras)
 
 
-def translate(scene, offset):
-    """The scene moved by offset (3,) mm: a corner placed on the vehicle."""
+def translate(scene: Scene, offset: ArrayLike) -> Scene:
+    """Return the scene moved by offset (3,) mm: a corner placed on the vehicle."""
     offset = np.asarray(offset, dtype=float)
     constraints = tuple(Constraint(name=c.name, type=c.type, base=c.base + offset,
                                    carrier=c.carrier + offset, steer=c.steer)

@@ -1,4 +1,5 @@
-"""Vehicle files: a scene per corner, placed on the vehicle, right corners by mirroring.
+"""
+Vehicle files: a scene per corner, placed on the vehicle, right corners by mirroring.
 
     name: demo_vehicle
     units: mm                    # of the offsets: mm | m
@@ -15,33 +16,43 @@ a steer: rack link, the steering rack: suspension_node then answers every named 
 joint_states message at once. Errors raise SceneError naming the vehicle file and the field.
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 import re
+from typing import TYPE_CHECKING
 
 import yaml
 
-from .scene import (load_scene, mirror, resolve_scene_path, config_dir, SceneError, translate,
+from .scene import (config_dir, load_scene, mirror, resolve_scene_path, SceneError, translate,
                     UNITS_TO_MM)
+
+if TYPE_CHECKING:
+    from os import PathLike
+
+    from .scene import Scene
 
 CORNER_NAME = re.compile(r'^[a-z][a-z0-9_]*$')   # becomes a ROS namespace
 
 
 @dataclass(frozen=True)
 class Vehicle:
+    """A vehicle file loaded: its corners' scenes placed on the vehicle, and their joints."""
+
     name: str
     source: str
-    corners: dict      # corner name -> Scene, in vehicle coordinates (mm)
-    joints: dict = field(default_factory=dict)   # corner name -> (travel_joint, rack_joint),
-                                                 # '' where not named
+    corners: dict[str, Scene]      # corner name -> Scene, in vehicle coordinates (mm)
+    # corner name -> (travel_joint, rack_joint), '' where not named
+    joints: dict[str, tuple[str, str]] = field(default_factory=dict)
 
 
-def vehicle_dir():
-    """Folder of the bundled vehicle files."""
+def vehicle_dir() -> Path:
+    """Return the folder of the bundled vehicle files."""
     return config_dir() / 'vehicles'
 
 
-def load_vehicle(name_or_path):
+def load_vehicle(name_or_path: str | PathLike) -> Vehicle:
     """Load a vehicle file (bundled name under config/vehicles, or a path)."""
     path = Path(name_or_path)
     if not path.exists() and path.suffix not in ('.yaml', '.yml'):
@@ -68,7 +79,7 @@ def load_vehicle(name_or_path):
 
 
 def _joints(path, corner, spec, scene):
-    """(travel_joint, rack_joint) of a corner's spec, '' where not given."""
+    """Return (travel_joint, rack_joint) of a corner's spec, '' where not given."""
     names = []
     for key in ('travel_joint', 'rack_joint'):
         value = spec.get(key, '')
@@ -96,7 +107,8 @@ def _corner(path, corner, spec, scale):
     if spec.get('mirror', False) is True:
         scene = mirror(scene)
     elif spec.get('mirror', False) is not False:
-        raise SceneError(path, f'{where}.mirror', f"expected true or false, got {spec['mirror']!r}")
+        raise SceneError(path, f'{where}.mirror',
+                         f"expected true or false, got {spec['mirror']!r}")
     offset = spec.get('offset', [0.0, 0.0, 0.0])
     if (not isinstance(offset, list) or len(offset) != 3
             or not all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in offset)):

@@ -1,4 +1,5 @@
-"""Rerun mirror of a run: the scene in 3D and the travel, camber and toe plots, in a .rrd file.
+"""
+Rerun mirror of a run: the scene in 3D and the travel, camber and toe plots, in a .rrd file.
 
 Shows what the scene has and nothing else: base points, one line strip per constraint (a
 link or strut: base to carrier point; an arm: axis[0], carrier point, axis[1]), the wheel
@@ -18,11 +19,14 @@ Pure geometry functions first (no rerun import needed), then one log_* function 
 concept, the blueprint, and RerunRecorder: the node's sink that logs message by message.
 """
 
+from __future__ import annotations
+
 import math
 import os
 import resource
 import struct
 import time
+from typing import Any, TYPE_CHECKING
 
 import numpy as np
 import pyarrow as pa
@@ -35,6 +39,14 @@ from ..core.geometry import carrier_points, perpendicular, unit
 from ..core.kinematics import sweep, travel_range
 from ..core.scene import link_polylines
 from ..ros.messages import float64_of, MM_PER_M, pose_of, to_cdr
+
+if TYPE_CHECKING:
+    from collections.abc import Sequence
+    from os import PathLike
+
+    from numpy.typing import ArrayLike
+
+    from ..core.scene import Scene
 
 APP_ID = 'linkage_ros'
 TIME = 'ros_time'
@@ -55,8 +67,8 @@ EYE_DISTANCE = 1.7      # times the size of the scene's bounding box
 
 # --- geometry (pure) -----------------------------------------------------------------------
 
-def rotation_from_quaternion(q):
-    """Rotation matrices (..., 3, 3) of unit quaternions (..., 4) given as (x, y, z, w)."""
+def rotation_from_quaternion(q: ArrayLike) -> np.ndarray:
+    """Return the rotation matrices (..., 3, 3) of unit quaternions (..., 4) as (x, y, z, w)."""
     q = np.asarray(q, dtype=float)
     q = q / np.linalg.norm(q, axis=-1, keepdims=True)
     x, y, z, w = np.moveaxis(q, -1, 0)
@@ -67,21 +79,28 @@ def rotation_from_quaternion(q):
     ], -2)
 
 
-def link_points(scene, joints):
-    """The link polylines (core.scene.link_polylines) of many poses as one array: joints
-    (n, m, 3) mm -> (n, sum of polyline lengths, 3), polylines one after another in
-    constraint order."""
+def link_points(scene: Scene, joints: ArrayLike) -> np.ndarray:
+    """
+    Return the link polylines (core.scene.link_polylines) of many poses as one array.
+
+    joints (n, m, 3) mm -> (n, sum of polyline lengths, 3) mm, polylines one after another
+    in constraint order.
+    """
     return np.concatenate(link_polylines(scene, joints), axis=-2)
 
 
-def strip_lengths(scene):
-    """Points per constraint polyline: 3 for an arm (circle), 2 for a link or strut."""
+def strip_lengths(scene: Scene) -> np.ndarray:
+    """Return the points per constraint polyline: 3 for an arm (circle), 2 for a link or strut."""
     return np.array([3 if c.type == 'circle' else 2 for c in scene.constraints])
 
 
-def wheel_circle(scene, segments=WHEEL_SEGMENTS):
-    """Closed circle (segments + 1, 3) mm of radius scene.wheel_radius about the spin axis,
-    relative to the wheel centre at design (carrier frame); None if the scene has no radius."""
+def wheel_circle(scene: Scene, segments: int = WHEEL_SEGMENTS) -> np.ndarray | None:
+    """
+    Return the wheel as a closed circle (segments + 1, 3) mm of radius scene.wheel_radius.
+
+    The circle is about the spin axis, relative to the wheel centre at design (carrier
+    frame); None if the scene has no radius.
+    """
     if scene.wheel_radius <= 0:
         return None
     axis = unit(scene.wheel_center - scene.spin_axis_point)
@@ -91,8 +110,8 @@ def wheel_circle(scene, segments=WHEEL_SEGMENTS):
     return scene.wheel_radius * (np.cos(angle)[:, None] * e1 + np.sin(angle)[:, None] * e2)
 
 
-def base_points(scene):
-    """(points (k, 3) mm, labels) of every body-side point of the scene."""
+def base_points(scene: Scene) -> tuple[np.ndarray, list[str]]:
+    """Return (points (k, 3) mm, labels) of every body-side point of the scene."""
     points, labels = [], []
     for c in scene.constraints:
         for i, b in enumerate(c.base):
@@ -103,8 +122,10 @@ def base_points(scene):
 
 # --- logging -------------------------------------------------------------------------------
 
-def new_recording(path, scenes, recording_id=None):
-    """A RecordingStream that writes to path (file sink, no viewer) with the blueprint.
+def new_recording(path: str | PathLike, scenes: dict[str, Scene],
+                  recording_id: str | None = None) -> rr.RecordingStream:
+    """
+    Open a RecordingStream that writes to path (file sink, no viewer) with the blueprint.
 
     scenes: {root: Scene}, root '' for the single scene or a corner name for each corner.
     """
@@ -119,18 +140,18 @@ def new_recording(path, scenes, recording_id=None):
     return rec
 
 
-def entity(root, path):
-    """Entity path of a scene's entity (path like 'suspension/links') under root ('' = none)."""
+def entity(root: str, path: str) -> str:
+    """Return the entity path of path (like 'suspension/links') under root ('' = none)."""
     return f'{root}/{path}' if root else path
 
 
-def plot(root, name):
-    """Entity path of a plot (name in SERIES): plots/name, or plots/root/name."""
+def plot(root: str, name: str) -> str:
+    """Return the entity path of the plot of name (in SERIES): plots/name or plots/root/name."""
     return f'plots/{root}/{name}' if root else f'plots/{name}'
 
 
-def eye(scenes):
-    """(position, look target) in mm of a camera that shows every scene (corner) of a list."""
+def eye(scenes: Sequence[Scene]) -> tuple[np.ndarray, np.ndarray]:
+    """Return (position, look target) in mm of a camera that shows every scene (corner) given."""
     points = np.vstack([p for scene in scenes for p in (
         base_points(scene)[0], scene.carrier_offsets + scene.wheel_center,
         scene.wheel_center - [0.0, 0.0, scene.wheel_radius],
@@ -142,7 +163,7 @@ def eye(scenes):
     return target + EYE_DISTANCE * float(np.max(high - low)) * direction, target
 
 
-def plot_ranges(scenes):
+def plot_ranges(scenes: list[Scene]) -> dict[str, tuple[float, float]]:
     """
     Frame each plot on the scenes' travel blocks.
 
@@ -156,11 +177,10 @@ def plot_ranges(scenes):
         travel += [low, high]
         camber += list(np.degrees(result.camber))
         toe += list(np.degrees(result.toe))
-
     return {'travel_mm': framed(travel), 'camber_deg': framed(camber), 'toe_deg': framed(toe)}
 
 
-def framed(values):
+def framed(values: list[float]) -> tuple[float, float]:
     """
     Frame values for a plot with at least three labelled ticks.
 
@@ -175,9 +195,12 @@ def framed(values):
     return (low - 0.1 * step, high + 0.1 * step)
 
 
-def blueprint(scenes):
-    """3D view of the scenes ({root: Scene}) beside the travel, camber and toe plots (one line
-    per corner), on the ROS time."""
+def blueprint(scenes: dict[str, Scene]) -> rrb.Blueprint:
+    """
+    Return the blueprint: a 3D view of the scenes ({root: Scene}) beside the plots.
+
+    The travel, camber and toe plots have one line per corner, on the ROS time.
+    """
     position, target = eye(list(scenes.values()))
     ranges = plot_ranges(list(scenes.values()))
     if '' in scenes:
@@ -202,9 +225,13 @@ def blueprint(scenes):
         collapse_panels=True)
 
 
-def log_scene(rec, scene, root=''):
-    """Static: axes convention, base points, carrier joints and wheel in the carrier frame,
-    under root ('' or a corner name)."""
+def log_scene(rec: rr.RecordingStream, scene: Scene, root: str = '') -> None:
+    """
+    Log what does not move, under root ('' or a corner name).
+
+    That is the axes convention, the base points, and the carrier joints and wheel in the
+    carrier frame.
+    """
     rec.log(entity(root, 'suspension'), rr.ViewCoordinates.RIGHT_HAND_Z_UP, static=True)
     points, labels = base_points(scene)
     rec.log(entity(root, 'suspension/base_points'),
@@ -230,8 +257,14 @@ def log_scene(rec, scene, root=''):
                 static=True)
 
 
-def send_poses(rec, scene, times_ns, sequence, centers, quaternions, root=''):
-    """Columns of poses: times_ns (n,), sequence (n,), centers (n, 3) mm, quaternions (n, 4)."""
+def send_poses(rec: rr.RecordingStream, scene: Scene, times_ns: Sequence[int],
+               sequence: Sequence[int], centers: ArrayLike, quaternions: ArrayLike,
+               root: str = '') -> None:
+    """
+    Send poses as columns, under root.
+
+    times_ns (n,), sequence (n,), centers (n, 3) mm, quaternions (n, 4) as (x, y, z, w).
+    """
     if len(times_ns) == 0:
         return
     indexes = _indexes(times_ns, sequence)
@@ -247,16 +280,21 @@ def send_poses(rec, scene, times_ns, sequence, centers, quaternions, root=''):
 
 
 def _strips_array(scene, points):
-    """Arrow array of the strips of link_points (n poses): built from one numpy array and
-    offsets, about 10 times faster than from a list of per-strip arrays."""
+    """
+    Return the Arrow array of the strips of link_points (n poses).
+
+    Built from one numpy array and offsets: about 10 times faster than from a list of
+    per-strip arrays.
+    """
     lengths = np.tile(strip_lengths(scene), len(points))
     offsets = np.concatenate([[0], np.cumsum(lengths)]).astype(np.int32)
     inner = Vec3DBatch(points.reshape(-1, 3).astype(np.float32)).as_arrow_array()
     return pa.ListArray.from_arrays(offsets, inner, type=LineStrip3DBatch._ARROW_DATATYPE)
 
 
-def send_values(rec, name, times_ns, sequence, values, root=''):
-    """Columns of one plot: times_ns (n,), sequence (n,), values (n,)."""
+def send_values(rec: rr.RecordingStream, name: str, times_ns: Sequence[int],
+                sequence: Sequence[int], values: ArrayLike, root: str = '') -> None:
+    """Send the columns of one plot: times_ns (n,), sequence (n,), values (n,)."""
     if len(times_ns) == 0:
         return
     rec.send_columns(plot(root, name), indexes=_indexes(times_ns, sequence),
@@ -270,8 +308,8 @@ def _indexes(times_ns, sequence):
 
 # --- the node's sink -----------------------------------------------------------------------
 
-def topic_role(topic):
-    """What a topic carries, from its last name: 'travel', 'pose', 'camber', 'toe' or None."""
+def topic_role(topic: str) -> str | None:
+    """Return what a topic carries, from its last name: 'travel', 'pose', 'camber', 'toe', None."""
     return ROLES.get(topic.rstrip('/').rsplit('/', 1)[-1])
 
 
@@ -328,7 +366,8 @@ def write_failure(path):
 
 
 class RerunRecorder:
-    """Mirrors the node's messages to a .rrd file (same calls as McapRecorder).
+    """
+    A sink that mirrors the node's messages to a .rrd file (same calls as McapRecorder).
 
     scene: the one scene drawn, fed its topics from any namespace; or corners: {corner name:
     Scene} of a vehicle, all in this one file, each corner under its name and fed the topics
@@ -340,8 +379,10 @@ class RerunRecorder:
     row by row costs about 10 times more per command.
     """
 
-    def __init__(self, path, scene=None, recording_id=None, batch_rows=BATCH_ROWS,
-                 batch_delay=BATCH_DELAY, corners=None):
+    def __init__(self, path: str | PathLike, scene: Scene | None = None,
+                 recording_id: str | None = None, batch_rows: int = BATCH_ROWS,
+                 batch_delay: float = BATCH_DELAY,
+                 corners: dict[str, Scene] | None = None) -> None:
         if (scene is None) == (not corners):
             raise ValueError('RerunRecorder: give either scene or corners, exactly one')
         self.scenes = {'': scene} if scene is not None else dict(corners)
@@ -356,9 +397,9 @@ class RerunRecorder:
         self._closed = False
         self._error = None
 
-    def record(self, topic, type_name, msg, receive_ns, publish_ns):
-        """Buffer one message (CDR bytes or an rclpy message) by its topic's role; times in
-        ns."""
+    def record(self, topic: str, type_name: str, msg: Any, receive_ns: int,
+               publish_ns: int) -> None:
+        """Buffer one message (CDR bytes or an rclpy message) by its topic's role; times in ns."""
         role, root = topic_role(topic), self._root(topic)
         if role is None or root is None or self._closed:
             return
@@ -381,14 +422,18 @@ class RerunRecorder:
             self.flush()
 
     def _root(self, topic):
-        """'' for the single scene; the corner a topic (/.../corner/name) belongs to, or None
-        if it is no corner of this recording."""
+        """
+        Return the root a topic (/.../corner/name) is drawn under.
+
+        '' for the single scene; else the corner it belongs to, or None if it is no corner of
+        this recording.
+        """
         if '' in self.scenes:
             return ''
         parts = topic.rstrip('/').rsplit('/', 2)
         return parts[1] if len(parts) == 3 and parts[1] in self.scenes else None
 
-    def flush(self):
+    def flush(self) -> None:
         """Send the buffered rows as columns."""
         for (root, role), rows in self._rows.items():
             if not rows:
@@ -406,7 +451,7 @@ class RerunRecorder:
         self._oldest = None
 
     @property
-    def error(self):
+    def error(self) -> str | None:
         """
         Say why the .rrd is no longer written, or None while it is.
 
@@ -421,7 +466,7 @@ class RerunRecorder:
                 self._error = f'the .rrd writer stopped: {write_failure(self.path)}'
         return self._error
 
-    def close(self):
+    def close(self) -> None:
         """Send what is buffered and end the file. Idempotent."""
         if self._closed:
             return
@@ -435,8 +480,8 @@ class RerunRecorder:
         if self._error:
             cut_to_whole_messages(self.path)
 
-    def __enter__(self):
+    def __enter__(self) -> RerunRecorder:
         return self
 
-    def __exit__(self, *exc):
+    def __exit__(self, *exc: object) -> None:
         self.close()

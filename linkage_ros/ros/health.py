@@ -1,4 +1,5 @@
-"""What /diagnostics says about one corner, kept the way diagnostic_updater keeps it.
+"""
+What /diagnostics says about one corner, kept the way diagnostic_updater keeps it.
 
 A Health counts the commands a corner answers and remembers the worst of the period
 (residual, condition number, Newton iterations, substeps); the node publishes its status
@@ -10,7 +11,13 @@ the last command failed, WARN if the last pose is near a singular position (Jaco
 condition number above condition_warn), OK otherwise.
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from ..core.kinematics import Solution
 
 OK, WARN, ERROR = 0, 1, 2
 
@@ -22,7 +29,7 @@ class Health:
     condition_warn: float          # condition number above which a pose is WARN
     level: int = OK
     message: str = 'no command yet'
-    last: object = None            # the Solution of the last command
+    last: Solution | None = None   # the Solution of the last command
     sent: str = ''                 # the last command as it was sent, if it failed
     fault: str = ''                # a fault outside the solver (sets ERROR while it holds)
     commands_total: int = 0        # since start
@@ -35,7 +42,7 @@ class Health:
     iterations_max: int = 0
     substeps_max: int = 0
 
-    def add(self, solution, sent=''):
+    def add(self, solution: Solution, sent: str = '') -> bool:
         """
         Count one answered command (a kinematics Solution).
 
@@ -61,13 +68,13 @@ class Health:
         self.level, self.message = self._assess()
         return not solution.success or self.level != level
 
-    def set_fault(self, fault):
-        """Hold a fault (a non-empty text) or clear it (''); True if the level changed."""
+    def set_fault(self, fault: str) -> bool:
+        """Hold a fault (a non-empty text) or clear it (''); return True if the level changed."""
         level, self.fault = self.level, fault
         self.level, self.message = self._assess()
         return self.level != level
 
-    def reset_period(self):
+    def reset_period(self) -> None:
         """Start a new period: the counts and the worst values start again."""
         self.commands = self.failures = self.iterations_max = self.substeps_max = 0
         self.residual_max = self.condition_max = 0.0
@@ -84,4 +91,3 @@ class Health:
             return WARN, (f'near a singular position: Jacobian condition number '
                           f'{solution.condition:.3g} above {self.condition_warn:.3g}')
         return OK, 'ok'
-

@@ -1,4 +1,5 @@
-"""visualization_msgs/MarkerArray of one solved position: links and joints, pure, no DDS.
+"""
+visualization_msgs/MarkerArray of one solved position: links and joints, pure, no DDS.
 
 Imported by the node only when its parameter markers is true. Two markers, in frame_id and m:
 
@@ -26,9 +27,12 @@ JOINT_COLOR = ColorRGBA(r=0.86, g=0.27, b=0.27, a=1.0)
 
 
 def link_segments(scene, joints):
-    """Line-list point pairs (k, 3) mm of the links, arms and struts for joints (m, 3) mm:
-    from each body point of a polyline (core.scene.link_polylines: its ends) to its joint
-    (the second point)."""
+    """
+    Return line-list point pairs (k, 3) mm of the links, arms and struts for joints (m, 3) mm.
+
+    A pair goes from each body point of a polyline (core.scene.link_polylines: its ends) to
+    its joint (the second point).
+    """
     pairs = []
     for line in link_polylines(scene, joints):
         pairs += [(base, line[1]) for base in (line[0], *line[2:])]
@@ -36,7 +40,7 @@ def link_segments(scene, joints):
 
 
 def marker_array(scene, solution, stamp, frame_id):
-    """The links and joints of a solved position as a MarkerArray (m, in frame_id)."""
+    """Return the links and joints of a solved position as a MarkerArray (m, in frame_id)."""
     joints = carrier_points(scene.carrier_offsets, solution.wheel_center, solution.rotation)
     size = scene.size * M_PER_MM
     links = _marker('links', 0, Marker.LINE_LIST, link_segments(scene, joints), stamp,
@@ -48,7 +52,7 @@ def marker_array(scene, solution, stamp, frame_id):
 
 
 def marker_points(marker):
-    """(k, 3) array in m of a marker's points, for its readers."""
+    """Return a marker's points as a (k, 3) array in m, for its readers."""
     return np.array([[p.x, p.y, p.z] for p in marker.points]).reshape(-1, 3)
 
 

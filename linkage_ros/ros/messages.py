@@ -1,4 +1,5 @@
-"""ROS messages of solved positions: pure functions, testable without DDS.
+"""
+ROS messages of solved positions: pure functions, testable without DDS.
 
 The core works in mm (vehicle frame: x forward, y left, z up); ROS messages are in SI, so the
 conversion happens here and only here:
@@ -22,29 +23,45 @@ A failed Solution (NaN, inf or out-of-reach command) has no pose: answer refuses
 can reach a pose topic; its Health says ERROR with the reason.
 """
 
+from __future__ import annotations
+
 import functools
 import importlib
 import struct
+from typing import Any, TYPE_CHECKING
 
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
 from std_msgs.msg import Float64MultiArray, MultiArrayDimension, MultiArrayLayout
 
 from ..core.errors import LinkageError
 
+if TYPE_CHECKING:
+    from collections.abc import Iterable
+
+    from builtin_interfaces.msg import Time
+    from sensor_msgs.msg import JointState
+
+    from .health import Health
+    from ..core.alignment import Alignment
+    from ..core.kinematics import Solution
+
 M_PER_MM = 1e-3
 MM_PER_M = 1e3
 
 
-def command_mm(data):
-    """A Float64 command in CDR bytes (wheel travel or steering rack, m) in mm, the core's
-    unit."""
+def command_mm(data: bytes) -> float:
+    """Read a Float64 command in CDR bytes (wheel travel or steering rack, m) in mm (core unit)."""
     return float64_of(data) * MM_PER_M
 
 
-def joint_travel_mm(msg, joint):
-    """Wheel travel (mm, + = bump) of a sensor_msgs/JointState: the position (m) of the joint
-    named joint. None if the message has no such joint or no position for it (not an error:
-    joint_states carries many joints, often in separate messages)."""
+def joint_travel_mm(msg: JointState, joint: str) -> float | None:
+    """
+    Return the wheel travel (mm, + = bump) of a sensor_msgs/JointState.
+
+    That is the position (m) of the joint named joint. None if the message has no such joint
+    or no position for it (not an error: joint_states carries many joints, often in separate
+    messages).
+    """
     try:
         index = list(msg.name).index(joint)
     except ValueError:
@@ -74,11 +91,15 @@ ALIGNMENT_FIELDS = {
 }
 
 
-def alignment_array(alignment):
-    """The alignment set of one solved position (linkage_ros.core.alignment.Alignment, n = 1) as a
-    Float64MultiArray in SI: data[i] is the field named by layout.dim[i].label (one dimension
-    of size 1 per field, labels and order of ALIGNMENT_FIELDS). NaN where a field is undefined
-    (no steer axis without a steer: rack link, no contact patch without a wheel radius)."""
+def alignment_array(alignment: Alignment) -> Float64MultiArray:
+    """
+    Return the alignment set of one solved position as a Float64MultiArray in SI.
+
+    alignment is a linkage_ros.core.alignment.Alignment with n = 1. data[i] is the field
+    named by layout.dim[i].label (one dimension of size 1 per field, labels and order of
+    ALIGNMENT_FIELDS). NaN where a field is undefined (no steer axis without a steer: rack
+    link, no contact patch without a wheel radius).
+    """
     data = []
     for attribute, column, factor in ALIGNMENT_FIELDS.values():
         value = getattr(alignment, attribute)[0]
@@ -88,8 +109,8 @@ def alignment_array(alignment):
     return Float64MultiArray(layout=layout, data=data)
 
 
-def alignment_values(msg):
-    """{label: value} of an alignment message, for its readers."""
+def alignment_values(msg: Float64MultiArray) -> dict[str, float]:
+    """Return {label: value} of an alignment message, for its readers."""
     return {dim.label: value for dim, value in zip(msg.layout.dim, msg.data)}
 
 
@@ -103,30 +124,37 @@ ANSWER_TYPES = {'wheel_carrier_pose': 'geometry_msgs/msg/PoseStamped',
                 'camber': 'std_msgs/msg/Float64', 'toe': 'std_msgs/msg/Float64'}
 
 
-def answer(solution, stamp, frame_id):
-    """The messages answering one solved command, as CDR bytes in publishing order (the pose
-    first: it is what a controller waits for): [(output name, bytes)] for
-    wheel_carrier_pose (geometry_msgs/PoseStamped), camber and toe (std_msgs/Float64), their
-    types in ANSWER_TYPES. stamp: (sec, nanosec) of the answer. Names are relative to the
-    corner's namespace.
+def answer(solution: Solution, stamp: tuple[int, int],
+           frame_id: str) -> list[tuple[str, bytes]]:
+    """
+    Return the messages answering one solved command, as CDR bytes in publishing order.
+
+    The pose comes first: it is what a controller waits for. Returns [(output name, bytes)]
+    for wheel_carrier_pose (geometry_msgs/PoseStamped), camber and toe (std_msgs/Float64),
+    their types in ANSWER_TYPES. stamp: (sec, nanosec) of the answer. Names are relative to
+    the corner's namespace.
     """
     _require_pose(solution)
     return [('wheel_carrier_pose', pose_stamped_cdr(solution, stamp, frame_id)),
             ('camber', float64_cdr(solution.camber)), ('toe', float64_cdr(solution.toe))]
 
 
-def pose_stamped_cdr(solution, stamp, frame_id):
-    """geometry_msgs/PoseStamped (CDR) of a solved position: the wheel centre (m, in
-    frame_id) and the carrier's rotation relative to its design position as a unit quaternion
-    (so the design position reads (0, 0, 0, 1)), at stamp (sec, nanosec)."""
+def pose_stamped_cdr(solution: Solution, stamp: tuple[int, int], frame_id: str) -> bytes:
+    """
+    Return the geometry_msgs/PoseStamped (CDR bytes) of a solved position.
+
+    The wheel centre (m, in frame_id) and the carrier's rotation relative to its design
+    position as a unit quaternion (so the design position reads (0, 0, 0, 1)), at stamp
+    (sec, nanosec).
+    """
     layout, frame = _pose_layout(frame_id)
     x, y, z = solution.wheel_center.tolist()
     return layout.pack(CDR_LE, stamp[0], stamp[1], len(frame), frame, x * M_PER_MM,
                        y * M_PER_MM, z * M_PER_MM, *solution.quaternion.tolist())
 
 
-def float64_cdr(value):
-    """std_msgs/Float64 (CDR) holding value."""
+def float64_cdr(value: float) -> bytes:
+    """Return a std_msgs/Float64 (CDR bytes) holding value."""
     return _FLOAT64.pack(CDR_LE, value)
 
 
@@ -139,14 +167,17 @@ def _pose_layout(frame_id):
     return struct.Struct(f'<4siII{len(frame)}s{pad}x7d'), frame
 
 
-def float64_of(data):
-    """The value of a std_msgs/Float64 in CDR bytes (either byte order)."""
+def float64_of(data: bytes) -> float:
+    """Read the value of a std_msgs/Float64 in CDR bytes (either byte order)."""
     return struct.unpack_from('<d' if data[1] else '>d', data, 4)[0]
 
 
-def pose_of(data):
-    """(position (x, y, z), orientation (x, y, z, w)) of a geometry_msgs/PoseStamped in CDR
-    bytes (either byte order): read in place, skipping the header's frame_id."""
+def pose_of(data: bytes) -> tuple[tuple[float, ...], tuple[float, ...]]:
+    """
+    Read (position (x, y, z), orientation (x, y, z, w)) of a geometry_msgs/PoseStamped.
+
+    From CDR bytes (either byte order), in place, skipping the header's frame_id.
+    """
     order = '<' if data[1] else '>'
     frame_length = struct.unpack_from(order + 'I', data, 12)[0]
     start = 4 + 12 + frame_length
@@ -154,22 +185,22 @@ def pose_of(data):
     return values[:3], values[3:]
 
 
-def from_cdr(type_name, data):
-    """The rclpy message of type_name ('pkg/msg/Type') held in CDR bytes."""
+def from_cdr(type_name: str, data: bytes) -> Any:
+    """Return the rclpy message of type_name ('pkg/msg/Type') held in CDR bytes."""
     from rclpy.serialization import deserialize_message
     return deserialize_message(data, message_class(type_name))
 
 
-def to_cdr(msg):
-    """CDR bytes of an rclpy message (bytes are passed through)."""
+def to_cdr(msg: Any) -> bytes:
+    """Return the CDR bytes of an rclpy message (bytes are passed through)."""
     if isinstance(msg, bytes):
         return msg
     from rclpy.serialization import serialize_message
     return serialize_message(msg)
 
 
-def message_class(type_name):
-    """The rclpy message class of 'pkg/msg/Type'; LinkageError if none is installed."""
+def message_class(type_name: str) -> type:
+    """Return the rclpy message class of 'pkg/msg/Type'; LinkageError if none is installed."""
     package, _, name = type_name.partition('/msg/')
     try:
         return getattr(importlib.import_module(f'{package}.msg'), name)
@@ -178,18 +209,21 @@ def message_class(type_name):
                            f'{package}.msg.{name} is installed') from None
 
 
-def health_status(health, name, hardware_id, method):
-    """A corner's Health (linkage_ros.ros.health) as a DiagnosticStatus; values in SI, keys name
-    their units.
+def health_status(health: Health, name: str, hardware_id: str,
+                  method: str) -> DiagnosticStatus:
+    """
+    Return a corner's Health (linkage_ros.ros.health) as a DiagnosticStatus.
+
+    Values are in SI and the keys name their units.
 
     Level and message: ERROR with the reason (a failed last command, a fault such as a
     recording that stopped), WARN near a singular position, OK. Keys about the period since
     the last periodic report: commands, failures, residual_max_m (largest constraint
     violation), condition_max (Jacobian), iterations_max (Newton, last step of a command),
     substeps_max (continuation steps for one command). Since start: commands_total,
-    failures_total. About the last command: travel_m (commanded),
-    rack_m (+ = to the left; 0 without a steer: rack link), reachable_min_m, reachable_max_m
-    (travel range explored so far). And method.
+    failures_total. About the last command: travel_m (commanded), rack_m (+ = to the left;
+    0 without a steer: rack link), reachable_min_m, reachable_max_m (travel range explored
+    so far). And method.
     """
     last = health.last
     travel, rack, (low, high) = ((last.travel, last.rack, last.reachable) if last is not None
@@ -214,21 +248,21 @@ def health_status(health, name, hardware_id, method):
                             values=[KeyValue(key=k, value=v) for k, v in values.items()])
 
 
-def diagnostics(statuses, stamp):
-    """A DiagnosticArray of DiagnosticStatus messages, stamped."""
+def diagnostics(statuses: Iterable[DiagnosticStatus], stamp: Time) -> DiagnosticArray:
+    """Return a DiagnosticArray of DiagnosticStatus messages, stamped."""
     msg = DiagnosticArray(status=list(statuses))
     msg.header.stamp = stamp
     return msg
 
 
-def type_name(message):
-    """ROS type name of a message class or instance, e.g. 'geometry_msgs/msg/PoseStamped'."""
+def type_name(message: object) -> str:
+    """Return the ROS type name of a message class or instance: 'geometry_msgs/msg/PoseStamped'."""
     kind = message if isinstance(message, type) else type(message)
     return f"{kind.__module__.split('.')[0]}/msg/{kind.__name__}"
 
 
-def status_values(status):
-    """{key: value} of a DiagnosticStatus, for readers of the diagnostics."""
+def status_values(status: DiagnosticStatus) -> dict[str, str]:
+    """Return {key: value} of a DiagnosticStatus, for readers of the diagnostics."""
     return {kv.key: kv.value for kv in status.values}
 
 
@@ -238,7 +272,7 @@ def _number(value):
 
 
 def _as_float(value):
-    """A commanded travel as a float: what a bad command sent may not be a number."""
+    """Return a commanded travel as a float (NaN if not a number: a bad command may not be)."""
     try:
         return float(value)
     except (TypeError, ValueError):

@@ -1,4 +1,5 @@
-"""suspension_node: wheel travel in; wheel-carrier pose, camber, toe and solver health out.
+"""
+suspension_node: wheel travel in; wheel-carrier pose, camber, toe and solver health out.
 
 A thin adapter over the kinematics core (linkage_ros.core.kinematics.Continuation): each command
 is solved from the last good pose (large jumps walked in substeps of max_step_mm), turned
@@ -79,7 +80,7 @@ OUTPUTS = {'wheel_carrier_pose': PoseStamped, 'camber': Float64, 'toe': Float64}
 # name: (default, description). Numbers accept integers too (a YAML 5 means 5.0).
 PARAMETERS = {
     'scene': ('five_link', 'bundled scene name or path to a scene YAML file'),
-    'frame_id': ('base_link', 'frame of wheel_carrier_pose (the scene\'s vehicle frame)'),
+    'frame_id': ('base_link', "frame of wheel_carrier_pose (the scene's vehicle frame)"),
     'method': ('fast', 'solver: fast (pose Newton) or paper (Gauss-Jordan, Alexandru 2018)'),
     'max_step_mm': (5.0, 'longest continuation substep, mm (> 0)'),
     'condition_warn': (1e4, 'Jacobian condition number above which diagnostics say WARN'),
@@ -96,8 +97,11 @@ PARAMETERS = {
 
 
 def corner_topics(scene, params, prefix=''):
-    """Relative names of a corner's topics (prefix: '' or 'front_left/'), /diagnostics and
-    the vehicle's joint_states apart."""
+    """
+    Return the relative names of a corner's topics (prefix: '' or 'front_left/').
+
+    /diagnostics and the vehicle's joint_states are not among them.
+    """
     names = ['wheel_travel', *OUTPUTS]
     if params['travel_joint']:
         names.append('joint_states')
@@ -108,14 +112,17 @@ def corner_topics(scene, params, prefix=''):
 
 
 def steered(scene):
-    """True if the scene has a steer: rack link (then it takes steering_rack commands)."""
+    """Tell whether the scene has a steer: rack link (then it takes steering_rack commands)."""
     return any(c.steer == 'rack' for c in scene.constraints)
 
 
 def load_corners(params):
-    """{topic prefix: (Scene, travel joint, rack joint)}: the one scene under no prefix, or
-    every corner of the vehicle parameter under 'corner_name/' with the joint_states joints
-    its vehicle file names ('' where none)."""
+    """
+    Load the scenes the parameters name: {topic prefix: (Scene, travel joint, rack joint)}.
+
+    The one scene under no prefix, or every corner of the vehicle parameter under
+    'corner_name/' with the joint_states joints its vehicle file names ('' where none).
+    """
     if not params['vehicle']:
         return {'': (load_scene(params['scene']), '', '')}
     from ..core.vehicle import load_vehicle
@@ -125,9 +132,12 @@ def load_corners(params):
 
 
 class Corner:
-    """One wheel: its scene, its Continuation (solved independently of the other corners),
-    its Health, its input subscriptions and output publishers, topics under prefix ('' or
-    'front_left/')."""
+    """
+    One wheel of the node.
+
+    Its scene, its Continuation (solved independently of the other corners), its Health, its
+    input subscriptions and output publishers, topics under prefix ('' or 'front_left/').
+    """
 
     def __init__(self, node, scene, params, prefix='', travel_joint='', rack_joint=''):
         self.node, self.scene = node, scene
@@ -212,13 +222,19 @@ class Corner:
 
 
 class SuspensionNode(Node):
-    """Wheel travel (m) in, wheel-carrier pose (m), camber and toe (rad), diagnostics out:
-    one scene, or every corner of a vehicle (parameter vehicle), each a Corner."""
+    """
+    Wheel travel (m) in; wheel-carrier pose (m), camber and toe (rad), diagnostics out.
+
+    One scene, or every corner of a vehicle (parameter vehicle), each a Corner.
+    """
 
     def __init__(self, sinks=(), **kwargs):
-        """sinks: extra objects with record(topic, type_name, cdr_bytes, receive_ns,
-        publish_ns) and close(), after those the parameters turn on. kwargs go to rclpy
-        Node."""
+        """
+        Declare the parameters, load the scenes and open the sinks, topics and timer.
+
+        sinks: extra objects with record(topic, type_name, cdr_bytes, receive_ns, publish_ns)
+        and close(), after those the parameters turn on. kwargs go to rclpy Node.
+        """
         super().__init__(NODE_NAME, **kwargs)
         self.sinks, self.faults, self._bad_said = [], [], {}
         self.clock = self.get_clock()
@@ -248,9 +264,12 @@ class SuspensionNode(Node):
                 f'frame {self.frame_id}; waiting on {corner.travel_sub.topic_name} (m)')
 
     def received(self, subscription, msg, stamp=None):
-        """Record an input that came on subscription (if recording) and return the stamp
-        (sec, nanosec) of its answer: stamp (a builtin_interfaces/Time), or the node clock's
-        time of receipt."""
+        """
+        Record an input that came on subscription (if recording); return its answer's stamp.
+
+        The stamp (sec, nanosec) is stamp's (a builtin_interfaces/Time), or the node clock's
+        time of receipt.
+        """
         if stamp is None or self.sinks:
             now = self.clock.now()
             if self.sinks:   # the input's publish time is unknown: EventsExecutor gives no info
@@ -261,7 +280,7 @@ class SuspensionNode(Node):
         return stamp.sec, stamp.nanosec
 
     def on_vehicle_joint_states(self, msg):
-        """One JointState for the whole vehicle: answer every corner whose joints it names."""
+        """Answer every corner whose joints a JointState (for the whole vehicle) names."""
         stamp = self.received(self.joint_states_sub, msg, msg.header.stamp)
         for corner in self.joint_corners:
             travel_mm = messages.joint_travel_mm(msg, corner.travel_joint)
@@ -358,8 +377,11 @@ class SuspensionNode(Node):
         super().destroy_node()
 
     def _offered_qos(self, corners, params):
-        """{resolved topic: QoS} of every topic, for the recording's metadata; corners as
-        load_corners gives them."""
+        """
+        Return {resolved topic: QoS} of every topic, for the recording's metadata.
+
+        corners as load_corners gives them.
+        """
         names = ['/diagnostics']
         for prefix, (scene, *joints) in corners.items():
             names += corner_topics(scene, params, prefix)
@@ -398,7 +420,7 @@ def joints_sent(topic, msg, joints):
 
 
 def positive_number(name, value):
-    """value as a float if it is a finite number > 0, else ValueError naming the parameter."""
+    """Return value as a float if finite and > 0, else raise a ValueError naming the parameter."""
     if isinstance(value, bool) or not isinstance(value, (int, float)):
         raise LinkageError(name, f'expected a number, got {value!r}')
     if not (math.isfinite(value) and value > 0):
@@ -426,8 +448,8 @@ def open_sinks(params, scenes, qos):
                 from ..record.bag import McapRecorder
             except ImportError as exc:
                 raise LinkageError('record_mcap', missing_package(exc, 'record')) from None
-            about = {k: str(params[k]) for k in ('scene', 'vehicle', 'method', 'frame_id',
-                                                'max_step_mm')}
+            about = {k: str(params[k])
+                     for k in ('scene', 'vehicle', 'method', 'frame_id', 'max_step_mm')}
             sinks.append(McapRecorder(params['record_mcap'], qos=qos, custom_data=about))
         if params['rerun_rrd']:
             try:
@@ -485,7 +507,7 @@ exit status: 0 stopped by Ctrl-C (SIGINT) or SIGTERM, recordings closed;
 """
 
 
-def help_text():
+def help_text() -> str:
     """Return the text of suspension_node --help: the parameters with their defaults."""
     lines = []
     for name, (default, text) in PARAMETERS.items():
@@ -494,8 +516,8 @@ def help_text():
     return HELP.format(parameters='\n'.join(lines))
 
 
-def main(args=None):
-    """Run suspension_node until SIGINT or SIGTERM; return the exit status."""
+def main(args: list[str] | None = None) -> int:
+    """Run suspension_node: 0 when stopped by SIGINT or SIGTERM, 2 for a mistake."""
     argv = sys.argv[1:] if args is None else list(args)
     own = argv[:argv.index('--ros-args')] if '--ros-args' in argv else argv
     if {'-h', '--help'} & set(own):          # before ROS starts

@@ -1,4 +1,5 @@
-"""pytest plugin for launch-free tests of suspension_node: real rclpy and DDS, no launch.
+"""
+pytest plugin for launch-free tests of suspension_node: real rclpy and DDS, no launch.
 
 Registered as the pytest11 entry point `linkage_ros`, so an environment with linkage_ros
 installed has these fixtures in every pytest run; they cost nothing unless a test asks for
@@ -49,21 +50,24 @@ _DOMAIN_COUNTER = itertools.count()
 
 
 def _fixture(*args, **kwargs):
-    """pytest.fixture, or a decorator that leaves the function alone without pytest."""
+    """Return pytest.fixture, or without pytest a decorator that leaves the function alone."""
     if pytest is not None:
         return pytest.fixture(*args, **kwargs)
     return args[0] if args and callable(args[0]) else (lambda function: function)
 
 
 def free_domain_id():
-    """A ROS domain id in 1..101, different for each call of this process for 101 calls and
-    spread by the pid so that test runs started side by side rarely share one (0 is left to
-    whatever runs on the machine by default)."""
+    """
+    Return a ROS domain id in 1..101, different for each call of this process for 101 calls.
+
+    The ids are spread by the pid so that test runs started side by side rarely share one (0
+    is left to whatever runs on the machine by default).
+    """
     return 1 + (os.getpid() * 37 + next(_DOMAIN_COUNTER)) % 101
 
 
 def init_context(domain_id, discovery_range='OFF'):
-    """A new initialised rclpy Context on domain_id; discovery range read by rcl at init."""
+    """Return a new rclpy Context initialised on domain_id; rcl reads the discovery range then."""
     import rclpy
     previous = os.environ.get('ROS_AUTOMATIC_DISCOVERY_RANGE')
     os.environ['ROS_AUTOMATIC_DISCOVERY_RANGE'] = discovery_range
@@ -93,17 +97,18 @@ def spin_until(executor, predicate, timeout=WAIT):
 
 
 def node_script(name='suspension_node'):
-    """Path of a console script of this environment (/tmp/venv/bin, .venv/bin in CI)."""
+    """Return the path of a console script of this environment (/tmp/venv/bin, .venv/bin in CI)."""
     return Path(sys.executable).parent / name
 
 
 def stamp_ns(stamp):
-    """builtin_interfaces/Time as integer nanoseconds."""
+    """Return a builtin_interfaces/Time as integer nanoseconds."""
     return stamp.sec * 1_000_000_000 + stamp.nanosec
 
 
 class Answer(NamedTuple):
-    """What suspension_node sent back for one command.
+    """
+    What suspension_node sent back for one command.
 
     pose: PoseStamped (wheel centre in m, carrier orientation relative to design), camber and
     toe: float rad; all None if the command could not be solved. diagnostics: for a command
@@ -119,14 +124,15 @@ class Answer(NamedTuple):
 
 
 def _same_travel(text, travel_m):
-    """A diagnostics travel_m value (text) names the command travel_m (m)."""
+    """Tell whether a diagnostics travel_m value (text) names the command travel_m (m)."""
     value = float(text)
     return value == travel_m or math.isnan(value) and math.isnan(travel_m) or math.isclose(
         value, travel_m, rel_tol=1e-8, abs_tol=1e-12)
 
 
 class Probe:
-    """A test node: publishes wheel_travel (m) and keeps every output of suspension_node.
+    """
+    A test node: publishes wheel_travel (m) and keeps every output of suspension_node.
 
     poses (PoseStamped), cambers and toes (float rad), statuses (DiagnosticStatus of the
     node, from /diagnostics) and status_stamps (their DiagnosticArray stamps, ns), in arrival
@@ -170,7 +176,7 @@ class Probe:
             self.travel.publish(self.travel.msg_type(data=float(travel)))
 
     def matched(self):
-        """True once the node's subscription and its four publishers are matched here."""
+        """Tell whether the node's subscription and its four publishers are matched here yet."""
         return (self.travel.get_subscription_count() > 0
                 and all(s.get_publisher_count() > 0 for s in self._subscriptions))
 
@@ -178,8 +184,11 @@ class Probe:
         return bool(self.poses and self.cambers and self.toes)
 
     def answered(self, expected):
-        """True once the answers to the commands of expected (a core Sweep) have all arrived:
-        at least that many of each output, the last ones those of the last command."""
+        """
+        Tell whether the answers to the commands of expected (a core Sweep) have all arrived.
+
+        That is at least that many of each output, the last ones those of the last command.
+        """
         n = len(expected.travel)
         if min(len(self.poses), len(self.cambers), len(self.toes)) < n:
             return False
@@ -189,8 +198,11 @@ class Probe:
                 and math.isclose(self.toes[-1], expected.toe[-1], abs_tol=1e-12))
 
     def errors_about(self, travel_m, since=0):
-        """ERROR statuses (from index since) about a command of travel_m (m): what the node
-        says at once about a command it cannot solve."""
+        """
+        Return the ERROR statuses (from index since) about a command of travel_m (m).
+
+        They are what the node says at once about a command it cannot solve.
+        """
         from diagnostic_msgs.msg import DiagnosticStatus
 
         from .messages import status_values
@@ -198,9 +210,11 @@ class Probe:
                 and _same_travel(status_values(s)['travel_m'], travel_m)]
 
     def ask(self, travel_m, timeout=5.0):
-        """Send one travel (m) and wait (at most timeout s) for its Answer: pose, camber and
-        toe for a solved command, the ERROR status for one that cannot be solved. Raises
-        TimeoutError if neither arrives in time.
+        """
+        Send one travel (m) and wait (at most timeout s) for its Answer.
+
+        The Answer holds pose, camber and toe for a solved command, the ERROR status for one
+        that cannot be solved. Raises TimeoutError if neither arrives in time.
         """
         before = [len(self.poses), len(self.cambers), len(self.toes), len(self.statuses)]
         deadline = time.monotonic() + timeout
@@ -223,7 +237,8 @@ class Probe:
 
 
 def connect(executor, probe, timeout=20.0):
-    """Wait until a node in another process answers on every topic.
+    """
+    Wait until a node in another process answers on every topic.
 
     Matching seen from the probe's side does not prove the node's writers have matched the
     probe's readers yet, so travel 0 is sent every 0.5 s until each output has arrived once.
@@ -255,19 +270,23 @@ class NodeProcess:
                                       text=True, preexec_fn=limit if file_size else None)
 
     def stop(self, sig=signal.SIGINT, timeout=WAIT):
-        """Send sig, wait for the exit; returns (exit code, stdout, stderr)."""
+        """Send sig and wait for the exit; return (exit code, stdout, stderr)."""
         if self.popen.poll() is None:
             self.popen.send_signal(sig)
         return self.finish(timeout)
 
     def finish(self, timeout=WAIT):
-        """Wait for the process to end by itself; returns (exit code, stdout, stderr)."""
+        """Wait for the process to end by itself; return (exit code, stdout, stderr)."""
         out, err = self.popen.communicate(timeout=timeout)
         return self.popen.returncode, out, err
 
     def close(self):
-        """End the process if a test left it running: SIGINT first, so that Fast DDS removes
-        its shared-memory segments (a SIGKILL leaves them in /dev/shm), SIGKILL if stuck."""
+        """
+        End the process if a test left it running.
+
+        SIGINT first, so that Fast DDS removes its shared-memory segments (a SIGKILL leaves
+        them in /dev/shm), SIGKILL if stuck.
+        """
         if self.popen.poll() is None:
             try:
                 self.stop(signal.SIGINT)
@@ -277,8 +296,11 @@ class NodeProcess:
 
 
 def start_suspension_node(context, executor, scene='five_link', sinks=(), **params):
-    """A SuspensionNode in context, added to executor; params are its ROS parameters by name
-    (e.g. method='paper', use_sim_time=True)."""
+    """
+    Start a SuspensionNode in context and add it to executor.
+
+    params are its ROS parameters by name (e.g. method='paper', use_sim_time=True).
+    """
     from rclpy.parameter import Parameter
 
     from .node import SuspensionNode
@@ -303,7 +325,7 @@ def _executor(context):
 
 @_fixture(scope='session')
 def ros_environment(tmp_path_factory):
-    """rcl log files into a temporary folder; discovery kept to this machine."""
+    """Send rcl log files into a temporary folder and keep discovery to this machine."""
     saved = {k: os.environ.get(k) for k in ('ROS_LOG_DIR', 'ROS_AUTOMATIC_DISCOVERY_RANGE')}
     os.environ['ROS_LOG_DIR'] = str(tmp_path_factory.mktemp('ros_log'))
     os.environ.setdefault('ROS_AUTOMATIC_DISCOVERY_RANGE', 'LOCALHOST')
@@ -317,12 +339,13 @@ def ros_environment(tmp_path_factory):
 
 @_fixture
 def domain_id():
+    """Give the test its own ROS domain id (1..101)."""
     return free_domain_id()
 
 
 @_fixture
 def ros_context(ros_environment, domain_id):
-    """A private Context with discovery OFF: only nodes of this Context see each other."""
+    """Give a private Context with discovery OFF: only nodes of this Context see each other."""
     context = init_context(domain_id, 'OFF')
     yield context
     rclpy_try_shutdown(context)
@@ -330,7 +353,7 @@ def ros_context(ros_environment, domain_id):
 
 @_fixture
 def localhost_context(ros_environment, domain_id):
-    """A private Context that discovers the other processes of this machine on domain_id."""
+    """Give a private Context that discovers the other processes of this machine on domain_id."""
     context = init_context(domain_id, 'LOCALHOST')
     yield context
     rclpy_try_shutdown(context)
@@ -338,24 +361,30 @@ def localhost_context(ros_environment, domain_id):
 
 @_fixture
 def executor(ros_context):
-    """EventsExecutor of ros_context; nodes added to it are destroyed at teardown."""
+    """Give the EventsExecutor of ros_context; nodes added to it are destroyed at teardown."""
     yield from _executor(ros_context)
 
 
 @_fixture
 def localhost_executor(localhost_context):
+    """Give the EventsExecutor of localhost_context; its nodes are destroyed at teardown."""
     yield from _executor(localhost_context)
 
 
 @_fixture
 def probe(ros_context, executor):
+    """Give a Probe node in ros_context: it publishes wheel_travel and keeps every output."""
     return Probe(ros_context, executor)
 
 
 @_fixture
 def suspension_node(ros_context, executor):
-    """Factory: suspension_node(scene='five_link', sinks=(), **params) -> SuspensionNode
-    running in the test's Context and executor (destroyed at teardown)."""
+    """
+    Give a factory of SuspensionNodes running in the test's Context and executor.
+
+    suspension_node(scene='five_link', sinks=(), **params) -> SuspensionNode; the nodes are
+    destroyed at teardown.
+    """
     def start(scene='five_link', sinks=(), **params):
         return start_suspension_node(ros_context, executor, scene, sinks, **params)
     return start
@@ -363,15 +392,24 @@ def suspension_node(ros_context, executor):
 
 @_fixture
 def send_travel(probe):
-    """send_travel(travel_m, timeout=5.0) -> Answer(pose, camber, toe, diagnostics) from the
-    suspension_node of this test; TimeoutError if no answer comes within timeout s."""
+    """
+    Give a function that sends one travel to the suspension_node of this test.
+
+    send_travel(travel_m, timeout=5.0) -> Answer(pose, camber, toe, diagnostics);
+    TimeoutError if no answer comes within timeout s.
+    """
     return probe.ask
 
 
 @_fixture
 def node_process(ros_environment, domain_id):
-    """Factory: node_process(*ros_args, file_size=None) starts suspension_node on the test's
-    domain id (file_size: a limit in bytes on the files it writes, as ulimit -f sets)."""
+    """
+    Give a factory that starts suspension_node in a subprocess on the test's domain id.
+
+    Call it with the node's ROS arguments (*ros_args) and optionally script= and file_size=
+    (a limit in bytes on the files it writes, as ulimit -f sets); processes still running at
+    teardown are ended.
+    """
     started = []
 
     def start(*ros_args, script='suspension_node', file_size=None):

@@ -8,13 +8,14 @@ linkage-plot: the pictures of the README, as PNG files (needs matplotlib: the pl
 Default scenes: five_link, double_wishbone, macpherson, in that order (one colour each).
 """
 
+import argparse
 import csv
 import sys
 
 import numpy as np
 
-from ..core.kinematics import sweep, travel_range
 from ..cli import EXIT_STATUS, fail, missing_package, Parser, writable_file
+from ..core.kinematics import sweep, travel_range
 from ..core.scene import load_scene, SceneError
 
 
@@ -35,7 +36,8 @@ def plot_camber_toe(scenes, path):
             rows = np.array(reference['rows'], dtype=float)
             ax_camber.plot(rows[:, 0], rows[:, 1], 'k.', ms=5)
             ax_toe.plot(rows[:, 0], rows[:, 2], 'k.', ms=5)
-    for ax, what in ((ax_camber, 'camber_deg (+ = top outboard)'), (ax_toe, 'toe_deg (+ = toe-in)')):
+    for ax, what in ((ax_camber, 'camber_deg (+ = top outboard)'),
+                     (ax_toe, 'toe_deg (+ = toe-in)')):
         ax.set_xlabel('travel_mm (+ = bump)')
         ax.set_ylabel(what)
         ax.grid(True, alpha=0.3)
@@ -50,9 +52,10 @@ def plot_camber_toe(scenes, path):
 ALIGNMENT_PANELS = [
     ('camber_gain', 'camber gain, deg/mm', True), ('bump_steer', 'bump steer, deg/mm', True),
     ('caster', 'caster, deg', True), ('kingpin_inclination', 'kingpin inclination, deg', True),
-    ('scrub_radius', 'scrub radius, mm', False), ('mechanical_trail', 'mechanical trail, mm', False),
-    ('track_change', 'track change, mm', False), ('lateral_shift', 'wheel-centre lateral shift, mm',
-                                                    False)]
+    ('scrub_radius', 'scrub radius, mm', False),
+    ('mechanical_trail', 'mechanical trail, mm', False),
+    ('track_change', 'track change, mm', False),
+    ('lateral_shift', 'wheel-centre lateral shift, mm', False)]
 
 
 def plot_alignment(scenes, path):
@@ -84,7 +87,7 @@ def plot_alignment(scenes, path):
     plt.close(fig)
 
 
-def read_ladder(path):
+def read_ladder(path: str) -> dict[str, list[tuple[float, float, float]]]:
     """
     Read the rate table of a linkage-node-bench output (its CSV tables).
 
@@ -108,7 +111,7 @@ def read_ladder(path):
     return ladder
 
 
-def plot_latency(ladder, path):
+def plot_latency(ladder: dict[str, list[tuple[float, float, float]]], path: str) -> None:
     """Write median and p99 latency (ms) against command rate (Hz), node and echo, as PNG."""
     import matplotlib
     matplotlib.use('Agg')
@@ -139,7 +142,7 @@ def plot_latency(ladder, path):
 DEFAULT_SCENES = ['five_link', 'double_wishbone', 'macpherson']
 
 
-def parse_args(argv):
+def parse_args(argv: list[str] | None) -> argparse.Namespace:
     parser = Parser('linkage-plot', __doc__, 'examples:\n'
                     '  linkage-plot camber-toe bags/plots/camber_toe.png\n'
                     '  linkage-plot latency doc/bench/node_bench.csv bags/plots/node_latency.png'
@@ -151,8 +154,8 @@ def parse_args(argv):
     return parser.parse_args(argv)
 
 
-def main(argv=None):
-    """Run linkage-plot; return the exit status."""
+def main(argv: list[str] | None = None) -> int:
+    """Write the picture named on the command line: 0 when written, 2 for a mistake."""
     args = parse_args(argv)
     prog = 'linkage-plot'
     if args.what == 'latency':
@@ -175,7 +178,7 @@ def main(argv=None):
     if problem:
         return fail(prog, problem)
     try:
-        import matplotlib  # noqa: F401 (only to name it if it is missing)
+        import matplotlib  # noqa: F401 (imported to name it if it is missing)
     except ImportError as exc:
         return fail(prog, missing_package(exc, 'plot'))
     if args.what == 'latency':

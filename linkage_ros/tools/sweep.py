@@ -32,8 +32,12 @@ ALIGNMENT_COLUMNS = [
 
 
 def table(result, scene=None, with_rack=False):
-    """The table (n, columns) of a Sweep in mm and deg: COLUMNS, then rack_mm if with_rack,
-    then the alignment columns if a scene is given. Built column-wise: linear in n."""
+    """
+    Return the values of a Sweep in mm and deg as an (n, columns) array.
+
+    The columns are COLUMNS, then rack_mm if with_rack, then the alignment columns if a scene
+    is given. Built column-wise: linear in n.
+    """
     n = len(result.travel)
     columns = [result.travel, np.degrees(result.camber), np.degrees(result.toe),
                result.wheel_center, result.quaternion, result.residual, result.iterations]
@@ -45,7 +49,7 @@ def table(result, scene=None, with_rack=False):
 
 
 def alignment_table(scene, result):
-    """The ALIGNMENT_COLUMNS of a Sweep, shape (n, len(ALIGNMENT_COLUMNS))."""
+    """Return the ALIGNMENT_COLUMNS of a Sweep, shape (n, len(ALIGNMENT_COLUMNS))."""
     from ..core.alignment import alignment
     from ..core.mechanism import compile_scene
     a = alignment(scene, compile_scene(scene), result.wheel_center, result.rotation,
@@ -59,8 +63,11 @@ def alignment_table(scene, result):
 
 
 def write_csv(results, stream, scene=None, with_rack=False):
-    """Write Sweeps (one or several, e.g. a rack grid) as one CSV table, values to 10
-    significant digits."""
+    """
+    Write Sweeps (one or several, e.g. a rack grid) as one CSV table.
+
+    Values are written to 10 significant digits.
+    """
     header = COLUMNS + (RACK_COLUMNS if with_rack else []) + (
         ALIGNMENT_COLUMNS if scene is not None else [])
     row_format = ','.join(['%.10g'] * len(header)) + '\n'
@@ -114,8 +121,12 @@ def parse_args(argv):
 
 
 def benchmark(scene, travels, rounds):
-    """Median time per solved position (us) of each way of solving, timed side by side:
-    paper and fast sweeps, and the fast method one command at a time (the node's path)."""
+    """
+    Return the median time per solved position (us) of each way of solving.
+
+    Timed side by side: paper and fast sweeps, and the fast method one command at a time (the
+    node's path).
+    """
     def one_by_one():
         cont = Continuation(scene)
         for travel in travels:
@@ -143,8 +154,8 @@ def benchmark(scene, travels, rounds):
               f'{np.median(values) / fast:>15.1f}')
 
 
-def main(argv=None):
-    """Run linkage-sweep; return the exit status."""
+def main(argv: list[str] | None = None) -> int:
+    """Run linkage-sweep: 0 when done, 1 if a travel is out of reach, 2 for a mistake."""
     args = parse_args(argv)
     try:
         scene = load_scene(args.scene)
@@ -180,8 +191,8 @@ def main(argv=None):
             print(f'linkage-sweep: rack {rack:g} mm ({i + 1}/{len(racks)})', file=sys.stderr)
         if not results[-1].success:
             break
-    table = dict(scene=scene if args.alignment else None,
-                 with_rack=args.rack is not None or args.grid is not None)
+    table = {'scene': scene if args.alignment else None,
+             'with_rack': args.rack is not None or args.grid is not None}
     if args.csv:
         with open(args.csv, 'w') as stream:
             write_csv(results, stream, **table)
