@@ -247,8 +247,9 @@ def test_a_topic_keeps_its_first_type(tmp_path):
 
 
 def chunk_ends(path):
-    """(end offset, messages up to and including this chunk) of each chunk: offsets from the
-    summary's chunk indexes, counts from the chunks themselves (mcap's stream reader)."""
+    """(start offset, end offset, messages up to and including this chunk) of each chunk:
+    offsets from the summary's chunk indexes, counts from the chunks themselves (mcap's
+    stream reader)."""
     with open(path, 'rb') as stream:
         chunks = sorted(make_reader(stream).get_summary().chunk_indexes,
                         key=lambda c: c.chunk_start_offset)
@@ -257,7 +258,8 @@ def chunk_ends(path):
                   for record in StreamReader(stream, emit_chunks=True).records
                   if type(record).__name__ == 'Chunk']
     totals = [sum(counts[:i + 1]) for i in range(len(counts))]
-    return [(c.chunk_start_offset + c.chunk_length, n) for c, n in zip(chunks, totals)]
+    return [(c.chunk_start_offset, c.chunk_start_offset + c.chunk_length, n)
+            for c, n in zip(chunks, totals)]
 
 
 def test_cut_file_yields_every_message_of_the_chunks_before_the_cut(tmp_path):
@@ -267,11 +269,16 @@ def test_cut_file_yields_every_message_of_the_chunks_before_the_cut(tmp_path):
     assert len(ends) > 5
     data = path.read_bytes()
     cut = tmp_path / 'cut.mcap'
-    for end, count in ends[1:4]:
-        for offset in (end, end + 1, end + 40):   # cut after a chunk or in its message index
+    for start, end, count in ends[1:4]:
+        # Cut after a chunk, in the header of its first message index, inside the next chunk.
+        for offset, problem in (
+                (end, f'cut at byte {end} (the file ends after the chunk record at byte '
+                 f'{start}, before the footer)'),
+                (end + 5, f'cut at byte {end + 5} (the file ends inside the message index '
+                 f'record at byte {end})')):
             cut.write_bytes(data[:offset])
             bag = read_bag(cut)
-            assert bag.truncated and 'ends in the middle' in bag.problem
+            assert bag.truncated and bag.cut and bag.problem == problem
             assert [(m.topic, m.log_time) for m in bag.messages] == [
                 (t, time) for t, time, _ in expected[:count]]
 
