@@ -601,7 +601,8 @@ class _Scan:
                        f'{summary_start}')
         elif footer.summary_start and footer.summary_crc:
             data = self._read_at(summary_start, offset + 9 + 16 - summary_start)
-            if zlib.crc32(data) != footer.summary_crc:
+            if zlib.crc32(data) != footer.summary_crc:   # says it all: no detail before
+                self.damage = [d for d in self.damage if d.kind != 'summary']
                 self._note('summary', summary_start, 'bad summary: CRC mismatch in the summary '
                            f'at byte {summary_start} (checked by the footer at byte {offset})')
         end = offset + 9 + 20

@@ -333,8 +333,8 @@ def _finite(text):
 def parse_args(argv):
     parser = cli.Parser(prog=PROG, description=__doc__.split('\n')[0],
                         formatter_class=argparse.RawDescriptionHelpFormatter,
-                        epilog=EXAMPLES + '\n' + cli.EXIT_STATUSES + '\n\n' +
-                        '\n'.join(__doc__.split('\n')[1:]))
+                        epilog='\n'.join(__doc__.split('\n')[1:]) + '\n' + EXAMPLES +
+                        '\n' + cli.EXIT_STATUSES)
     parser.add_argument('bag', nargs='?', metavar='BAG',
                         help='recorded run: an .mcap file, or a rosbag2 bag folder holding one')
     parser.add_argument('-o', '--output', metavar='OUT',
