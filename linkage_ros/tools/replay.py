@@ -327,7 +327,14 @@ def _number(minimum, strict):
 
 
 def _finite(text):
-    return _number(-math.inf, False)(text)
+    """argparse type: a finite number."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f'expected a number, got {text!r}') from None
+    if not math.isfinite(value):
+        raise argparse.ArgumentTypeError(f'must be a finite number, got {text}')
+    return value
 
 
 def parse_args(argv):
