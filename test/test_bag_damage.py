@@ -1,4 +1,5 @@
-"""Damaged recordings: each kind of damage made with real corrupt bytes, named exactly.
+"""
+Damaged recordings: each kind of damage made with real corrupt bytes, named exactly.
 
 The bag's layout (chunk offsets, which messages each chunk holds) and what linkage-replay
 --copy recovers are read with mcap's own reader and with rosbags' AnyReader, never with
@@ -8,14 +9,13 @@ project code.
 import struct
 import tracemalloc
 
+from linkage_ros.record.bag import McapRecorder, read_bag, RecordingError
+from linkage_ros.tools import replay, rerun_convert
 from mcap.reader import make_reader
 from mcap.stream_reader import breakup_chunk, StreamReader
 import pytest
 from rosbags.highlevel import AnyReader
 from std_msgs.msg import Float64
-
-from linkage_ros.record.bag import McapRecorder, read_bag, RecordingError
-from linkage_ros.tools import replay, rerun_convert
 
 T0 = 1_700_000_000_000_000_000
 COMMANDS = 120
@@ -33,8 +33,12 @@ def write_bag(path):
 
 
 class Layout:
-    """Where things are in an intact bag, by mcap's reader: chunks (start, length, compressed
-    size, [(topic, log time, data)]), the summary start, the footer offset, the file size."""
+    """
+    Where things are in an intact bag, by mcap's reader.
+
+    chunks: (start, length, compressed size, [(topic, log time, data)]); summary_start, the
+    footer offset, the file size.
+    """
 
     def __init__(self, path):
         self.data = path.read_bytes()
@@ -55,8 +59,11 @@ class Layout:
         self.size = len(self.data)
 
     def messages(self, without=(), before=None):
-        """Every message in file order, less those of the chunks numbered in without, or
-        only those of the chunks before chunk number before."""
+        """
+        Return every message in file order, less those of the chunks numbered in without.
+
+        With before: only those of the chunks before chunk number before.
+        """
         chunks = self.chunks if before is None else self.chunks[:before]
         return [m for i, c in enumerate(chunks) if i not in without for m in c[3]]
 
@@ -89,8 +96,12 @@ def flipped(data, offset):
 
 
 def read_independently(path):
-    """[(topic, log time, data)] by mcap's make_reader (file order) and rosbags (time order,
-    which is file order here); both need a complete file with its summary."""
+    """
+    Return [(topic, log time, data)] of a file, by mcap and by rosbags (they must agree).
+
+    mcap's make_reader gives file order, rosbags time order (the same here); both need a
+    complete file with its summary.
+    """
     with open(path, 'rb') as stream:
         by_mcap = [(c.topic, m.log_time, bytes(m.data))
                    for _, c, m in make_reader(stream).iter_messages(log_time_order=False)]
@@ -141,7 +152,7 @@ def chunk_damage(layout):
                                    f'declares {HUGE} bytes uncompressed from {compressed} '
                                    'compressed bytes, more than zstd can make of them)'),
         'compression name': (with_bytes(data, start + 9 + 32, b'zsTd'),
-                             f"the chunk at byte {start} does not decompress (unknown "
+                             f'the chunk at byte {start} does not decompress (unknown '
                              "compression 'zsTd')"),
     }
 

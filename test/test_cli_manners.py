@@ -1,4 +1,5 @@
-"""linkage-replay and linkage-rerun: --help, exit statuses, one line for each user mistake.
+"""
+linkage-replay and linkage-rerun: --help, exit statuses, one line for each user mistake.
 
 Statuses: 0 done with a complete input, 1 done with a damaged input, 2 a user mistake told in
 one line on stderr that starts with the program's name (never a traceback).
@@ -8,12 +9,11 @@ from pathlib import Path
 import subprocess
 import sys
 
+from linkage_ros.record.bag import McapRecorder
+from linkage_ros.tools import replay, rerun_convert
 from mcap.reader import make_reader
 import pytest
 from std_msgs.msg import Float64
-
-from linkage_ros.record.bag import McapRecorder
-from linkage_ros.tools import replay, rerun_convert
 
 ROOT = Path(__file__).resolve().parent.parent
 EXAMPLE = ROOT / 'bags' / 'five_link_sweep.mcap'
@@ -21,7 +21,7 @@ PROGRAMS = {'linkage-replay': replay.main, 'linkage-rerun': rerun_convert.main}
 
 
 def one_line(capsys, prog):
-    """The one line a mistake printed on stderr (asserted to be exactly one, prefixed)."""
+    """Return the one line a mistake printed on stderr (asserted one, prefixed)."""
     captured = capsys.readouterr()
     assert captured.err.count('\n') == 1 and captured.err.endswith('\n'), captured.err
     assert captured.err.startswith(f'{prog}: '), captured.err
@@ -39,7 +39,7 @@ def status_of(main, argv):
 
 @pytest.fixture
 def foreign_bag(tmp_path):
-    """A complete bag without any topic linkage-rerun draws or linkage-replay solves."""
+    """Write a complete bag without any topic linkage-rerun draws or linkage-replay solves."""
     path = tmp_path / 'other.mcap'
     with McapRecorder(path, flush_period=0) as rec:
         rec.record('/speed', 'std_msgs/msg/Float64', Float64(data=1.0), 5, 5)
@@ -145,7 +145,7 @@ def replay_mistakes(tmp_path, foreign_bag):
          '--copy'),
         (['--sweep', '--copy'], 'error: --copy needs a BAG'),
         ([bag, '--method', 'quick'], "error: argument --method: invalid choice: 'quick'"),
-        ([bag, '--scene', 'nowhere'], "nowhere: scene: no such file, and not a bundled scene"),
+        ([bag, '--scene', 'nowhere'], 'nowhere: scene: no such file, and not a bundled scene'),
         ([bag, '-o', str(missing / 'out.mcap')], f'-o {missing / "out.mcap"}: folder '
          f'{missing} does not exist'),
         ([bag, '-o', str(folder)], f'-o {folder}: is a folder; give a file name'),
@@ -203,17 +203,17 @@ def test_every_rerun_mistake_is_one_line_and_status_2_and_writes_nothing(
 
 @pytest.mark.parametrize('module, argv, expected', [
     ('mcap', ['linkage_ros.tools.replay', str(EXAMPLE), '--copy'],
-     "linkage-replay: reading and writing bags needs the Python package mcap, which is not "
+     'linkage-replay: reading and writing bags needs the Python package mcap, which is not '
      "installed: pip install -e '.[record]' (in a linkage_ros checkout) or pip install mcap"),
     ('rclpy', ['linkage_ros.tools.replay', str(EXAMPLE), '--publish'],
-     "linkage-replay: --publish needs the Python package ros-jazzy-rclpy, which is not "
+     'linkage-replay: --publish needs the Python package ros-jazzy-rclpy, which is not '
      "installed: pip install -e '.[ros]'"),
     ('rerun', ['linkage_ros.tools.rerun_convert', str(EXAMPLE)],
-     "linkage-rerun: writing .rrd files needs the Python package rerun-sdk, which is not "
+     'linkage-rerun: writing .rrd files needs the Python package rerun-sdk, which is not '
      "installed: pip install -e '.[view]' (in a linkage_ros checkout) or pip install "
      'rerun-sdk'),
     ('mcap', ['linkage_ros.tools.rerun_convert', str(EXAMPLE)],
-     "linkage-rerun: reading bags needs the Python package mcap, which is not installed: "
+     'linkage-rerun: reading bags needs the Python package mcap, which is not installed: '
      "pip install -e '.[record]'"),
 ])
 def test_a_missing_optional_package_is_named_with_the_command_that_installs_it(

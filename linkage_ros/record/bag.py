@@ -1,4 +1,5 @@
-"""MCAP recording in the layout rosbag2's MCAP storage plugin writes (Jazzy), and reading back.
+"""
+MCAP recording in the layout rosbag2's MCAP storage plugin writes (Jazzy), and reading back.
 
     with McapRecorder('run.mcap') as rec:
         rec.record('/wheel_travel', 'std_msgs/msg/Float64', cdr_bytes, receive_ns, publish_ns)
@@ -19,6 +20,7 @@ read_bag() (used by linkage-replay and linkage-rerun) recovers it.
 import atexit
 import collections
 from dataclasses import dataclass, field
+import functools
 import io
 import json
 import os
@@ -83,7 +85,7 @@ def _split_type(type_name):
     """'pkg/msg/Type' or 'pkg/Type' -> (pkg, Type); RecordingError for anything else."""
     match = _TYPE_NAME.match(type_name)
     if not match:
-        raise RecordingError(f'type {type_name!r}', "expected a ROS 2 message type like "
+        raise RecordingError(f'type {type_name!r}', 'expected a ROS 2 message type like '
                              "'std_msgs/msg/Float64'")
     return match.group(1), match.group(2)
 
@@ -110,8 +112,12 @@ def msg_dependencies(text, package):
 
 
 def message_definition(type_name):
-    """Full 'ros2msg' schema text of a type: its .msg text, then each dependency (depth first,
-    once each) after a line of 80 '=' and a line 'MSG: pkg/Type'."""
+    """
+    Return the full 'ros2msg' schema text of a type.
+
+    That is its .msg text, then each dependency (depth first, once each) after a line of 80
+    '=' and a line 'MSG: pkg/Type'.
+    """
     seen = set()
 
     def append(name):
@@ -127,7 +133,7 @@ def message_definition(type_name):
 
 
 def type_hash(type_name):
-    """The 'RIHS01_...' type description hash of a type, from its installed .json ('' if none)."""
+    """Return the 'RIHS01_...' hash of a type, from its installed .json ('' if none)."""
     try:
         data = json.loads(_interface_file(type_name, '.json').read_text())
     except RecordingError:
@@ -140,9 +146,11 @@ def type_hash(type_name):
 
 
 def qos_profile_dict(profile=None):
-    """A QoS profile as rosbag2 (metadata version 9) writes it; profile: an rclpy QoSProfile.
+    """
+    Return a QoS profile as rosbag2 (metadata version 9) writes it.
 
-    Durations of 0 (rclpy's 'default') are written as rosbag2 records the DDS defaults: infinite.
+    profile: an rclpy QoSProfile, a dict in rosbag2's form, or None (DEFAULT_QOS). Durations
+    of 0 (rclpy's 'default') are written as rosbag2 records the DDS defaults: infinite.
     """
     if profile is None:
         return dict(DEFAULT_QOS)
@@ -181,9 +189,12 @@ def qualified(topic):
 # --- writer --------------------------------------------------------------------------------
 
 class _RawFile:
-    """Unbuffered file for mcap's Writer: every finished chunk reaches the OS at once, so a
-    hard kill loses only the chunk being built (mcap wraps RawIOBase in a buffer, so this is
-    deliberately not one)."""
+    """
+    Unbuffered file for mcap's Writer.
+
+    Every finished chunk reaches the OS at once, so a hard kill loses only the chunk being
+    built (mcap wraps RawIOBase in a buffer, so this is deliberately not one).
+    """
 
     def __init__(self, path):
         self._file = open(path, 'wb', buffering=0)
@@ -214,7 +225,8 @@ class _Topic:
 
 
 class McapRecorder:
-    """Writes ROS 2 messages to an MCAP file that rosbag2, Foxglove and rosbags read.
+    """
+    Writes ROS 2 messages to an MCAP file that rosbag2, Foxglove and rosbags read.
 
     Thread-safe; a context manager; close() is idempotent. Times are ns since the epoch.
     qos: {topic: rclpy QoSProfile} offered by the publishers (DEFAULT_QOS for others).
@@ -256,8 +268,12 @@ class McapRecorder:
         return sum(t.count for t in self._topics.values())
 
     def record(self, topic, type_name, data, receive_ns, publish_ns):
-        """Write a message on topic with its ROS 2 type name: data is CDR bytes (as the node
-        publishes them, or a raw subscription receives them) or an rclpy message."""
+        """
+        Write a message on topic with its ROS 2 type name.
+
+        data is CDR bytes (as the node publishes them, or a raw subscription receives them)
+        or an rclpy message.
+        """
         data = to_cdr(data)
         with self._lock:
             if self._closed:
@@ -396,7 +412,8 @@ class BagMessage:
 
 @dataclass(frozen=True)
 class Damage:
-    """One thing found wrong in a file: kind, the byte offset where it is, and what it is.
+    """
+    One thing found wrong in a file: kind, the byte offset where it is, and what it is.
 
     kind: 'cut' (the file ends early), 'length' (a record's declared size is impossible),
     'record' (a record's content is malformed), 'crc' (a CRC does not match), 'decompress'
@@ -411,7 +428,8 @@ class Damage:
 
 @dataclass
 class Bag:
-    """What read_bag() found.
+    """
+    What read_bag() found.
 
     truncated: the file is cut short or damaged, so something it held may be lost; problem
     says what was found (each item of damage, '; ' between them); lost: how many messages
@@ -433,11 +451,11 @@ class Bag:
 
     @property
     def cut(self):
-        """True if the only damage is that the file ends early (a hard kill)."""
+        """Tell whether the only damage is that the file ends early (a hard kill)."""
         return bool(self.damage) and all(d.kind == 'cut' for d in self.damage)
 
     def describe(self):
-        """One phrase for a warning: 'bag truncated after N messages (cut at byte ...)'."""
+        """Return a phrase for a warning: 'bag truncated after N messages (cut at ...)'."""
         read = f'{len(self.messages)} message{"" if len(self.messages) == 1 else "s"}'
         lost = f', {self.lost} lost' if self.lost else ''
         if self.cut:
@@ -446,7 +464,8 @@ class Bag:
 
 
 def read_bag(path, topics=None):
-    """Read every readable message of an MCAP file (ROS 2 profile), naming any damage.
+    """
+    Read every readable message of an MCAP file (ROS 2 profile), naming any damage.
 
     path: an .mcap file, or a rosbag2 bag folder holding one. topics: keep only these.
 
@@ -547,8 +566,12 @@ class _Scan:
         return self.stream.read(length)
 
     def _record_at(self, offset):
-        """(opcode, 9 header bytes, content) of the record at offset; its declared length is
-        checked against the file size, RECORD_LIMIT and its own fields before it is read."""
+        """
+        Return (opcode, 9 header bytes, content) of the record at offset.
+
+        Its declared length is checked against the file size, RECORD_LIMIT and its own
+        fields before it is read; _Stop says what is wrong.
+        """
         head = self._read_at(offset, 9)
         name = f'the {_record_name(head[0])} record' if head else 'a record'
         if len(head) < 9:
@@ -622,9 +645,13 @@ class _Scan:
                        f'magic bytes at byte {end}')
 
     def _resync(self, damaged):
-        """After damage at byte damaged in the data section: read the chunks and metadata
-        records at or after it that an intact summary indexes (footer and summary checked by
-        their CRC first). Nothing happens if the file has no intact footer and summary."""
+        """
+        Read on after damage at byte damaged of the data section, through the summary.
+
+        The chunks and metadata records at or after it that an intact summary indexes are
+        read (footer and summary checked by their CRC first). Nothing happens if the file
+        has no intact footer and summary.
+        """
         footer_at = self.size - len(MCAP_MAGIC) - 9 - 20
         if footer_at <= damaged or self._read_at(footer_at + 29, 8) != MCAP_MAGIC:
             return
@@ -676,8 +703,7 @@ class _Scan:
             return
         parse = _PARSERS.get(opcode)
         if opcode == Opcode.MESSAGE:
-            def parse(stream):
-                return Message.read(stream, len(content))
+            parse = functools.partial(_read_message, length=len(content))
         if parse is None:
             return                    # a record type of a later MCAP version: skipped
         try:
@@ -710,8 +736,11 @@ class _Scan:
             self.metadata_indexes.append(record)
 
     def _chunk(self, offset, content):
-        """Decompress a chunk (mcap's breakup_chunk, CRC checked) and take its records; its
-        uncompressed size is checked first, against what its compression can produce."""
+        """
+        Decompress a chunk (mcap's breakup_chunk, CRC checked) and take its records.
+
+        Its uncompressed size is checked first, against what its compression can produce.
+        """
         where = f'the chunk at byte {offset}'
         usize, = struct.unpack_from('<Q', content, 16)
         clen, = struct.unpack_from('<I', content, 28)    # fields checked by _record_at
@@ -743,7 +772,7 @@ class _Scan:
     # --- result ---
 
     def bag(self, path, topics):
-        """The Bag: messages of known channels (in file order), topics, damage."""
+        """Return the Bag: messages of known channels (in file order), topics, damage."""
         bag = Bag(path, profile=self.profile, custom_data=self.custom_data)
         wanted = None if topics is None else {qualified(t) for t in topics}
         for channel in self.channels.values():
@@ -794,6 +823,10 @@ except ImportError:   # and lz4 chunks only with lz4
     lz4_frame = None
 
 
+def _read_message(stream, length):
+    return Message.read(stream, length)
+
+
 def _record_name(opcode):
     return _NAMES.get(opcode, f'unknown (opcode 0x{opcode:02x})')
 
@@ -805,10 +838,14 @@ def _reason(exc):
 
 
 def _implied_length(opcode, content, length):
-    """The content length that the fields at the start of a record (content, all or the
-    first bytes of its declared length) imply; None if they do not say or are not all there.
-    Exact for chunks, message indexes and fixed-size records; for a chunk whose compression
-    name runs past length, a lower bound above length."""
+    """
+    Return the content length that the fields at the start of a record imply.
+
+    content: all or the first bytes of the record's content; length: its declared length.
+    None if the fields do not say, or are not all there. Exact for chunks, message indexes
+    and fixed-size records; for a chunk whose compression name runs past length, a lower
+    bound above length.
+    """
     if opcode in _FIXED_LENGTH:
         return _FIXED_LENGTH[opcode]
     if opcode == Opcode.CHUNK and len(content) >= 32:
@@ -856,7 +893,7 @@ def _size_problem(compression, usize, data):
 
 
 def _bag_file(path):
-    """The .mcap of a rosbag2 bag folder (metadata.yaml beside one .mcap), or path itself."""
+    """Return the .mcap of a rosbag2 bag folder (metadata.yaml beside one), or path itself."""
     if not path.is_dir():
         return path
     files = sorted(path.glob('*.mcap'))

@@ -1,4 +1,5 @@
-"""Command-line manners shared by linkage-replay and linkage-rerun.
+"""
+Command-line manners shared by linkage-replay and linkage-rerun.
 
 Exit statuses: 0 done, the input complete; 1 done, but the input was damaged (what could be
 read was used); 2 a user mistake (bad path, missing file, unknown option, bad value, missing
@@ -38,7 +39,7 @@ class Parser(argparse.ArgumentParser):
 
 
 def missing_package(exc, feature):
-    """The one-line message for an ImportError met while loading what feature needs."""
+    """Return the one-line message for an ImportError met loading what feature needs."""
     module = (getattr(exc, 'name', None) or '').split('.')[0]
     if module in PACKAGES:
         package, extra = PACKAGES[module]
@@ -58,7 +59,8 @@ def check_input(path, option='BAG'):
 
 
 def check_output(path, option='-o', inputs=()):
-    """Refuse an output path that cannot be written, before any work is done.
+    """
+    Refuse an output path that cannot be written, before any work is done.
 
     A folder that does not exist, a path that is a folder, the input itself, a file that
     cannot be opened for writing: each is a Mistake. The file is not changed (a file that
@@ -88,7 +90,7 @@ def check_output(path, option='-o', inputs=()):
 
 
 def default_output(bag, suffix):
-    """BAG's stem + suffix in the current folder (never beside the bag): run_solved.mcap."""
+    """Return BAG's stem + suffix in the current folder (never beside the bag)."""
     return str(Path.cwd() / (Path(bag).stem + suffix))
 
 

@@ -1,4 +1,5 @@
-"""linkage-replay: solve the wheel-travel commands of a recorded run, or republish them on ROS.
+"""
+linkage-replay: solve the wheel-travel commands of a recorded run, or republish them on ROS.
 
     linkage-replay BAG -o OUT.mcap               solve the commands, write commands + outputs
     linkage-replay BAG --publish --rate 2        republish the commands at twice the recorded pace
@@ -61,7 +62,8 @@ class Command:
 # --- reading commands ----------------------------------------------------------------------
 
 def read_commands(path, topic=DEFAULT_TOPIC):
-    """Commands on topic in a bag, in file order; returns (commands, bag).
+    """
+    Return the commands on topic in a bag, in file order, and the bag: (commands, bag).
 
     Raises ReplayError if the topic is missing or is not std_msgs/msg/Float64 in CDR.
     """
@@ -87,7 +89,7 @@ def topic_list(bag):
 
 
 def truncation(bag):
-    """What a damaged bag gives: 'bag truncated after N messages (cut at byte ...)'."""
+    """Return what a damaged bag gives: 'bag truncated after N messages (cut at ...)'."""
     return bag.describe()
 
 
@@ -115,9 +117,11 @@ def stamp_of(time_ns):
 
 def solve_commands(commands, scene, method, sinks, topic=DEFAULT_TOPIC, progress=None,
                    frame_id=FRAME_ID, period_s=DIAGNOSTIC_PERIOD_S):
-    """Solve each command by continuation and hand the command and what the node publishes
-    for it to each sink (McapRecorder, RerunRecorder: .record(topic, type, CDR, t, t_pub)), on
-    the recorded timeline: pose, camber and toe (messages.answer) for a solved command, at its
+    """
+    Solve each command by continuation; hand it and what the node publishes to each sink.
+
+    Sinks: McapRecorder, RerunRecorder (.record(topic, type, CDR, t, t_pub)). On the recorded
+    timeline: pose, camber and toe (messages.answer) for a solved command, at its
     receive time; /diagnostics as the node sends them (health.Health): a report every
     period_s of recorded time, at once for a failed command or a change of level, and a last
     one after the last command (a gap in the commands gives one report, not one per period).
@@ -170,7 +174,8 @@ def solve_commands(commands, scene, method, sinks, topic=DEFAULT_TOPIC, progress
 
 
 def benchmark(commands, scene, method, repeat=3, stream=None):
-    """Time solving the commands alone and with each sink; print a table (us per command).
+    """
+    Time solving the commands alone and with each sink; print a table (us per command).
 
     'no recording' solves and builds the messages (as the node does to publish them); the
     other rows add McapRecorder, RerunRecorder or both, file closing included. Best of repeat.
@@ -205,8 +210,12 @@ def benchmark(commands, scene, method, repeat=3, stream=None):
 
 
 def copy_messages(bag, recorder, progress=None):
-    """Copy every message read from bag (CDR bytes, times) into recorder (made with the bag's
-    QoS and definitions); returns how many were left out (no ROS 2 type, or not CDR)."""
+    """
+    Copy every message read from bag (CDR bytes, times) into recorder.
+
+    recorder is made with the bag's QoS and definitions. Returns how many messages were left
+    out (no ROS 2 type, or not CDR).
+    """
     skipped = 0
     for i, m in enumerate(bag.messages):
         if m.type_name and bag.encodings.get(m.topic) == 'cdr':
@@ -219,8 +228,7 @@ def copy_messages(bag, recorder, progress=None):
 
 
 class Progress:
-    """'linkage-replay: 120/161 commands (75%)' on stderr, at most every period s, and at the
-    end."""
+    """Print 'linkage-replay: 120/161 commands (75%)' on stderr, every period s and at the end."""
 
     def __init__(self, total, what, stream=None, period=PROGRESS_PERIOD):
         self.total, self.what, self.period = total, what, period
@@ -239,7 +247,8 @@ class Progress:
 # --- republishing --------------------------------------------------------------------------
 
 def publish_commands(commands, topic, rate=1.0, wait=10.0, progress=None, clock=False):
-    """Publish the commands as std_msgs/Float64 on topic at the recorded pace / rate.
+    """
+    Publish the commands as std_msgs/Float64 on topic at the recorded pace / rate.
 
     rate > 0 (2 = twice as fast). Waits up to wait s for a subscriber first (with clock, for
     one on /clock too). clock: before each command, publish rosgraph_msgs/Clock on /clock
@@ -312,7 +321,7 @@ _ONLY = {'--rate': ('rate', {'publish'}), '--clock': ('clock', {'publish'}),
 
 
 def _number(minimum, strict):
-    """argparse type: a finite number above (strict) or at least minimum."""
+    """Return an argparse type: a finite number above (strict) or at least minimum."""
     def parse(text):
         try:
             value = float(text)
@@ -327,7 +336,7 @@ def _number(minimum, strict):
 
 
 def _finite(text):
-    """argparse type: a finite number."""
+    """Parse a finite number (an argparse type)."""
     try:
         value = float(text)
     except ValueError:
@@ -338,10 +347,10 @@ def _finite(text):
 
 
 def parse_args(argv):
-    parser = cli.Parser(prog=PROG, description=__doc__.split('\n')[0],
+    summary, text = __doc__.strip().split('\n', 1)
+    parser = cli.Parser(prog=PROG, description=summary,
                         formatter_class=argparse.RawDescriptionHelpFormatter,
-                        epilog='\n'.join(__doc__.split('\n')[1:]) + '\n' + EXAMPLES +
-                        '\n' + cli.EXIT_STATUSES)
+                        epilog=text + '\n' + EXAMPLES + '\n' + cli.EXIT_STATUSES)
     parser.add_argument('bag', nargs='?', metavar='BAG',
                         help='recorded run: an .mcap file, or a rosbag2 bag folder holding one')
     parser.add_argument('-o', '--output', metavar='OUT',
@@ -373,7 +382,7 @@ def parse_args(argv):
     parser.add_argument('--wait', type=_number(0.0, False),
                         help='--publish: s to wait for a subscriber, >= 0 (default 10)')
     parser.add_argument('--sweep', action='store_true',
-                        help="instead of BAG: the commands of a travel sweep (default: the "
+                        help='instead of BAG: the commands of a travel sweep (default: the '
                         "scene's travel range and step)")
     parser.add_argument('--from', dest='start', type=_finite,
                         help="--sweep: first travel, mm (default: the scene's travel min)")

@@ -1,4 +1,5 @@
-"""linkage-rerun: convert a recorded run (MCAP) into a Rerun .rrd for offline viewing.
+"""
+linkage-rerun: convert a recorded run (MCAP) into a Rerun .rrd for offline viewing.
 
     linkage-rerun run.mcap                 writes ./run.rrd
     linkage-rerun run.mcap -o view.rrd --scene double_wishbone
@@ -28,7 +29,8 @@ ROLES = 'wheel_travel, wheel_carrier_pose, camber or toe'
 
 
 def convert(bag, scene, output, recording_id=None):
-    """Log the drawable messages of a Bag (from read_bag) into output (.rrd).
+    """
+    Log the drawable messages of a Bag (from read_bag) into output (.rrd).
 
     Returns {role: samples logged}.
     """
@@ -46,9 +48,10 @@ def convert(bag, scene, output, recording_id=None):
 
 
 def parse_args(argv):
-    parser = cli.Parser(prog=PROG, description=__doc__.split('\n')[0],
+    summary, text = __doc__.strip().split('\n', 1)
+    parser = cli.Parser(prog=PROG, description=summary,
                         formatter_class=argparse.RawDescriptionHelpFormatter,
-                        epilog='\n'.join(__doc__.split('\n')[1:]) + '\n' + cli.EXIT_STATUSES)
+                        epilog=text + '\n' + cli.EXIT_STATUSES)
     parser.add_argument('bag', metavar='BAG',
                         help='recorded run: an .mcap file, or a rosbag2 bag folder holding one')
     parser.add_argument('-o', '--output', metavar='OUT',
