@@ -528,7 +528,7 @@ class _Scan:
         summary_start = None          # offset after the data end record
         while True:
             if offset == self.size:
-                after = (f'after the {_NAMES[previous[0]]} record at byte {previous[1]}'
+                after = (f'after the {_record_name(previous[0])} record at byte {previous[1]}'
                          if previous else 'after the magic bytes')
                 self._note('cut', offset, f'cut at byte {offset} (the file ends {after}, '
                            'before the footer)')
@@ -848,6 +848,8 @@ def _implied_length(opcode, content, length):
     """
     if opcode in _FIXED_LENGTH:
         return _FIXED_LENGTH[opcode]
+    if opcode == Opcode.CHUNK and length < 40:
+        return 40
     if opcode == Opcode.CHUNK and len(content) >= 32:
         clen, = struct.unpack_from('<I', content, 28)
         if 40 + clen > length:
@@ -856,6 +858,8 @@ def _implied_length(opcode, content, length):
             return None
         rlen, = struct.unpack_from('<Q', content, 32 + clen)
         return 40 + clen + rlen
+    if opcode == Opcode.MESSAGE_INDEX and length < 6:
+        return 6
     if opcode == Opcode.MESSAGE_INDEX and len(content) >= 6:
         return 6 + struct.unpack_from('<I', content, 2)[0]
     if opcode == Opcode.MESSAGE:
