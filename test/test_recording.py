@@ -1,4 +1,5 @@
-"""McapRecorder writes the layout rosbag2's MCAP storage writes; read back by independent readers.
+"""
+McapRecorder writes the layout rosbag2's MCAP storage writes; read back by independent readers.
 
 Readers: mcap's make_reader with mcap_ros2's DecoderFactory, rosbags' AnyReader, and mcap's
 StreamReader for cut files. Expected layout from ros2/rosbag2 rosbag2_storage_mcap (Jazzy):
@@ -19,6 +20,10 @@ import textwrap
 from conftest import connect, Probe, spin_until   # test/conftest.py: launch-free ROS helpers
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
 from geometry_msgs.msg import PoseStamped
+from linkage_ros.core.kinematics import sweep
+from linkage_ros.core.scene import load_scene
+from linkage_ros.record.bag import (McapRecorder, message_definition, read_bag, RecordingError,
+                                    SEPARATOR, share_dirs)
 from mcap.reader import make_reader
 from mcap.stream_reader import breakup_chunk, StreamReader
 from mcap_ros2.decoder import DecoderFactory
@@ -28,11 +33,6 @@ from rerun.chunk import RrdReader
 from rosbags.highlevel import AnyReader
 from std_msgs.msg import Float64
 import yaml
-
-from linkage_ros.core.kinematics import sweep
-from linkage_ros.record.bag import (McapRecorder, message_definition, read_bag, RecordingError,
-                                   SEPARATOR, share_dirs)
-from linkage_ros.core.scene import load_scene
 
 T0 = 1_700_000_000_000_000_000   # ns since the epoch
 PERIOD = 10_000_000              # 100 Hz
@@ -59,7 +59,8 @@ def diagnostics(i):
 
 
 def write_run(path, n=50, **options):
-    """n commands, each followed by the node's four outputs; every 10th also a diagnostic.
+    """
+    Write n commands, each followed by the node's four outputs; every 10th a diagnostic too.
 
     Topic names given without the leading '/' for the commands: recorded fully qualified.
     Returns the expected [(topic, log time, value)] in write order.
@@ -145,7 +146,7 @@ def test_summary_statistics_count_messages_per_channel_and_chunks_are_zstd(run):
 def test_rosbag2_metadata_record_is_version_9_with_counts_and_qos(run):
     path, expected = run
     with open(path, 'rb') as stream:
-        records = [m for m in make_reader(stream).iter_metadata()]
+        records = list(make_reader(stream).iter_metadata())
     assert [m.name for m in records] == ['rosbag2']
     meta = yaml.safe_load(records[0].metadata['serialized_metadata'])
     assert meta['version'] == 9 and meta['storage_identifier'] == 'mcap'
@@ -247,8 +248,12 @@ def test_a_topic_keeps_its_first_type(tmp_path):
 
 
 def chunk_ends(path):
-    """(end offset, messages up to and including this chunk) of each chunk: offsets from the
-    summary's chunk indexes, counts from the chunks themselves (mcap's stream reader)."""
+    """
+    Return (start offset, end offset, messages up to and including it) of each chunk.
+
+    Offsets from the summary's chunk indexes, counts from the chunks themselves (mcap's
+    stream reader).
+    """
     with open(path, 'rb') as stream:
         chunks = sorted(make_reader(stream).get_summary().chunk_indexes,
                         key=lambda c: c.chunk_start_offset)
@@ -257,7 +262,8 @@ def chunk_ends(path):
                   for record in StreamReader(stream, emit_chunks=True).records
                   if type(record).__name__ == 'Chunk']
     totals = [sum(counts[:i + 1]) for i in range(len(counts))]
-    return [(c.chunk_start_offset + c.chunk_length, n) for c, n in zip(chunks, totals)]
+    return [(c.chunk_start_offset, c.chunk_start_offset + c.chunk_length, n)
+            for c, n in zip(chunks, totals)]
 
 
 def test_cut_file_yields_every_message_of_the_chunks_before_the_cut(tmp_path):
@@ -267,18 +273,26 @@ def test_cut_file_yields_every_message_of_the_chunks_before_the_cut(tmp_path):
     assert len(ends) > 5
     data = path.read_bytes()
     cut = tmp_path / 'cut.mcap'
-    for end, count in ends[1:4]:
-        for offset in (end, end + 1, end + 40):   # cut after a chunk or in its message index
+    for start, end, count in ends[1:4]:
+        # Cut after a chunk, in the header of its first message index, inside the next chunk.
+        for offset, problem in (
+                (end, f'cut at byte {end} (the file ends after the chunk record at byte '
+                 f'{start}, before the footer)'),
+                (end + 5, f'cut at byte {end + 5} (the file ends inside the message index '
+                 f'record at byte {end})')):
             cut.write_bytes(data[:offset])
             bag = read_bag(cut)
-            assert bag.truncated and 'ends in the middle' in bag.problem
+            assert bag.truncated and bag.cut and bag.problem == problem
             assert [(m.topic, m.log_time) for m in bag.messages] == [
                 (t, time) for t, time, _ in expected[:count]]
 
 
 def test_hard_kill_loses_only_the_chunk_being_built(tmp_path):
-    """A process killed with SIGKILL: the messages of chunks written before stay readable,
-    by mcap's own stream reader, and by read_bag (linkage-replay's reader)."""
+    """
+    Keep the chunks written before a SIGKILL readable.
+
+    By mcap's own stream reader, and by read_bag (linkage-replay's reader).
+    """
     path = tmp_path / 'killed.mcap'
     script = textwrap.dedent(f"""
         import os, signal, time
@@ -338,9 +352,12 @@ def test_reading_a_complete_file_gives_all_messages_and_no_truncation(run):
 @pytest.mark.parametrize('sig', [signal.SIGINT, signal.SIGTERM], ids=['SIGINT', 'SIGTERM'])
 def test_node_run_stopped_by_a_signal_leaves_complete_files_with_every_message(
         node_process, localhost_context, localhost_executor, tmp_path, sig):
-    """suspension_node records and mirrors a run; after SIGINT or SIGTERM the MCAP is complete
-    (summary, rosbag2 metadata) and holds each command and each answer in order, with the
-    core's values; the .rrd holds one sample per command and per pose."""
+    """
+    Record and mirror a run of suspension_node stopped by SIGINT or SIGTERM.
+
+    The MCAP is complete (summary, rosbag2 metadata) and holds each command and each answer
+    in order, with the core's values; the .rrd holds one sample per command and per pose.
+    """
     mcap_path, rrd_path = tmp_path / 'run.mcap', tmp_path / 'run.rrd'
     process = node_process('-p', f'record_mcap:={mcap_path}', '-p', f'rerun_rrd:={rrd_path}')
     probe = Probe(localhost_context, localhost_executor)

@@ -1,4 +1,5 @@
-"""linkage-replay: solves the commands of a bag into a new bag, republishes them, recovers cuts.
+"""
+linkage-replay: solves the commands of a bag into a new bag, republishes them, recovers cuts.
 
 Bags are read back with mcap's make_reader + mcap_ros2's decoder or rosbags (not project code).
 Expected values: the scene file's reference rows (refdata) and the recorded outputs.
@@ -12,15 +13,14 @@ import subprocess
 import sys
 import time
 
+from linkage_ros.record.bag import McapRecorder
+from linkage_ros.ros.messages import status_values
+from linkage_ros.tools.replay import main
 from mcap.reader import make_reader
 from mcap_ros2.decoder import DecoderFactory
 import pytest
 from rosbags.highlevel import AnyReader
 import yaml
-
-from linkage_ros.ros.messages import status_values
-from linkage_ros.record.bag import McapRecorder
-from linkage_ros.tools.replay import main
 
 ROOT = Path(__file__).resolve().parent.parent
 EXAMPLE = ROOT / 'bags' / 'five_link_sweep.mcap'
@@ -41,7 +41,7 @@ def by_topic(messages, topic):
 
 
 def write_commands(path, travels_m, topic='/wheel_travel', chunk_size=64 * 1024, extra=()):
-    """A bag of Float64 commands at 100 Hz (plus extra (topic, type, msg) at the start)."""
+    """Write a bag of Float64 commands at 100 Hz (extra (topic, type, msg) at the start)."""
     from std_msgs.msg import Float64
     with McapRecorder(path, chunk_size=chunk_size) as rec:
         for topic_name, type_name, msg in extra:
@@ -172,7 +172,7 @@ def test_a_foreign_file_is_refused_clearly(tmp_path, capsys):
 
 
 def cut_bag(tmp_path, n=300):
-    """A bag of n commands in small chunks, cut in the middle; returns (path, commands kept)."""
+    """Write n commands in small chunks, cut in the middle; return (path, commands kept)."""
     bag = tmp_path / 'full.mcap'
     write_commands(bag, [i / 10000.0 for i in range(n)], chunk_size=1024)
     data = bag.read_bytes()

@@ -169,9 +169,11 @@ def load_scene(name_or_path: str | PathLike) -> Scene:
         text = path.read_text()
     except OSError as exc:
         raise SceneError(path, 'file', f'cannot read ({exc.strerror or exc})') from None
+    except UnicodeDecodeError as exc:
+        raise SceneError(path, 'file', f'not UTF-8 text ({exc})') from None
     try:
         data = yaml.safe_load(text)
-    except yaml.YAMLError as exc:
+    except (yaml.YAMLError, ValueError, RecursionError) as exc:   # ValueError: 2001-13-45
         raise SceneError(path, 'file', f'not valid YAML ({exc})') from None
     return parse_scene(data, source=str(path))
 
@@ -317,6 +319,14 @@ def _check_third_point(check, wheel_center, spin_point, third_point, constraints
             check.fail(where, problem + hint)
 
 
+def _finite(value):
+    """Tell whether a number is finite (an integer beyond the float range is not)."""
+    try:
+        return math.isfinite(value)
+    except OverflowError:
+        return False
+
+
 def _size(points):
     return float(max(np.max(np.abs(p)) for p in points))
 
@@ -362,7 +372,7 @@ class _Checker:
         value = data[key]
         if isinstance(value, bool) or not isinstance(value, (int, float)):
             self.fail(where, f'expected a number, got {value!r}')
-        if not math.isfinite(value):
+        if not _finite(value):
             self.fail(where, f'must be finite, got {value!r}')
         if minimum is not None and value < minimum:
             self.fail(where, f'must be at least {minimum:g}, got {value!r}')
@@ -379,7 +389,7 @@ class _Checker:
         for v in value:
             if isinstance(v, bool) or not isinstance(v, (int, float)):
                 self.fail(where, f'coordinate {v!r} is not a number')
-            if not math.isfinite(v):
+            if not _finite(v):
                 self.fail(where, f'coordinate {v!r} is not finite')
         return np.array(value, dtype=float)
 

@@ -61,14 +61,16 @@ def load_vehicle(name_or_path: str | PathLike) -> Vehicle:
         data = yaml.safe_load(path.read_text())
     except OSError as exc:
         raise SceneError(path, 'file', f'cannot read ({exc.strerror or exc})') from None
-    except yaml.YAMLError as exc:
+    except UnicodeDecodeError as exc:
+        raise SceneError(path, 'file', f'not UTF-8 text ({exc})') from None
+    except (yaml.YAMLError, ValueError, RecursionError) as exc:   # ValueError: 2001-13-45
         raise SceneError(path, 'file', f'not valid YAML ({exc})') from None
     if not isinstance(data, dict) or not isinstance(data.get('corners'), dict) \
             or not data['corners']:
         raise SceneError(path, 'corners', 'expected a mapping of corner names to '
                          '{scene, offset, mirror}')
     units = data.get('units', 'mm')
-    if units not in UNITS_TO_MM:
+    if not isinstance(units, str) or units not in UNITS_TO_MM:
         raise SceneError(path, 'units', f'unknown value {units!r} (expected one of: mm, m)')
     corners, joints = {}, {}
     for corner, spec in data['corners'].items():
@@ -111,6 +113,7 @@ def _corner(path, corner, spec, scale):
                          f"expected true or false, got {spec['mirror']!r}")
     offset = spec.get('offset', [0.0, 0.0, 0.0])
     if (not isinstance(offset, list) or len(offset) != 3
-            or not all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in offset)):
+            or not all(isinstance(v, (int, float)) and not isinstance(v, bool)
+                       and -1e300 < v < 1e300 for v in offset)):   # finite, NaN refused
         raise SceneError(path, f'{where}.offset', f'expected [x, y, z], got {offset!r}')
     return replace(translate(scene, [v * scale for v in offset]), name=corner)

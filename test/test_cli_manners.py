@@ -1,0 +1,228 @@
+"""
+linkage-replay and linkage-rerun: --help, exit statuses, one line for each user mistake.
+
+Statuses: 0 done with a complete input, 1 done with a damaged input, 2 a user mistake told in
+one line on stderr that starts with the program's name (never a traceback).
+"""
+
+from pathlib import Path
+import subprocess
+import sys
+
+from linkage_ros.record.bag import McapRecorder
+from linkage_ros.tools import replay, rerun_convert
+from mcap.reader import make_reader
+import pytest
+from std_msgs.msg import Float64
+
+ROOT = Path(__file__).resolve().parent.parent
+EXAMPLE = ROOT / 'bags' / 'five_link_sweep.mcap'
+PROGRAMS = {'linkage-replay': replay.main, 'linkage-rerun': rerun_convert.main}
+
+
+def one_line(capsys, prog):
+    """Return the one line a mistake printed on stderr (asserted one, prefixed)."""
+    captured = capsys.readouterr()
+    assert captured.err.count('\n') == 1 and captured.err.endswith('\n'), captured.err
+    assert captured.err.startswith(f'{prog}: '), captured.err
+    assert 'Traceback' not in captured.err
+    return captured.err[:-1]
+
+
+def status_of(main, argv):
+    """main(argv)'s exit status, whether returned or raised by argparse."""
+    try:
+        return main(argv)
+    except SystemExit as exited:
+        return exited.code
+
+
+@pytest.fixture
+def foreign_bag(tmp_path):
+    """Write a complete bag without any topic linkage-rerun draws or linkage-replay solves."""
+    path = tmp_path / 'other.mcap'
+    with McapRecorder(path, flush_period=0) as rec:
+        rec.record('/speed', 'std_msgs/msg/Float64', Float64(data=1.0), 5, 5)
+    return path
+
+
+# --- --help --------------------------------------------------------------------------------
+
+@pytest.mark.parametrize('prog', sorted(PROGRAMS))
+def test_help_says_what_it_does_every_option_default_and_unit_an_example_and_the_statuses(
+        prog, capsys):
+    assert status_of(PROGRAMS[prog], ['--help']) == 0
+    text = capsys.readouterr().out
+    assert text.startswith(f'usage: {prog} ')
+    assert f'{prog}: convert a recorded run' in text or f'{prog}: solve the wheel-travel' in text
+    for status in ('0  done; the input was complete', '1  done, but the input was damaged',
+                   '2  a mistake in the command'):
+        assert status in text
+    assert f'  {prog} run.mcap' in text                      # an example
+    assert "BAG's name" in text and 'in the current folder' in text   # the default output
+    if prog == 'linkage-replay':
+        for option in ('--topic', '--scene', '--method', '--frame-id', '--rate', '--wait',
+                       '--from', '--to', '--step', '--hz'):
+            assert f'\n  {option} ' in text
+        for unit in ('std_msgs/msg/Float64 in m (default /wheel_travel)', '(default five_link)',
+                     '(default fast)', '(default base_link)', '> 0 (default 1;',
+                     's to wait for a subscriber, >= 0 (default 10)', 'first travel, mm',
+                     'last travel, mm', 'travel step, mm, > 0', 'rate, Hz, > 0 (default 50)'):
+            assert unit in ' '.join(text.split()), unit
+
+
+# --- statuses 0 and 1 ----------------------------------------------------------------------
+
+def test_a_complete_bag_gives_status_0_and_a_damaged_one_status_1(tmp_path):
+    assert replay.main([str(EXAMPLE), '-o', str(tmp_path / 'a.mcap')]) == 0
+    assert replay.main([str(EXAMPLE), '--copy', '-o', str(tmp_path / 'b.mcap')]) == 0
+    assert rerun_convert.main([str(EXAMPLE), '-o', str(tmp_path / 'a.rrd')]) == 0
+    cut = tmp_path / 'cut.mcap'
+    cut.write_bytes(EXAMPLE.read_bytes()[:-100])
+    assert replay.main([str(cut), '-o', str(tmp_path / 'c.mcap')]) == 1
+    assert replay.main([str(cut), '--copy', '-o', str(tmp_path / 'd.mcap')]) == 1
+    assert rerun_convert.main([str(cut), '-o', str(tmp_path / 'b.rrd')]) == 1
+
+
+def test_default_outputs_go_to_the_current_folder(tmp_path, monkeypatch):
+    work = tmp_path / 'work'
+    work.mkdir()
+    monkeypatch.chdir(work)
+    assert replay.main([str(EXAMPLE)]) == 0
+    assert replay.main([str(EXAMPLE), '--copy']) == 0
+    assert replay.main(['--sweep', '--from', '0', '--to', '2']) == 0
+    assert rerun_convert.main([str(EXAMPLE)]) == 0
+    assert sorted(p.name for p in work.iterdir()) == [
+        'five_link_sweep.mcap', 'five_link_sweep.rrd', 'five_link_sweep_copy.mcap',
+        'five_link_sweep_solved.mcap']
+    with open(work / 'five_link_sweep.mcap', 'rb') as stream:     # the sweep: 3 commands
+        assert make_reader(stream).get_summary().statistics.channel_message_counts
+    assert sorted(p.name for p in EXAMPLE.parent.iterdir() if p.suffix in ('.mcap', '.rrd')) \
+        == ['five_link_sweep.mcap']
+
+
+# --- status 2: one line each ---------------------------------------------------------------
+
+def replay_mistakes(tmp_path, foreign_bag):
+    """(argv, the line's expected end) of linkage-replay mistakes."""
+    out = str(tmp_path / 'out.mcap')
+    folder = tmp_path / 'empty_folder'
+    folder.mkdir()
+    blocker = tmp_path / 'a_file'
+    blocker.write_text('')
+    bag = str(EXAMPLE)
+    missing = tmp_path / 'missing'
+    return [
+        (['--bogus'], 'error: unrecognized arguments: --bogus (see linkage-replay --help)'),
+        ([], 'error: give a BAG or --sweep (one of them) (see linkage-replay --help)'),
+        ([bag, '--sweep'], 'error: give a BAG or --sweep (one of them)'),
+        ([str(tmp_path / 'none.mcap')], f'BAG {tmp_path / "none.mcap"}: no such file or folder'),
+        ([str(folder), '-o', out], f'{folder}: a bag folder must hold exactly one .mcap file '
+         '(found: none)'),
+        ([bag, '--publish', '--rate', '0'], 'error: argument --rate: must be a finite number '
+         'above 0, got 0'),
+        ([bag, '--publish', '--rate', 'nan'], 'argument --rate: must be a finite number above '
+         '0, got nan'),
+        ([bag, '--publish', '--rate', 'fast'], "argument --rate: expected a number, got 'fast'"),
+        ([bag, '--publish', '--wait', '-1'], 'argument --wait: must be a finite number at '
+         'least 0, got -1'),
+        (['--sweep', '--hz', '0'], 'argument --hz: must be a finite number above 0, got 0'),
+        (['--sweep', '--step', '-1'], 'argument --step: must be a finite number above 0, '
+         'got -1'),
+        (['--sweep', '--from', 'inf'], 'argument --from: must be a finite number, got inf'),
+        (['--sweep', '--to', 'x'], "argument --to: expected a number, got 'x'"),
+        ([bag, '--rate', '2'], 'error: --rate needs --publish'),
+        ([bag, '--wait', '2'], 'error: --wait needs --publish'),
+        (['--sweep', '--clock'], 'error: --clock needs --publish'),
+        ([bag, '--from', '3'], 'error: --from needs --sweep'),
+        ([bag, '--hz', '3'], 'error: --hz needs --sweep'),
+        ([bag, '--copy', '--scene', 'macpherson'], 'error: --scene is not used with --copy'),
+        ([bag, '--copy', '--topic', '/x'], 'error: --topic is not used with --copy'),
+        ([bag, '--publish', '--method', 'paper'], 'error: --method is not used with --publish'),
+        ([bag, '--publish', '-o', out], 'error: -o is not used with --publish'),
+        ([bag, '--benchmark', '-o', out], 'error: -o is not used with --benchmark'),
+        ([bag, '--copy', '--publish'], 'error: argument --publish: not allowed with argument '
+         '--copy'),
+        (['--sweep', '--copy'], 'error: --copy needs a BAG'),
+        ([bag, '--method', 'quick'], "error: argument --method: invalid choice: 'quick'"),
+        ([bag, '--scene', 'nowhere'], 'nowhere: scene: no such file, and not a bundled scene'),
+        ([bag, '-o', str(missing / 'out.mcap')], f'-o {missing / "out.mcap"}: folder '
+         f'{missing} does not exist'),
+        ([bag, '-o', str(folder)], f'-o {folder}: is a folder; give a file name'),
+        ([bag, '-o', str(blocker / 'out.mcap')], f'-o {blocker / "out.mcap"}: {blocker} is '
+         'not a folder'),
+        ([bag, '--copy', '-o', bag], f'-o {bag}: is the input {bag}; give another file name'),
+        ([bag, '-o', '/sys/out.mcap'], '-o /sys/out.mcap: cannot write (Permission denied)'),
+        ([bag, '--topic', '/camber_x'], 'no topic /camber_x (topics present: '),
+        ([str(foreign_bag), '-o', out], f'{foreign_bag}: no topic /wheel_travel (topics '
+         'present: /speed (std_msgs/msg/Float64)); choose the wheel-travel topic with --topic'),
+    ]
+
+
+def test_every_replay_mistake_is_one_line_and_status_2_and_writes_nothing(
+        tmp_path, capsys, foreign_bag):
+    for argv, expected in replay_mistakes(tmp_path, foreign_bag):
+        assert status_of(replay.main, argv) == 2, argv
+        line = one_line(capsys, 'linkage-replay')
+        assert expected in line, (argv, line)
+        assert not (tmp_path / 'out.mcap').exists()
+
+
+def test_every_rerun_mistake_is_one_line_and_status_2_and_writes_nothing(
+        tmp_path, capsys, foreign_bag):
+    out = str(tmp_path / 'out.rrd')
+    named = tmp_path / 'named.mcap'
+    with McapRecorder(named, custom_data={'scene': 'gone_scene'}, flush_period=0) as rec:
+        rec.record('/camber', 'std_msgs/msg/Float64', Float64(data=0.1), 5, 5)
+    mistakes = [
+        ([], 'error: the following arguments are required: BAG'),
+        ([str(EXAMPLE), '--bogus'], 'error: unrecognized arguments: --bogus'),
+        ([str(tmp_path / 'none.mcap')], f'BAG {tmp_path / "none.mcap"}: no such file or '
+         'folder'),
+        ([str(EXAMPLE), '-o', str(tmp_path / 'missing' / 'x.rrd')], f'folder '
+         f'{tmp_path / "missing"} does not exist'),
+        ([str(EXAMPLE), '-o', str(tmp_path)], f'-o {tmp_path}: is a folder; give a file name'),
+        ([str(EXAMPLE), '-o', '/sys/out.rrd'], '-o /sys/out.rrd: cannot write (Permission '
+         'denied)'),
+        ([str(EXAMPLE), '-o', str(EXAMPLE)], f'is the input {EXAMPLE}'),
+        ([str(EXAMPLE), '--scene', 'nowhere', '-o', out], 'nowhere: scene: no such file'),
+        ([str(named), '-o', out], 'gone_scene: scene: no such file, and not a bundled scene '
+         '(bundled: '),
+        ([str(foreign_bag), '-o', out], f'{foreign_bag}: no wheel_travel, wheel_carrier_pose, '
+         'camber or toe messages to convert (topics: /speed)'),
+    ]
+    for argv, expected in mistakes:
+        assert status_of(rerun_convert.main, argv) == 2, argv
+        line = one_line(capsys, 'linkage-rerun')
+        assert expected in line, (argv, line)
+        assert not (tmp_path / 'out.rrd').exists()
+    assert status_of(rerun_convert.main, [str(named), '-o', out]) == 2
+    assert capsys.readouterr().err.endswith('(the scene the bag names; choose one with '
+                                            '--scene)\n')
+
+
+@pytest.mark.parametrize('module, argv, expected', [
+    ('mcap', ['linkage_ros.tools.replay', str(EXAMPLE), '--copy'],
+     'linkage-replay: reading and writing bags needs the Python package mcap, which is not '
+     "installed: pip install -e '.[record]' (in a linkage_ros checkout) or pip install mcap"),
+    ('rclpy', ['linkage_ros.tools.replay', str(EXAMPLE), '--publish'],
+     'linkage-replay: --publish needs the Python package ros-jazzy-rclpy, which is not '
+     "installed: pip install -e '.[ros]'"),
+    ('rerun', ['linkage_ros.tools.rerun_convert', str(EXAMPLE)],
+     'linkage-rerun: writing .rrd files needs the Python package rerun-sdk, which is not '
+     "installed: pip install -e '.[view]' (in a linkage_ros checkout) or pip install "
+     'rerun-sdk'),
+    ('mcap', ['linkage_ros.tools.rerun_convert', str(EXAMPLE)],
+     'linkage-rerun: reading bags needs the Python package mcap, which is not installed: '
+     "pip install -e '.[record]'"),
+])
+def test_a_missing_optional_package_is_named_with_the_command_that_installs_it(
+        tmp_path, module, argv, expected):
+    # A fresh interpreter in which importing the package fails, as where it is not installed.
+    code = (f'import runpy, sys; sys.modules[{module!r}] = None; sys.argv = {argv!r}; '
+            f'runpy.run_module({argv[0]!r}, run_name="__main__")')
+    result = subprocess.run([sys.executable, '-c', code], capture_output=True, text=True,
+                            timeout=120, cwd=tmp_path)
+    assert result.returncode == 2, result.stderr
+    assert result.stderr.count('\n') == 1 and result.stderr.startswith(expected), result.stderr
+    assert list(tmp_path.iterdir()) == []
