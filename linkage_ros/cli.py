@@ -11,8 +11,28 @@ import os
 from pathlib import Path
 import sys
 
+DONE, DAMAGED, MISTAKE = 0, 1, 2
+
 EXIT_STATUS = ('2 a mistake in the command: an unknown option, a bad value, a missing or '
                'unwritable file, a missing optional package (one line on stderr)')
+
+# For the programs that read recordings, which may be damaged.
+EXIT_STATUSES = """exit status:
+  0  done; the input was complete
+  1  done, but the input was damaged: what could be read was used (and the warning says
+     what was lost)
+  2  a mistake in the command: an unknown option, a bad value, a missing or unwritable
+     file, a missing optional package (one line on stderr says which)"""
+
+# Top-level module -> (pip package, extra of linkage_ros that installs it).
+PACKAGES = {'mcap': ('mcap', 'record'), 'zstandard': ('zstandard', 'record'),
+            'lz4': ('lz4', 'record'), 'rerun': ('rerun-sdk', 'view'),
+            'pyarrow': ('rerun-sdk', 'view'), 'matplotlib': ('matplotlib', 'plot'),
+            'rclpy': ('ros-jazzy-rclpy', 'ros')}
+
+
+class Mistake(Exception):
+    """A user mistake: the message is the one line printed after the program name."""
 
 
 class Parser(argparse.ArgumentParser):
@@ -24,35 +44,73 @@ class Parser(argparse.ArgumentParser):
 
     def error(self, message: str) -> None:
         """Print one line naming the mistake and exit with status 2."""
-        sys.exit(fail(self.prog, f'{message} (see {self.prog} --help)'))
+        sys.exit(fail(self.prog, f'error: {message} (see {self.prog} --help)'))
 
 
-def fail(prog: str, message: str) -> int:
+def fail(prog: str, message: object) -> int:
     """Print one line, 'prog: message', on stderr; return exit status 2."""
     print(f'{prog}: {message}', file=sys.stderr)
-    return 2
+    return MISTAKE
 
 
-def writable_file(path: str) -> str:
+def writable_file(path: str, inputs: tuple = ()) -> str:
     """
-    Check that path can be created or overwritten as a file.
+    Check that path can be created or overwritten as a file, leaving it as it was.
 
-    Returns the problem in a few words, or '' if there is none: a missing folder, a folder
-    where the file should be, no permission.
+    Returns the problem in a few words, or '' if there is none: a folder where the file
+    should be, a missing folder, one of the inputs, no permission. A file that did not
+    exist is created and removed again: only opening it tells (root passes os.access).
     """
     target = Path(path)
     if target.is_dir():
         return f'{path} is a folder, not a file'
-    folder = target.parent if str(target.parent) else Path('.')
-    if not folder.is_dir():
+    folder = target.parent
+    if not folder.exists():
         return f'cannot write {path}: no folder {folder}'
-    if not os.access(target if target.exists() else folder, os.W_OK):
-        return f'cannot write {path}: permission denied'
+    if not folder.is_dir():
+        return f'cannot write {path}: {folder} is not a folder'
+    for other in inputs:
+        if other is not None and target.exists() and Path(other).exists() \
+                and os.path.samefile(target, other):
+            return f'{path} is the input {other}; give another file name'
+    existed = target.exists()
+    try:
+        with open(target, 'ab'):
+            pass
+    except OSError as exc:
+        return f'cannot write {path}: {exc.strerror or exc}'
+    if not existed:
+        target.unlink()
     return ''
 
 
-def missing_package(exc: ImportError, extra: str) -> str:
-    """Say which optional package is missing and how to install it (the extra's name)."""
-    name = getattr(exc, 'name', None) or str(exc)
-    return (f'needs the Python package {name}, which is not installed: '
-            f"pip install -e '.[{extra}]' (from the linkage_ros checkout)")
+def check_output(path: str, option: str = '-o', inputs: tuple = ()) -> None:
+    """Raise Mistake, naming the option, if path cannot be written (see writable_file)."""
+    problem = writable_file(path, inputs)
+    if problem:
+        raise Mistake(f'{option}: {problem}')
+
+
+def check_input(path: str, option: str = 'BAG') -> None:
+    """Refuse an input that does not exist (a RecordingError names other problems)."""
+    if not Path(path).exists():
+        raise Mistake(f'{option} {path}: no such file or folder')
+
+
+def default_output(source: str, suffix: str) -> str:
+    """Return the source's stem + suffix in the current folder (never beside the source)."""
+    return str(Path.cwd() / (Path(source).stem + suffix))
+
+
+def missing_package(exc: ImportError, feature: str) -> str:
+    """Say which optional package the feature needs and how to install it."""
+    module = (getattr(exc, 'name', None) or '').split('.')[0]
+    if module in PACKAGES:
+        package, extra = PACKAGES[module]
+        return (f'{feature} needs the Python package {package}, which is not installed: '
+                f"pip install -e '.[{extra}]' (in a linkage_ros checkout) or pip install "
+                f'{package}')
+    if module.endswith('_msgs') or module.startswith(('rcl', 'rosidl', 'builtin_interfaces')):
+        return (f'{feature} needs the ROS 2 Python packages ({module} is not installed): '
+                "pip install -e '.[ros]' (in a linkage_ros checkout)")
+    return f'{feature} needs the Python module {module or exc}, which cannot be imported'

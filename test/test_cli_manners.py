@@ -146,13 +146,13 @@ def replay_mistakes(tmp_path, foreign_bag):
         (['--sweep', '--copy'], 'error: --copy needs a BAG'),
         ([bag, '--method', 'quick'], "error: argument --method: invalid choice: 'quick'"),
         ([bag, '--scene', 'nowhere'], 'nowhere: scene: no such file, and not a bundled scene'),
-        ([bag, '-o', str(missing / 'out.mcap')], f'-o {missing / "out.mcap"}: folder '
-         f'{missing} does not exist'),
-        ([bag, '-o', str(folder)], f'-o {folder}: is a folder; give a file name'),
-        ([bag, '-o', str(blocker / 'out.mcap')], f'-o {blocker / "out.mcap"}: {blocker} is '
-         'not a folder'),
-        ([bag, '--copy', '-o', bag], f'-o {bag}: is the input {bag}; give another file name'),
-        ([bag, '-o', '/sys/out.mcap'], '-o /sys/out.mcap: cannot write (Permission denied)'),
+        ([bag, '-o', str(missing / 'out.mcap')], f'-o: cannot write {missing / "out.mcap"}: no '
+         f'folder {missing}'),
+        ([bag, '-o', str(folder)], f'-o: {folder} is a folder, not a file'),
+        ([bag, '-o', str(blocker / 'out.mcap')], f'-o: cannot write {blocker / "out.mcap"}: '
+         f'{blocker} is not a folder'),
+        ([bag, '--copy', '-o', bag], f'-o: {bag} is the input {bag}; give another file name'),
+        ([bag, '-o', '/sys/out.mcap'], '-o: cannot write /sys/out.mcap: Permission denied'),
         ([bag, '--topic', '/camber_x'], 'no topic /camber_x (topics present: '),
         ([str(foreign_bag), '-o', out], f'{foreign_bag}: no topic /wheel_travel (topics '
          'present: /speed (std_msgs/msg/Float64)); choose the wheel-travel topic with --topic'),
@@ -179,11 +179,11 @@ def test_every_rerun_mistake_is_one_line_and_status_2_and_writes_nothing(
         ([str(EXAMPLE), '--bogus'], 'error: unrecognized arguments: --bogus'),
         ([str(tmp_path / 'none.mcap')], f'BAG {tmp_path / "none.mcap"}: no such file or '
          'folder'),
-        ([str(EXAMPLE), '-o', str(tmp_path / 'missing' / 'x.rrd')], f'folder '
-         f'{tmp_path / "missing"} does not exist'),
-        ([str(EXAMPLE), '-o', str(tmp_path)], f'-o {tmp_path}: is a folder; give a file name'),
-        ([str(EXAMPLE), '-o', '/sys/out.rrd'], '-o /sys/out.rrd: cannot write (Permission '
-         'denied)'),
+        ([str(EXAMPLE), '-o', str(tmp_path / 'missing' / 'x.rrd')], f'no folder '
+         f'{tmp_path / "missing"}'),
+        ([str(EXAMPLE), '-o', str(tmp_path)], f'-o: {tmp_path} is a folder, not a file'),
+        ([str(EXAMPLE), '-o', '/sys/out.rrd'], '-o: cannot write /sys/out.rrd: Permission '
+         'denied'),
         ([str(EXAMPLE), '-o', str(EXAMPLE)], f'is the input {EXAMPLE}'),
         ([str(EXAMPLE), '--scene', 'nowhere', '-o', out], 'nowhere: scene: no such file'),
         ([str(named), '-o', out], 'gone_scene: scene: no such file, and not a bundled scene '

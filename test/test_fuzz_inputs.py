@@ -52,7 +52,7 @@ def structure(data):
 
 
 def broken(data, path, new, delete):
-    """A deep copy of data with the value at path replaced by new (or its key deleted)."""
+    """Return a deep copy of data with the value at path replaced by new (or deleted)."""
     copy = yaml.safe_load(yaml.safe_dump(data))
     if not path:
         return new
@@ -83,8 +83,12 @@ def write(folder, name, data=None, text=None):
 
 
 def assert_refused_well(exc, path):
-    """Only LinkageError; its message is 'file: field: problem' about path (or a scene a
-    vehicle names), the field not empty."""
+    """
+    Check that exc is a LinkageError naming the file and a field.
+
+    Its message is 'file: field: problem' about path (or a scene a vehicle names), the
+    field not empty.
+    """
     assert isinstance(exc, LinkageError), f'{type(exc).__name__}: {exc}'
     if isinstance(exc, SceneError):
         assert exc.field and str(exc) == f'{exc.source}: {exc.field}: {exc.problem}'
@@ -104,8 +108,8 @@ def load(loader, path):
 
 @FUZZ
 @given(data=values)
-def test_any_yaml_structure_as_a_scene_or_vehicle_gives_a_result_or_a_linkage_error(folder,
-                                                                                      data):
+def test_any_yaml_structure_as_a_scene_or_vehicle_gives_a_result_or_a_linkage_error(
+        folder, data):
     for loader, name in ((load_scene, 'scene.yaml'), (load_vehicle, 'vehicle.yaml')):
         load(loader, write(folder, name, data))
 

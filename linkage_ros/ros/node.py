@@ -447,7 +447,8 @@ def open_sinks(params, scenes, qos):
             try:
                 from ..record.bag import McapRecorder
             except ImportError as exc:
-                raise LinkageError('record_mcap', missing_package(exc, 'record')) from None
+                raise LinkageError('record_mcap',
+                                   missing_package(exc, 'recording to MCAP')) from None
             about = {k: str(params[k])
                      for k in ('scene', 'vehicle', 'method', 'frame_id', 'max_step_mm')}
             sinks.append(McapRecorder(params['record_mcap'], qos=qos, custom_data=about))
@@ -455,9 +456,8 @@ def open_sinks(params, scenes, qos):
             try:
                 from ..record.rerun_view import RerunRecorder
             except ImportError as exc:   # pyarrow comes with rerun-sdk: name the package
-                raise LinkageError('rerun_rrd', missing_package(
-                    ImportError(name='rerun-sdk') if exc.name in ('pyarrow', 'rerun') else exc,
-                    'view')) from None
+                raise LinkageError('rerun_rrd', missing_package(exc, 'mirroring to Rerun')) \
+                    from None
             if '' in scenes:
                 sinks.append(RerunRecorder(params['rerun_rrd'], scenes['']))
             else:

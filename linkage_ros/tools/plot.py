@@ -180,7 +180,7 @@ def main(argv: list[str] | None = None) -> int:
     try:
         import matplotlib  # noqa: F401 (imported to name it if it is missing)
     except ImportError as exc:
-        return fail(prog, missing_package(exc, 'plot'))
+        return fail(prog, missing_package(exc, 'plotting'))
     if args.what == 'latency':
         plot_latency(ladder, out)
     elif args.what == 'alignment':

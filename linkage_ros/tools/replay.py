@@ -30,7 +30,7 @@ import time
 
 import numpy as np
 
-from . import cli
+from .. import cli
 from ..core.errors import LinkageError
 from ..core.kinematics import Continuation, METHODS, travel_range
 from ..core.scene import load_scene
@@ -349,7 +349,6 @@ def _finite(text):
 def parse_args(argv):
     summary, text = __doc__.strip().split('\n', 1)
     parser = cli.Parser(prog=PROG, description=summary,
-                        formatter_class=argparse.RawDescriptionHelpFormatter,
                         epilog=text + '\n' + EXAMPLES + '\n' + cli.EXIT_STATUSES)
     parser.add_argument('bag', nargs='?', metavar='BAG',
                         help='recorded run: an .mcap file, or a rosbag2 bag folder holding one')

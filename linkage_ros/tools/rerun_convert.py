@@ -14,12 +14,11 @@ or damaged gives a warning naming what was found, and its readable messages are 
 Progress goes to stderr.
 """
 
-import argparse
 import importlib
 import math
 import sys
 
-from . import cli
+from .. import cli
 from ..core.errors import LinkageError
 from ..core.scene import load_scene
 
@@ -50,7 +49,6 @@ def convert(bag, scene, output, recording_id=None):
 def parse_args(argv):
     summary, text = __doc__.strip().split('\n', 1)
     parser = cli.Parser(prog=PROG, description=summary,
-                        formatter_class=argparse.RawDescriptionHelpFormatter,
                         epilog=text + '\n' + cli.EXIT_STATUSES)
     parser.add_argument('bag', metavar='BAG',
                         help='recorded run: an .mcap file, or a rosbag2 bag folder holding one')
