@@ -233,28 +233,36 @@ class McapRecorder:
     custom_data: {str: str} stored in the bag metadata (e.g. scene name, solver method).
     definitions: {type name: 'ros2msg' schema text} used instead of the installed .msg files
     (a copied bag keeps its own, read_bag's Bag.definitions).
+
+    A write error (disk full, file-size limit, file gone) stops the recording: error holds
+    the reason from then on, whichever thread met it, and record() raises RecordingError.
+    The file keeps every chunk written before; close() does not raise for the lost end.
     """
 
     def __init__(self, path, *, qos=None, custom_data=None, chunk_size=CHUNK_SIZE,
                  flush_period=FLUSH_PERIOD, definitions=None):
         self.path = Path(path)
+        self._file = None
         try:
             self.path.parent.mkdir(parents=True, exist_ok=True)
             self._file = _RawFile(self.path)
+            self._writer = Writer(self._file, chunk_size=chunk_size,
+                                  compression=CompressionType.ZSTD)
+            self._writer.start(profile=PROFILE, library=_library())
         except OSError as exc:
+            if self._file is not None:
+                self._file.close()
             raise RecordingError(path, f'cannot write ({exc.strerror or exc})') from None
         self._qos = {qualified(k): qos_profile_dict(v) for k, v in (qos or {}).items()}
         self._custom = {str(k): str(v) for k, v in (custom_data or {}).items()}
         self._definitions = dict(definitions or {})
-        self._writer = Writer(self._file, chunk_size=chunk_size,
-                              compression=CompressionType.ZSTD)
-        self._writer.start(profile=PROFILE, library=_library())
         self._schemas = {}
         self._topics = {}
         self._times = [None, None]     # first, last log time
         self._pending = 0
         self._lock = threading.Lock()
         self._closed = False
+        self.error = ''          # why the recording stopped; '' while it records
         self._stop = threading.Event()
         self._flusher = None
         if flush_period:
@@ -278,13 +286,19 @@ class McapRecorder:
         with self._lock:
             if self._closed:
                 raise RecordingError(self.path, 'recording is closed')
+            if self.error:
+                raise RecordingError(self.path, self.error)
             entry = self._topics.get(topic) or self._add_topic(topic, type_name)
             if entry.type_name != type_name:
                 raise RecordingError(self.path, f'topic {entry.name} is recorded as '
                                      f'{entry.type_name}, got a {type_name}')
             entry.count += 1
-            self._writer.add_message(entry.channel_id, log_time=int(receive_ns), data=data,
-                                     publish_time=int(publish_ns), sequence=entry.count)
+            try:
+                self._writer.add_message(entry.channel_id, log_time=int(receive_ns),
+                                         data=data, publish_time=int(publish_ns),
+                                         sequence=entry.count)
+            except OSError as exc:
+                raise RecordingError(self.path, self._failed(exc)) from None
             first, last = self._times
             self._times = [receive_ns if first is None else min(first, receive_ns),
                            receive_ns if last is None else max(last, receive_ns)]
@@ -293,8 +307,11 @@ class McapRecorder:
     def flush(self):
         """Write the chunk being built now (the node need not call this; a thread does)."""
         with self._lock:
-            if not self._closed and self._pending:
-                self._writer.flush()
+            if not self._closed and self._pending and not self.error:
+                try:
+                    self._writer.flush()
+                except OSError as exc:
+                    raise RecordingError(self.path, self._failed(exc)) from None
                 self._pending = 0
 
     def close(self):
@@ -308,9 +325,12 @@ class McapRecorder:
             self._flusher.join()
         atexit.unregister(self.close)
         try:
-            self._writer.add_metadata('rosbag2', {'serialized_metadata': _dump(
-                self.bag_metadata())})
-            self._writer.finish()
+            if not self.error:
+                self._writer.add_metadata('rosbag2', {'serialized_metadata': _dump(
+                    self.bag_metadata())})
+                self._writer.finish()
+        except OSError as exc:      # the end is lost; what was written stays readable
+            self._failed(exc)
         finally:
             self._file.close()
 
@@ -362,8 +382,16 @@ class McapRecorder:
         return entry
 
     def _flush_loop(self, period):
-        while not self._stop.wait(period):
-            self.flush()
+        while not self._stop.wait(period) and not self.error:
+            try:
+                self.flush()
+            except RecordingError:
+                return          # self.error says why; the node reports it
+
+    def _failed(self, exc):
+        """Remember the first write error as the reason the recording stopped; return it."""
+        self.error = self.error or f'cannot write ({exc.strerror or exc})'
+        return self.error
 
 
 def _library():

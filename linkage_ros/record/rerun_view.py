@@ -318,7 +318,8 @@ ROLES = {'wheel_travel': 'travel', 'wheel_carrier_pose': 'pose', 'camber': 'camb
 BATCH_ROWS = 256       # rows buffered before they are sent as columns
 BATCH_DELAY = 0.5      # s (wall clock): or once the oldest buffered row is this old
 FLUSH_TIMEOUT = 2.0    # s: a flush of the .rrd that takes longer means its writer stopped
-LIMIT_MARGIN = 1 << 20   # bytes: this close to a size limit or free space is "reached"
+ROOM = 256 * 1024       # bytes: a recording stops, whole, this far from a limit or a full disk
+_ABANDONED = []          # streams whose writer failed: never disconnected (see close)
 
 
 def cut_to_whole_messages(path):
@@ -327,11 +328,15 @@ def cut_to_whole_messages(path):
 
     The file is a 12-byte header (b'RRF2', version, options) and messages, each a 16-byte
     header (kind, length: two little-endian uint64) and its payload; a write that failed
-    leaves a message cut short at the end, which Rerun's readers refuse whole.
+    leaves a message cut short at the end, which Rerun's readers refuse whole. A file that
+    ends with its footer (b'RRF2FOOT' and a version, after the end message) is whole: kept.
     """
     try:
         with open(path, 'r+b') as stream:
             size = os.fstat(stream.fileno()).st_size
+            stream.seek(max(size - 12, 0))
+            if stream.read(8) == b'RRF2FOOT':
+                return
             end = 12
             stream.seek(end)
             while end + 16 <= size:
@@ -345,24 +350,25 @@ def cut_to_whole_messages(path):
         pass   # nothing more can be done: the failure is reported already
 
 
-def write_failure(path):
+def lack_of_room(path, room=ROOM):
     """
-    Say why writing path probably failed, from what the system shows.
+    Say why path cannot take room more bytes, or '' if it can.
 
-    A file-size limit (ulimit -f) reached, a full file system, the file gone; else only that
-    the writer stopped.
+    The file gone (removed while written), a file-size limit (ulimit -f) or a full file
+    system within room bytes.
     """
     try:
         size = os.path.getsize(path)
     except OSError:
-        return f'{path} is gone'
+        return f'{path} is gone (removed while recording)'
     limit = resource.getrlimit(resource.RLIMIT_FSIZE)[0]
-    if limit != resource.RLIM_INFINITY and size + LIMIT_MARGIN >= limit:
-        return f'file size limit reached ({limit} bytes, ulimit -f)'
+    if limit != resource.RLIM_INFINITY and size + room >= limit:
+        return f'file size limit reached ({size} of {limit} bytes, ulimit -f)'
     space = os.statvfs(os.path.dirname(os.path.abspath(path)))
-    if space.f_bavail * space.f_frsize < LIMIT_MARGIN:
-        return 'no space left on the device'
-    return 'a write failed'
+    free = space.f_bavail * space.f_frsize
+    if free < room:
+        return f'file system full ({free} bytes free)'
+    return ''
 
 
 class RerunRecorder:
@@ -434,7 +440,22 @@ class RerunRecorder:
         return parts[1] if len(parts) == 3 and parts[1] in self.scenes else None
 
     def flush(self) -> None:
-        """Send the buffered rows as columns."""
+        """
+        Send the buffered rows as columns.
+
+        Rerun's file writer hangs for good on a failed write (rerun-sdk 0.41), so a batch is
+        sent only while the file has room for it; else the recording stops, and the file
+        is ended whole while it still can be.
+        """
+        if self._closed:
+            return
+        problem = lack_of_room(self.path)
+        if problem:
+            self._error = f'{problem}; the .rrd ends there'
+            self._closed = True
+            self._end()
+            cut_to_whole_messages(self.path)   # in case the end did not fit any more
+            return
         for (root, role), rows in self._rows.items():
             if not rows:
                 continue
@@ -455,30 +476,47 @@ class RerunRecorder:
         """
         Say why the .rrd is no longer written, or None while it is.
 
-        Rerun writes the file from a thread of its own and only logs a failed write; what
-        shows here is that its flush cannot complete any more. Checked on each call (the node
-        asks once a diagnostic period): a flush waits for what is buffered to be written.
+        The recording stops itself before a file-size limit or a full disk (see flush). Any
+        other write error shows only as a flush that cannot complete: checked on each call
+        (the node asks once a diagnostic period).
         """
         if self._error is None and not self._closed:
             try:
                 self._rec.flush(timeout_sec=FLUSH_TIMEOUT)
             except RuntimeError:
-                self._error = f'the .rrd writer stopped: {write_failure(self.path)}'
+                self._broken()
         return self._error
 
     def close(self) -> None:
         """Send what is buffered and end the file. Idempotent."""
-        if self._closed:
-            return
         self.flush()
+        if not self._closed:
+            self._closed = True
+            self._end()
+
+    def _end(self):
+        """Write what is sent and end the file, or leave a broken writer alone."""
+        if self._rec not in _ABANDONED:
+            try:
+                self._rec.flush(timeout_sec=FLUSH_TIMEOUT)
+            except RuntimeError:
+                self._broken()
+        if self._rec not in _ABANDONED:
+            self._rec.disconnect()
+
+    def _broken(self):
+        """
+        Give up a stream whose writer failed: keep the file's whole messages.
+
+        rerun-sdk 0.41's disconnect(), its shutdown at exit and the stream's finalizer can
+        wait forever on such a writer, so the stream is kept referenced and never ended.
+        """
+        self._error = self._error or ('the .rrd writer stopped: '
+                                      f'{lack_of_room(self.path) or "a write failed"}')
         self._closed = True
-        try:
-            self._rec.flush(timeout_sec=FLUSH_TIMEOUT)
-        except RuntimeError:   # the writer failed before: the file holds what it wrote
-            self._error = self._error or f'the .rrd writer stopped: {write_failure(self.path)}'
-        self._rec.disconnect()
-        if self._error:
-            cut_to_whole_messages(self.path)
+        _ABANDONED.append(self._rec)
+        rr.unregister_shutdown()
+        cut_to_whole_messages(self.path)
 
     def __enter__(self) -> RerunRecorder:
         return self
