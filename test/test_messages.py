@@ -5,6 +5,7 @@ import math
 from builtin_interfaces.msg import Time
 from diagnostic_msgs.msg import DiagnosticStatus
 from geometry_msgs.msg import PoseStamped
+from linkage_ros import cdr
 from linkage_ros.core.kinematics import Continuation
 from linkage_ros.core.scene import load_scene
 from linkage_ros.ros import messages
@@ -116,9 +117,8 @@ def test_pose_and_float64_are_read_back_in_place_from_any_cdr(solved):
     pose = PoseStamped()
     pose.header.frame_id = 'abc'
     pose.pose.position.x, pose.pose.orientation.w = 1.25, -0.5
-    assert messages.pose_of(serialize_message(pose)) == ((1.25, 0.0, 0.0),
-                                                         (0.0, 0.0, 0.0, -0.5))
-    assert messages.float64_of(serialize_message(Float64(data=-2.5))) == -2.5
+    assert cdr.pose_of(serialize_message(pose)) == ((1.25, 0.0, 0.0), (0.0, 0.0, 0.0, -0.5))
+    assert cdr.float64_of(serialize_message(Float64(data=-2.5))) == -2.5
 
 
 def test_failed_solution_has_no_answer(failed):
@@ -194,4 +194,4 @@ def test_diagnostic_array_is_stamped_and_holds_the_statuses(solved):
     (messages.diagnostics([], STAMP), 'diagnostic_msgs/msg/DiagnosticArray'),
 ])
 def test_type_name_is_the_ros_interface_name_of_a_message_or_its_class(message, expected):
-    assert messages.type_name(message) == expected
+    assert cdr.type_name(message) == expected

@@ -12,8 +12,8 @@ import subprocess
 import sys
 
 from conftest import connect, Probe, spin_until
+from linkage_ros.cdr import float64_of
 from linkage_ros.record.bag import McapRecorder, RecordingError
-from linkage_ros.ros.messages import float64_of
 from mcap.stream_reader import StreamReader
 import pytest
 from rerun.chunk import RrdReader

@@ -46,8 +46,8 @@ from rclpy.node import Node
 from sensor_msgs.msg import JointState
 from std_msgs.msg import Float64
 
+from ..cdr import float64_cdr
 from ..core.scene import config_dir
-from ..ros.messages import float64_cdr
 from ..ros.node import QOS, run
 
 SECTIONS = ('core', 'sweep', 'start', 'latency', 'vehicle', 'callback')

@@ -25,8 +25,9 @@ import rclpy
 from rclpy.experimental import EventsExecutor
 from rclpy.parameter import Parameter
 
+from ..cdr import float64_cdr, pose_of
 from ..core.scene import load_scene
-from ..ros.messages import float64_cdr, pose_of, status_values
+from ..ros.messages import status_values
 from ..ros.node import QOS, SuspensionNode
 
 BAD_VALUES_M = (math.nan, math.inf, -math.inf, 1e308, 10.0)   # 10 m: beyond any limit

@@ -15,6 +15,9 @@ from . import kernel
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
 
+M_PER_MM = 1e-3   # the core works in mm; ROS messages and recordings are in m
+MM_PER_M = 1e3
+
 
 def unit(v: ArrayLike) -> np.ndarray:
     """Return v / |v| along the last axis."""

@@ -41,8 +41,8 @@ from mcap.stream_reader import breakup_chunk, CRCValidationError
 from mcap.writer import CompressionType, Writer
 import yaml
 
+from ..cdr import to_cdr
 from ..core.errors import LinkageError
-from ..ros.messages import to_cdr
 
 MCAP_MAGIC = b'\x89MCAP0\r\n'
 PROFILE = 'ros2'

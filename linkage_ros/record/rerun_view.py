@@ -35,10 +35,10 @@ import rerun.blueprint as rrb
 from rerun.components import LineStrip3DBatch
 from rerun.encodings import Vec3DBatch
 
-from ..core.geometry import carrier_points, perpendicular, unit
+from ..cdr import float64_of, pose_of, to_cdr
+from ..core.geometry import carrier_points, MM_PER_M, perpendicular, unit
 from ..core.kinematics import sweep, travel_range
 from ..core.scene import link_polylines
-from ..ros.messages import float64_of, MM_PER_M, pose_of, to_cdr
 
 if TYPE_CHECKING:
     from collections.abc import Sequence

@@ -16,8 +16,7 @@ import numpy as np
 from std_msgs.msg import ColorRGBA
 from visualization_msgs.msg import Marker, MarkerArray
 
-from .messages import M_PER_MM
-from ..core.geometry import carrier_points
+from ..core.geometry import carrier_points, M_PER_MM
 from ..core.scene import link_polylines
 
 LINE_WIDTH = 0.004     # of the scene size: thin lines that stay visible at any scene scale

@@ -7,13 +7,11 @@ conversion happens here and only here:
     command_mm(Float64 CDR, m)                         -> float mm (travel + = bump, rack
                                                           + = to the left)
     joint_travel_mm(JointState, joint)                 -> float mm of that joint, or None
-    float64_of(CDR), pose_of(CDR)                      -> values read in place from bytes
     answer(solution, stamp, frame_id)                  -> [(output name, CDR bytes)]: what
                                                           the node publishes for a solved
                                                           command: PoseStamped (wheel centre,
                                                           m; carrier rotation relative to
                                                           design), camber and toe (Float64, rad)
-    from_cdr(type_name, data), to_cdr(msg)             -> message <-> CDR bytes
     health_status(health, name, hardware_id, method)   -> DiagnosticStatus of a corner
     diagnostics(statuses, stamp)                       -> DiagnosticArray
     alignment_array(alignment)                         -> Float64MultiArray: ALIGNMENT_FIELDS
@@ -26,14 +24,14 @@ can reach a pose topic; its Health says ERROR with the reason.
 from __future__ import annotations
 
 import functools
-import importlib
 import struct
-from typing import Any, TYPE_CHECKING
+from typing import TYPE_CHECKING
 
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
 from std_msgs.msg import Float64MultiArray, MultiArrayDimension, MultiArrayLayout
 
-from ..core.errors import LinkageError
+from ..cdr import CDR_LE, float64_cdr, float64_of
+from ..core.geometry import M_PER_MM, MM_PER_M
 
 if TYPE_CHECKING:
     from collections.abc import Iterable
@@ -44,9 +42,6 @@ if TYPE_CHECKING:
     from .health import Health
     from ..core.alignment import Alignment
     from ..core.kinematics import Solution
-
-M_PER_MM = 1e-3
-MM_PER_M = 1e3
 
 
 def command_mm(data: bytes) -> float:
@@ -118,8 +113,6 @@ def alignment_values(msg: Float64MultiArray) -> dict[str, float]:
 # cost about 20 us to build a PoseStamped and 10 more to serialize it, most of the node's
 # callback. The layout is XCDR1 little-endian as rmw_fastrtps writes it: a 4-byte
 # encapsulation header, then every field aligned to its size, counted from the header's end.
-CDR_LE = b'\x00\x01\x00\x00'
-_FLOAT64 = struct.Struct('<4sd')
 ANSWER_TYPES = {'wheel_carrier_pose': 'geometry_msgs/msg/PoseStamped',
                 'camber': 'std_msgs/msg/Float64', 'toe': 'std_msgs/msg/Float64'}
 
@@ -153,11 +146,6 @@ def pose_stamped_cdr(solution: Solution, stamp: tuple[int, int], frame_id: str) 
                        y * M_PER_MM, z * M_PER_MM, *solution.quaternion.tolist())
 
 
-def float64_cdr(value: float) -> bytes:
-    """Return a std_msgs/Float64 (CDR bytes) holding value."""
-    return _FLOAT64.pack(CDR_LE, value)
-
-
 @functools.lru_cache(maxsize=16)
 def _pose_layout(frame_id):
     # header: stamp (int32 sec, uint32 nanosec), frame_id (uint32 length with the NUL, bytes,
@@ -165,48 +153,6 @@ def _pose_layout(frame_id):
     frame = frame_id.encode() + b'\0'
     pad = -(12 + len(frame)) % 8
     return struct.Struct(f'<4siII{len(frame)}s{pad}x7d'), frame
-
-
-def float64_of(data: bytes) -> float:
-    """Read the value of a std_msgs/Float64 in CDR bytes (either byte order)."""
-    return struct.unpack_from('<d' if data[1] else '>d', data, 4)[0]
-
-
-def pose_of(data: bytes) -> tuple[tuple[float, ...], tuple[float, ...]]:
-    """
-    Read (position (x, y, z), orientation (x, y, z, w)) of a geometry_msgs/PoseStamped.
-
-    From CDR bytes (either byte order), in place, skipping the header's frame_id.
-    """
-    order = '<' if data[1] else '>'
-    frame_length = struct.unpack_from(order + 'I', data, 12)[0]
-    start = 4 + 12 + frame_length
-    values = struct.unpack_from(order + '7d', data, start + (-(start - 4) % 8))
-    return values[:3], values[3:]
-
-
-def from_cdr(type_name: str, data: bytes) -> Any:
-    """Return the rclpy message of type_name ('pkg/msg/Type') held in CDR bytes."""
-    from rclpy.serialization import deserialize_message
-    return deserialize_message(data, message_class(type_name))
-
-
-def to_cdr(msg: Any) -> bytes:
-    """Return the CDR bytes of an rclpy message (bytes are passed through)."""
-    if isinstance(msg, bytes):
-        return msg
-    from rclpy.serialization import serialize_message
-    return serialize_message(msg)
-
-
-def message_class(type_name: str) -> type:
-    """Return the rclpy message class of 'pkg/msg/Type'; LinkageError if none is installed."""
-    package, _, name = type_name.partition('/msg/')
-    try:
-        return getattr(importlib.import_module(f'{package}.msg'), name)
-    except (ImportError, AttributeError, ValueError):
-        raise LinkageError(f'type {type_name!r}', f'no Python message class '
-                           f'{package}.msg.{name} is installed') from None
 
 
 def health_status(health: Health, name: str, hardware_id: str,
@@ -253,12 +199,6 @@ def diagnostics(statuses: Iterable[DiagnosticStatus], stamp: Time) -> Diagnostic
     msg = DiagnosticArray(status=list(statuses))
     msg.header.stamp = stamp
     return msg
-
-
-def type_name(message: object) -> str:
-    """Return the ROS type name of a message class or instance: 'geometry_msgs/msg/PoseStamped'."""
-    kind = message if isinstance(message, type) else type(message)
-    return f"{kind.__module__.split('.')[0]}/msg/{kind.__name__}"
 
 
 def status_values(status: DiagnosticStatus) -> dict[str, str]:

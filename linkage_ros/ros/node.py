@@ -65,6 +65,7 @@ from visualization_msgs.msg import MarkerArray
 
 from . import messages
 from .health import Health
+from ..cdr import float64_of, to_cdr, type_name
 from ..cli import missing_package, writable_file
 from ..core.errors import LinkageError
 from ..core.kinematics import Continuation
@@ -177,13 +178,13 @@ class Corner:
     def on_travel(self, data):
         stamp = self.node.received(self.travel_sub, data)
         self.answer(messages.command_mm(data), None, stamp,
-                    lambda: f'{self.travel_sub.topic_name} {messages.float64_of(data)!r} m')
+                    lambda: f'{self.travel_sub.topic_name} {float64_of(data)!r} m')
 
     def on_rack(self, data):
         # A new rack at the last travel: Continuation keeps the travel it was last solved at.
         stamp = self.node.received(self.rack_sub, data)
         self.answer(None, messages.command_mm(data), stamp,
-                    lambda: f'{self.rack_sub.topic_name} {messages.float64_of(data)!r} m')
+                    lambda: f'{self.rack_sub.topic_name} {float64_of(data)!r} m')
 
     def on_joint_states(self, msg):
         stamp = self.node.received(self.joint_sub, msg, msg.header.stamp)
@@ -274,7 +275,7 @@ class SuspensionNode(Node):
             now = self.clock.now()
             if self.sinks:   # the input's publish time is unknown: EventsExecutor gives no info
                 self._record(subscription.topic_name, subscription.msg_type,
-                             messages.to_cdr(msg), now.nanoseconds, now.nanoseconds)
+                             to_cdr(msg), now.nanoseconds, now.nanoseconds)
             if stamp is None:
                 return now.seconds_nanoseconds()
         return stamp.sec, stamp.nanosec
@@ -329,14 +330,14 @@ class SuspensionNode(Node):
         # the message left, and the recording must still hold what subscribers got.
         if self.sinks:
             published = self.clock.now().nanoseconds
-            self._record(publisher.topic_name, publisher.msg_type, messages.to_cdr(msg),
+            self._record(publisher.topic_name, publisher.msg_type, to_cdr(msg),
                          published, published)
         publisher.publish(msg)
 
     def _record(self, topic, msg_type, data, receive_ns, publish_ns):
         for sink in list(self.sinks):
             try:
-                sink.record(topic, messages.type_name(msg_type), data, receive_ns, publish_ns)
+                sink.record(topic, type_name(msg_type), data, receive_ns, publish_ns)
             except Exception as exc:  # a broken recorder must not stop the node
                 self._drop(sink, getattr(sink, 'error', None) or str(exc))
 

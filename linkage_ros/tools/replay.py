@@ -68,7 +68,7 @@ def read_commands(path, topic=DEFAULT_TOPIC):
     Raises ReplayError if the topic is missing or is not std_msgs/msg/Float64 in CDR.
     """
     from ..record.bag import qualified, read_bag
-    from ..ros.messages import from_cdr
+    from ..cdr import from_cdr
     bag = read_bag(path)
     name = qualified(topic)
     if name not in bag.topics:
@@ -128,6 +128,7 @@ def solve_commands(commands, scene, method, sinks, topic=DEFAULT_TOPIC, progress
 
     Returns the number of commands that could not be solved.
     """
+    from ..cdr import float64_cdr, to_cdr
     from ..record.bag import qualified
     from ..ros import messages
     from ..ros.health import Health
@@ -146,7 +147,7 @@ def solve_commands(commands, scene, method, sinks, topic=DEFAULT_TOPIC, progress
                         time_ns if publish_ns is None else publish_ns)
 
     def report(time_ns):
-        emit(DIAGNOSTICS_TOPIC, DIAGNOSTIC_ARRAY, messages.to_cdr(messages.diagnostics(
+        emit(DIAGNOSTICS_TOPIC, DIAGNOSTIC_ARRAY, to_cdr(messages.diagnostics(
             [messages.health_status(health, status_name, scene.name, method)],
             stamp_of(time_ns))), time_ns)
 
@@ -157,7 +158,7 @@ def solve_commands(commands, scene, method, sinks, topic=DEFAULT_TOPIC, progress
             report(next_report)
             health.reset_period()
             next_report += period * ((t - next_report) // period + 1)
-        emit(topic, FLOAT64, messages.float64_cdr(command.travel), t, command.publish_time)
+        emit(topic, FLOAT64, float64_cdr(command.travel), t, command.publish_time)
         solution = cont.solve(command.travel * 1000.0)
         if solution.success:
             for name, data in messages.answer(solution, divmod(t, 10**9), frame_id):

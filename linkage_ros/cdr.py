@@ -1,0 +1,76 @@
+"""
+ROS 2 messages as CDR bytes, the form in which DDS carries them and MCAP stores them.
+
+Pure functions, usable without DDS: the recorders, the replay and the node share them.
+
+    float64_cdr(value), float64_of(CDR), pose_of(CDR)  -> built or read in place, no rclpy
+    from_cdr(type_name, data), to_cdr(msg)             -> rclpy message <-> CDR bytes
+    message_class(type_name), type_name(message)       -> 'pkg/msg/Type' <-> rclpy class
+
+The layout is XCDR1 as rmw_fastrtps writes it: a 4-byte encapsulation header (CDR_LE for
+little-endian), then every field aligned to its size, counted from the header's end.
+"""
+
+from __future__ import annotations
+
+import importlib
+import struct
+from typing import Any
+
+from .core.errors import LinkageError
+
+CDR_LE = b'\x00\x01\x00\x00'
+_FLOAT64 = struct.Struct('<4sd')
+
+
+def float64_cdr(value: float) -> bytes:
+    """Return a std_msgs/Float64 (CDR bytes) holding value."""
+    return _FLOAT64.pack(CDR_LE, value)
+
+
+def float64_of(data: bytes) -> float:
+    """Read the value of a std_msgs/Float64 in CDR bytes (either byte order)."""
+    return struct.unpack_from('<d' if data[1] else '>d', data, 4)[0]
+
+
+def pose_of(data: bytes) -> tuple[tuple[float, ...], tuple[float, ...]]:
+    """
+    Read (position (x, y, z), orientation (x, y, z, w)) of a geometry_msgs/PoseStamped.
+
+    From CDR bytes (either byte order), in place, skipping the header's frame_id.
+    """
+    order = '<' if data[1] else '>'
+    frame_length = struct.unpack_from(order + 'I', data, 12)[0]
+    start = 4 + 12 + frame_length
+    values = struct.unpack_from(order + '7d', data, start + (-(start - 4) % 8))
+    return values[:3], values[3:]
+
+
+def from_cdr(type_name: str, data: bytes) -> Any:
+    """Return the rclpy message of type_name ('pkg/msg/Type') held in CDR bytes."""
+    from rclpy.serialization import deserialize_message
+    return deserialize_message(data, message_class(type_name))
+
+
+def to_cdr(msg: Any) -> bytes:
+    """Return the CDR bytes of an rclpy message (bytes are passed through)."""
+    if isinstance(msg, bytes):
+        return msg
+    from rclpy.serialization import serialize_message
+    return serialize_message(msg)
+
+
+def message_class(type_name: str) -> type:
+    """Return the rclpy message class of 'pkg/msg/Type'; LinkageError if none is installed."""
+    package, _, name = type_name.partition('/msg/')
+    try:
+        return getattr(importlib.import_module(f'{package}.msg'), name)
+    except (ImportError, AttributeError, ValueError):
+        raise LinkageError(f'type {type_name!r}', f'no Python message class '
+                           f'{package}.msg.{name} is installed') from None
+
+
+def type_name(message: object) -> str:
+    """Return the ROS type name of a message class or instance: 'geometry_msgs/msg/PoseStamped'."""
+    kind = message if isinstance(message, type) else type(message)
+    return f"{kind.__module__.split('.')[0]}/msg/{kind.__name__}"
