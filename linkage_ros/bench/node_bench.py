@@ -200,9 +200,9 @@ class Driver:
             times.append(self.step_arrivals()[i] - start)
         return np.array(times)
 
-    def paced(self, travels, rate, joint_states=False, drain=3.0):
+    def paced(self, travels, rate, joint_states=False, drain=3.0, label=''):
         """
-        Send one step per travel at rate (Hz).
+        Send one step per travel at rate (Hz); with a label, a progress line every 30 s.
 
         Returns (steps sent, steps answered, lag of the last answer after the last step (s),
         step latencies (s)).
@@ -210,7 +210,11 @@ class Driver:
         self.clear()
         sent, period = [], 1.0 / rate
         due = time.perf_counter()
-        for travel in travels:
+        report = due + 30.0
+        for i, travel in enumerate(travels):
+            if label and due >= report:
+                progress(f'{label}: {i}/{len(travels)} sent, {self.answered()} answered')
+                report += 30.0
             now = time.perf_counter()
             while now < due:
                 self.executor.spin_once(timeout_sec=due - now)
@@ -452,7 +456,8 @@ def bench_latency(args, log_dir, first_domain):
             for target in targets:
                 target.driver.connect()         # a backlog of the previous rate drains first
                 count = max(1, int(rate * args.duration * args.scale))
-                sent, got, lag, values = target.driver.paced(sine(count), rate)
+                sent, got, lag, values = target.driver.paced(
+                    sine(count), rate, label=f'latency: {target.name} at {rate} Hz')
                 ladder.append((target.name, rate, sent, got, sent - got, lag * 1000.0,
                                lag * 1000.0 <= args.lag_ms and got == sent, us(values),
                                us(values, 99)))
@@ -480,7 +485,8 @@ def bench_vehicle(args, log_dir, first_domain):
             mode = 'joint_states' if joint_states else 'float64_per_corner'
             for target in targets:
                 target.driver.connect(joint_states)
-                sent, got, lag, values = target.driver.paced(sine(steps), args.hz, joint_states)
+                sent, got, lag, values = target.driver.paced(
+                    sine(steps), args.hz, joint_states, label=f'vehicle: {target.name}, {mode}')
                 medians[target.name, mode] = np.median(values) if len(values) else np.nan
                 rows.append([target.name, mode, sent, got, sent - got, lag * 1000.0,
                              us(values), us(values, 99)])
