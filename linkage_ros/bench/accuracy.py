@@ -25,7 +25,6 @@ Writes <out>/report.md, <out>/results.csv, <out>/bench_front.png; progress on st
 summary table on stdout. Lengths in mm, angles in deg, times in microseconds.
 """
 
-import argparse
 import math
 from pathlib import Path
 import sys
@@ -37,6 +36,7 @@ from . import reference
 from .peers import entries
 from .report import level_table, plot_front, progress, report, write_csv
 from .stress import stress_lines
+from ..cli import EXIT_STATUS, fail, Parser, writable_file
 from ..core.kinematics import travel_range
 from ..core.scene import bundled_scenes, load_scene, SceneError
 
@@ -154,9 +154,15 @@ def run_grid(scenes, chosen, tols, steps, repeats, positions):
     return rows
 
 
+EPILOG = f"""examples:
+  linkage-bench --quick --out bench-report
+  linkage-bench --scenes five_link macpherson --tols 1e-9 --steps 1 5
+
+exit status: 0 the report was written; {EXIT_STATUS}"""
+
+
 def parse_args(argv):
-    parser = argparse.ArgumentParser(prog='linkage-bench', description=__doc__,
-                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser = Parser('linkage-bench', __doc__, EPILOG)
     parser.add_argument('--out', default='bench-report', help='report folder (created)')
     parser.add_argument('--scenes', nargs='+', help='scene names or paths (default: bundled)')
     parser.add_argument('--tols', nargs='+', type=float, default=list(TOLS), help='mm')
@@ -179,6 +185,13 @@ def parse_args(argv):
     if (args.repeats < 1 or args.positions < 1 or min(args.tols) <= 0
             or min(args.steps) <= 0):
         parser.error('--repeats, --positions, --tols and --steps must be positive')
+    out = Path(args.out)
+    if out.exists() and not out.is_dir():
+        parser.error(f'--out: {out} is a file, not a folder')
+    for name in ('report.md', 'results.csv', 'bench_front.png'):
+        problem = out.is_dir() and writable_file(str(out / name))
+        if problem:
+            parser.error(f'--out: {problem}')
     return args
 
 
@@ -188,18 +201,19 @@ def main(argv: list[str] | None = None) -> int:
     try:
         scenes = [load_scene(s) for s in (args.scenes or bundled_scenes())]
     except SceneError as exc:
-        print(f'linkage-bench: {exc}', file=sys.stderr)
-        return 2
+        return fail('linkage-bench', exc)
     chosen = entries()
     if args.entries:
         unknown = set(args.entries) - {e.name for e in chosen}
         if unknown:
-            print(f'linkage-bench: --entries: unknown {sorted(unknown)} (known: '
-                  f'{[e.name for e in chosen]})', file=sys.stderr)
-            return 2
+            return fail('linkage-bench', f'--entries: unknown {sorted(unknown)} (known: '
+                        f'{[e.name for e in chosen]})')
         chosen = [e for e in chosen if e.name in args.entries]
     out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        return fail('linkage-bench', f'--out: cannot make {out}: {exc.strerror or exc}')
     started = time.perf_counter()
     progress(f'{len(scenes)} scenes x {len(args.steps)} steps x {len(args.tols)} tolerances, '
              f'{len(chosen)} entries, {args.repeats} repeats -> {out}/')

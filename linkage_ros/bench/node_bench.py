@@ -47,7 +47,9 @@ from sensor_msgs.msg import JointState
 from std_msgs.msg import Float64
 
 from ..cdr import float64_cdr
-from ..core.scene import config_dir
+from ..cli import EXIT_STATUS, Parser, writable_file
+from ..core.errors import LinkageError
+from ..core.scene import config_dir, load_scene
 from ..ros.node import QOS, run
 
 SECTIONS = ('core', 'sweep', 'start', 'latency', 'vehicle', 'callback')
@@ -543,9 +545,15 @@ def node_script():
     return str(Path(sys.executable).parent / 'suspension_node')
 
 
+EPILOG = f"""examples:
+  ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST linkage-node-bench --plot latency.png > bench.csv
+  ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST linkage-node-bench --only core,vehicle --scale 10
+
+exit status: 0 the tables were written; {EXIT_STATUS}"""
+
+
 def parse_args(argv):
-    parser = argparse.ArgumentParser(prog='linkage-node-bench', description=__doc__,
-                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser = Parser('linkage-node-bench', __doc__, EPILOG)
     parser.add_argument('--only', default=','.join(SECTIONS),
                         help=f'sections to run, comma separated (default: all: '
                         f'{",".join(SECTIONS)})')
@@ -574,6 +582,15 @@ def parse_args(argv):
     parser.add_argument('--start-once', choices=('core', 'suspension_node'),
                         help=argparse.SUPPRESS)
     args, ros_args = parser.parse_known_args(argv)
+    if ros_args and not (args.echo or args.echo_vehicle):   # only echo nodes take ROS args
+        parser.error(f'unrecognized arguments: {" ".join(ros_args)}')
+    problem = args.plot and writable_file(args.plot)
+    if problem:
+        parser.error(f'--plot: {problem}')
+    try:
+        load_scene(args.scene)
+    except LinkageError as exc:
+        parser.error(str(exc))
     args.only = [s for s in args.only.split(',') if s]
     args.count = 200 if args.quick else 2000      # commands per core, latency, callback run
     if args.quick:

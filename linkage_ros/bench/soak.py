@@ -26,6 +26,8 @@ from rclpy.experimental import EventsExecutor
 from rclpy.parameter import Parameter
 
 from ..cdr import float64_cdr, pose_of
+from ..cli import EXIT_STATUS, Parser
+from ..core.errors import LinkageError
 from ..core.scene import load_scene
 from ..ros.messages import status_values
 from ..ros.node import QOS, SuspensionNode
@@ -145,9 +147,15 @@ def run(args):
     return 0 if counter.not_finite == 0 else 1
 
 
+EPILOG = f"""examples:
+  ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST linkage-soak > soak.csv
+  ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST linkage-soak --commands 100000 --scene macpherson
+
+exit status: 0 no pose was non-finite; 1 a non-finite pose was published; {EXIT_STATUS}"""
+
+
 def parse_args(argv):
-    parser = argparse.ArgumentParser(prog='linkage-soak', description=__doc__,
-                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser = Parser('linkage-soak', __doc__, EPILOG)
     parser.add_argument('--commands', type=int, default=1_000_000,
                         help='commands to send (default 1000000)')
     parser.add_argument('--scene', default='five_link', help='bundled scene or YAML path')
@@ -163,6 +171,10 @@ def parse_args(argv):
     args = parser.parse_args(argv)
     if args.commands < args.warmup + args.batch or args.batch < 1:
         parser.error('--commands must exceed --warmup by at least one --batch')
+    try:
+        load_scene(args.scene)
+    except LinkageError as exc:
+        parser.error(str(exc))
     return args
 
 

@@ -1,6 +1,7 @@
 """
 linkage-rerun: convert a recorded run (MCAP) into a Rerun .rrd for offline viewing.
 
+for example:
     linkage-rerun run.mcap                 writes ./run.rrd
     linkage-rerun run.mcap -o view.rrd --scene double_wishbone
     rerun run.rrd                          opens the viewer: 3D view of the corner beside

@@ -1,0 +1,51 @@
+"""
+Every console script of the package meets a newcomer the same way.
+
+--help: what it does, an example and the exit statuses, on stdout, status 0, without
+starting anything. An unknown option: one line on stderr, naming the program and the
+option, status 2, never a traceback. The list of scripts is read from the installed
+package's entry points, so a new script is covered as soon as it is declared in setup.py.
+"""
+
+from importlib.metadata import distribution
+from pathlib import Path
+import subprocess
+import sys
+
+import pytest
+
+SCRIPTS = sorted(e.name for e in distribution('linkage_ros').entry_points
+                 if e.group == 'console_scripts')
+# Positional arguments a script requires, so that the unknown option is the only mistake.
+REQUIRED = {'linkage-sweep': ['five_link'], 'linkage-plot': ['camber-toe', 'out.png'],
+            'linkage-rerun': ['run.mcap'], 'linkage-replay': ['run.mcap']}
+
+
+def run(name, *args, cwd=None):
+    """Run an installed console script to its end; return (status, stdout, stderr)."""
+    done = subprocess.run([str(Path(sys.executable).parent / name), *args],
+                          capture_output=True, text=True, timeout=120, cwd=cwd)
+    return done.returncode, done.stdout, done.stderr
+
+
+def test_every_documented_program_is_a_console_script():
+    assert {'suspension_node', 'linkage-sweep', 'linkage-replay', 'linkage-rerun',
+            'linkage-plot', 'linkage-bench', 'linkage-node-bench', 'linkage-soak'} <= set(SCRIPTS)
+
+
+@pytest.mark.parametrize('name', SCRIPTS)
+def test_help_says_what_it_does_an_example_and_the_exit_statuses(name):
+    status, out, err = run(name, '--help')
+    assert status == 0 and err == '', err
+    assert out.startswith(f'usage: {name}') or out.startswith(name), out[:200]
+    assert 'example' in out.lower(), out
+    assert 'exit status' in out and 'mistake' in out
+
+
+@pytest.mark.parametrize('name', SCRIPTS)
+def test_an_unknown_option_is_one_line_naming_it_with_status_2(name, tmp_path):
+    status, out, err = run(name, *REQUIRED.get(name, []), '--no-such-option', cwd=tmp_path)
+    assert status == 2 and out == '', (out, err)
+    assert list(tmp_path.iterdir()) == []
+    assert err.count('\n') == 1 and err.startswith(f'{name}: '), err
+    assert '--no-such-option' in err and 'Traceback' not in err
