@@ -49,3 +49,23 @@ def test_an_unknown_option_is_one_line_naming_it_with_status_2(name, tmp_path):
     assert list(tmp_path.iterdir()) == []
     assert err.count('\n') == 1 and err.startswith(f'{name}: '), err
     assert '--no-such-option' in err and 'Traceback' not in err
+
+
+@pytest.mark.parametrize('name, args, says', [
+    ('linkage-node-bench', ['--plot', '/no/such/folder/x.png'],
+     '--plot: cannot write /no/such/folder/x.png: no folder /no/such/folder'),
+    ('linkage-node-bench', ['--scene', 'nowhere'], 'nowhere: scene: no such file'),
+    ('linkage-node-bench', ['--only', 'core,speed'], "--only: unknown section 'speed'"),
+    ('linkage-bench', ['--out', 'setup.py'], '--out: setup.py is a file, not a folder'),
+    ('linkage-bench', ['--scenes', 'nowhere'], 'nowhere: scene: no such file'),
+    ('linkage-bench', ['--entries', 'magic'], "--entries: unknown ['magic']"),
+    ('linkage-soak', ['--scene', 'nowhere'], 'nowhere: scene: no such file'),
+    ('linkage-soak', ['--commands', '10'], '--commands must exceed --warmup'),
+])
+def test_a_benchmark_given_a_mistake_says_it_in_one_line_before_it_runs(
+        name, args, says, tmp_path):
+    (tmp_path / 'setup.py').write_text('')
+    status, out, err = run(name, *args, cwd=tmp_path)
+    assert status == 2 and out == '', (out, err)
+    assert err.count('\n') == 1 and err.startswith(f'{name}: ') and says in err, err
+    assert sorted(p.name for p in tmp_path.iterdir()) == ['setup.py']

@@ -202,3 +202,35 @@ def test_a_write_error_in_the_flush_thread_is_kept_raised_by_record_and_not_by_c
 def test_a_recording_that_cannot_start_writing_is_refused_at_once():
     with pytest.raises(RecordingError, match='/dev/full: cannot write \\(No space left'):
         McapRecorder('/dev/full')
+
+
+# A Rerun writer broken in a way the room check does not foresee (the check is switched off
+# here, so the size limit strikes mid-write): the error is reported, close() returns, the
+# process exits (rerun-sdk would otherwise wait forever at exit), the file is cut to whole
+# messages.
+MIRROR_WITHOUT_ROOM_CHECK = """
+import resource, signal, sys
+from std_msgs.msg import Float64
+from linkage_ros.core.scene import load_scene
+import linkage_ros.record.rerun_view as rerun_view
+rerun_view.lack_of_room = lambda path, room=0: ''
+signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
+resource.setrlimit(resource.RLIMIT_FSIZE, ({limit}, {limit}))
+mirror = rerun_view.RerunRecorder(sys.argv[1], load_scene('five_link'))
+for i in range(100000):
+    mirror.record('/wheel_travel', 'std_msgs/msg/Float64', Float64(data=i * 1e-6), i, i)
+    if i % 500 == 499 and mirror.error:
+        break
+print(mirror.error)
+mirror.close()
+"""
+
+
+def test_a_rerun_writer_broken_unforeseen_is_reported_and_lets_the_process_exit(tmp_path):
+    path = tmp_path / 'run.rrd'
+    done = subprocess.run([sys.executable, '-c',
+                           MIRROR_WITHOUT_ROOM_CHECK.format(limit=RRD_LIMIT), str(path)],
+                          capture_output=True, text=True, timeout=60)
+    assert done.returncode == 0, done.stderr[-2000:]
+    assert done.stdout == 'the .rrd writer stopped: a write failed\n'
+    assert rerun_rows(path) > 1000

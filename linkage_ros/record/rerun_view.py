@@ -322,6 +322,13 @@ ROOM = 256 * 1024       # bytes: a recording stops, whole, this far from a limit
 _ABANDONED = []          # streams whose writer failed: never disconnected (see close)
 
 
+class _LeftAlone(rr.RecordingStream):
+    """A stream whose writer failed: its finalizer would wait forever on it (see _broken)."""
+
+    def __del__(self) -> None:
+        pass
+
+
 def cut_to_whole_messages(path):
     """
     Cut a .rrd whose writing failed after its last whole message, so that readers read it.
@@ -514,6 +521,7 @@ class RerunRecorder:
         self._error = self._error or ('the .rrd writer stopped: '
                                       f'{lack_of_room(self.path) or "a write failed"}')
         self._closed = True
+        self._rec.__class__ = _LeftAlone
         _ABANDONED.append(self._rec)
         rr.unregister_shutdown()
         cut_to_whole_messages(self.path)
