@@ -582,15 +582,16 @@ def parse_args(argv):
     parser.add_argument('--start-once', choices=('core', 'suspension_node'),
                         help=argparse.SUPPRESS)
     args, ros_args = parser.parse_known_args(argv)
-    if ros_args and not (args.echo or args.echo_vehicle):   # only echo nodes take ROS args
-        parser.error(f'unrecognized arguments: {" ".join(ros_args)}')
-    problem = args.plot and writable_file(args.plot)
-    if problem:
-        parser.error(f'--plot: {problem}')
-    try:
-        load_scene(args.scene)
-    except LinkageError as exc:
-        parser.error(str(exc))
+    if not (args.echo or args.echo_vehicle or args.start_once):   # the user's command
+        if ros_args:            # only the echo processes take ROS arguments
+            parser.error(f'unrecognized arguments: {" ".join(ros_args)}')
+        problem = args.plot and writable_file(args.plot)
+        if problem:
+            parser.error(f'--plot: {problem}')
+        try:
+            load_scene(args.scene)
+        except LinkageError as exc:
+            parser.error(str(exc))
     args.only = [s for s in args.only.split(',') if s]
     args.count = 200 if args.quick else 2000      # commands per core, latency, callback run
     if args.quick:

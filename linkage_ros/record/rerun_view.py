@@ -319,7 +319,7 @@ BATCH_ROWS = 256       # rows buffered before they are sent as columns
 BATCH_DELAY = 0.5      # s (wall clock): or once the oldest buffered row is this old
 FLUSH_TIMEOUT = 2.0    # s: a flush of the .rrd that takes longer means its writer stopped
 ROOM = 256 * 1024       # bytes: a recording stops, whole, this far from a limit or a full disk
-_ABANDONED = []          # streams whose writer failed: never disconnected (see close)
+_ABANDONED = []          # streams whose writer failed: never ended (see _broken)
 
 
 class _LeftAlone(rr.RecordingStream):
