@@ -1,0 +1,53 @@
+#!/bin/bash
+# Run the README's commands as written, from the root of a checkout where command 1 has run
+# (by hand, not in CI: it starts nodes and takes about 2 minutes). Usage: bash .ci/readme_commands.sh
+set -u
+cd "$(dirname "$0")/.." && export ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST
+step() { echo "=== $*"; }
+step sweep double_wishbone
+.venv/bin/linkage-sweep double_wishbone --from -40 --to 40 --step 10 --csv double_wishbone.csv; echo "rc=$?"; head -2 double_wishbone.csv
+step sweep out of reach
+.venv/bin/linkage-sweep five_link --from 0 --to 1000 --step 100 > /dev/null; echo "rc=$?"
+step misspelt parameter
+.venv/bin/suspension_node --ros-args -p sceen:=macpherson; echo "rc=$?"
+step python snippet
+.venv/bin/python -c "
+from linkage_ros import Continuation, load_scene, sweep
+
+scene = load_scene('five_link')
+table = sweep(scene, range(-80, 81))              # mm -> Sweep: arrays over the positions
+solution = Continuation(scene).solve(12.5)        # one command, mm -> Solution
+print(solution.camber, solution.wheel_center)     # rad, mm (vehicle frame)
+"; echo "rc=$?"
+step node with params file + drive.py
+.venv/bin/suspension_node --ros-args --params-file config/suspension.yaml > node.log 2>&1 &
+NODE=$!
+sed -n '/^# drive.py/,/^rclpy.try_shutdown()/p' README.md > drive.py
+.venv/bin/python drive.py; echo "rc=$?"
+kill -INT $NODE; wait $NODE; echo "node rc=$?"
+step node recording
+.venv/bin/suspension_node --ros-args -p record_mcap:=run.mcap -p rerun_rrd:=run.rrd > node2.log 2>&1 &
+NODE=$!
+.venv/bin/python drive.py > /dev/null; echo "rc=$?"
+kill -INT $NODE; wait $NODE; echo "node rc=$?"; ls -la run.mcap run.rrd
+step vehicle node
+.venv/bin/suspension_node --ros-args -p vehicle:=demo_vehicle > node3.log 2>&1 &
+NODE=$!; sleep 4; kill -TERM $NODE; wait $NODE; echo "vehicle node rc=$?"
+step replay
+.venv/bin/linkage-replay bags/five_link_sweep.mcap -o solved.mcap --scene five_link; echo "rc=$?"
+.venv/bin/linkage-replay bags/five_link_sweep.mcap --copy -o copy.mcap; echo "rc=$?"
+step rerun
+.venv/bin/linkage-rerun bags/five_link_sweep.mcap -o five_link_sweep.rrd; echo "rc=$?"
+step sim time
+ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST .venv/bin/suspension_node --ros-args -p use_sim_time:=true > node4.log 2>&1 &
+ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST .venv/bin/linkage-replay bags/five_link_sweep.mcap --publish --clock; echo "rc=$?"
+kill %1; wait; echo done
+step quick discovery
+export FASTRTPS_DEFAULT_PROFILES_FILE=$PWD/config/fastdds_quick_discovery.xml
+.venv/bin/suspension_node --ros-args --params-file config/suspension.yaml > node5.log 2>&1 &
+NODE=$!
+.venv/bin/python drive.py | tail -1; echo "rc=$?"
+kill -INT $NODE; wait $NODE; echo "node rc=$?"
+unset FASTRTPS_DEFAULT_PROFILES_FILE
+step git status
+git status --short
