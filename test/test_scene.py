@@ -86,6 +86,19 @@ def test_non_finite_coordinate_is_refused(tmp_path):
     assert err.field == 'carrier.wheel_center' and 'not finite' in err.problem
 
 
+def test_a_coordinate_too_large_for_millimetre_precision_is_refused(tmp_path):
+    # 1e306 m once overflowed to inf when scaled to mm and was reported as coincident points
+    err = load_broken(tmp_path, lambda d: d.update(units='m') or d['constraints'][0].update(
+        base=[1e306, 0.35, 0.45]))
+    assert err.field == 'constraints[0] (upper_front).base'
+    assert 'beyond 1e+12 mm' in err.problem
+
+
+def test_a_travel_too_large_for_millimetre_precision_is_refused(tmp_path):
+    err = load_broken(tmp_path, lambda d: d['travel'].update(max=2e12))
+    assert err.field == 'travel.max' and 'beyond 1e+12 mm' in err.problem
+
+
 def test_unknown_constraint_type_is_named(tmp_path):
     err = load_broken(tmp_path, lambda d: d['constraints'][4].update(type='cylinder'))
     assert err.field == 'constraints[4] (tie_rod).type' and "'cylinder'" in err.problem

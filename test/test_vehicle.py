@@ -1,5 +1,7 @@
 """Vehicle files: four corners, right-hand side by mirroring, placed by offsets."""
 
+from pathlib import Path
+
 from linkage_ros.core.kinematics import sweep
 from linkage_ros.core.scene import SceneError
 from linkage_ros.core.vehicle import load_vehicle
@@ -59,3 +61,23 @@ def test_a_rack_joint_on_a_corner_that_does_not_steer_is_refused(tmp_path):
     path.write_text('corners:\n  rear_left: {scene: five_link, rack_joint: steering_rack}\n')
     with pytest.raises(SceneError, match=r'rear_left\.rack_joint: .* no steer: rack link'):
         load_vehicle(path)
+
+
+@pytest.mark.parametrize('scene', ["''", 'no_such_scene', 'missing.yaml', '.'])
+def test_a_corner_scene_that_names_no_scene_file_names_the_vehicle_field(tmp_path, scene):
+    # '' once read as the folder '.', and the error named '.' instead of the vehicle file
+    path = tmp_path / 'car.yaml'
+    path.write_text(f'corners:\n  rear_left: {{scene: {scene}}}\n')
+    with pytest.raises(SceneError) as raised:
+        load_vehicle(path)
+    assert raised.value.source == str(path)
+    assert raised.value.field == 'corners.rear_left.scene'
+    assert 'not a bundled scene' in raised.value.problem
+
+
+def test_a_corner_scene_path_is_read_from_the_vehicle_folder(tmp_path):
+    (tmp_path / 'mine.yaml').write_text(
+        (Path(__file__).parent.parent / 'config' / 'scenes' / 'five_link.yaml').read_text())
+    path = tmp_path / 'car.yaml'
+    path.write_text('corners:\n  rear_left: {scene: mine.yaml}\n')
+    assert load_vehicle(path).corners['rear_left'].source == str(tmp_path / 'mine.yaml')

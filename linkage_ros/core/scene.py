@@ -31,6 +31,9 @@ SIDES = ('left', 'right')
 # Relative size (to the scene's largest dimension) below which two points are "coincident"
 # and a triangle or arm is "too thin" to define a frame.
 THIN = 1e-6
+# Lengths beyond this (1e6 km) are typos: their squares, which the solver forms, lose every
+# digit of a suspension's millimetres, and near 1e154 mm they overflow.
+LENGTH_LIMIT_MM = 1e12
 
 SOURCE_CONFIG = Path(__file__).resolve().parents[2] / 'config'   # in a source checkout
 
@@ -185,7 +188,7 @@ def parse_scene(data: Any, source: str = '<scene>') -> Scene:
         check.fail('file', 'expected a mapping of scene keys')
     units = check.choice(data, 'units', tuple(UNITS_TO_MM))
     side = check.choice(data, 'side', SIDES)
-    scale = UNITS_TO_MM[units]
+    scale = check.scale = UNITS_TO_MM[units]
     carrier = check.mapping(data, 'carrier')
     wheel_center = check.point(carrier, 'wheel_center', 'carrier.wheel_center') * scale
     spin_point = check.point(carrier, 'spin_axis_point', 'carrier.spin_axis_point') * scale
@@ -327,6 +330,14 @@ def _finite(value):
         return False
 
 
+def within_length_limit(value: float, scale: float) -> bool:
+    """Tell whether value (scene units, scale mm each) is a length within LENGTH_LIMIT_MM."""
+    try:
+        return abs(value) * scale <= LENGTH_LIMIT_MM   # False for NaN
+    except OverflowError:                              # an integer beyond the float range
+        return False
+
+
 def _size(points):
     return float(max(np.max(np.abs(p)) for p in points))
 
@@ -336,6 +347,13 @@ class _Checker:
 
     def __init__(self, source):
         self.source = source
+        self.scale = 1.0   # mm per scene unit, once units is read
+
+    def length(self, value, where, what):
+        """Refuse a finite number whose length in mm is beyond LENGTH_LIMIT_MM."""
+        if not within_length_limit(value, self.scale):
+            self.fail(where, f'{what} {value!r} is beyond {LENGTH_LIMIT_MM:g} mm in magnitude '
+                      '(a typo? lengths this large leave no precision for millimetres)')
 
     def fail(self, field_name, problem):
         raise SceneError(self.source, field_name, problem)
@@ -376,6 +394,7 @@ class _Checker:
             self.fail(where, f'must be finite, got {value!r}')
         if minimum is not None and value < minimum:
             self.fail(where, f'must be at least {minimum:g}, got {value!r}')
+        self.length(value, where, 'value')
         return float(value)
 
     def point(self, data, key, where):
@@ -391,6 +410,7 @@ class _Checker:
                 self.fail(where, f'coordinate {v!r} is not a number')
             if not _finite(v):
                 self.fail(where, f'coordinate {v!r} is not finite')
+            self.length(v, where, 'coordinate')
         return np.array(value, dtype=float)
 
 

@@ -25,8 +25,8 @@ from typing import TYPE_CHECKING
 
 import yaml
 
-from .scene import (config_dir, load_scene, mirror, resolve_scene_path, SceneError, translate,
-                    UNITS_TO_MM)
+from .scene import (config_dir, LENGTH_LIMIT_MM, load_scene, mirror, resolve_scene_path,
+                    SceneError, translate, UNITS_TO_MM, within_length_limit)
 
 if TYPE_CHECKING:
     from os import PathLike
@@ -102,10 +102,7 @@ def _corner(path, corner, spec, scale):
                          '(letters, digits, underscores), e.g. front_left')
     if not isinstance(spec, dict) or not isinstance(spec.get('scene'), str):
         raise SceneError(path, f'{where}.scene', 'missing (required): a scene name or path')
-    scene_ref = spec['scene']
-    local = path.parent / scene_ref
-    scene = load_scene(local if local.suffix in ('.yaml', '.yml') and local.exists()
-                       else resolve_scene_path(scene_ref))
+    scene = load_scene(_scene_file(path, where, spec['scene']))
     if spec.get('mirror', False) is True:
         scene = mirror(scene)
     elif spec.get('mirror', False) is not False:
@@ -114,6 +111,27 @@ def _corner(path, corner, spec, scale):
     offset = spec.get('offset', [0.0, 0.0, 0.0])
     if (not isinstance(offset, list) or len(offset) != 3
             or not all(isinstance(v, (int, float)) and not isinstance(v, bool)
-                       and -1e300 < v < 1e300 for v in offset)):   # finite, NaN refused
-        raise SceneError(path, f'{where}.offset', f'expected [x, y, z], got {offset!r}')
+                       and within_length_limit(v, scale) for v in offset)):
+        raise SceneError(path, f'{where}.offset', 'expected [x, y, z], numbers within '
+                         f'{LENGTH_LIMIT_MM:g} mm, got {offset!r}')
     return replace(translate(scene, [v * scale for v in offset]), name=corner)
+
+
+def _scene_file(path, where, scene_ref):
+    """
+    Return the scene file a corner names: a path from the vehicle's folder, or as given.
+
+    A reference that names no file is the vehicle file's mistake, so the error names the
+    vehicle and the corner's field, not the reference ('' would otherwise read as '.').
+    """
+    local = path.parent / scene_ref
+    if scene_ref.strip() and local.suffix in ('.yaml', '.yml') and local.is_file():
+        return local
+    try:
+        found = resolve_scene_path(scene_ref) if scene_ref.strip() else None
+    except SceneError as exc:
+        raise SceneError(path, f'{where}.scene', f'{scene_ref!r}: {exc.problem}') from None
+    if found is None or not found.is_file():
+        raise SceneError(path, f'{where}.scene', f'{scene_ref!r}: no such scene file (a '
+                         f'relative path is read from {path.parent}) and not a bundled scene')
+    return found
