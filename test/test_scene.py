@@ -177,6 +177,17 @@ def test_unknown_scene_name_lists_the_bundled_ones():
         load_scene('no_such_scene')
 
 
+def test_an_empty_scene_name_is_not_read_as_the_current_folder():
+    # '' once became Path('.'), and the error was '.: file: cannot read (Is a directory)'
+    with pytest.raises(SceneError, match="^'': scene: empty: .*bundled: .*five_link"):
+        load_scene('')
+
+
+def test_a_folder_is_named_as_a_folder_not_a_scene_file(tmp_path):
+    with pytest.raises(SceneError, match=f'^{tmp_path}: scene: a folder, not a scene file'):
+        load_scene(str(tmp_path))
+
+
 def test_negative_travel_step_is_refused(tmp_path):
     err = load_broken(tmp_path, lambda d: d['travel'].update(step=-1))
     assert err.field == 'travel.step'

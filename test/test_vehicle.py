@@ -72,7 +72,14 @@ def test_a_corner_scene_that_names_no_scene_file_names_the_vehicle_field(tmp_pat
         load_vehicle(path)
     assert raised.value.source == str(path)
     assert raised.value.field == 'corners.rear_left.scene'
-    assert 'not a bundled scene' in raised.value.problem
+    assert raised.value.problem.startswith(repr(scene.strip("'")))
+
+
+@pytest.mark.parametrize('name', ['', 'demo_vehicl', 'config'])
+def test_a_vehicle_that_is_no_file_and_not_bundled_lists_the_bundled_ones(name):
+    with pytest.raises(SceneError, match=r"^'.*': vehicle: .* not a bundled vehicle "
+                       r'\(bundled: demo_vehicle\)$'):
+        load_vehicle(name)
 
 
 def test_a_corner_scene_path_is_read_from_the_vehicle_folder(tmp_path):

@@ -155,14 +155,19 @@ def scene_dir() -> Path:
 
 def resolve_scene_path(name_or_path: str | PathLike) -> Path:
     """Resolve a bundled scene name ('five_link') or a path to a YAML file; else SceneError."""
+    bundled = f'bundled: {", ".join(bundled_scenes())}'
+    if not str(name_or_path).strip():   # Path('') would be the current folder
+        raise SceneError(repr(str(name_or_path)), 'scene', 'empty: give a bundled scene name '
+                         f'or the path of a scene YAML file ({bundled})')
     path = Path(name_or_path)
-    if path.suffix in ('.yaml', '.yml') or path.exists():
+    if path.suffix in ('.yaml', '.yml') or path.is_file():
         return path
     candidate = scene_dir() / f'{name_or_path}.yaml'
     if candidate.exists():
         return candidate
-    raise SceneError(name_or_path, 'scene', 'no such file, and not a bundled scene '
-                     f'(bundled: {", ".join(bundled_scenes())})')
+    if path.is_dir():
+        raise SceneError(name_or_path, 'scene', f'a folder, not a scene file ({bundled})')
+    raise SceneError(name_or_path, 'scene', f'no such file, and not a bundled scene ({bundled})')
 
 
 def load_scene(name_or_path: str | PathLike) -> Scene:

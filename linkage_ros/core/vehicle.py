@@ -55,8 +55,14 @@ def vehicle_dir() -> Path:
 def load_vehicle(name_or_path: str | PathLike) -> Vehicle:
     """Load a vehicle file (bundled name under config/vehicles, or a path)."""
     path = Path(name_or_path)
-    if not path.exists() and path.suffix not in ('.yaml', '.yml'):
-        path = vehicle_dir() / f'{name_or_path}.yaml'
+    if not path.is_file() and path.suffix not in ('.yaml', '.yml'):
+        bundled = vehicle_dir() / f'{name_or_path}.yaml'
+        if not str(name_or_path).strip() or not bundled.is_file():
+            names = ', '.join(sorted(p.stem for p in vehicle_dir().glob('*.yaml')))
+            what = 'a folder' if path.is_dir() else 'no such file'
+            raise SceneError(repr(str(name_or_path)), 'vehicle', f'{what}, and not a bundled '
+                             f'vehicle (bundled: {names})')
+        path = bundled
     try:
         data = yaml.safe_load(path.read_text())
     except OSError as exc:
@@ -128,10 +134,10 @@ def _scene_file(path, where, scene_ref):
     if scene_ref.strip() and local.suffix in ('.yaml', '.yml') and local.is_file():
         return local
     try:
-        found = resolve_scene_path(scene_ref) if scene_ref.strip() else None
+        found = resolve_scene_path(scene_ref)
     except SceneError as exc:
         raise SceneError(path, f'{where}.scene', f'{scene_ref!r}: {exc.problem}') from None
-    if found is None or not found.is_file():
+    if not found.is_file():   # a .yaml name is taken as a path without looking
         raise SceneError(path, f'{where}.scene', f'{scene_ref!r}: no such scene file (a '
                          f'relative path is read from {path.parent}) and not a bundled scene')
     return found
