@@ -90,6 +90,16 @@ def test_rack_on_a_scene_without_steer_link_is_refused(capsys):
     assert code == 2 and 'steer: rack' in err
 
 
+@pytest.mark.parametrize('option, said', [
+    (['--rack', '1e400'], 'linkage-sweep: --rack: must be finite, got inf\n'),
+    (['--grid=1:2'], "linkage-sweep: --grid: expected FROM:TO:STEP in mm, got '1:2'\n"),
+    (['--rack', '5'], 'linkage-sweep: five_link: no constraint is marked steer: rack, so a '
+     'rack input moves nothing\n')])
+def test_a_bad_rack_is_the_one_line_said_and_nothing_is_solved(capsys, option, said):
+    code, _, out, err = run(capsys, 'five_link', *option)
+    assert (code, out, err) == (2, '', said)
+
+
 def test_alignment_option_adds_its_columns(capsys):
     _, rows, _, _ = run(capsys, 'double_wishbone', '--step', '80', '--alignment')
     assert float(rows[1]['kingpin_inclination_deg']) == pytest.approx(10.66, abs=0.05)

@@ -172,11 +172,6 @@ def main(argv: list[str] | None = None) -> int:
         return fail(PROG, f'--from, --to and --step must be finite and --step > 0 (got '
                           f'{start}, {stop}, {step})')
     travels = travel_range(start, stop, step)
-    if args.benchmark:
-        benchmark(scene, travels, args.benchmark)
-        return 0
-    print(f'linkage-sweep: {scene.name}: {len(travels)} positions from {start:g} to '
-          f'{stop:g} mm, method {args.method}', file=sys.stderr)
     try:
         racks = rack_values(args)
     except LinkageError as exc:
@@ -184,6 +179,11 @@ def main(argv: list[str] | None = None) -> int:
     if racks != [0.0] and not any(c.steer == 'rack' for c in scene.constraints):
         return fail(PROG, f'{scene.name}: no constraint is marked steer: rack, so a rack input '
                           'moves nothing')
+    if args.benchmark:
+        benchmark(scene, travels, args.benchmark)
+        return 0
+    print(f'linkage-sweep: {scene.name}: {len(travels)} positions from {start:g} to '
+          f'{stop:g} mm, method {args.method}', file=sys.stderr)
     results = []
     for i, rack in enumerate(racks):
         results.append(sweep(scene, travels, method=args.method, rack=rack))
