@@ -171,7 +171,7 @@ def test_status_of_a_failed_solve_is_an_error_saying_why(solved, failed):
     status = messages.health_status(health_of(solved, failed), 'n', 'five_link', 'fast')
     values = messages.status_values(status)
     assert status.level == DiagnosticStatus.ERROR
-    assert status.message == failed.message == 'travel nan is not a finite number'
+    assert status.message == failed.message == 'travel nan mm is not a finite number'
     assert (values['travel_m'], values['commands'], values['failures']) == ('nan', '2', '1')
 
 

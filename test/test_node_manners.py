@@ -63,9 +63,10 @@ def test_a_bad_command_is_said_on_the_console_once_per_kind_with_its_unit(
     said = [line for line in err.splitlines() if 'ERROR' in line]
     # Two kinds, each said once (the repeats within the throttle period are held back):
     assert len(said) == 2, said
-    assert '/wheel_travel nan m: travel nan is not a finite number' in said[0]
+    assert '/wheel_travel nan m: travel nan mm is not a finite number' in said[0]
     assert '/wheel_travel 0.5 m: travel 500 mm is out of reach' in said[1]
     # /diagnostics reports every one, with the value as it was sent:
     errors = [s.message for s in probe.statuses if s.level == b'\x02']
-    assert errors[3].startswith('/wheel_travel 1e+308 m: ')
+    # 1e308 m is finite but beyond the float range in mm, the core's unit: both are said
+    assert errors[3] == '/wheel_travel 1e+308 m: travel inf mm is not a finite number'
     assert errors[5].startswith('/wheel_travel inf m: ')

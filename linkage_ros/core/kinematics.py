@@ -159,7 +159,7 @@ class Continuation:
         rack = self.rack if rack is None else rack
         if not (is_finite_number(travel) and is_finite_number(rack)):
             name, value = ('rack', rack) if is_finite_number(travel) else ('travel', travel)
-            return self._failure(travel, f'{name} {value!r} is not a finite number', 0)
+            return self._failure(travel, f'{name} {value!r} mm is not a finite number', 0)
         saved = self.state, self.reachable
         if rack != self.rack:
             self.reachable = (self.travel, self.travel)   # the range explored at this rack
