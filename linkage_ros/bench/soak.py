@@ -44,20 +44,26 @@ def rss_mb():
     return math.nan
 
 
-def commands(count, low_mm, high_mm, seed):
-    """Return count wheel travels (m): a random walk with jumps, and bad values mixed in."""
+def command_batches(count, batch, low_mm, high_mm, seed):
+    """
+    Yield count wheel travels (m) in batches: a random walk with jumps, bad values mixed in.
+
+    Made a batch at a time, so the soak's own memory does not grow with count.
+    """
     rng = np.random.default_rng(seed)
-    steps = rng.normal(0.0, 0.5, count)
-    travel, out = 0.0, np.empty(count)
-    for i in range(count):
-        if i % 5000 == 4999:
-            travel = rng.uniform(low_mm, high_mm)          # a jump across the range
-        else:
-            travel = min(max(travel + steps[i], low_mm), high_mm)
-        out[i] = travel / 1000.0
-    bad = np.arange(999, count, 1000)
-    out[bad] = [BAD_VALUES_M[k % len(BAD_VALUES_M)] for k in range(len(bad))]
-    return out
+    travel = 0.0
+    for first in range(0, count, batch):
+        steps = rng.normal(0.0, 0.5, min(batch, count - first))
+        out = np.empty(len(steps))
+        for j, i in enumerate(range(first, first + len(steps))):
+            if i % 5000 == 4999:
+                travel = rng.uniform(low_mm, high_mm)          # a jump across the range
+            else:
+                travel = min(max(travel + steps[j], low_mm), high_mm)
+            out[j] = travel / 1000.0
+            if i % 1000 == 999:
+                out[j] = BAD_VALUES_M[(i // 1000) % len(BAD_VALUES_M)]
+        yield out
 
 
 class Counter:
@@ -90,7 +96,6 @@ def run(args):
     from geometry_msgs.msg import PoseStamped
     from std_msgs.msg import Float64
     scene = load_scene(args.scene)
-    travels = commands(args.commands, scene.travel[0], scene.travel[1], args.seed)
     context = rclpy.context.Context()
     rclpy.init(context=context, domain_id=args.domain_id)
     executor = EventsExecutor(context=context)
@@ -105,26 +110,26 @@ def run(args):
     probe.create_subscription(DiagnosticArray, '/diagnostics', counter.on_diagnostics, QOS)
     executor.add_node(node)
     executor.add_node(probe)
-    good = np.isfinite(travels) & (np.abs(travels) < 1.0)
-    expected_poses = np.cumsum(good)
-    rss, start = [], None
+    batches = command_batches(args.commands, args.batch, scene.travel[0], scene.travel[1],
+                              args.seed)
+    rss, start, wanted = [], None, 0
     try:
-        for first in range(0, len(travels), args.batch):
-            for value in travels[first:first + args.batch]:
+        for first, travels in zip(range(0, args.commands, args.batch), batches):
+            for value in travels:
                 publisher.publish(float64_cdr(value))
-            wanted = expected_poses[min(first + args.batch, len(travels)) - 1]
+            wanted += int(np.count_nonzero(np.isfinite(travels) & (np.abs(travels) < 1.0)))
             deadline = time.monotonic() + 30.0
             while counter.poses < wanted:
                 if time.monotonic() > deadline:
                     raise RuntimeError(f'commands {first}..{first + args.batch}: '
                                        f'{wanted - counter.poses} poses missing after 30 s')
                 executor.spin_once(timeout_sec=1.0)
-            done = first + args.batch
+            done = first + len(travels)
             if start is None and done >= args.warmup:
                 start, rss = (time.perf_counter(), done), [(done, rss_mb())]
             if done % args.progress < args.batch:
                 rss.append((done, rss_mb()))
-                print(f'linkage-soak: {done}/{len(travels)} commands, RSS {rss[-1][1]:.1f} MB',
+                print(f'linkage-soak: {done}/{args.commands} commands, RSS {rss[-1][1]:.1f} MB',
                       file=sys.stderr, flush=True)
         end = time.perf_counter()
         executor.spin_once(timeout_sec=args.period_wait)   # the last diagnostics report
@@ -135,13 +140,13 @@ def run(args):
         probe.destroy_node()
         executor.shutdown()
         rclpy.try_shutdown(context=context)
-    rss.append((len(travels), rss_mb()))
+    rss.append((args.commands, rss_mb()))
     done, mb = np.array(rss).T
     growth = float(np.polyfit(done, mb, 1)[0] * 1e5) if len(rss) > 2 else math.nan
-    rate = (len(travels) - start[1]) / (end - start[0])
+    rate = (args.commands - start[1]) / (end - start[0])
     print('soak,commands,commands_per_s,rss_start_mb,rss_end_mb,rss_growth_mb_per_100k,'
           'residual_max_mm,poses,errors,not_finite_poses')
-    print(f'{args.scene},{len(travels)},{rate:.0f},{mb[0]:.1f},{mb[-1]:.1f},{growth:.3f},'
+    print(f'{args.scene},{args.commands},{rate:.0f},{mb[0]:.1f},{mb[-1]:.1f},{growth:.3f},'
           f'{counter.residual_m * 1000.0:.3g},{counter.poses},{counter.errors},'
           f'{counter.not_finite}')
     return 0 if counter.not_finite == 0 else 1
