@@ -4,14 +4,19 @@ Command-line manners shared by the programs of linkage_ros.
 A user's mistake (an unknown option, a bad value, a file that cannot be read or written, a
 missing optional package) ends in one line on stderr, prefixed with the program's name, and
 exit status 2; never in a traceback. Every --help ends with an example and the exit statuses.
+A program whose table goes to a reader that stops early (| head) ends quietly, as cat does.
 """
 
 import argparse
+import functools
 import os
 from pathlib import Path
+import select
+import signal
 import sys
 
 DONE, DAMAGED, MISTAKE = 0, 1, 2
+READER_GONE = 128 + signal.SIGPIPE   # the status of cat when its reader stops (| head)
 
 EXIT_STATUS = ('2 a mistake in the command: an unknown option, a bad value, a missing or '
                'unwritable file, a missing optional package (one line on stderr)')
@@ -45,6 +50,42 @@ class Parser(argparse.ArgumentParser):
     def error(self, message: str) -> None:
         """Print one line naming the mistake and exit with status 2."""
         sys.exit(fail(self.prog, f'error: {message} (see {self.prog} --help)'))
+
+
+def program(main):
+    """
+    Wrap a console script's main(argv): a reader of stdout that went away ends it quietly.
+
+    Without this, `linkage-sweep five_link | head -1` ends in a BrokenPipeError traceback.
+    A broken pipe that is not stdout's is raised as before.
+    """
+    @functools.wraps(main)
+    def run(argv=None):
+        try:
+            return main(argv)
+        except BrokenPipeError:
+            if not stdout_reader_gone():
+                raise
+            return READER_GONE
+    return run
+
+
+def stdout_reader_gone() -> bool:
+    """
+    Tell whether stdout's reader went away.
+
+    If it did, stdout is pointed at /dev/null, so that the flush at exit says nothing.
+    """
+    try:
+        fd = sys.stdout.fileno()
+        poll = select.poll()
+        poll.register(fd, select.POLLOUT)
+        gone = any(events & select.POLLERR for _, events in poll.poll(0))
+    except (AttributeError, OSError, ValueError):   # stdout replaced or closed
+        return False
+    if gone:   # a pipe whose read end is closed polls as an error
+        os.dup2(os.open(os.devnull, os.O_WRONLY), fd)
+    return gone
 
 
 def fail(prog: str, message: object) -> int:

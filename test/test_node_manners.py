@@ -39,6 +39,10 @@ def test_help_lists_every_parameter_with_its_default_topics_and_exit_statuses():
     (['--ros-args', '-p', 'record_mcap:=/no/such/folder/run.mcap'],
      'record_mcap: cannot write /no/such/folder/run.mcap: no folder /no/such/folder'),
     (['--ros-args', '-p', 'rerun_rrd:=/'], 'rerun_rrd: / is a folder, not a file'),
+    (['--ros-args', '-p', 'record_mcap:=/dev/full'],
+     'record_mcap: /dev/full: cannot write (No space left on device)'),
+    (['--ros-args', '-p', 'rerun_rrd:=/dev/full'],   # once a traceback from rerun-sdk
+     'rerun_rrd: /dev/full: cannot write ('),
     (['--ros-args', '-p', 'max_step_mm:=-1.0'], 'max_step_mm: must be a finite number above 0'),
     (['--ros-args', '-p', 'scene:=no_such_scene'], 'scene: no such file, and not a bundled scene'),
     (['scene:=five_link'], "unknown argument 'scene:=five_link': parameters go after --ros-args"),

@@ -2,6 +2,7 @@
 
 import csv
 import io
+from pathlib import Path
 import subprocess
 import sys
 
@@ -70,6 +71,26 @@ def test_console_script_runs_as_a_module():
     out = subprocess.run([sys.executable, '-m', 'linkage_ros.tools.sweep', 'five_link', '--step',
                           '80'], capture_output=True, text=True, check=True)
     assert out.stdout.splitlines()[0] == LEADING and len(out.stdout.splitlines()) == 4
+
+
+def test_a_reader_that_stops_early_ends_the_table_quietly_as_cat_does():
+    # linkage-sweep five_link | head -1: once a BrokenPipeError traceback
+    sweep_cli = subprocess.Popen([sys.executable, '-m', 'linkage_ros.tools.sweep', 'five_link',
+                                  '--step', '0.01'], stdout=subprocess.PIPE,
+                                 stderr=subprocess.PIPE, text=True)
+    assert sweep_cli.stdout.readline() == LEADING + '\n'
+    sweep_cli.stdout.close()                      # what head does after its line
+    err = sweep_cli.stderr.read()
+    assert sweep_cli.wait(timeout=60) == 128 + 13  # SIGPIPE's status, as cat's
+    assert err == 'linkage-sweep: five_link: 16001 positions from -80 to 80 mm, method fast\n'
+
+
+@pytest.mark.skipif(not Path('/dev/full').exists(), reason='needs /dev/full')
+def test_a_full_disk_under_the_table_is_one_line_and_status_2(capsys):
+    code, _, _, err = run(capsys, 'five_link', '--csv', '/dev/full')
+    assert code == 2
+    assert err.splitlines()[-1] == ('linkage-sweep: /dev/full: cannot write the table (No space '
+                                    'left on device)')
 
 
 def test_rack_option_adds_the_rack_column_and_steers(capsys):

@@ -36,7 +36,7 @@ from . import reference
 from .peers import entries
 from .report import level_table, plot_front, progress, report, write_csv
 from .stress import stress_lines
-from ..cli import EXIT_STATUS, fail, Parser, writable_file
+from ..cli import EXIT_STATUS, fail, Parser, program, writable_file
 from ..core.kinematics import travel_range
 from ..core.scene import bundled_scenes, load_scene, SceneError
 
@@ -195,6 +195,7 @@ def parse_args(argv):
     return args
 
 
+@program
 def main(argv: list[str] | None = None) -> int:
     """Run linkage-bench: 0 when the report is written, 2 for a bad scene or entry."""
     args = parse_args(argv)

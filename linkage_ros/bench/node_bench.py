@@ -47,7 +47,7 @@ from sensor_msgs.msg import JointState
 from std_msgs.msg import Float64
 
 from ..cdr import float64_cdr
-from ..cli import EXIT_STATUS, Parser, writable_file
+from ..cli import EXIT_STATUS, Parser, program, writable_file
 from ..core.errors import LinkageError
 from ..core.scene import config_dir, load_scene
 from ..ros.node import QOS, run
@@ -604,6 +604,7 @@ def parse_args(argv):
     return args, ros_args
 
 
+@program
 def main(argv: list[str] | None = None) -> int:
     """Run linkage-node-bench, or one of the processes it starts (--echo, --start-once)."""
     args, ros_args = parse_args(sys.argv[1:] if argv is None else argv)

@@ -26,7 +26,7 @@ from rclpy.experimental import EventsExecutor
 from rclpy.parameter import Parameter
 
 from ..cdr import float64_cdr, pose_of
-from ..cli import EXIT_STATUS, Parser
+from ..cli import EXIT_STATUS, Parser, program
 from ..core.errors import LinkageError
 from ..core.scene import load_scene
 from ..ros.messages import status_values
@@ -183,6 +183,7 @@ def parse_args(argv):
     return args
 
 
+@program
 def main(argv=None):
     return run(parse_args(argv))
 

@@ -36,6 +36,7 @@ from rerun.components import LineStrip3DBatch
 from rerun.encodings import Vec3DBatch
 
 from ..cdr import float64_of, pose_of, to_cdr
+from ..core.errors import LinkageError
 from ..core.geometry import carrier_points, MM_PER_M, perpendicular, unit
 from ..core.kinematics import sweep, travel_range
 from ..core.scene import link_polylines
@@ -378,6 +379,20 @@ def lack_of_room(path, room=ROOM):
     return ''
 
 
+def probe_write(path):
+    """
+    Create path and write a byte to it, or raise OSError (/dev/full, no permission, no room).
+
+    rerun-sdk would fail too, but only after a warning of its own on stderr; the file is
+    written anew by the recording.
+    """
+    fd = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o666)
+    try:
+        os.write(fd, b'\0')
+    finally:
+        os.close(fd)
+
+
 class RerunRecorder:
     """
     A sink that mirrors the node's messages to a .rrd file (same calls as McapRecorder).
@@ -403,7 +418,13 @@ class RerunRecorder:
         self.sequence = 0
         self.batch_rows = batch_rows
         self.batch_delay = batch_delay
-        self._rec = new_recording(path, self.scenes, recording_id)
+        try:
+            probe_write(path)
+            self._rec = new_recording(path, self.scenes, recording_id)
+        except OSError as exc:
+            raise LinkageError(path, f'cannot write ({exc.strerror or exc})') from None
+        except RuntimeError as exc:   # how rerun-sdk says a failed write
+            raise LinkageError(path, f'cannot write ({exc})') from None
         self._rows = {}        # (root, role): [(receive_ns, sequence, value)]
         self._buffered = 0
         self._oldest = None

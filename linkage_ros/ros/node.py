@@ -42,6 +42,7 @@ Sinks (recorders, viewers) receive every command and every published message; th
 Rerun modules are imported only when record_mcap or rerun_rrd is set.
 """
 
+import contextlib
 import difflib
 import math
 import signal
@@ -429,6 +430,15 @@ def positive_number(name, value):
     return float(value)
 
 
+@contextlib.contextmanager
+def named(parameter):
+    """Say which parameter a recorder that cannot start came from (/dev/full, say)."""
+    try:
+        yield
+    except LinkageError as exc:
+        raise LinkageError(parameter, str(exc)) from None
+
+
 def open_sinks(params, scenes, qos):
     """
     Open the sinks the parameters turn on; their modules are imported only then.
@@ -452,18 +462,20 @@ def open_sinks(params, scenes, qos):
                                    missing_package(exc, 'recording to MCAP')) from None
             about = {k: str(params[k])
                      for k in ('scene', 'vehicle', 'method', 'frame_id', 'max_step_mm')}
-            sinks.append(McapRecorder(params['record_mcap'], qos=qos, custom_data=about))
+            with named('record_mcap'):
+                sinks.append(McapRecorder(params['record_mcap'], qos=qos, custom_data=about))
         if params['rerun_rrd']:
             try:
                 from ..record.rerun_view import RerunRecorder
             except ImportError as exc:   # pyarrow comes with rerun-sdk: name the package
                 raise LinkageError('rerun_rrd', missing_package(exc, 'mirroring to Rerun')) \
                     from None
-            if '' in scenes:
-                sinks.append(RerunRecorder(params['rerun_rrd'], scenes['']))
-            else:
-                sinks.append(RerunRecorder(params['rerun_rrd'], corners={
-                    prefix.rstrip('/'): scene for prefix, scene in scenes.items()}))
+            with named('rerun_rrd'):
+                if '' in scenes:
+                    sinks.append(RerunRecorder(params['rerun_rrd'], scenes['']))
+                else:
+                    sinks.append(RerunRecorder(params['rerun_rrd'], corners={
+                        prefix.rstrip('/'): scene for prefix, scene in scenes.items()}))
     except BaseException:
         for sink in sinks:
             sink.close()

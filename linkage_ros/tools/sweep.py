@@ -10,7 +10,7 @@ import time
 
 import numpy as np
 
-from ..cli import EXIT_STATUS, fail, Parser, writable_file
+from ..cli import EXIT_STATUS, fail, Parser, program, writable_file
 from ..core.errors import LinkageError
 from ..core.kinematics import Continuation, METHODS, sweep, travel_range
 from ..core.scene import load_scene, SceneError
@@ -154,6 +154,7 @@ def benchmark(scene, travels, rounds):
               f'{np.median(values) / fast:>15.1f}')
 
 
+@program
 def main(argv: list[str] | None = None) -> int:
     """Run linkage-sweep: 0 when done, 1 if a travel is out of reach, 2 for a mistake."""
     args = parse_args(argv)
@@ -193,11 +194,18 @@ def main(argv: list[str] | None = None) -> int:
             break
     table = {'scene': scene if args.alignment else None,
              'with_rack': args.rack is not None or args.grid is not None}
-    if args.csv:
-        with open(args.csv, 'w') as stream:
-            write_csv(results, stream, **table)
-    else:
-        write_csv(results, sys.stdout, **table)
+    try:
+        if args.csv:
+            with open(args.csv, 'w') as stream:
+                write_csv(results, stream, **table)
+        else:
+            write_csv(results, sys.stdout, **table)
+            sys.stdout.flush()
+    except BrokenPipeError:
+        raise                      # stdout's reader went away: program() ends quietly
+    except OSError as exc:         # a full disk; --csv was writable when checked
+        return fail(PROG, f'{args.csv or "stdout"}: cannot write the table '
+                          f'({exc.strerror or exc})')
     failed = [r for r in results if not r.success]
     if failed:
         print(f'linkage-sweep: {failed[0].message} '
