@@ -46,12 +46,28 @@ def test_help_lists_every_parameter_with_its_default_topics_and_exit_statuses():
     (['--ros-args', '-p', 'max_step_mm:=-1.0'], 'max_step_mm: must be a finite number above 0'),
     (['--ros-args', '-p', 'scene:=no_such_scene'], 'scene: no such file, and not a bundled scene'),
     (['scene:=five_link'], "unknown argument 'scene:=five_link': parameters go after --ros-args"),
+    # These three were tracebacks from rclpy.init, after a line of rcl's own:
+    (['--ros-args', '--params-file', '/no/such/params.yaml'],
+     '--params-file /no/such/params.yaml: no such file'),
+    (['--ros-args', '--bogus'], "--ros-args: unknown ROS arguments ['--bogus']"),
+    (['--ros-args', '-p', 'scene'],
+     "--ros-args: Couldn't parse parameter override rule: '-p scene'"),
 ])
 def test_a_mistake_is_one_line_and_status_2(args, says):
     status, out, err = run_node(*args)
     assert status == 2 and out == ''
     assert err.startswith('suspension_node: ') and err.count('\n') == 1, err
     assert says in err
+
+
+def test_a_params_file_that_is_not_yaml_is_one_line_and_status_2(tmp_path):
+    params = tmp_path / 'params.yaml'
+    params.write_text('x: [\n')
+    status, out, err = run_node('--ros-args', '--params-file', str(params))
+    assert (status, out) == (2, '')
+    assert err == (f"suspension_node: --ros-args: Couldn't parse params file: '--params-file "
+                   f"{params}'. Error: Sequences can only be values and not keys in params. "
+                   'Error at line 1\n')
 
 
 def test_a_bad_command_is_said_on_the_console_once_per_kind_with_its_unit(

@@ -45,10 +45,14 @@ Rerun modules are imported only when record_mcap or rerun_rrd is set.
 import contextlib
 import difflib
 import math
+import os
+from pathlib import Path
 import signal
 import sys
+import tempfile
 import textwrap
 import time
+import types
 
 from builtin_interfaces.msg import Time
 from diagnostic_msgs.msg import DiagnosticArray
@@ -543,8 +547,8 @@ def main(args: list[str] | None = None) -> int:
     # A file-size limit (ulimit -f) would kill the process at the limit: make it an error of
     # the write instead, which stops the recording and is reported, while the node goes on.
     signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
-    rclpy.init(args=None if args is None else ['suspension_node', *argv])
     try:
+        init_ros(argv)
         node = SuspensionNode()
     except (ValueError, OSError, ImportError, ParameterException) as exc:
         # LinkageError (a ValueError): its message names the file, field or parameter.
@@ -552,6 +556,49 @@ def main(args: list[str] | None = None) -> int:
         rclpy.try_shutdown()
         return 2
     return run(node)
+
+
+def init_ros(argv):
+    """
+    Start rclpy with the user's arguments; a mistake in them is one LinkageError.
+
+    A params file that is not there, one rcl cannot parse, a bad -p rule, an unknown ROS
+    argument: rclpy raises RuntimeError after rcl logged a line of its own, which is held
+    back (and shown if rclpy starts after all).
+    """
+    for option, value in zip(argv, argv[1:]):
+        if option == '--params-file' and not Path(value).is_file():
+            raise LinkageError(f'--params-file {value}', 'no such file')
+    with held_stderr() as held:
+        try:
+            rclpy.init(args=['suspension_node', *argv])
+        except RuntimeError as exc:   # rclpy's RCLError, UnknownROSArgsError
+            held.failed = True
+            if type(exc).__name__ == 'UnknownROSArgsError':
+                raise LinkageError('--ros-args', f'unknown ROS arguments {exc} (see '
+                                   'suspension_node --help)') from None
+            # 'failed to initialize rcl: Couldn't parse ...' + ', at /project/src/...'
+            problem = ' '.join(str(exc).split(', at /')[0].split())
+            raise LinkageError('--ros-args', problem.replace(
+                'failed to initialize rcl: ', '')) from None
+
+
+@contextlib.contextmanager
+def held_stderr():
+    """Hold what is written on file descriptor 2; write it out unless .failed is set."""
+    sys.stderr.flush()
+    saved = os.dup(2)
+    with tempfile.TemporaryFile() as store:
+        os.dup2(store.fileno(), 2)
+        held = types.SimpleNamespace(failed=False)
+        try:
+            yield held
+        finally:
+            os.dup2(saved, 2)
+            os.close(saved)
+            if not held.failed:
+                store.seek(0)
+                os.write(2, store.read())
 
 
 def run(node):
