@@ -8,6 +8,7 @@ A program whose table goes to a reader that stops early (| head) ends quietly, a
 """
 
 import argparse
+import errno
 import functools
 import os
 from pathlib import Path
@@ -17,6 +18,7 @@ import sys
 
 DONE, DAMAGED, MISTAKE = 0, 1, 2
 READER_GONE = 128 + signal.SIGPIPE   # the status of cat when its reader stops (| head)
+OUTPUT_ERRORS = (errno.ENOSPC, errno.EDQUOT, errno.EFBIG)   # a disk, a quota, ulimit -f
 
 EXIT_STATUS = ('2 a mistake in the command: an unknown option, a bad value, a missing or '
                'unwritable file, a missing optional package (one line on stderr)')
@@ -52,22 +54,30 @@ class Parser(argparse.ArgumentParser):
         sys.exit(fail(self.prog, f'error: {message} (see {self.prog} --help)'))
 
 
-def program(main):
+def program(prog: str):
     """
-    Wrap a console script's main(argv): a reader of stdout that went away ends it quietly.
+    Wrap a console script's main(argv) for what can happen to its outputs on the way.
 
-    Without this, `linkage-sweep five_link | head -1` ends in a BrokenPipeError traceback.
-    A broken pipe that is not stdout's is raised as before.
+    A reader of stdout that went away (`linkage-sweep five_link | head -1`) ends it quietly,
+    status READER_GONE; a full disk, a quota or a file-size limit met while writing is one
+    line, status 2. Other errors are raised as before: they are not the user's.
     """
-    @functools.wraps(main)
-    def run(argv=None):
-        try:
-            return main(argv)
-        except BrokenPipeError:
-            if not stdout_reader_gone():
-                raise
-            return READER_GONE
-    return run
+    def wrap(main):
+        @functools.wraps(main)
+        def run(argv=None):
+            try:
+                return main(argv)
+            except BrokenPipeError:
+                if not stdout_reader_gone():
+                    raise
+                return READER_GONE
+            except OSError as exc:
+                if exc.errno not in OUTPUT_ERRORS:
+                    raise
+                return fail(prog, f'{exc.filename or "an output"}: cannot write '
+                                  f'({exc.strerror})')
+        return run
+    return wrap
 
 
 def stdout_reader_gone() -> bool:

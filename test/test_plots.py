@@ -28,3 +28,11 @@ def test_a_readme_picture_is_what_its_command_makes(tmp_path, picture, args):
     again = tmp_path / Path(picture).name
     assert main([args[0], *[str(ROOT / a) for a in args[1:]], str(again)]) == 0
     assert compare_images(str(ROOT / picture), str(again), tol=1.0) is None
+
+
+@pytest.mark.skipif(not Path('/dev/full').exists(), reason='needs /dev/full')
+def test_a_picture_that_cannot_be_written_whole_is_one_line_and_status_2(capsys):
+    # matplotlib's savefig('/dev/full') raises nothing: linkage-plot once said 'wrote /dev/full'
+    assert main(['camber-toe', '/dev/full']) == 2
+    assert capsys.readouterr().err == ('linkage-plot: /dev/full: cannot write (No space left '
+                                       'on device)\n')

@@ -195,7 +195,7 @@ def parse_args(argv):
     return args
 
 
-@program
+@program('linkage-bench')
 def main(argv: list[str] | None = None) -> int:
     """Run linkage-bench: 0 when the report is written, 2 for a bad scene or entry."""
     args = parse_args(argv)

@@ -604,7 +604,7 @@ def parse_args(argv):
     return args, ros_args
 
 
-@program
+@program('linkage-node-bench')
 def main(argv: list[str] | None = None) -> int:
     """Run linkage-node-bench, or one of the processes it starts (--echo, --start-once)."""
     args, ros_args = parse_args(sys.argv[1:] if argv is None else argv)

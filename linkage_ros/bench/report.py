@@ -17,6 +17,7 @@ import scipy
 
 from .peers import exudyn_version
 from ..core.kinematics import Settings
+from ..tools.plot import save_figure
 
 LEVELS = (1e-3, 1e-6, 1e-9, 1e-12)                      # mm: accuracy levels of the summary
 GOAL_US, GOAL_ERROR = 20.0, 1e-9    # the goal: 1e-9 mm in at most 20 us per position
@@ -163,7 +164,7 @@ def plot_front(rows, scenes, names, path):
                  'time. Dots: every tol x step; lines: Pareto fronts. Dotted: '
                  f'{GOAL_ERROR:g} mm, {GOAL_US:g} us', fontsize=10)
     fig.tight_layout(rect=(0, 0.04, 1, 0.97))
-    fig.savefig(path, dpi=110)
+    save_figure(fig, path, dpi=110)
     plt.close(fig)
 
 

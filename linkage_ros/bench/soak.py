@@ -183,7 +183,7 @@ def parse_args(argv):
     return args
 
 
-@program
+@program('linkage-soak')
 def main(argv=None):
     return run(parse_args(argv))
 

@@ -10,13 +10,31 @@ Default scenes: five_link, double_wishbone, macpherson, in that order (one colou
 
 import argparse
 import csv
+import io
+from pathlib import Path
 import sys
 
 import numpy as np
 
-from ..cli import EXIT_STATUS, fail, missing_package, Parser, writable_file
+from ..cli import EXIT_STATUS, fail, missing_package, Parser, program, writable_file
 from ..core.kinematics import sweep, travel_range
 from ..core.scene import load_scene, SceneError
+
+
+def save_figure(fig, path, dpi):
+    """
+    Write fig to path (its format by the suffix; PNG without one), or raise OSError.
+
+    matplotlib's savefig(path) says nothing when the disk is full; a file written by this
+    module is whole or an error names it.
+    """
+    buffer = io.BytesIO()
+    fig.savefig(buffer, format=Path(path).suffix[1:] or None, dpi=dpi)
+    try:
+        with open(path, 'wb') as stream:
+            stream.write(buffer.getvalue())
+    except OSError as exc:
+        raise OSError(exc.errno, exc.strerror, str(path)) from None
 
 
 def plot_camber_toe(scenes, path):
@@ -45,7 +63,7 @@ def plot_camber_toe(scenes, path):
     ax_camber.legend(fontsize=8)
     fig.suptitle('linkage_ros: bundled scenes, left wheel')
     fig.tight_layout()
-    fig.savefig(path, dpi=110)
+    save_figure(fig, path, dpi=110)
     plt.close(fig)
 
 
@@ -83,7 +101,7 @@ def plot_alignment(scenes, path):
     axes.flat[0].legend(fontsize=8)
     fig.suptitle('linkage_ros: alignment set (steer quantities need a steer: rack link)')
     fig.tight_layout()
-    fig.savefig(path, dpi=100)
+    save_figure(fig, path, dpi=100)
     plt.close(fig)
 
 
@@ -135,7 +153,7 @@ def plot_latency(ladder: dict[str, list[tuple[float, float, float]]], path: str)
     ax.legend(fontsize=8)
     ax.set_title('suspension_node and a bare echo node, across processes')
     fig.tight_layout()
-    fig.savefig(path, dpi=110)
+    save_figure(fig, path, dpi=110)
     plt.close(fig)
 
 
@@ -154,6 +172,7 @@ def parse_args(argv: list[str] | None) -> argparse.Namespace:
     return parser.parse_args(argv)
 
 
+@program('linkage-plot')
 def main(argv: list[str] | None = None) -> int:
     """Write the picture named on the command line: 0 when written, 2 for a mistake."""
     args = parse_args(argv)

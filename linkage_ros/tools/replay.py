@@ -431,7 +431,7 @@ def _imports(args):
             raise cli.Mistake(cli.missing_package(exc, feature)) from None
 
 
-@cli.program
+@cli.program(PROG)
 def main(argv=None):
     """Run linkage-replay; returns the exit status (0, 1 or 2; 130 if interrupted)."""
     args = parse_args(argv)

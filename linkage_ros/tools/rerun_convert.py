@@ -61,6 +61,7 @@ def parse_args(argv):
     return parser.parse_args(argv)
 
 
+@cli.program(PROG)
 def main(argv=None):
     """Run linkage-rerun; returns the exit status (0, 1 or 2)."""
     args = parse_args(argv)

@@ -154,7 +154,7 @@ def benchmark(scene, travels, rounds):
               f'{np.median(values) / fast:>15.1f}')
 
 
-@program
+@program(PROG)
 def main(argv: list[str] | None = None) -> int:
     """Run linkage-sweep: 0 when done, 1 if a travel is out of reach, 2 for a mistake."""
     args = parse_args(argv)
