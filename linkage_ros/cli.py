@@ -8,6 +8,7 @@ A program whose table goes to a reader that stops early (| head) ends quietly, a
 """
 
 import argparse
+import contextlib
 import errno
 import functools
 import os
@@ -15,6 +16,8 @@ from pathlib import Path
 import select
 import signal
 import sys
+import tempfile
+import types
 
 DONE, DAMAGED, MISTAKE = 0, 1, 2
 READER_GONE = 128 + signal.SIGPIPE   # the status of cat when its reader stops (| head)
@@ -96,6 +99,24 @@ def stdout_reader_gone() -> bool:
     if gone:   # a pipe whose read end is closed polls as an error
         os.dup2(os.open(os.devnull, os.O_WRONLY), fd)
     return gone
+
+
+@contextlib.contextmanager
+def held_stderr():
+    """Hold what is written on file descriptor 2; write it out unless .failed is set."""
+    sys.stderr.flush()
+    saved = os.dup(2)
+    with tempfile.TemporaryFile() as store:
+        os.dup2(store.fileno(), 2)
+        held = types.SimpleNamespace(failed=False)
+        try:
+            yield held
+        finally:
+            os.dup2(saved, 2)
+            os.close(saved)
+            if not held.failed:
+                store.seek(0)
+                os.write(2, store.read())
 
 
 def fail(prog: str, message: object) -> int:

@@ -45,14 +45,11 @@ Rerun modules are imported only when record_mcap or rerun_rrd is set.
 import contextlib
 import difflib
 import math
-import os
 from pathlib import Path
 import signal
 import sys
-import tempfile
 import textwrap
 import time
-import types
 
 from builtin_interfaces.msg import Time
 from diagnostic_msgs.msg import DiagnosticArray
@@ -71,7 +68,7 @@ from visualization_msgs.msg import MarkerArray
 from . import messages
 from .health import Health
 from ..cdr import float64_of, to_cdr, type_name
-from ..cli import missing_package, writable_file
+from ..cli import held_stderr, missing_package, writable_file
 from ..core.errors import LinkageError
 from ..core.kinematics import Continuation
 from ..core.scene import load_scene
@@ -581,24 +578,6 @@ def init_ros(argv):
             problem = ' '.join(str(exc).split(', at /')[0].split())
             raise LinkageError('--ros-args', problem.replace(
                 'failed to initialize rcl: ', '')) from None
-
-
-@contextlib.contextmanager
-def held_stderr():
-    """Hold what is written on file descriptor 2; write it out unless .failed is set."""
-    sys.stderr.flush()
-    saved = os.dup(2)
-    with tempfile.TemporaryFile() as store:
-        os.dup2(store.fileno(), 2)
-        held = types.SimpleNamespace(failed=False)
-        try:
-            yield held
-        finally:
-            os.dup2(saved, 2)
-            os.close(saved)
-            if not held.failed:
-                store.seek(0)
-                os.write(2, store.read())
 
 
 def run(node):
