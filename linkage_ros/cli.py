@@ -17,7 +17,6 @@ import select
 import signal
 import sys
 import tempfile
-import types
 
 DONE, DAMAGED, MISTAKE = 0, 1, 2
 READER_GONE = 128 + signal.SIGPIPE   # the status of cat when its reader stops (| head)
@@ -103,20 +102,18 @@ def stdout_reader_gone() -> bool:
 
 @contextlib.contextmanager
 def held_stderr():
-    """Hold what is written on file descriptor 2; write it out unless .failed is set."""
+    """Hold what is written on file descriptor 2; write it out unless the body raises."""
     sys.stderr.flush()
     saved = os.dup(2)
     with tempfile.TemporaryFile() as store:
         os.dup2(store.fileno(), 2)
-        held = types.SimpleNamespace(failed=False)
         try:
-            yield held
+            yield
         finally:
             os.dup2(saved, 2)
             os.close(saved)
-            if not held.failed:
-                store.seek(0)
-                os.write(2, store.read())
+        store.seek(0)   # reached only when the body did not raise
+        os.write(2, store.read())
 
 
 def fail(prog: str, message: object) -> int:

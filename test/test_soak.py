@@ -8,7 +8,7 @@ import numpy as np
 
 
 def test_the_commands_are_a_bounded_walk_with_a_bad_value_every_1000():
-    travels = np.concatenate(list(command_batches(12_000, 200, -80.0, 80.0, seed=0)))
+    travels = np.concatenate([t for _, t in command_batches(12_000, 200, -80.0, 80.0, seed=0)])
     assert len(travels) == 12_000
     bad = np.arange(999, 12_000, 1000)
     for k, value in enumerate(travels[bad]):

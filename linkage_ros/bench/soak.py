@@ -46,9 +46,10 @@ def rss_mb():
 
 def command_batches(count, batch, low_mm, high_mm, seed):
     """
-    Yield count wheel travels (m) in batches: a random walk with jumps, bad values mixed in.
+    Yield (first index, travels (m)) of count commands, a batch at a time.
 
-    Made a batch at a time, so the soak's own memory does not grow with count.
+    A random walk with jumps, bad values mixed in; made a batch at a time, so the soak's own
+    memory does not grow with count.
     """
     rng = np.random.default_rng(seed)
     travel = 0.0
@@ -63,7 +64,7 @@ def command_batches(count, batch, low_mm, high_mm, seed):
             out[j] = travel / 1000.0
             if i % 1000 == 999:
                 out[j] = BAD_VALUES_M[(i // 1000) % len(BAD_VALUES_M)]
-        yield out
+        yield first, out
 
 
 class Counter:
@@ -114,7 +115,7 @@ def run(args):
                               args.seed)
     rss, start, wanted = [], None, 0
     try:
-        for first, travels in zip(range(0, args.commands, args.batch), batches):
+        for first, travels in batches:
             for value in travels:
                 publisher.publish(float64_cdr(value))
             wanted += int(np.count_nonzero(np.isfinite(travels) & (np.abs(travels) < 1.0)))

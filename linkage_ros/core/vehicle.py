@@ -131,7 +131,7 @@ def _scene_file(path, where, scene_ref):
     vehicle and the corner's field, not the reference ('' would otherwise read as '.').
     """
     local = path.parent / scene_ref
-    if scene_ref.strip() and local.suffix in ('.yaml', '.yml') and local.is_file():
+    if local.suffix in ('.yaml', '.yml') and local.is_file():
         return local
     try:
         found = resolve_scene_path(scene_ref)

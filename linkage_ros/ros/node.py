@@ -566,11 +566,10 @@ def init_ros(argv):
     for option, value in zip(argv, argv[1:]):
         if option == '--params-file' and not Path(value).is_file():
             raise LinkageError(f'--params-file {value}', 'no such file')
-    with held_stderr() as held:
+    with held_stderr():
         try:
             rclpy.init(args=['suspension_node', *argv])
         except RuntimeError as exc:   # rclpy's RCLError, UnknownROSArgsError
-            held.failed = True
             if type(exc).__name__ == 'UnknownROSArgsError':
                 raise LinkageError('--ros-args', f'unknown ROS arguments {exc} (see '
                                    'suspension_node --help)') from None
