@@ -24,7 +24,7 @@ linkage_ros.ros.testing) costs nothing.
 import importlib
 
 __all__ = ['Continuation', 'LinkageError', 'load_scene', 'Scene', 'SceneError', 'Settings',
-           'Solution', 'Sweep', 'sweep']
+           'Solution', 'Status', 'Sweep', 'sweep']
 
 
 def __getattr__(name):

@@ -9,6 +9,7 @@ from linkage_ros.core.geometry import camber_toe, exp_so3, trilaterate
 from linkage_ros.core.kinematics import Continuation, METHODS, sweep, travel_range
 from linkage_ros.core.mechanism import carrier_points, compile_scene, linearize
 from linkage_ros.core.scene import bundled_scenes, load_scene, mirror
+from linkage_ros.core.status import Status
 import numpy as np
 import pytest
 import yaml
@@ -182,7 +183,7 @@ def test_non_finite_travel_fails_with_a_clear_message(travel):
     cont = Continuation(load_scene('five_link'))
     sol = cont.solve(travel)
     assert not sol.success and 'not a finite number' in sol.message
-    assert sol.wheel_center is None
+    assert sol.status == Status.NOT_FINITE and sol.wheel_center is None
 
 
 @pytest.mark.parametrize('method', ['paper', 'fast'])
@@ -190,7 +191,7 @@ def test_unreachable_travel_reports_the_reachable_range_and_keeps_the_state(meth
     cont = Continuation(load_scene('five_link'), method=method)
     before = cont.solve(20.0)
     sol = cont.solve(1000.0)
-    assert not sol.success
+    assert not sol.success and sol.status == Status.OUT_OF_REACH
     assert 'out of reach' in sol.message and 'reachable range found' in sol.message
     assert sol.reachable[1] > 80.0          # the limit lies beyond the design range
     assert cont.travel == 20.0 and np.array_equal(cont.center, before.wheel_center)
@@ -200,7 +201,8 @@ def test_unreachable_travel_reports_the_reachable_range_and_keeps_the_state(meth
 
 def test_unreachable_sweep_keeps_the_positions_solved_before_the_limit():
     result = sweep(load_scene('five_link'), travel_range(0.0, 1000.0, 50.0))
-    assert not result.success and 'out of reach' in result.message
+    assert not result.success and result.status == Status.OUT_OF_REACH
+    assert 'out of reach' in result.message
     assert len(result.travel) >= 3 and result.residual.max() <= 1e-9
 
 

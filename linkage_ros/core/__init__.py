@@ -15,6 +15,7 @@ Imports numpy, scipy, PyYAML and numba only. The public names:
 from .errors import LinkageError
 from .kinematics import Continuation, Settings, Solution, Sweep, sweep
 from .scene import load_scene, Scene, SceneError
+from .status import Status
 
 __all__ = ['Continuation', 'LinkageError', 'load_scene', 'Scene', 'SceneError', 'Settings',
-           'Solution', 'Sweep', 'sweep']
+           'Solution', 'Status', 'Sweep', 'sweep']

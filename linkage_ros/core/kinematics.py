@@ -27,6 +27,7 @@ from . import pose_newton
 from .errors import LinkageError
 from .geometry import camber_toe, quaternion_from_matrix
 from .mechanism import carrier_points, compile_scene, length_errors, linearize
+from .status import Status
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
@@ -75,6 +76,7 @@ class Solution(NamedTuple):
     reachable: tuple[float, float] = (0.0, 0.0)   # travel range (mm) known reachable so far
     rack: float = 0.0            # steering rack travel (mm), + = rack to the left
     quaternion: np.ndarray | None = None     # (4,) (x, y, z, w) of rotation, w >= 0
+    status: Status = Status.OK   # the kind of failure; branch on it, not on message
 
 
 @dataclass(frozen=True)
@@ -93,6 +95,7 @@ class Sweep:
     joints: np.ndarray | None = field(default=None, repr=False)   # (n, m, 3) carrier points, mm
     rack: float = 0.0            # steering rack travel of the sweep (mm)
     quaternion: np.ndarray | None = field(default=None, repr=False)   # (n, 4) xyzw, w >= 0
+    status: Status = Status.OK   # why the table ends early (success False)
 
 
 class Continuation:
@@ -159,16 +162,17 @@ class Continuation:
         rack = self.rack if rack is None else rack
         if not (is_finite_number(travel) and is_finite_number(rack)):
             name, value = ('rack', rack) if is_finite_number(travel) else ('travel', travel)
-            return self._failure(travel, f'{name} {value!r} mm is not a finite number', 0)
+            return self._failure(travel, Status.NOT_FINITE,
+                                 f'{name} {value!r} mm is not a finite number', 0)
         saved = self.state, self.reachable
         if rack != self.rack:
             self.reachable = (self.travel, self.travel)   # the range explored at this rack
-        steps, iterations, error = self._walk(float(travel), float(rack))
-        if error:
+        steps, iterations, status, error = self._walk(float(travel), float(rack))
+        if status:
             explored = self.reachable
             self._commit(saved[0])
             self.reachable = explored if rack == self.rack else saved[1]
-            return self._failure(travel, error, steps, explored)
+            return self._failure(travel, status, error, steps, explored)
         return self._solution(iterations, steps)
 
     def _walk(self, target, rack):
@@ -176,7 +180,7 @@ class Continuation:
         Advance the state to (target travel, rack) along a straight line.
 
         Substeps are at most max_step long, halved on failure. Returns (steps, iterations,
-        error message or '').
+        Status, error message or '').
         """
         start, start_rack = self.travel, self.rack
         if self._paper is None:
@@ -187,10 +191,10 @@ class Continuation:
         else:
             steps, iterations, stalled = self._paper_walk(target, rack)
         if not stalled:
-            return steps, iterations, ''
+            return steps, iterations, Status.OK, ''
         if rack == start_rack:
             return self._walk_arclength(start, target, steps)
-        return steps, iterations, (
+        return steps, iterations, Status.OUT_OF_REACH, (
             f'travel {target:g} mm at rack {rack:g} mm is out of reach: continuation from '
             f'travel {start:g} mm, rack {start_rack:g} mm stops at travel {self.travel:.3f} mm, '
             f'rack {self.rack:.3f} mm')
@@ -239,7 +243,7 @@ class Continuation:
                                            near_rotation) <= 2 * length:   # the last arc step
                 self._commit(self._pack(target, self.rack, center, rotation, jac))
                 self._extend_reachable(target)
-                return steps + 1, iterations, ''
+                return steps + 1, iterations, Status.OK, ''
             found = self.travel
         direction = math.copysign(1.0, target - start)
         limit = found if status == 'limit' else self.travel
@@ -247,10 +251,11 @@ class Continuation:
         low, high = self.reachable
         what = ('a turning point, located to 0.01 mm' if status == 'limit'
                 else 'the solution curve could not be followed further')
-        return steps, 0, (f'travel {target:g} mm is out of reach: continuation from {start:g} mm '
-                          f'ends at the {"bump" if direction > 0 else "rebound"} limit '
-                          f'{limit:.3f} mm ({what}); reachable range found: '
-                          f'[{low:.3f}, {high:.3f}] mm')
+        kind = Status.OUT_OF_REACH if status == 'limit' else Status.CURVE_LOST
+        return steps, 0, kind, (
+            f'travel {target:g} mm is out of reach: continuation from {start:g} mm ends at the '
+            f'{"bump" if direction > 0 else "rebound"} limit {limit:.3f} mm ({what}); reachable '
+            f'range found: [{low:.3f}, {high:.3f}] mm')
 
     def _extend_reachable(self, travel):
         low, high = self.reachable
@@ -304,9 +309,10 @@ class Continuation:
                         iterations, residual, steps, condition, self.reachable, self.rack,
                         state[kernel.QUATERNION:kernel.QUATERNION + 4])
 
-    def _failure(self, travel, message, steps, reachable=None):
+    def _failure(self, travel, status, message, steps, reachable=None):
         return Solution(travel=travel, success=False, message=message, substeps=steps,
-                        reachable=reachable or tuple(self.reachable), rack=self.rack)
+                        reachable=reachable or tuple(self.reachable), rack=self.rack,
+                        status=status)
 
     def joints(self, solution: Solution) -> dict[str, np.ndarray]:
         """Carrier joint positions {name: (3,) mm} of a solved position."""
@@ -334,7 +340,8 @@ def sweep(scene: Scene, travels: ArrayLike, method: str = 'fast', rack: float = 
     if rack:
         first = cont.solve(0.0, rack)   # steer at design travel first, then sweep
         if not first.success:
-            return _table(cont, [], rack, success=False, message=first.message)
+            return _table(cont, [], rack, success=False, message=first.message,
+                          status=first.status)
     if method == 'fast' and len(travels) > 2 and np.all(np.isfinite(travels)):
         batch = _batched(cont, travels)
         if batch is not None:
@@ -347,25 +354,28 @@ def _sequential(cont, travels):
     for travel in travels:
         sol = cont.solve(travel)
         if not sol.success:
-            return _table(cont, rows, cont.rack, success=False, message=sol.message)
+            return _table(cont, rows, cont.rack, success=False, message=sol.message,
+                          status=sol.status)
         rows.append(sol)
     return _table(cont, rows, cont.rack)
 
 
-def _table(cont, rows, rack, success=True, message='ok'):
+def _table(cont, rows, rack, success=True, message='ok', status=Status.OK):
     n = len(rows)
     center = np.array([r.wheel_center for r in rows]).reshape(n, 3)
     rotation = np.array([r.rotation for r in rows]).reshape(n, 3, 3)
-    return _sweep_of(cont, np.array([r.travel for r in rows]), center, rotation,
-                     np.array([r.iterations for r in rows], dtype=int), rack, success, message)
+    return _sweep_of(cont, np.array([r.travel for r in rows], dtype=float), center, rotation,
+                     np.array([r.iterations for r in rows], dtype=int), rack, success, message,
+                     status)
 
 
-def _sweep_of(cont, travel, center, rotation, iterations, rack, success=True, message='ok'):
+def _sweep_of(cont, travel, center, rotation, iterations, rack, success=True, message='ok',
+              status=Status.OK):
     mech = cont.mech
     camber, toe = camber_toe(rotation @ mech.spin_axis, cont.scene.side_sign)
     return Sweep(travel=travel, wheel_center=center, rotation=rotation, camber=camber, toe=toe,
                  iterations=iterations, residual=length_errors(mech, center, rotation, rack),
-                 success=success, message=message, rack=rack,
+                 success=success, message=message, rack=rack, status=status,
                  joints=carrier_points(mech, center, rotation),
                  quaternion=quaternion_from_matrix(rotation))
 

@@ -215,7 +215,7 @@ class Corner:
             said = ''
         else:
             said = sent()
-            self.node.bad_command(said, solution.message)
+            self.node.bad_command(said, solution)
         if self.health.add(solution, said):
             self.node.report([self])
 
@@ -302,16 +302,15 @@ class SuspensionNode(Node):
         for corner in self.corners.values():
             corner.health.reset_period()
 
-    def bad_command(self, sent, why):
+    def bad_command(self, sent, solution):
         """
-        Say on the console that a command could not be answered.
+        Say on the console that a command could not be answered (solution: its failure).
 
-        Once per kind of mistake (not a number, out of reach, other) and BAD_COMMAND_PERIOD s,
-        with the count of the same kind held back since: a stream of bad commands must not
-        flood the console; /diagnostics reports every one.
+        Once per kind of failure (solution.status) and BAD_COMMAND_PERIOD s, with the count of
+        the same kind held back since: a stream of bad commands must not flood the console;
+        /diagnostics reports every one.
         """
-        kind = ('not a number' if 'not a finite number' in why else
-                'out of reach' if 'out of reach' in why else 'other')
+        kind, why = solution.status, solution.message
         now = time.monotonic()
         last, held = self._bad_said.get(kind, (-math.inf, 0))
         if now - last < BAD_COMMAND_PERIOD:

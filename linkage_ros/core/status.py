@@ -1,0 +1,23 @@
+"""
+The kind of a solver result, as a code beside its message (scipy's OptimizeResult.status).
+
+Callers (the node, its diagnostics, the tools, the tests) branch on the code; the message is
+for people and free to change.
+"""
+
+from enum import IntEnum
+
+
+class Status(IntEnum):
+    """What became of a command or a sweep. OK is 0; every other value is a failure."""
+
+    OK = 0
+    NOT_FINITE = 1     # the command (travel or rack) is not a finite number
+    OUT_OF_REACH = 2   # beyond a travel limit (a turning point) of the assembly branch
+    CURVE_LOST = 3     # continuation could not follow the solution curve any further
+    SINGULAR = 4       # the Jacobian is singular where the command needs it
+
+    @property
+    def phrase(self) -> str:
+        """Say the kind in a few words, as the node's console names kinds of bad commands."""
+        return self.name.lower().replace('_', ' ')
