@@ -4,6 +4,7 @@ ROS 2 messages as CDR bytes, the form in which DDS carries them and MCAP stores 
 Pure functions, usable without DDS: the recorders, the replay and the node share them.
 
     float64_cdr(value), float64_of(CDR), pose_of(CDR)  -> built or read in place, no rclpy
+    CdrError                                           bytes that do not hold the message
     from_cdr(type_name, data), to_cdr(msg)             -> rclpy message <-> CDR bytes
     message_class(type_name), type_name(message)       -> 'pkg/msg/Type' <-> rclpy class
 
@@ -21,6 +22,24 @@ from .core.errors import LinkageError
 
 CDR_LE = b'\x00\x01\x00\x00'
 _FLOAT64 = struct.Struct('<4sd')
+_ENCAPSULATIONS = (b'\x00\x00', b'\x00\x01')   # CDR big-endian, little-endian (XCDR1)
+
+
+class CdrError(LinkageError):
+    """Bytes that do not hold the message they should: too short, or not CDR at all."""
+
+    def __init__(self, what: str, data: bytes, problem: str) -> None:
+        super().__init__(f'{what} of {len(data)} bytes', problem)
+        self.size = len(data)
+
+
+def _order(what: str, data: bytes, needed: int) -> str:
+    """Return the struct byte order of CDR bytes holding at least needed bytes; else CdrError."""
+    if bytes(data[:2]) not in _ENCAPSULATIONS:
+        raise CdrError(what, data, f'not CDR (encapsulation {bytes(data[:4])!r})')
+    if len(data) < needed:
+        raise CdrError(what, data, f'too short: it needs {needed} bytes')
+    return '<' if data[1] else '>'
 
 
 def float64_cdr(value: float) -> bytes:
@@ -29,27 +48,37 @@ def float64_cdr(value: float) -> bytes:
 
 
 def float64_of(data: bytes) -> float:
-    """Read the value of a std_msgs/Float64 in CDR bytes (either byte order)."""
-    return struct.unpack_from('<d' if data[1] else '>d', data, 4)[0]
+    """Read the value of a std_msgs/Float64 in CDR bytes (either byte order); else CdrError."""
+    return struct.unpack_from(_order('std_msgs/Float64', data, 12) + 'd', data, 4)[0]
 
 
 def pose_of(data: bytes) -> tuple[tuple[float, ...], tuple[float, ...]]:
     """
     Read (position (x, y, z), orientation (x, y, z, w)) of a geometry_msgs/PoseStamped.
 
-    From CDR bytes (either byte order), in place, skipping the header's frame_id.
+    From CDR bytes (either byte order), in place, skipping the header's frame_id; CdrError
+    if the bytes are too short for the frame_id they declare and the pose after it.
     """
-    order = '<' if data[1] else '>'
+    what = 'geometry_msgs/PoseStamped'
+    order = _order(what, data, 16)
     frame_length = struct.unpack_from(order + 'I', data, 12)[0]
     start = 4 + 12 + frame_length
-    values = struct.unpack_from(order + '7d', data, start + (-(start - 4) % 8))
+    start += -(start - 4) % 8
+    _order(what, data, start + 56)
+    values = struct.unpack_from(order + '7d', data, start)
     return values[:3], values[3:]
 
 
 def from_cdr(type_name: str, data: bytes) -> Any:
-    """Return the rclpy message of type_name ('pkg/msg/Type') held in CDR bytes."""
+    """Return the rclpy message of type_name ('pkg/msg/Type') held in CDR bytes; else CdrError."""
     from rclpy.serialization import deserialize_message
-    return deserialize_message(data, message_class(type_name))
+    kind = message_class(type_name)
+    _order(type_name, data, 4)
+    try:
+        return deserialize_message(bytes(data), kind)
+    except Exception as exc:  # rclpy's _rclpy.RCLError, whose module is private
+        reason = str(exc).split(', at /')[0].replace('failed to deserialize ROS message: ', '')
+        raise CdrError(type_name, data, f'does not decode ({reason})') from None
 
 
 def to_cdr(msg: Any) -> bytes:

@@ -6,6 +6,7 @@ from builtin_interfaces.msg import Time
 from diagnostic_msgs.msg import DiagnosticStatus
 from geometry_msgs.msg import PoseStamped
 from linkage_ros import cdr
+from linkage_ros.cdr import CdrError, float64_of, from_cdr, pose_of, to_cdr
 from linkage_ros.core.kinematics import Continuation
 from linkage_ros.core.scene import load_scene
 from linkage_ros.ros import messages
@@ -195,3 +196,23 @@ def test_diagnostic_array_is_stamped_and_holds_the_statuses(solved):
 ])
 def test_type_name_is_the_ros_interface_name_of_a_message_or_its_class(message, expected):
     assert cdr.type_name(message) == expected
+
+
+@pytest.mark.parametrize('data, problem', [
+    (b'\x00\x01\x00\x00\x01\x02', 'std_msgs/Float64 of 6 bytes: too short: it needs 12 bytes'),
+    (b'', 'std_msgs/Float64 of 0 bytes: not CDR'),
+    (b'\x07\x07\x00\x00' + bytes(8), 'std_msgs/Float64 of 12 bytes: not CDR'),
+])
+def test_a_float64_that_does_not_decode_is_a_cdr_error_naming_its_size(data, problem):
+    with pytest.raises(CdrError) as raised:
+        float64_of(data)
+    assert str(raised.value).startswith(problem)
+
+
+def test_a_pose_whose_frame_id_runs_past_its_end_is_a_cdr_error():
+    data = bytearray(to_cdr(PoseStamped()))
+    data[12:16] = (2**32 - 1).to_bytes(4, 'little')    # frame_id length 2^32 - 1
+    with pytest.raises(CdrError, match='too short: it needs 4294967'):
+        pose_of(bytes(data))
+    with pytest.raises(CdrError, match='does not decode'):
+        from_cdr('geometry_msgs/msg/PoseStamped', bytes(data))
