@@ -85,6 +85,7 @@ class Scene:
     wheel_radius: float = 0.0     # mm; 0 = not given
     description: str = ''
     extras: dict = field(default_factory=dict, compare=False)
+    elements: tuple = ()          # springs, dampers, lengths (elements.Element), mm
 
     @property
     def side_sign(self) -> float:
@@ -212,15 +213,17 @@ def parse_scene(data: Any, source: str = '<scene>') -> Scene:
     _check_third_point(check, wheel_center, spin_point, third_point, constraints,
                        'carrier.third_point' if given_p is not None else 'carrier',
                        given_p is not None, scene_size)
+    from .elements import parse_elements   # here: elements.py reads SceneError from here
     return Scene(name=str(data.get('name') or Path(source).stem), source=source, side=side,
                  units=units, wheel_center=wheel_center, spin_axis_point=spin_point,
                  third_point=third_point, constraints=constraints, travel=travel,
                  wheel_radius=radius, description=str(data.get('description', '')).strip(),
-                 extras={k: v for k, v in data.items() if k not in _KNOWN_KEYS})
+                 extras={k: v for k, v in data.items() if k not in _KNOWN_KEYS},
+                 elements=parse_elements(check, data.get('elements'), constraints))
 
 
 _KNOWN_KEYS = {'name', 'units', 'side', 'carrier', 'constraints', 'travel', 'wheel_radius',
-               'description'}
+               'description', 'elements'}
 
 
 def choose_third_point(wheel_center: np.ndarray, spin_point: np.ndarray,
@@ -431,7 +434,8 @@ def mirror(scene: Scene) -> Scene:
                  spin_axis_point=scene.spin_axis_point * flip,
                  third_point=scene.third_point * flip, constraints=constraints,
                  travel=scene.travel, wheel_radius=scene.wheel_radius,
-                 description=scene.description, extras=scene.extras)
+                 description=scene.description, extras=scene.extras,
+                 elements=tuple(e.transformed(flip, 0.0) for e in scene.elements))
 
 
 def translate(scene: Scene, offset: ArrayLike) -> Scene:
@@ -442,4 +446,5 @@ def translate(scene: Scene, offset: ArrayLike) -> Scene:
                         for c in scene.constraints)
     return replace(scene, wheel_center=scene.wheel_center + offset,
                    spin_axis_point=scene.spin_axis_point + offset,
-                   third_point=scene.third_point + offset, constraints=constraints)
+                   third_point=scene.third_point + offset, constraints=constraints,
+                   elements=tuple(e.transformed(1.0, offset) for e in scene.elements))

@@ -1,0 +1,219 @@
+"""
+Force elements of a corner: springs, dampers and plain lengths, with their motion ratios.
+
+A scene may list elements, each between a body point and a point on the moving side
+(mounts.py: on the carrier, on an arm, on a link's line, or along a strut):
+
+    elements:
+      - {name: damper, type: damper, body: [x, y, z], arm: lower_arm, point: [x, y, z]}
+      - {name: spring, type: spring, body: [x, y, z], arm: lower_arm, point: [x, y, z],
+         rate: 35.0, free_length: 320.0}
+      - {name: strut, type: damper, along: strut}
+
+Coordinates, free_length and rate are in the scene's units (rate in N per unit of length:
+N/mm in a mm scene, N/m in an m scene); everything is mm and N/mm once loaded.
+
+At every solved position each element has (element_values):
+    length L (mm); ratio = dL/dz (mm/mm, z = wheel travel, + = bump; negative where the
+    element shortens in bump); ratio_rate = d ratio/dz (1/mm); and, for a spring with a rate
+    k and a free length L0, its force F = k (L0 - L) (N, + = compressed: pushing its ends
+    apart) and the wheel rate dW/dz = k ratio^2 - F ratio_rate (N/mm), W = -F ratio being the
+    vertical wheel load it carries (virtual work). With the installation ratio MR = -ratio
+    this is the textbook k MR^2 + F dMR/dz.
+ratio and ratio_rate are exact (the implicit function theorem to second order, motion.py).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+import difflib
+import math
+import re
+from typing import NamedTuple, TYPE_CHECKING
+
+import numpy as np
+
+from .mechanism import compile_scene
+from .motion import carrier_motion, guidance_rows
+from .mounts import KINDS, Mount, mount_motion, parse_mount
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
+
+    from .mechanism import Mechanism
+    from .motion import Rows
+    from .scene import Constraint, Scene
+
+TYPES = ('spring', 'damper', 'length')
+KEYS = ('name', 'type', 'body', 'point', 'rate', 'free_length', 'description') + tuple(KINDS)
+NAME = re.compile(r'^[A-Za-z][A-Za-z0-9_]*$')   # becomes the start of table column names
+
+
+@dataclass(frozen=True)
+class Element:
+    """A spring, damper or length between a body point and a mount. mm, N/mm."""
+
+    name: str
+    type: str             # noqa: A003 (the scene files' key)
+    body: np.ndarray      # (3,) body point, vehicle frame, design position
+    mount: Mount          # the moving-side point
+    rate: float = math.nan          # N/mm (springs; NaN if not given)
+    free_length: float = math.nan   # mm (springs; NaN if not given)
+
+    @property
+    def has_rate(self) -> bool:
+        """Whether force and wheel rate are defined (a spring with rate and free_length)."""
+        return not math.isnan(self.rate)
+
+    def transformed(self, flip: ArrayLike, offset: ArrayLike) -> Element:
+        """Return the element with every point p at p * flip + offset (mirror, translate)."""
+        return replace(self, body=self.body * flip + offset,
+                       mount=self.mount.transformed(flip, offset))
+
+
+class ElementValues(NamedTuple):
+    """Quantities of k elements at n positions, arrays (n, k); NaN where undefined."""
+
+    length: np.ndarray       # mm
+    ratio: np.ndarray        # d length / d travel, mm/mm
+    ratio_rate: np.ndarray   # d ratio / d travel, 1/mm
+    force: np.ndarray        # N, + = compressed (springs with a rate)
+    wheel_rate: np.ndarray   # N/mm (springs with a rate)
+
+
+def parse_elements(check, items: object,
+                   constraints: tuple[Constraint, ...]) -> tuple[Element, ...]:
+    """
+    Read and validate a scene file's elements list (None: no elements).
+
+    check is the scene parser's field reader (fail, point, number, scale), so a mistake
+    raises SceneError naming the file and the field.
+    """
+    if items is None:
+        return ()
+    if not isinstance(items, list):
+        check.fail('elements', f'expected a list of elements, got {type(items).__name__}')
+    elements = tuple(_parse_element(check, item, i, constraints) for i, item in enumerate(items))
+    names = [e.name for e in elements]
+    for i, name in enumerate(names):
+        if name in names[:i]:
+            check.fail(f'elements[{i}] ({name}).name', 'used twice: names make the table '
+                       'columns, so each element needs its own')
+    return elements
+
+
+def _parse_element(check, item, index, constraints):
+    where = f'elements[{index}]'
+    if not isinstance(item, dict):
+        check.fail(where, 'expected a mapping {name, type, body, and carrier, arm + point, '
+                   'link + point or along}')
+    name = item.get('name')
+    if not isinstance(name, str) or not NAME.match(name):
+        check.fail(f'{where}.name', f'expected a name of letters, digits and _ starting with a '
+                   f'letter (it starts the table columns), got {name!r}')
+    where = f'elements[{index}] ({name})'
+    for key in item:
+        if key not in KEYS and not (isinstance(key, str) and key.startswith('x_')):
+            close = difflib.get_close_matches(str(key), KEYS, n=1)
+            hint = f'did you mean {close[0]}?' if close else f'known: {", ".join(KEYS)}'
+            check.fail(f'{where}.{key}', f'unknown key ({hint})')
+    kind = check.choice(item, 'type', TYPES, f'{where}.type')
+    scale = check.scale
+    mount, body = parse_mount(item, constraints, where, scale,
+                              lambda key, field: check.point(item, key, field), check.fail)
+    if body is None:
+        body = check.point(item, 'body', f'{where}.body') * scale
+    if np.linalg.norm(mount.point - body) <= 1e-9 * max(1.0, float(np.abs(body).max())):
+        check.fail(where, 'the body point and the moving point coincide at design: an element '
+                   'of zero length has no direction')
+    rate, free_length = _spring(check, item, where, kind)
+    return Element(name=name, type=kind, body=body, mount=mount, rate=rate,
+                   free_length=free_length)
+
+
+def _spring(check, item, where, kind):
+    """Return (rate N/mm, free_length mm) of a spring, NaN, NaN if not given."""
+    given = [key for key in ('rate', 'free_length') if item.get(key) is not None]
+    if not given:
+        return math.nan, math.nan
+    if kind != 'spring':
+        check.fail(f'{where}.{given[0]}', f'only a spring has a rate and a free length (this '
+                   f'is a {kind})')
+    if len(given) == 1:
+        missing = ({'rate', 'free_length'} - set(given)).pop()
+        check.fail(f'{where}.{missing}', 'missing: rate and free_length go together (the '
+                   'force needs both)')
+    unit = 'mm' if check.scale == 1.0 else 'm'
+    values = []
+    for key in given:
+        value = check.number(item, key, f'{where}.{key}')
+        if not value > 0:
+            what = f'N/{unit}, a stiffness' if key == 'rate' else f'{unit}, a length'
+            check.fail(f'{where}.{key}', f'must be positive ({what}), got {value!r}')
+        values.append(value)
+    return values[0] / check.scale, values[1] * check.scale
+
+
+def element_values(scene: Scene, center: ArrayLike, rotation: ArrayLike, rack: ArrayLike = 0.0,
+                   jac: np.ndarray | None = None, mech: Mechanism | None = None,
+                   rows: Rows | None = None) -> ElementValues:
+    """
+    Return the quantities of the scene's elements at n solved poses (ElementValues, (n, k)).
+
+    center (n, 3) mm, rotation (n, 3, 3), rack mm (scalar or (n,)); jac (n, 5, 6) if the
+    solve has it. mech and rows (compile_scene, motion.guidance_rows) may be passed to save
+    building them per call.
+    """
+    center = np.asarray(center, dtype=float).reshape(-1, 3)
+    rotation = np.asarray(rotation, dtype=float).reshape(-1, 3, 3)
+    n, k = len(center), len(scene.elements)
+    if k == 0 or n == 0:
+        empty = np.empty((n, k))
+        return ElementValues(empty, empty, empty, empty, empty)
+    mech = mech if mech is not None else compile_scene(scene)
+    rows = rows if rows is not None else guidance_rows(scene, mech)
+    motion = carrier_motion(rows, mech, center, rotation, rack, jac)
+    length, ratio, ratio_rate = (np.empty((n, k)) for _ in range(3))
+    for j, element in enumerate(scene.elements):
+        position, velocity, acceleration = mount_motion(element.mount, scene, motion, center,
+                                                        rotation, rack)
+        length[:, j], ratio[:, j], ratio_rate[:, j] = length_rates(element.body, position,
+                                                                   velocity, acceleration)
+    rate = np.array([e.rate for e in scene.elements])
+    force = rate * (np.array([e.free_length for e in scene.elements]) - length)
+    return ElementValues(length, ratio, ratio_rate, force, rate * ratio**2 - force * ratio_rate)
+
+
+def length_rates(body: np.ndarray, position: np.ndarray, velocity: np.ndarray,
+                 acceleration: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """
+    Return L, dL/dz and d2L/dz2 (n,) of the distance from a fixed body point to a moving one.
+
+    L' = e . P' and L'' = e . P'' + (|P'|^2 - L'^2) / L, e the unit vector body -> P.
+    """
+    d = position - body
+    length = np.sqrt(np.einsum('ni,ni->n', d, d))
+    e = d / length[:, None]
+    rate = np.einsum('ni,ni->n', e, velocity)
+    speed2 = np.einsum('ni,ni->n', velocity, velocity)
+    return length, rate, np.einsum('ni,ni->n', e, acceleration) + (speed2 - rate**2) / length
+
+
+def element_columns(scene: Scene) -> list[str]:
+    """Return the table columns of the scene's elements (element_table's order)."""
+    columns = []
+    for e in scene.elements:
+        columns += [f'{e.name}_length_mm', f'{e.name}_ratio']
+        if e.has_rate:
+            columns += [f'{e.name}_force_N', f'{e.name}_wheel_rate_N_per_mm']
+    return columns
+
+
+def element_table(scene: Scene, values: ElementValues) -> np.ndarray:
+    """Return the element columns (n, len(element_columns(scene))) of ElementValues."""
+    columns = []
+    for j, e in enumerate(scene.elements):
+        columns += [values.length[:, j], values.ratio[:, j]]
+        if e.has_rate:
+            columns += [values.force[:, j], values.wheel_rate[:, j]]
+    return np.column_stack(columns) if columns else np.empty((len(values.length), 0))

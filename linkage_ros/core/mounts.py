@@ -1,0 +1,182 @@
+"""
+Points on the moving parts of a corner: on the carrier, on an arm, on a link, on a strut.
+
+A mount is where a spring, a damper or (later) an anti-roll bar's drop link is fixed to the
+moving side of a suspension, given at design position in a scene file:
+
+    carrier: [x, y, z]                 fixed in the wheel carrier
+    arm: lower_arm, point: [x, y, z]   on a circle constraint's arm: turns with it about the
+                                       arm's body-fixed axis (angle set by its ball joint)
+    link: tie_rod, point: [x, y, z]    on a binary link (sphere): only on the link's line,
+                                       at a fixed fraction of the way from body to carrier
+    along: strut                       a strut's (line constraint's) carrier point: with the
+                                       top mount as body point, the strut's own length
+
+mount_motion gives the point's position and its first and second derivatives with respect
+to wheel travel, exact (motion.py), at n solved poses. mm, vehicle frame; (n, 3) arrays.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from .geometry import cross, unit
+from .motion import point_motion
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
+
+    from .motion import CarrierMotion
+    from .scene import Constraint, Scene
+
+KINDS = {'carrier': None, 'arm': 'circle', 'link': 'sphere', 'along': 'line'}
+# A point given on a link may lie this far (relative to the link length) off the link's
+# line, as typed coordinates rounded to 0.1 mm do; it is then projected onto the line.
+LINE_TOLERANCE = 1e-3
+
+
+@dataclass(frozen=True)
+class Mount:
+    """
+    A point on the moving side, at design position (mm, vehicle frame).
+
+    kind: 'carrier', 'arm', 'link' or 'along'; constraint: index into scene.constraints (-1
+    for the carrier); point (3,): the point at design (for 'link' projected onto the line,
+    for 'along' the strut's carrier point).
+    """
+
+    kind: str
+    point: np.ndarray
+    constraint: int = -1
+
+    def transformed(self, flip: ArrayLike, offset: ArrayLike) -> Mount:
+        """Return the mount with its point p moved to p * flip + offset (mirror, translate)."""
+        return replace(self, point=self.point * flip + offset)
+
+
+def parse_mount(item: dict, constraints: tuple[Constraint, ...], where: str, scale: float,
+                read_point, fail) -> tuple[Mount, np.ndarray | None]:
+    """
+    Read the moving-side point of an element (or a drop link) from its mapping.
+
+    read_point(key, field) -> (3,) scene units and fail(field, problem) come from the scene
+    parser, so mistakes name the file and field. Returns (Mount, implied body point or None:
+    along a strut the body point is its top mount).
+    """
+    given = [k for k in KINDS if k in item]
+    if len(given) != 1:
+        fail(where, 'give exactly one of carrier: [x, y, z], arm: NAME with point, link: '
+             f'NAME with point, or along: NAME (got {", ".join(given) or "none"})')
+    kind = given[0]
+    if kind == 'carrier':
+        if 'point' in item:
+            fail(f'{where}.point', 'a carrier point is given by carrier: [x, y, z] alone')
+        return Mount('carrier', read_point('carrier', f'{where}.carrier') * scale), None
+    name = item[kind]
+    index = _constraint_index(constraints, name, KINDS[kind], f'{where}.{kind}', fail)
+    c = constraints[index]
+    if kind == 'along':
+        if 'point' in item or 'body' in item:
+            fail(where, f'along: {name} takes both ends from the strut (its top mount and its '
+                 'carrier point); leave out body and point')
+        return Mount('along', c.carrier.copy(), index), c.base[0].copy()
+    point = read_point('point', f'{where}.point') * scale
+    if kind == 'link':
+        point = _on_link(c, point, f'{where}.point', scale, fail)
+    return Mount(kind, point, index), None
+
+
+def _constraint_index(constraints, name, wanted, where, fail):
+    """Return the index of the constraint called name, of type wanted; else fail naming both."""
+    what = {'circle': 'an arm (circle)', 'sphere': 'a link (sphere)', 'line': 'a strut (line)'}
+    plural = {'circle': 'arms', 'sphere': 'links', 'line': 'struts'}
+    fitting = [c.name for c in constraints if c.type == wanted]
+    for i, c in enumerate(constraints):
+        if c.name == name:
+            if c.type != wanted:
+                key = {v: k for k, v in KINDS.items()}[c.type]
+                fail(where, f'{name} is {what[c.type]}, not {what[wanted]}: use '
+                     f'{key}: {name}')
+            return i
+    fail(where, f'no {what[wanted][2:].lstrip()} named {name!r} in the scene (its '
+         f'{plural[wanted]}: {", ".join(fitting) or "none"})')
+
+
+def _on_link(c, point, where, scale, fail):
+    """Return point projected onto the line of link c; fail if it is off the line."""
+    base, end = c.base[0], c.carrier
+    length = float(np.linalg.norm(end - base))
+    s = float((point - base) @ (end - base)) / length**2
+    off = float(np.linalg.norm(point - (base + s * (end - base))))
+    if off > LINE_TOLERANCE * length:
+        fail(where, f'{off / scale:.6g} {"mm" if scale == 1.0 else "m"} off the line of link '
+             f'{c.name} (a binary link turns freely about its line, so only points on the '
+             f'line have a defined motion; allowed: {LINE_TOLERANCE:g} of its length)')
+    return base + s * (end - base)
+
+
+def mount_motion(mount: Mount, scene: Scene, motion: CarrierMotion, center: np.ndarray,
+                 rotation: np.ndarray,
+                 rack: ArrayLike = 0.0) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """
+    Return the mount point's position (mm), d/dtravel (mm/mm), d2/dtravel2 (1/mm), (n, 3).
+
+    At n solved poses (center (n, 3), rotation (n, 3, 3), rack mm) whose carrier motion is
+    motion (motion.carrier_motion).
+    """
+    m0 = scene.wheel_center
+    if mount.kind == 'carrier':
+        return point_motion(motion, center, rotation, mount.point - m0)
+    c = scene.constraints[mount.constraint]
+    joint = point_motion(motion, center, rotation, c.carrier - m0)
+    if mount.kind == 'along':
+        return joint
+    if mount.kind == 'link':
+        return _link_motion(mount.point, c, joint, rack)
+    return arm_motion(mount.point, c.base[0], c.base[1], c.carrier, joint)
+
+
+def _link_motion(point, c, joint, rack):
+    """Move a point kept a fixed fraction s of the way from the link's body end B to C."""
+    base, end = c.base[0], c.carrier
+    s = float((point - base) @ (end - base)) / float((end - base) @ (end - base))
+    shift = np.asarray(rack, dtype=float)[..., None] * np.array([0.0, 1.0, 0.0])
+    body = base + (shift if c.steer == 'rack' else 0.0)   # the rack moves B along +y
+    position, velocity, acceleration = joint
+    return body + s * (position - body), s * velocity, s * acceleration
+
+
+def arm_motion(point: np.ndarray, axis0: np.ndarray, axis1: np.ndarray, joint0: np.ndarray,
+               joint: tuple[np.ndarray, np.ndarray, np.ndarray]
+               ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """
+    Return position, velocity, acceleration (n, 3) of a point on an arm turning about an axis.
+
+    The arm turns about the body-fixed axis axis0-axis1 (u); its ball joint, at joint0 at
+    design, is at joint = (position, velocity, acceleration) now. The arm's frame follows the
+    joint: e1 along the joint's offset square to u, e2 = u x e1, and the point keeps its
+    design coordinates in (u, e1, e2). The angle's rates from the joint's:
+    theta' = (u x rho) . C' / |rho_perp|^2 and theta'' likewise with C''.
+    """
+    u = unit(axis1 - axis0)
+    position, velocity, acceleration = joint
+
+    def frame(rho):
+        e1 = unit(rho - (rho @ u)[..., None] * u)
+        return e1, cross(np.broadcast_to(u, e1.shape), e1)
+
+    d1, d2 = frame(joint0 - axis0)
+    q0 = point - axis0
+    rho = position - axis0
+    e1, e2 = frame(rho)
+    q = (q0 @ u) * u + (q0 @ d1) * e1 + (q0 @ d2) * e2
+    lever = cross(np.broadcast_to(u, rho.shape), rho)
+    lever2 = np.einsum('ni,ni->n', lever, lever)
+    rate = np.einsum('ni,ni->n', lever, velocity) / lever2
+    rate2 = np.einsum('ni,ni->n', lever, acceleration) / lever2
+    uq = cross(np.broadcast_to(u, q.shape), q)
+    return (axis0 + q, rate[:, None] * uq,
+            rate2[:, None] * uq + (rate**2)[:, None] * cross(np.broadcast_to(u, q.shape), uq))
