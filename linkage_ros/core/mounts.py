@@ -112,9 +112,11 @@ def _on_link(c, point, where, scale, fail):
     s = float((point - base) @ (end - base)) / length**2
     off = float(np.linalg.norm(point - (base + s * (end - base))))
     if off > LINE_TOLERANCE * length:
-        fail(where, f'{off / scale:.6g} {"mm" if scale == 1.0 else "m"} off the line of link '
-             f'{c.name} (a binary link turns freely about its line, so only points on the '
-             f'line have a defined motion; allowed: {LINE_TOLERANCE:g} of its length)')
+        unit = 'mm' if scale == 1.0 else 'm'
+        fail(where, f'{off / scale:.4g} {unit} off the line of link {c.name} (a binary link '
+             'turns freely about its line, so only points on the line have a defined motion; '
+             f'allowed: {LINE_TOLERANCE * length / scale:.3g} {unit}, {LINE_TOLERANCE:g} of '
+             'its length)')
     return base + s * (end - base)
 
 
