@@ -11,8 +11,8 @@ import csv
 import io
 from pathlib import Path
 
-from linkage_ros.core.elements import element_values
-from linkage_ros.core.kinematics import sweep, travel_range
+from linkage_ros.core.elements import element_values, prepare
+from linkage_ros.core.kinematics import Continuation, sweep, travel_range
 from linkage_ros.core.scene import bundled_scenes, load_scene, mirror, translate, UNITS_TO_MM
 from linkage_ros.core.vehicle import load_vehicle
 from linkage_ros.tools.sweep import main
@@ -222,3 +222,25 @@ def test_sweep_elements_columns_hold_the_element_values(capsys):
     expected = np.column_stack((got.length[:, 0], got.ratio[:, 0], got.length[:, 1],
                                 got.ratio[:, 1], got.force[:, 1], got.wheel_rate[:, 1]))
     assert table == pytest.approx(expected, rel=1e-9)   # written to 10 significant digits
+
+
+def test_one_command_at_a_time_with_the_solves_jacobian_gives_the_batch_values():
+    # The node's path: each answer's pose and the Jacobian the solve already holds.
+    scene = load_scene('double_wishbone')
+    cont = Continuation(scene)
+    model = prepare(scene, cont.mech)
+    batch = exact(scene, TRAVEL, rack=6.0)
+    for i, travel in enumerate(TRAVEL):
+        answer = cont.solve(travel, 6.0)
+        one = element_values(scene, answer.wheel_center, answer.rotation, answer.rack,
+                             jac=cont.jacobian, model=model)
+        for quantity in ('length', 'ratio', 'ratio_rate', 'force', 'wheel_rate'):
+            assert getattr(one, quantity)[0] == pytest.approx(getattr(batch, quantity)[i],
+                                                              rel=1e-9, nan_ok=True)
+
+
+def test_a_singular_jacobian_gives_nan_rates_and_the_length_not_an_exception():
+    scene = load_scene('five_link')
+    got = element_values(scene, scene.wheel_center, np.eye(3), jac=np.zeros((5, 6)))
+    assert np.isfinite(got.length).all()
+    assert np.isnan(got.ratio).all() and np.isnan(got.wheel_rate[:, 1]).all()

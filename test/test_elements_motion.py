@@ -7,7 +7,8 @@ the mechanism's own Jacobian.
 
 from linkage_ros.core.kinematics import sweep
 from linkage_ros.core.mechanism import compile_scene, linearize
-from linkage_ros.core.motion import carrier_motion, guidance_rows, point_motion
+from linkage_ros.core.motion import carrier_motion, guidance_rows, pose_batch
+from linkage_ros.core.mounts import Mount, mount_motion, mount_table
 from linkage_ros.core.scene import bundled_scenes, load_scene
 import numpy as np
 import pytest
@@ -24,10 +25,10 @@ def test_every_joint_moves_with_the_velocity_and_acceleration_of_the_carrier(nam
     mech = compile_scene(scene)
     rows = guidance_rows(scene, mech)
     minus, here, plus = (sweep(scene, TRAVEL + h, rack=rack) for h in (-H, 0.0, H))
-    motion = carrier_motion(rows, mech, here.wheel_center, here.rotation, rack)
-    for j, offset in enumerate(mech.offsets):
-        position, velocity, acceleration = point_motion(motion, here.wheel_center,
-                                                        here.rotation, offset)
+    joints = mount_table(scene, [Mount('carrier', c.carrier) for c in scene.constraints])
+    moving = mount_motion(rows, joints, pose_batch(mech, here.wheel_center, here.rotation, rack))
+    for j in range(len(scene.constraints)):
+        position, velocity, acceleration = (m[:, j] for m in moving)
         assert position == pytest.approx(here.joints[:, j], abs=1e-9)
         assert velocity == pytest.approx((plus.joints[:, j] - minus.joints[:, j]) / (2 * H),
                                          abs=1e-8)
@@ -39,7 +40,8 @@ def test_travel_moves_the_wheel_centre_up_at_one_mm_per_mm_with_no_vertical_acce
     scene = load_scene('five_link')
     mech = compile_scene(scene)
     here = sweep(scene, TRAVEL)
-    motion = carrier_motion(guidance_rows(scene, mech), mech, here.wheel_center, here.rotation)
+    motion = carrier_motion(guidance_rows(scene, mech),
+                            pose_batch(mech, here.wheel_center, here.rotation))
     assert np.all(motion.velocity[:, 2] == 1.0) and np.all(motion.acceleration[:, 2] == 0.0)
 
 

@@ -20,7 +20,8 @@ At every solved position each element has (element_values):
     apart) and the wheel rate dW/dz = k ratio^2 - F ratio_rate (N/mm), W = -F ratio being the
     vertical wheel load it carries (virtual work). With the installation ratio MR = -ratio
     this is the textbook k MR^2 + F dMR/dz.
-ratio and ratio_rate are exact (the implicit function theorem to second order, motion.py).
+ratio and ratio_rate are exact (the implicit function theorem to second order, motion.py),
+computed compiled (element_kernel.py): a few microseconds per answer.
 """
 
 from __future__ import annotations
@@ -33,15 +34,15 @@ from typing import NamedTuple, TYPE_CHECKING
 
 import numpy as np
 
-from .mechanism import compile_scene
-from .motion import carrier_motion, guidance_rows
-from .mounts import KINDS, Mount, mount_motion, parse_mount
+from . import element_kernel
+from .element_kernel import pack_elements, pack_rows, SpringTable
+from .mechanism import compile_scene, Mechanism
+from .motion import guidance_rows, pose_batch
+from .mounts import KINDS, Mount, mount_table, parse_mount
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
 
-    from .mechanism import Mechanism
-    from .motion import Rows
     from .scene import Constraint, Scene
 
 TYPES = ('spring', 'damper', 'length')
@@ -154,49 +155,47 @@ def _spring(check, item, where, kind):
     return values[0] / check.scale, values[1] * check.scale
 
 
+class ElementModel(NamedTuple):
+    """A scene's elements prepared for the compiled kernels (prepare), reused per answer."""
+
+    mech: Mechanism
+    rows: np.ndarray     # element_kernel.pack_rows of the guidance equations
+    table: np.ndarray    # element_kernel.pack_elements of the elements
+
+
+def prepare(scene: Scene, mech: Mechanism | None = None) -> ElementModel:
+    """Prepare the scene's elements for element_values (mech: compile_scene(scene) if given)."""
+    mech = mech if mech is not None else compile_scene(scene)
+    elements = scene.elements
+    springs = SpringTable(np.array([e.body for e in elements]).reshape(-1, 3),
+                          np.array([e.rate for e in elements]),
+                          np.array([e.free_length for e in elements]))
+    return ElementModel(mech, pack_rows(guidance_rows(scene, mech)),
+                        pack_elements(mount_table(scene, [e.mount for e in elements]), springs))
+
+
 def element_values(scene: Scene, center: ArrayLike, rotation: ArrayLike, rack: ArrayLike = 0.0,
-                   jac: np.ndarray | None = None, mech: Mechanism | None = None,
-                   rows: Rows | None = None) -> ElementValues:
+                   jac: ArrayLike | None = None,
+                   model: ElementModel | None = None) -> ElementValues:
     """
     Return the quantities of the scene's elements at n solved poses (ElementValues, (n, k)).
 
-    center (n, 3) mm, rotation (n, 3, 3), rack mm (scalar or (n,)); jac (n, 5, 6) if the
-    solve has it. mech and rows (compile_scene, motion.guidance_rows) may be passed to save
-    building them per call.
+    center (n, 3) mm, rotation (n, 3, 3), rack mm (scalar or (n,)); jac (n, 5, 6): the
+    Jacobian at the poses if the solve has it (Continuation.jacobian), else linearized here.
+    model: prepare(scene), to save preparing it per call. One pose with its Jacobian (center
+    (3,), rotation (3, 3), jac (5, 6): the node's one-command path) goes straight to the
+    compiled kernel; arrays (1, k) come back.
     """
-    center = np.asarray(center, dtype=float).reshape(-1, 3)
-    rotation = np.asarray(rotation, dtype=float).reshape(-1, 3, 3)
-    n, k = len(center), len(scene.elements)
-    if k == 0 or n == 0:
-        empty = np.empty((n, k))
-        return ElementValues(empty, empty, empty, empty, empty)
-    mech = mech if mech is not None else compile_scene(scene)
-    rows = rows if rows is not None else guidance_rows(scene, mech)
-    motion = carrier_motion(rows, mech, center, rotation, rack, jac)
-    length, ratio, ratio_rate = (np.empty((n, k)) for _ in range(3))
-    for j, element in enumerate(scene.elements):
-        position, velocity, acceleration = mount_motion(element.mount, scene, motion, center,
-                                                        rotation, rack)
-        length[:, j], ratio[:, j], ratio_rate[:, j] = length_rates(element.body, position,
-                                                                   velocity, acceleration)
-    rate = np.array([e.rate for e in scene.elements])
-    force = rate * (np.array([e.free_length for e in scene.elements]) - length)
-    return ElementValues(length, ratio, ratio_rate, force, rate * ratio**2 - force * ratio_rate)
-
-
-def length_rates(body: np.ndarray, position: np.ndarray, velocity: np.ndarray,
-                 acceleration: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """
-    Return L, dL/dz and d2L/dz2 (n,) of the distance from a fixed body point to a moving one.
-
-    L' = e . P' and L'' = e . P'' + (|P'|^2 - L'^2) / L, e the unit vector body -> P.
-    """
-    d = position - body
-    length = np.sqrt(np.einsum('ni,ni->n', d, d))
-    e = d / length[:, None]
-    rate = np.einsum('ni,ni->n', e, velocity)
-    speed2 = np.einsum('ni,ni->n', velocity, velocity)
-    return length, rate, np.einsum('ni,ni->n', e, acceleration) + (speed2 - rate**2) / length
+    model = model if model is not None else prepare(scene)
+    if jac is not None and np.ndim(center) == 1:
+        values = np.empty((5, 1, len(scene.elements)))
+        element_kernel.elements_one(model.rows, model.table, center, rotation, float(rack), jac,
+                                    values[:, 0])
+        return ElementValues(*values)
+    poses = pose_batch(model.mech, center, rotation, rack, jac)
+    values = np.empty((5, len(poses.center), len(scene.elements)))
+    element_kernel.elements_many(model.rows, model.table, tuple(poses), values)
+    return ElementValues(*values)
 
 
 def element_columns(scene: Scene) -> list[str]:

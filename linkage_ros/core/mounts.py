@@ -12,8 +12,9 @@ moving side of a suspension, given at design position in a scene file:
     along: strut                       a strut's (line constraint's) carrier point: with the
                                        top mount as body point, the strut's own length
 
-mount_motion gives the point's position and its first and second derivatives with respect
-to wheel travel, exact (motion.py), at n solved poses. mm, vehicle frame; (n, 3) arrays.
+mount_motion gives the points' positions and their first and second derivatives with respect
+to wheel travel, exact (motion.py), at n solved poses, compiled (element_kernel.py). mm,
+vehicle frame.
 """
 
 from __future__ import annotations
@@ -23,13 +24,17 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .geometry import cross, unit
-from .motion import point_motion
+from . import element_kernel
+from .element_kernel import ALONG, ARM, CARRIER, LINK, MountTable
+from .geometry import unit
 
 if TYPE_CHECKING:
+    from collections.abc import Sequence
+
     from numpy.typing import ArrayLike
 
-    from .motion import CarrierMotion
+    from .element_kernel import Poses
+    from .motion import Rows
     from .scene import Constraint, Scene
 
 KINDS = {'carrier': None, 'arm': 'circle', 'link': 'sphere', 'along': 'line'}
@@ -120,65 +125,47 @@ def _on_link(c, point, where, scale, fail):
     return base + s * (end - base)
 
 
-def mount_motion(mount: Mount, scene: Scene, motion: CarrierMotion, center: np.ndarray,
-                 rotation: np.ndarray,
-                 rack: ArrayLike = 0.0) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def mount_table(scene: Scene, mounts: Sequence[Mount]) -> MountTable:
+    """Build the compiled kernels' table (element_kernel.MountTable) of mounts in a scene."""
+    k = len(mounts)
+    kind = np.empty(k, dtype=np.int64)
+    offset, base, axis, coeff = (np.zeros((k, 3)) for _ in range(4))
+    steer = np.zeros(k)
+    codes = {'carrier': CARRIER, 'arm': ARM, 'link': LINK, 'along': ALONG}
+    for j, mount in enumerate(mounts):
+        kind[j] = codes[mount.kind]
+        if mount.kind == 'carrier':
+            offset[j] = mount.point - scene.wheel_center
+            continue
+        c = scene.constraints[mount.constraint]
+        offset[j] = c.carrier - scene.wheel_center      # the joint moves the point
+        if mount.kind == 'link':
+            base[j] = c.base[0]
+            coeff[j, 0] = ((mount.point - c.base[0]) @ (c.carrier - c.base[0])
+                           / ((c.carrier - c.base[0]) @ (c.carrier - c.base[0])))
+            steer[j] = 1.0 if c.steer == 'rack' else 0.0
+        elif mount.kind == 'arm':
+            # The arm's frame follows its joint: e1 along the joint's offset from the axis,
+            # square to it; e2 = u x e1. The point keeps its design coordinates in (u, e1, e2).
+            u = unit(c.base[1] - c.base[0])
+            rho = c.carrier - c.base[0]
+            e1 = unit(rho - (rho @ u) * u)
+            q = mount.point - c.base[0]
+            base[j], axis[j] = c.base[0], u
+            coeff[j] = (q @ u, q @ e1, q @ np.cross(u, e1))
+    return MountTable(kind, offset, base, axis, coeff, steer)
+
+
+def mount_motion(rows: Rows, table: MountTable,
+                 poses: Poses) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """
-    Return the mount point's position (mm), d/dtravel (mm/mm), d2/dtravel2 (1/mm), (n, 3).
+    Return the mounts' positions (mm), d/dtravel (mm/mm), d2/dtravel2 (1/mm), (n, k, 3) each.
 
-    At n solved poses (center (n, 3), rotation (n, 3, 3), rack mm) whose carrier motion is
-    motion (motion.carrier_motion).
+    rows: motion.guidance_rows; table: mount_table; poses: motion.pose_batch. Exact: the
+    carrier's motion to second order (motion.py), then an arm's angle rates from its joint:
+    theta' = (u x rho) . C' / |u x rho|^2, theta'' likewise with C''.
     """
-    m0 = scene.wheel_center
-    if mount.kind == 'carrier':
-        return point_motion(motion, center, rotation, mount.point - m0)
-    c = scene.constraints[mount.constraint]
-    joint = point_motion(motion, center, rotation, c.carrier - m0)
-    if mount.kind == 'along':
-        return joint
-    if mount.kind == 'link':
-        return _link_motion(mount.point, c, joint, rack)
-    return arm_motion(mount.point, c.base[0], c.base[1], c.carrier, joint)
-
-
-def _link_motion(point, c, joint, rack):
-    """Move a point kept a fixed fraction s of the way from the link's body end B to C."""
-    base, end = c.base[0], c.carrier
-    s = float((point - base) @ (end - base)) / float((end - base) @ (end - base))
-    shift = np.asarray(rack, dtype=float)[..., None] * np.array([0.0, 1.0, 0.0])
-    body = base + (shift if c.steer == 'rack' else 0.0)   # the rack moves B along +y
-    position, velocity, acceleration = joint
-    return body + s * (position - body), s * velocity, s * acceleration
-
-
-def arm_motion(point: np.ndarray, axis0: np.ndarray, axis1: np.ndarray, joint0: np.ndarray,
-               joint: tuple[np.ndarray, np.ndarray, np.ndarray]
-               ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """
-    Return position, velocity, acceleration (n, 3) of a point on an arm turning about an axis.
-
-    The arm turns about the body-fixed axis axis0-axis1 (u); its ball joint, at joint0 at
-    design, is at joint = (position, velocity, acceleration) now. The arm's frame follows the
-    joint: e1 along the joint's offset square to u, e2 = u x e1, and the point keeps its
-    design coordinates in (u, e1, e2). The angle's rates from the joint's:
-    theta' = (u x rho) . C' / |rho_perp|^2 and theta'' likewise with C''.
-    """
-    u = unit(axis1 - axis0)
-    position, velocity, acceleration = joint
-
-    def frame(rho):
-        e1 = unit(rho - (rho @ u)[..., None] * u)
-        return e1, cross(np.broadcast_to(u, e1.shape), e1)
-
-    d1, d2 = frame(joint0 - axis0)
-    q0 = point - axis0
-    rho = position - axis0
-    e1, e2 = frame(rho)
-    q = (q0 @ u) * u + (q0 @ d1) * e1 + (q0 @ d2) * e2
-    lever = cross(np.broadcast_to(u, rho.shape), rho)
-    lever2 = np.einsum('ni,ni->n', lever, lever)
-    rate = np.einsum('ni,ni->n', lever, velocity) / lever2
-    rate2 = np.einsum('ni,ni->n', lever, acceleration) / lever2
-    uq = cross(np.broadcast_to(u, q.shape), q)
-    return (axis0 + q, rate[:, None] * uq,
-            rate2[:, None] * uq + (rate**2)[:, None] * cross(np.broadcast_to(u, q.shape), uq))
+    points = np.empty((len(poses.center), len(table.kind), 3, 3))
+    element_kernel.mounts_many(element_kernel.pack_rows(rows), element_kernel.pack_elements(table),
+                               tuple(poses), points)
+    return points[:, :, 0], points[:, :, 1], points[:, :, 2]

@@ -12,9 +12,8 @@ import time
 
 import numpy as np
 
-from ..core.elements import element_values
+from ..core.elements import element_values, prepare
 from ..core.kinematics import Continuation, sweep
-from ..core.motion import guidance_rows
 
 SIZES = (161, 1610, 16100)
 
@@ -22,13 +21,12 @@ SIZES = (161, 1610, 16100)
 def one_by_one(scene, travels, with_elements):
     """Solve travels one command at a time; with_elements: each answer's element values."""
     cont = Continuation(scene)
-    mech = cont.mech
-    rows = guidance_rows(scene, mech)
+    model = prepare(scene, cont.mech)
     for travel in travels:
         solution = cont.solve(travel)
         if with_elements:
             element_values(scene, solution.wheel_center, solution.rotation, solution.rack,
-                           jac=cont.jacobian, mech=mech, rows=rows)
+                           jac=cont.jacobian, model=model)
 
 
 def batch(scene, travels, with_elements):
