@@ -27,6 +27,11 @@ R_LINE, R_OFFSET, R_BASE, R_STEER, R_LENGTH, R_NORMAL, ROW_COLUMNS = 0, 1, 4, 7,
 (E_KIND, E_OFFSET, E_BASE, E_AXIS, E_COEFF, E_STEER, E_BODY, E_RATE, E_FREE,
  ELEMENT_COLUMNS) = 0, 1, 4, 7, 10, 13, 14, 17, 18, 19
 
+# Scratch rows of the kernels' workspace (WORK_ROWS, 5): 0-4 the LU factors, 5-6 right-hand
+# side and solution, then ([:3]) 7-10 the carrier's motion, 11-13 a mount's point and rates.
+# Allocated once per call of an entry point, not per pose.
+WORK_ROWS = 14
+
 jit = njit(cache=True, nogil=True, error_model='numpy')
 
 
@@ -89,24 +94,17 @@ def pack_elements(mounts: MountTable, springs: SpringTable | None = None) -> np.
 
 
 @jit
-def cross(a, b, out):
-    """Write a x b (3,) into out (3,)."""
-    out[0] = a[1] * b[2] - a[2] * b[1]
-    out[1] = a[2] * b[0] - a[0] * b[2]
-    out[2] = a[0] * b[1] - a[1] * b[0]
+def cross(ax, ay, az, bx, by, bz):
+    """Return a x b as three floats."""
+    return ay * bz - az * by, az * bx - ax * bz, ax * by - ay * bx
 
 
 @jit
-def rotate(rotation, v, out):
-    """Write R v (3,) into out (3,)."""
-    for k in range(3):
-        out[k] = rotation[k, 0] * v[0] + rotation[k, 1] * v[1] + rotation[k, 2] * v[2]
-
-
-@jit
-def dot(a, b):
-    """Return a . b of two (3,) arrays."""
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+def rotate(rotation, x, y, z):
+    """Return R v for v = (x, y, z), as three floats."""
+    return (rotation[0, 0] * x + rotation[0, 1] * y + rotation[0, 2] * z,
+            rotation[1, 0] * x + rotation[1, 1] * y + rotation[1, 2] * z,
+            rotation[2, 0] * x + rotation[2, 1] * y + rotation[2, 2] * z)
 
 
 @jit
@@ -150,63 +148,57 @@ def solve(lu, pivots, rhs, x):
 
 
 @jit
-def carrier_rates(rows, center, rotation, rack, jac, motion):
+def carrier_rates(rows, center, rotation, rack, jac, motion, lu, pivots, rhs, x):
     """
     Write the carrier's v, w, a, alpha per travel into motion (4, 3) (motion.py's formulas).
 
-    NaN if the Jacobian is singular there.
+    NaN if the Jacobian is singular there. lu (5, 5), pivots (5,) int, rhs and x (5,):
+    scratch, allocated once by the caller.
     """
-    lu, pivots = np.empty((5, 5)), np.empty(5, np.int64)
-    rhs, x = np.empty(5), np.empty(5)
     if not factor(jac, lu, pivots):
         motion[:] = np.nan
         return
     for i in range(5):
         rhs[i] = -jac[i, 2]
     solve(lu, pivots, rhs, x)
-    v, w = motion[0], motion[1]
-    v[0], v[1], v[2], w[0], w[1], w[2] = x[0], x[1], 1.0, x[2], x[3], x[4]
-    scratch = np.empty((8, 3))
-    r, pv, wr, cen, d, n, nr, wnr = (scratch[0], scratch[1], scratch[2], scratch[3], scratch[4],
-                                     scratch[5], scratch[6], scratch[7])
+    vx, vy, vz, wx, wy, wz = x[0], x[1], 1.0, x[2], x[3], x[4]
     for i in range(5):
         row = rows[i]
-        rotate(rotation, row[R_OFFSET:R_OFFSET + 3], r)
-        cross(w, r, wr)
-        cross(w, wr, cen)                                # w x (w x r)
-        for k in range(3):
-            pv[k] = v[k] + wr[k]
-            d[k] = center[k] + r[k] - row[R_BASE + k]
-        d[1] -= rack * row[R_STEER]
+        rx, ry, rz = rotate(rotation, row[R_OFFSET], row[R_OFFSET + 1], row[R_OFFSET + 2])
+        wrx, wry, wrz = cross(wx, wy, wz, rx, ry, rz)
+        cx, cy, cz = cross(wx, wy, wz, wrx, wry, wrz)          # w x (w x r)
+        px, py, pz = vx + wrx, vy + wry, vz + wrz               # P' = C'
+        dx = center[0] + rx - row[R_BASE]
+        dy = center[1] + ry - row[R_BASE + 1] - rack * row[R_STEER]
+        dz = center[2] + rz - row[R_BASE + 2]
         if row[R_LINE] == 0.0:
-            rhs[i] = -(dot(pv, pv) + dot(d, cen)) / row[R_LENGTH]
+            rhs[i] = -(px * px + py * py + pz * pz + dx * cx + dy * cy + dz * cz) / row[R_LENGTH]
             continue
-        rotate(rotation, row[R_NORMAL:R_NORMAL + 3], n)
-        cross(w, n, nr)
-        cross(w, nr, wnr)
-        rhs[i] = dot(n, cen) + 2.0 * dot(pv, nr) + dot(d, wnr)
+        nx, ny, nz = rotate(rotation, row[R_NORMAL], row[R_NORMAL + 1], row[R_NORMAL + 2])
+        qx, qy, qz = cross(wx, wy, wz, nx, ny, nz)             # n' = w x n
+        sx, sy, sz = cross(wx, wy, wz, qx, qy, qz)
+        rhs[i] = (nx * cx + ny * cy + nz * cz + 2.0 * (px * qx + py * qy + pz * qz)
+                  + dx * sx + dy * sy + dz * sz)
     solve(lu, pivots, rhs, x)
-    a, alpha = motion[2], motion[3]
-    a[0], a[1], a[2], alpha[0], alpha[1], alpha[2] = x[0], x[1], 0.0, x[2], x[3], x[4]
+    motion[0, 0], motion[0, 1], motion[0, 2] = vx, vy, vz
+    motion[1, 0], motion[1, 1], motion[1, 2] = wx, wy, wz
+    motion[2, 0], motion[2, 1], motion[2, 2] = x[0], x[1], 0.0
+    motion[3, 0], motion[3, 1], motion[3, 2] = x[2], x[3], x[4]
 
 
 @jit
 def mount_rates(table, j, motion, center, rotation, rack, out):
     """Write mount j's (pack_elements row j) position and its rates into out (3, 3)."""
-    v, w, a, alpha = motion[0], motion[1], motion[2], motion[3]
     row = table[j]
-    scratch = np.empty((3, 3))
-    r, wr, tmp = scratch[0], scratch[1], scratch[2]
-    rotate(rotation, row[E_OFFSET:E_OFFSET + 3], r)
-    cross(w, r, wr)
-    for k in range(3):
-        out[0, k], out[1, k] = center[k] + r[k], v[k] + wr[k]
-    cross(w, wr, tmp)
-    for k in range(3):
-        out[2, k] = a[k] + tmp[k]
-    cross(alpha, r, tmp)
-    for k in range(3):
-        out[2, k] += tmp[k]
+    wx, wy, wz = motion[1, 0], motion[1, 1], motion[1, 2]
+    rx, ry, rz = rotate(rotation, row[E_OFFSET], row[E_OFFSET + 1], row[E_OFFSET + 2])
+    wrx, wry, wrz = cross(wx, wy, wz, rx, ry, rz)
+    cx, cy, cz = cross(wx, wy, wz, wrx, wry, wrz)
+    ax, ay, az = cross(motion[3, 0], motion[3, 1], motion[3, 2], rx, ry, rz)
+    out[0, 0], out[0, 1], out[0, 2] = center[0] + rx, center[1] + ry, center[2] + rz
+    out[1, 0], out[1, 1], out[1, 2] = motion[0, 0] + wrx, motion[0, 1] + wry, motion[0, 2] + wrz
+    out[2, 0], out[2, 1], out[2, 2] = (motion[2, 0] + ax + cx, motion[2, 1] + ay + cy,
+                                       motion[2, 2] + az + cz)
     kind = row[E_KIND]
     if kind == LINK:
         s = row[E_COEFF]
@@ -216,35 +208,34 @@ def mount_rates(table, j, motion, center, rotation, rack, out):
             out[1, k] *= s
             out[2, k] *= s
     elif kind == ARM:
-        arm_rates(row[E_BASE:E_BASE + 3], row[E_AXIS:E_AXIS + 3], row[E_COEFF:E_COEFF + 3], out)
+        arm_rates(row, out)
 
 
 @jit
-def arm_rates(axis0, u, coeff, out):
-    """Turn out (3, 3), the arm's joint (position, rates), into its point's (mounts.py)."""
-    scratch = np.empty((7, 3))
-    rho, e1, e2, lever, q, uq, uuq = (scratch[0], scratch[1], scratch[2], scratch[3],
-                                      scratch[4], scratch[5], scratch[6])
-    for k in range(3):
-        rho[k] = out[0, k] - axis0[k]
-    along = dot(rho, u)
-    for k in range(3):
-        e1[k] = rho[k] - along * u[k]
-    size = math.sqrt(dot(e1, e1))
-    for k in range(3):
-        e1[k] /= size
-    cross(u, e1, e2)
-    cross(u, rho, lever)
-    lever2 = dot(lever, lever)
-    rate, rate2 = dot(lever, out[1]) / lever2, dot(lever, out[2]) / lever2
-    for k in range(3):
-        q[k] = coeff[0] * u[k] + coeff[1] * e1[k] + coeff[2] * e2[k]
-    cross(u, q, uq)
-    cross(u, uq, uuq)
-    for k in range(3):
-        out[0, k] = axis0[k] + q[k]
-        out[1, k] = rate * uq[k]
-        out[2, k] = rate2 * uq[k] + rate * rate * uuq[k]
+def arm_rates(row, out):
+    """Turn out (3, 3), an arm's joint (position, rates), into its point's (mounts.py)."""
+    ux, uy, uz = row[E_AXIS], row[E_AXIS + 1], row[E_AXIS + 2]
+    hx, hy, hz = out[0, 0] - row[E_BASE], out[0, 1] - row[E_BASE + 1], out[0, 2] - row[E_BASE + 2]
+    along = hx * ux + hy * uy + hz * uz
+    ex, ey, ez = hx - along * ux, hy - along * uy, hz - along * uz
+    size = math.sqrt(ex * ex + ey * ey + ez * ez)
+    ex, ey, ez = ex / size, ey / size, ez / size
+    fx, fy, fz = cross(ux, uy, uz, ex, ey, ez)
+    lx, ly, lz = cross(ux, uy, uz, hx, hy, hz)                  # u x rho
+    lever2 = lx * lx + ly * ly + lz * lz
+    rate = (lx * out[1, 0] + ly * out[1, 1] + lz * out[1, 2]) / lever2
+    rate2 = (lx * out[2, 0] + ly * out[2, 1] + lz * out[2, 2]) / lever2
+    cu, c1, c2 = row[E_COEFF], row[E_COEFF + 1], row[E_COEFF + 2]
+    qx = cu * ux + c1 * ex + c2 * fx
+    qy = cu * uy + c1 * ey + c2 * fy
+    qz = cu * uz + c1 * ez + c2 * fz
+    gx, gy, gz = cross(ux, uy, uz, qx, qy, qz)                   # u x q
+    kx, ky, kz = cross(ux, uy, uz, gx, gy, gz)
+    out[0, 0], out[0, 1], out[0, 2] = row[E_BASE] + qx, row[E_BASE + 1] + qy, row[E_BASE + 2] + qz
+    out[1, 0], out[1, 1], out[1, 2] = rate * gx, rate * gy, rate * gz
+    rate_2 = rate * rate
+    out[2, 0], out[2, 1], out[2, 2] = (rate2 * gx + rate_2 * kx, rate2 * gy + rate_2 * ky,
+                                       rate2 * gz + rate_2 * kz)
 
 
 @jit
@@ -256,16 +247,25 @@ def elements_one(rows, table, center, rotation, rack, jac, values):
     k (L0 - L) (N, + = compressed), [4] wheel rate k ratio^2 - F ratio_rate (N/mm). rows:
     pack_rows; table: pack_elements; center (3,) mm, rotation (3, 3), rack mm, jac (5, 6).
     """
-    scratch = np.empty((8, 3))
-    motion, point, d = scratch[:4], scratch[4:7], scratch[7]
-    carrier_rates(rows, center, rotation, rack, jac, motion)
+    work, pivots = np.empty((WORK_ROWS, 5)), np.empty(5, np.int64)
+    elements_at(rows, table, center, rotation, rack, jac, values, work, pivots)
+
+
+@jit
+def elements_at(rows, table, center, rotation, rack, jac, values, work, pivots):
+    """Do elements_one's work in the given scratch (work (WORK_ROWS, 5), pivots (5,) int)."""
+    motion, point = work[7:11, :3], work[11:14, :3]
+    carrier_rates(rows, center, rotation, rack, jac, motion, work[:5], pivots, work[5], work[6])
     for j in range(table.shape[0]):
         mount_rates(table, j, motion, center, rotation, rack, point)
-        for k in range(3):
-            d[k] = point[0, k] - table[j, E_BODY + k]
-        length = math.sqrt(dot(d, d))
-        ratio = dot(d, point[1]) / length
-        rate2 = (dot(d, point[2]) + dot(point[1], point[1]) - ratio * ratio) / length
+        dx = point[0, 0] - table[j, E_BODY]
+        dy = point[0, 1] - table[j, E_BODY + 1]
+        dz = point[0, 2] - table[j, E_BODY + 2]
+        vx, vy, vz = point[1, 0], point[1, 1], point[1, 2]
+        length = math.sqrt(dx * dx + dy * dy + dz * dz)
+        ratio = (dx * vx + dy * vy + dz * vz) / length
+        rate2 = (dx * point[2, 0] + dy * point[2, 1] + dz * point[2, 2]
+                 + vx * vx + vy * vy + vz * vz - ratio * ratio) / length
         force = table[j, E_RATE] * (table[j, E_FREE] - length)
         values[0, j], values[1, j], values[2, j] = length, ratio, rate2
         values[3, j], values[4, j] = force, table[j, E_RATE] * ratio * ratio - force * rate2
@@ -275,17 +275,21 @@ def elements_one(rows, table, center, rotation, rack, jac, values):
 def elements_many(rows, table, poses, values):
     """Write elements_one's values at n poses (tuple(Poses)) into values (5, n, k)."""
     center, rotation, rack, jac = poses
+    work, pivots = np.empty((WORK_ROWS, 5)), np.empty(5, np.int64)
     for i in range(center.shape[0]):
-        elements_one(rows, table, center[i], rotation[i], rack[i], jac[i], values[:, i])
+        elements_at(rows, table, center[i], rotation[i], rack[i], jac[i], values[:, i], work,
+                    pivots)
 
 
 @jit
 def mounts_many(rows, table, poses, points):
     """Write every mount's (position, rate, rate of rate) at n poses into points (n, k, 3, 3)."""
     center, rotation, rack, jac = poses
-    motion = np.empty((4, 3))
+    work, pivots = np.empty((WORK_ROWS, 5)), np.empty(5, np.int64)
+    motion = work[7:11, :3]
     for i in range(center.shape[0]):
-        carrier_rates(rows, center[i], rotation[i], rack[i], jac[i], motion)
+        carrier_rates(rows, center[i], rotation[i], rack[i], jac[i], motion, work[:5], pivots,
+                      work[5], work[6])
         for j in range(table.shape[0]):
             mount_rates(table, j, motion, center[i], rotation[i], rack[i], points[i, j])
 
@@ -294,5 +298,7 @@ def mounts_many(rows, table, poses, points):
 def carrier_many(rows, poses, motions):
     """Write the carrier's (v, w, a, alpha) per travel at n poses into motions (n, 4, 3)."""
     center, rotation, rack, jac = poses
+    work, pivots = np.empty((WORK_ROWS, 5)), np.empty(5, np.int64)
     for i in range(center.shape[0]):
-        carrier_rates(rows, center[i], rotation[i], rack[i], jac[i], motions[i])
+        carrier_rates(rows, center[i], rotation[i], rack[i], jac[i], motions[i], work[:5],
+                      pivots, work[5], work[6])
