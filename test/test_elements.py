@@ -10,8 +10,9 @@ point placed by the pose's quaternion; the ratios by central differences of thos
 import csv
 import io
 from pathlib import Path
+import re
 
-from linkage_ros.core.elements import element_values, prepare
+from linkage_ros.core.elements import element_values, ElementValues, prepare, values_at
 from linkage_ros.core.kinematics import Continuation, sweep, travel_range
 from linkage_ros.core.scene import bundled_scenes, load_scene, mirror, translate, UNITS_TO_MM
 from linkage_ros.core.vehicle import load_vehicle
@@ -232,11 +233,11 @@ def test_one_command_at_a_time_with_the_solves_jacobian_gives_the_batch_values()
     batch = exact(scene, TRAVEL, rack=6.0)
     for i, travel in enumerate(TRAVEL):
         answer = cont.solve(travel, 6.0)
-        one = element_values(scene, answer.wheel_center, answer.rotation, answer.rack,
-                             jac=cont.jacobian, model=model)
-        for quantity in ('length', 'ratio', 'ratio_rate', 'force', 'wheel_rate'):
-            assert getattr(one, quantity)[0] == pytest.approx(getattr(batch, quantity)[i],
-                                                              rel=1e-9, nan_ok=True)
+        one = values_at(model, answer.wheel_center, answer.rotation, answer.rack,
+                        cont.jacobian)
+        for row, quantity in enumerate(ElementValues._fields):
+            assert one[row] == pytest.approx(getattr(batch, quantity)[i], rel=1e-9,
+                                             nan_ok=True)
 
 
 def test_a_singular_jacobian_gives_nan_rates_and_the_length_not_an_exception():
@@ -244,3 +245,11 @@ def test_a_singular_jacobian_gives_nan_rates_and_the_length_not_an_exception():
     got = element_values(scene, scene.wheel_center, np.eye(3), jac=np.zeros((5, 6)))
     assert np.isfinite(got.length).all()
     assert np.isnan(got.ratio).all() and np.isnan(got.wheel_rate[:, 1]).all()
+
+
+def test_the_python_of_doc_elements_runs_as_written(capsys):
+    doc = (Path(__file__).resolve().parent.parent / 'doc' / 'elements.md').read_text()
+    (code,) = re.findall(r'```python\n(.*?)```', doc, re.S)
+    exec(compile(code, 'doc/elements.md', 'exec'), {'__name__': '__main__'})
+    printed = capsys.readouterr().out.split('\n')
+    assert printed[0].startswith('[') and len(printed) > 3

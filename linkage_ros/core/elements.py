@@ -182,20 +182,28 @@ def element_values(scene: Scene, center: ArrayLike, rotation: ArrayLike, rack: A
 
     center (n, 3) mm, rotation (n, 3, 3), rack mm (scalar or (n,)); jac (n, 5, 6): the
     Jacobian at the poses if the solve has it (Continuation.jacobian), else linearized here.
-    model: prepare(scene), to save preparing it per call. One pose with its Jacobian (center
-    (3,), rotation (3, 3), jac (5, 6): the node's one-command path) goes straight to the
-    compiled kernel; arrays (1, k) come back.
+    model: prepare(scene), to save preparing it per call. For one answer at a time see
+    values_at.
     """
     model = model if model is not None else prepare(scene)
-    if jac is not None and np.ndim(center) == 1:
-        values = np.empty((5, 1, len(scene.elements)))
-        element_kernel.elements_one(model.rows, model.table, center, rotation, float(rack), jac,
-                                    values[:, 0])
-        return ElementValues(*values)
     poses = pose_batch(model.mech, center, rotation, rack, jac)
     values = np.empty((5, len(poses.center), len(scene.elements)))
     element_kernel.elements_many(model.rows, model.table, tuple(poses), values)
     return ElementValues(*values)
+
+
+def values_at(model: ElementModel, center: np.ndarray, rotation: np.ndarray, rack: float,
+              jac: np.ndarray) -> np.ndarray:
+    """
+    Return the quantities (5, k) of one solved pose: the node's one-command path.
+
+    Rows as ElementValues' fields: length (mm), ratio, ratio_rate (1/mm), force (N), wheel
+    rate (N/mm). center (3,) mm, rotation (3, 3), rack mm and jac (5, 6) as a Solution and
+    Continuation.jacobian hold them; straight to the compiled kernel (a few microseconds).
+    """
+    values = np.empty((5, model.table.shape[0]))
+    element_kernel.elements_one(model.rows, model.table, center, rotation, rack, jac, values)
+    return values
 
 
 def element_columns(scene: Scene) -> list[str]:

@@ -2,8 +2,8 @@
 linkage-map --benchmark: the cost per answer of the elements' quantities, against without.
 
 Two paths, each at 1x, 10x and 100x positions (161, 1 610, 16 100 over the scene's travel
-block): one command at a time (Continuation.solve, the node's path; then element_values of
-that pose from the Jacobian the solve holds) and a sweep (sweep; then element_values of the
+block): one command at a time (Continuation.solve, the node's path; then values_at, the elements
+of that pose from the Jacobian the solve holds) and a sweep (sweep; then element_values of the
 whole batch). Solving and the elements are timed back to back, answer by answer or batch by
 batch, so that both see the same load; the medians over the rounds are printed.
 """
@@ -13,7 +13,7 @@ import time
 
 import numpy as np
 
-from ..core.elements import element_values, prepare
+from ..core.elements import element_values, prepare, values_at
 from ..core.kinematics import Continuation, sweep
 
 SIZES = (161, 1610, 16100)
@@ -34,8 +34,7 @@ def one_by_one(scene, travels):
         start = clock()
         answer = cont.solve(travel)
         middle = clock()
-        element_values(scene, answer.wheel_center, answer.rotation, answer.rack,
-                       jac=cont.jacobian, model=model)
+        values_at(model, answer.wheel_center, answer.rotation, answer.rack, cont.jacobian)
         end = clock()
         solving += middle - start
         elements += end - middle
