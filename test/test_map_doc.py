@@ -16,7 +16,7 @@ PRINTED = re.search(r'It prints the largest error.*?```\n(.*?)```', DOC, re.S).g
 
 @pytest.fixture(scope='module')
 def maps_folder(tmp_path_factory):
-    """The two default maps the doc's programs read, in maps/ of a fresh folder."""
+    """Make the two default maps the doc's programs read, in maps/ of a fresh folder."""
     folder = tmp_path_factory.mktemp('doc')
     for name in ('double_wishbone', 'five_link'):
         assert main([name, '--out', str(folder / 'maps')]) == 0
