@@ -2,8 +2,12 @@
 
 from pathlib import Path
 
+from hypothesis import given, HealthCheck, settings, strategies as st
+from linkage_ros.core.elements import element_values
+from linkage_ros.core.kinematics import sweep
 from linkage_ros.core.scene import load_scene, SceneError
 from linkage_ros.tools.sweep import main
+import numpy as np
 import pytest
 import yaml
 
@@ -103,3 +107,38 @@ def test_elements_of_a_scene_without_any_are_refused_by_the_sweep(capsys):
     assert code == 2
     assert capsys.readouterr().err == ('linkage-sweep: --elements: chrono_generic_macpherson '
                                        'lists no elements (doc/elements.md)\n')
+
+
+NAMES = ['lower_arm', 'upper_arm', 'tie_rod', 'strut', 'lower_front', 'spring', 'damper',
+         'length', 'carrier']
+scalars = (st.none() | st.booleans() | st.integers(-10**400, 10**400) | st.floats()
+           | st.text(max_size=8) | st.sampled_from(NAMES))
+fuzz_values = st.recursive(scalars, lambda children: st.lists(children, max_size=4)
+                           | st.dictionaries(st.text(max_size=6), children, max_size=3),
+                           max_leaves=8)
+KEYS = ['name', 'type', 'body', 'carrier', 'arm', 'link', 'along', 'point', 'rate',
+        'free_length', 'carier']
+
+
+@settings(deadline=None, database=None, max_examples=150,
+          suppress_health_check=[HealthCheck.too_slow, HealthCheck.function_scoped_fixture])
+@given(base=st.sampled_from(['double_wishbone', 'five_link', 'macpherson']),
+       key=st.sampled_from(KEYS), new=fuzz_values, delete=st.booleans())
+def test_an_element_with_one_field_broken_loads_or_is_one_scene_error_naming_it(
+        tmp_path, base, key, new, delete):
+    data = yaml.safe_load(Path(load_scene(base).source).read_text())
+    element = data['elements'][0]
+    if delete:
+        element.pop(key, None)
+    else:
+        element[key] = new
+    path = tmp_path / 'scene.yaml'
+    path.write_text(yaml.safe_dump(data))
+    try:
+        scene = load_scene(path)
+    except SceneError as exc:
+        assert exc.field.startswith('elements') and '\n' not in str(exc), str(exc)
+        return
+    result = sweep(scene, [-20.0, 0.0, 20.0])
+    values = element_values(scene, result.wheel_center, result.rotation)
+    assert np.isfinite(values.length).all() and np.isfinite(values.ratio).all()
