@@ -168,3 +168,18 @@ def test_an_axle_map_of_a_mirrored_pair_has_its_roll_centre_on_the_centreline():
     assert np.diag(axle['track_mm']) == pytest.approx(2 * left.patch[:, 1])
     assert axle['right_camber_deg'][0] == pytest.approx(left.camber)   # mirrored wheel
     assert axle['left_toe_deg'][:, 2] == pytest.approx(left.toe)
+
+
+def test_benchmark_prints_with_and_without_elements_at_three_sizes(capsys):
+    assert main(['five_link', '--benchmark', '1']) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert lines[0].startswith('five_link: 2 elements (damper, spring)')
+    rows = [line.replace('one command', 'one_command').split() for line in lines[2:]]
+    assert [(r[0].replace('_', ' '), r[1], r[2]) for r in rows] == [
+        ('one command', '1x', '161'), ('one command', '10x', '1610'),
+        ('one command', '100x', '16100'), ('sweep', '1x', '161'), ('sweep', '10x', '1610'),
+        ('sweep', '100x', '16100')]
+    for row in rows:   # without + elements = with, and the ratio of with to without
+        without, extra, total, ratio = map(float, row[3:])
+        assert total == pytest.approx(without + extra, abs=0.02)
+        assert ratio == pytest.approx(total / without, abs=0.01)
