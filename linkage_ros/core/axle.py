@@ -34,11 +34,11 @@ from typing import Any, TYPE_CHECKING
 
 import numpy as np
 
+from . import kernel
 from .alignment import contact_patch
 from .geometry import camber_toe, cross
 from .kinematics import sweep
 from .mechanism import compile_scene, linearize
-from .pose_newton import slope_of
 from .status import Status
 
 if TYPE_CHECKING:
@@ -204,19 +204,24 @@ def axle_quantities(axle: Axle, heave: np.ndarray, roll: np.ndarray, rack: np.nd
     shape2, shape3 = (n, 2), (n, 2, 3)
     camber, toe = np.empty(shape2), np.empty(shape2)
     camber_ground, toe_ground = np.empty(shape2), np.empty(shape2)
-    patch, v_patch, v_center = (np.full(shape3, np.nan) for _ in range(3))
-    ground_roll = roll_matrices(roll)
-    for k, scene in enumerate(axle.scenes):
-        mech = compile_scene(scene)
-        v, w = slope_of(linearize(mech, center[:, k], rotation[:, k], rack)[1])
+    patch, v_patch = np.full(shape3, np.nan), np.full(shape3, np.nan)
+    mechs = [compile_scene(scene) for scene in axle.scenes]
+    v_center, omega = np.empty(shape3), np.empty(shape3)
+    for k, mech in enumerate(mechs):
+        v_center[:, k], omega[:, k] = slopes(linearize(mech, center[:, k], rotation[:, k],
+                                                       rack)[1])
+    rolled = np.any(roll != 0.0)
+    for k, (scene, mech) in enumerate(zip(axle.scenes, mechs)):
         axis = rotation[:, k] @ mech.spin_axis
         camber[:, k], toe[:, k] = camber_toe(axis, scene.side_sign)
-        camber_ground[:, k], toe_ground[:, k] = camber_toe(
-            np.einsum('nij,nj->ni', ground_roll, axis), scene.side_sign)
-        v_center[:, k] = v
+        if rolled:
+            camber_ground[:, k], toe_ground[:, k] = camber_toe(roll_about_x(axis, roll),
+                                                               scene.side_sign)
+        else:
+            camber_ground[:, k], toe_ground[:, k] = camber[:, k], toe[:, k]
         if scene.wheel_radius > 0:
             patch[:, k] = contact_patch(center[:, k], axis, scene.wheel_radius)
-            v_patch[:, k] = v + cross(w, patch[:, k] - center[:, k])
+            v_patch[:, k] = v_center[:, k] + cross(omega[:, k], patch[:, k] - center[:, k])
     track = patch[:, 0, 1] - patch[:, 1, 1]
     centre = roll_centre(patch, v_patch)
     steer = -np.array([s.side_sign for s in axle.scenes]) * toe   # yaw, + = to the left
@@ -233,13 +238,23 @@ def axle_quantities(axle: Axle, heave: np.ndarray, roll: np.ndarray, rack: np.nd
         'notes': missing_radius_notes(axle)}
 
 
-def roll_matrices(roll: np.ndarray) -> np.ndarray:
-    """Return rotations (n, 3, 3) about x by roll (rad): body to ground, + = right side down."""
+def slopes(jac: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """
+    Return d(center)/d(travel) and d(omega)/d(travel), (n, 3) each, at n solutions.
+
+    pose_newton.slope_of's answer from its compiled batch (kernel.slope_many): numpy's
+    batched solve costs about a microsecond per 5 x 5 system, as much as a solve of the pose.
+    """
+    free = np.empty((len(jac), 5))
+    kernel.slope_many(np.ascontiguousarray(jac), free)
+    return np.column_stack((free[:, :2], np.ones(len(jac)))), free[:, 2:]
+
+
+def roll_about_x(vector: np.ndarray, roll: np.ndarray) -> np.ndarray:
+    """Return vectors (n, 3) turned about x by roll (n,) rad: body to ground, + = right down."""
     c, s = np.cos(roll), np.sin(roll)
-    out = np.zeros((len(roll), 3, 3))
-    out[:, 0, 0] = 1.0
-    out[:, 1, 1], out[:, 1, 2], out[:, 2, 1], out[:, 2, 2] = c, -s, s, c
-    return out
+    return np.column_stack((vector[:, 0], c * vector[:, 1] - s * vector[:, 2],
+                            s * vector[:, 1] + c * vector[:, 2]))
 
 
 def roll_centre(patch: np.ndarray, velocity: np.ndarray) -> np.ndarray:
