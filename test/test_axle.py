@@ -186,3 +186,43 @@ def test_an_axle_without_wheel_radius_leaves_the_patch_quantities_out_and_says_w
     assert np.isnan(result.roll_centre).all() and np.isnan(result.track).all()
     assert np.isfinite(result.camber).all()
     assert len(result.notes) == 2 and 'no wheel_radius' in result.notes[0]
+
+
+def pivoting_scene(axis):
+    """
+    Return a wheel carrier on an arm that turns about a body-fixed axis [[x, y, z], [x, y, z]].
+
+    Two carrier points on circles about the axis, a third on a sphere centred on it; wheel
+    radius 330 mm. An axis along x makes a swing axle, one along y a trailing arm.
+    """
+    from linkage_ros.core.scene import parse_scene
+    return parse_scene({
+        'units': 'mm', 'side': 'left', 'wheel_radius': 330,
+        'carrier': {'wheel_center': [0.0, 760.0, 300.0], 'spin_axis_point': [0.0, 660.0, 300.0]},
+        'constraints': [
+            {'name': 'arm_a', 'type': 'circle', 'axis': axis, 'carrier': [60.0, 650.0, 180.0]},
+            {'name': 'arm_b', 'type': 'circle', 'axis': axis, 'carrier': [-40.0, 700.0, 260.0]},
+            {'name': 'brace', 'type': 'sphere', 'base': list(np.mean(axis, axis=0)),
+             'carrier': [20.0, 620.0, 330.0]}]}, source='pivot')
+
+
+def test_a_swing_axle_rolls_about_where_the_lines_from_the_patches_through_the_pivots_meet():
+    # Textbook swing axle: each wheel turns about a longitudinal axis at y = 100, z = 250 mm;
+    # its patch (y 760, z -30) moves square to the line to that pivot, so the roll centre is on
+    # that line at the centreline: (250 + 30) x 760 / (760 - 100) above the ground.
+    scene = pivoting_scene([[200.0, 100.0, 250.0], [-200.0, 100.0, 250.0]])
+    result = solve_axle(Axle(scene, mirror(scene)), [0.0])
+    assert result.roll_centre[0, 0] == pytest.approx(0.0, abs=1e-9)
+    assert result.roll_centre_height[0] == pytest.approx(280.0 * 760.0 / 660.0, abs=1e-9)
+
+
+def test_a_trailing_arm_front_axle_has_the_anti_dive_of_its_pivot_angle():
+    # Milliken ch. 17: anti-dive = tan(theta) L / h x brake share, theta the side-view angle of
+    # the line from the patch (x 0, z -30) to the pivot (x -400, z 120, behind and above):
+    # tan(theta) = 150 / 400. Drive (anti-lift) uses the wheel centre (z 300): -180 / 400.
+    scene = pivoting_scene([[-400.0, 300.0, 120.0], [-400.0, 500.0, 120.0]])
+    axle = Axle(scene, mirror(scene), wheelbase=2800.0, cg_height=550.0, brake_share=0.6,
+                drive_share=0.4)
+    result = solve_axle(axle, [0.0])
+    assert result.anti['anti_dive'][0] == pytest.approx(100 * 150 / 400 * 2800 / 550 * 0.6)
+    assert result.anti['anti_lift'][0] == pytest.approx(100 * -180 / 400 * 2800 / 550 * 0.4)

@@ -56,15 +56,17 @@ def parse_args(argv):
     parser.add_argument('--heave', metavar='FROM[:TO:STEP]',
                         help="heave, mm, + = bump (default: the left corner's travel block "
                         'when --roll is not given, else 0)')
-    parser.add_argument('--roll', metavar='FROM[:TO:STEP]', default='0',
+    parser.add_argument('--roll', metavar='FROM[:TO:STEP]',
                         help=f'body roll, deg, + = right side down, |roll| < {MAX_ROLL_DEG:g} '
                         '(default 0)')
     steer = parser.add_mutually_exclusive_group()
-    steer.add_argument('--rack', type=float, help='steering rack travel, mm, + = to the left; '
-                       'adds the steer and Ackermann columns')
+    steer.add_argument('--rack', type=float, metavar='MM',
+                       help='steering rack travel, mm, + = to the left; adds the steer and '
+                       'Ackermann columns')
     steer.add_argument('--rack-grid', metavar='FROM:TO:STEP',
                        help='solve every heave and roll at each rack from FROM to TO, mm')
-    parser.add_argument('--csv', help='write the table to this file (default: stdout)')
+    parser.add_argument('--csv', metavar='FILE',
+                        help='write the table to this file (default: stdout)')
     parser.add_argument('--benchmark', type=int, metavar='ROUNDS', default=0,
                         help='instead of a table, time an axle position against one and two '
                         'corner positions at 1x, 10x and 100x the positions, ROUNDS rounds')
@@ -90,13 +92,13 @@ def values(option, text):
 
 def positions(args, axle):
     """Return heave (mm), roll (deg) and rack (mm) of every position: rack, heave, roll order."""
-    roll = values('--roll', args.roll)
+    roll = np.zeros(1) if args.roll is None else values('--roll', args.roll)
     if np.abs(roll).max() >= MAX_ROLL_DEG:
         raise LinkageError('--roll', f'|roll| must stay below {MAX_ROLL_DEG:g} deg, got '
                            f'{args.roll!r}')
     if args.heave is not None:
         heave = values('--heave', args.heave)
-    elif args.roll == '0':
+    elif args.roll is None:
         heave = travel_range(*axle.left.travel)
     else:
         heave = np.zeros(1)
