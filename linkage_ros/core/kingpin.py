@@ -115,7 +115,7 @@ def _point(source, where, entry, names, constraints):
 
 
 def _index(source, where, name, names):
-    if name not in names:
+    if not isinstance(name, str) or name not in names:
         known = ', '.join(names)
         raise SceneError(source, where, f'{name!r} is not a constraint of the scene '
                          f'(constraints: {known})')

@@ -203,9 +203,6 @@ def parse_scene(data: Any, source: str = '<scene>') -> Scene:
     constraints = tuple(_parse_constraint(check, item, i, scale)
                         for i, item in enumerate(check.sequence(data, 'constraints')))
     travel = _parse_travel(check, data.get('travel'), scale)
-    if data.get('kingpin') is not None:   # a misspelt joint fails on load, not in a sweep
-        from .kingpin import check_kingpin
-        check_kingpin(source, data['kingpin'], constraints)
     radius = check.number(data, 'wheel_radius', 'wheel_radius', default=0.0, minimum=0.0) * scale
     scene_size = _size([wheel_center, spin_point] + [c.carrier for c in constraints]
                        + [b for c in constraints for b in c.base])
@@ -215,6 +212,9 @@ def parse_scene(data: Any, source: str = '<scene>') -> Scene:
     _check_third_point(check, wheel_center, spin_point, third_point, constraints,
                        'carrier.third_point' if given_p is not None else 'carrier',
                        given_p is not None, scene_size)
+    if data.get('kingpin') is not None:   # a misspelt joint fails on load, not in a sweep
+        from .kingpin import check_kingpin
+        check_kingpin(source, data['kingpin'], constraints)
     return Scene(name=str(data.get('name') or Path(source).stem), source=source, side=side,
                  units=units, wheel_center=wheel_center, spin_axis_point=spin_point,
                  third_point=third_point, constraints=constraints, travel=travel,

@@ -108,7 +108,7 @@ def _axle(path, name, spec, corners):
     sides = []
     for side in ('left', 'right'):
         corner = spec.get(side)
-        if corner not in corners:
+        if not isinstance(corner, str) or corner not in corners:
             raise SceneError(path, f'{where}.{side}', f'{corner!r} is not a corner of the '
                              f'vehicle (corners: {", ".join(corners)})')
         expected = 1.0 if side == 'left' else -1.0
