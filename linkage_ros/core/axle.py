@@ -29,6 +29,7 @@ the left wheel and 1 the right.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from functools import cached_property
 import math
 from typing import Any, TYPE_CHECKING
 
@@ -44,6 +45,7 @@ from .status import Status
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
 
+    from .mechanism import Mechanism
     from .scene import Scene
 
 SIDES = ('left', 'right')
@@ -84,7 +86,12 @@ class Axle:
             contact_patch(s.wheel_center[None], unit_axis(s)[None], s.wheel_radius)[0]
             if s.wheel_radius > 0 else s.wheel_center for s in self.scenes])
 
-    @property
+    @cached_property
+    def mechanisms(self) -> tuple[Mechanism, Mechanism]:
+        """Return the left and the right corner compiled (once per Axle)."""
+        return compile_scene(self.left), compile_scene(self.right)
+
+    @cached_property
     def design_track(self) -> float:
         """Track at the design contact patches (mm); between the wheel centres without one."""
         patches = self.design_patches()
@@ -205,7 +212,7 @@ def axle_quantities(axle: Axle, heave: np.ndarray, roll: np.ndarray, rack: np.nd
     camber, toe = np.empty(shape2), np.empty(shape2)
     camber_ground, toe_ground = np.empty(shape2), np.empty(shape2)
     patch, v_patch = np.full(shape3, np.nan), np.full(shape3, np.nan)
-    mechs = [compile_scene(scene) for scene in axle.scenes]
+    mechs = axle.mechanisms
     v_center, omega = np.empty(shape3), np.empty(shape3)
     for k, mech in enumerate(mechs):
         v_center[:, k], omega[:, k] = slopes(linearize(mech, center[:, k], rotation[:, k],
