@@ -154,3 +154,11 @@ def test_a_vehicle_without_axles_loads_and_imports_no_axle_code(tmp_path):
     done = subprocess.run([sys.executable, '-c', code], capture_output=True, text=True)
     assert (done.returncode, done.stdout) == (0, 'None []\n'), done.stderr
     assert load_vehicle('demo_vehicle').axles.wheelbase == 2800.0
+
+
+def test_a_single_axle_without_wheelbase_steers_but_says_it_has_no_ackermann(capsys, tmp_path):
+    path = vehicle_file(tmp_path, '  front: {left: fl, right: fr}\n', '')
+    code, rows, out, err = run(capsys, str(path), '--rack', '10', '--heave', '0')
+    assert code == 0 and out.splitlines()[0].endswith('mean_steer_deg')
+    assert f'linkage-axle: {path} has no wheelbase (and not two axles to derive it from): ' \
+           'no Ackermann\n' in err

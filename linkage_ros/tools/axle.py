@@ -33,8 +33,8 @@ EPILOG = """columns: heave_mm, roll_deg (+ = right side down), rack_mm (+ = rack
   ask; with --rack or --rack-grid: left_/right_steer_deg (yaw, + = to the left),
   mean_steer_deg and ackermann_pct. A corner without wheel_radius has no contact patch: the
   patch columns are left out, and stderr says so. Roll-centre, track and Ackermann columns
-  need wheel_radius in both scenes; anti quantities need cg_height (and the wheelbase) in
-  the vehicle file.
+  need wheel_radius in both scenes, Ackermann also the wheelbase; anti quantities need
+  cg_height (and the wheelbase) in the vehicle file.
 
 examples:
   linkage-axle demo_vehicle --axle front --heave=-40:40:10
@@ -136,7 +136,7 @@ def table(axle, result, with_rack):
         columns += [('left_steer_deg', deg(result.steer[:, 0])),
                     ('right_steer_deg', deg(result.steer[:, 1])),
                     ('mean_steer_deg', deg(result.mean_steer))]
-        if axle.has_patches:
+        if axle.has_patches and axle.wheelbase > 0:
             columns.append(('ackermann_pct', result.ackermann))
     header = [name for name, _ in columns]
     rows = np.column_stack([np.asarray(c, dtype=float) for _, c in columns])
@@ -208,6 +208,9 @@ def main(argv: list[str] | None = None) -> int:
     result = solve_axle(axle, heave, np.radians(roll), rack)
     for note in result.notes:
         print(f'{PROG}: {note}', file=sys.stderr)
+    if with_rack and not axle.wheelbase > 0:
+        print(f'{PROG}: {vehicle.source} has no wheelbase (and not two axles to derive it '
+              'from): no Ackermann', file=sys.stderr)
     header, rows = table(axle, result, with_rack)
     try:
         if args.csv:
