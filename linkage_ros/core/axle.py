@@ -10,7 +10,7 @@ left) moves every steer: rack link of both corners. Each corner is solved by con
 (kinematics.sweep), each run of positions at one rack in one sweep per corner.
 
 Quantities at every position, from the exact velocities of the implicit function theorem
-(pose_newton.slope_of), no finite differences:
+(pose_newton.slope_of, compiled for a batch: kernel.slope_many), no finite differences:
   roll centre     the front-view intersection of the two lines through the contact patches
                   square to the patches' velocities under their own wheel's travel (the
                   patch taken as a point of the carrier); its vehicle-frame y and its height
