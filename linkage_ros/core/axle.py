@@ -212,14 +212,14 @@ def axle_quantities(axle: Axle, heave: np.ndarray, roll: np.ndarray, rack: np.nd
     camber, toe = np.empty(shape2), np.empty(shape2)
     camber_ground, toe_ground = np.empty(shape2), np.empty(shape2)
     patch, v_patch = np.full(shape3, np.nan), np.full(shape3, np.nan)
-    mechs = axle.mechanisms
     v_center, omega = np.empty(shape3), np.empty(shape3)
-    for k, mech in enumerate(mechs):
-        v_center[:, k], omega[:, k] = slopes(linearize(mech, center[:, k], rotation[:, k],
-                                                       rack)[1])
     rolled = np.any(roll != 0.0)
-    for k, (scene, mech) in enumerate(zip(axle.scenes, mechs)):
-        axis = rotation[:, k] @ mech.spin_axis
+    for k, (scene, mech) in enumerate(zip(axle.scenes, axle.mechanisms)):
+        wheel_center = np.ascontiguousarray(center[:, k])   # copied once, not per use
+        wheel_rotation = np.ascontiguousarray(rotation[:, k])
+        v_center[:, k], omega[:, k] = slopes(linearize(mech, wheel_center, wheel_rotation,
+                                                       rack)[1])
+        axis = wheel_rotation @ mech.spin_axis
         camber[:, k], toe[:, k] = camber_toe(axis, scene.side_sign)
         if rolled:
             camber_ground[:, k], toe_ground[:, k] = camber_toe(roll_about_x(axis, roll),
@@ -227,8 +227,8 @@ def axle_quantities(axle: Axle, heave: np.ndarray, roll: np.ndarray, rack: np.nd
         else:
             camber_ground[:, k], toe_ground[:, k] = camber[:, k], toe[:, k]
         if scene.wheel_radius > 0:
-            patch[:, k] = contact_patch(center[:, k], axis, scene.wheel_radius)
-            v_patch[:, k] = v_center[:, k] + cross(omega[:, k], patch[:, k] - center[:, k])
+            patch[:, k] = contact_patch(wheel_center, axis, scene.wheel_radius)
+            v_patch[:, k] = v_center[:, k] + cross(omega[:, k], patch[:, k] - wheel_center)
     track = patch[:, 0, 1] - patch[:, 1, 1]
     centre = roll_centre(patch, v_patch)
     steer = -np.array([s.side_sign for s in axle.scenes]) * toe   # yaw, + = to the left

@@ -155,7 +155,9 @@ def benchmark(axle, heave, roll, rack, rounds):
     Print the median time per position (us) of an axle and of its corners, side by side.
 
     At 1x, 10x and 100x the positions (the heaves repeated, each copy shifted by a small
-    fraction of a millimetre so that no two positions are the same).
+    fraction of a millimetre so that no two positions are the same). The time is this
+    process's CPU time: the work, which other processes on a shared machine disturb less
+    than they disturb the wall-clock time.
     """
     print(f'{axle.name} axle of {axle.left.name} and {axle.right.name}: {len(heave)} '
           'positions (1x)')
@@ -173,9 +175,9 @@ def benchmark(axle, heave, roll, rack, rounds):
         times = {name: [] for name in runs}
         for _ in range(rounds):
             for name, run in runs.items():
-                start = time.perf_counter()
+                start = time.process_time()
                 run()
-                times[name].append((time.perf_counter() - start) / len(h) * 1e6)
+                times[name].append((time.process_time() - start) / len(h) * 1e6)
         one, two, both = (float(np.median(times[name])) for name in runs)
         print(f'{len(h):>10}{one:>15.2f}{two:>16.2f}{both:>10.2f}{both / one:>17.2f}'
               f'{both / two:>18.2f}', flush=True)
