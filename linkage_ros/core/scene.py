@@ -212,6 +212,9 @@ def parse_scene(data: Any, source: str = '<scene>') -> Scene:
     _check_third_point(check, wheel_center, spin_point, third_point, constraints,
                        'carrier.third_point' if given_p is not None else 'carrier',
                        given_p is not None, scene_size)
+    if data.get('kingpin') is not None:   # a misspelt joint fails on load, not in a sweep
+        from .kingpin import check_kingpin
+        check_kingpin(source, data['kingpin'], constraints)
     return Scene(name=str(data.get('name') or Path(source).stem), source=source, side=side,
                  units=units, wheel_center=wheel_center, spin_axis_point=spin_point,
                  third_point=third_point, constraints=constraints, travel=travel,

@@ -32,8 +32,10 @@ if TYPE_CHECKING:
     from os import PathLike
 
     from .scene import Scene
+    from .vehicle_axles import VehicleAxles
 
 CORNER_NAME = re.compile(r'^[a-z][a-z0-9_]*$')   # becomes a ROS namespace
+AXLE_KEYS = ('wheelbase', 'cg_height', 'axles')   # read by vehicle_axles.py
 
 
 @dataclass(frozen=True)
@@ -45,6 +47,8 @@ class Vehicle:
     corners: dict[str, Scene]      # corner name -> Scene, in vehicle coordinates (mm)
     # corner name -> (travel_joint, rack_joint), '' where not named
     joints: dict[str, tuple[str, str]] = field(default_factory=dict)
+    # wheelbase, cg_height and axles; None if the file has none of these keys
+    axles: VehicleAxles | None = None
 
 
 def vehicle_dir() -> Path:
@@ -82,8 +86,12 @@ def load_vehicle(name_or_path: str | PathLike) -> Vehicle:
     for corner, spec in data['corners'].items():
         corners[corner] = _corner(path, corner, spec, UNITS_TO_MM[units])
         joints[corner] = _joints(path, corner, spec, corners[corner])
+    axles = None
+    if any(key in data for key in AXLE_KEYS):   # axle code loads only for a file that has axles
+        from .vehicle_axles import parse_axles
+        axles = parse_axles(path, data, corners, UNITS_TO_MM[units])
     return Vehicle(name=str(data.get('name') or path.stem), source=str(path), corners=corners,
-                   joints=joints)
+                   joints=joints, axles=axles)
 
 
 def _joints(path, corner, spec, scene):

@@ -5,6 +5,8 @@ linkage-plot: the pictures of the README, as PNG files (needs matplotlib: the pl
     linkage-plot alignment OUT.png [SCENE ...]     the alignment set against travel
     linkage-plot latency BENCH.csv OUT.png         latency against command rate, node and echo,
                                                    from the tables a linkage-node-bench run wrote
+    linkage-plot roll-centre OUT.png [VEHICLE [AXLE]]   an axle's roll centre in heave and roll
+                                                   (default demo_vehicle front; axle_plot.py)
 Default scenes: five_link, double_wishbone, macpherson, in that order (one colour each).
 """
 
@@ -165,10 +167,11 @@ def parse_args(argv: list[str] | None) -> argparse.Namespace:
                     '  linkage-plot camber-toe bags/plots/camber_toe.png\n'
                     '  linkage-plot latency doc/bench/node_bench.csv bags/plots/node_latency.png'
                     f'\n\nexit status: 0 written; {EXIT_STATUS}')
-    parser.add_argument('what', choices=('camber-toe', 'alignment', 'latency'),
+    parser.add_argument('what', choices=('camber-toe', 'alignment', 'latency', 'roll-centre'),
                         help='which picture')
     parser.add_argument('paths', nargs='+', metavar='PATH',
-                        help='OUT.png [SCENE ...]; for latency: BENCH.csv OUT.png')
+                        help='OUT.png [SCENE ...]; for latency: BENCH.csv OUT.png; for '
+                        'roll-centre: OUT.png [VEHICLE [AXLE]]')
     return parser.parse_args(argv)
 
 
@@ -177,6 +180,9 @@ def main(argv: list[str] | None = None) -> int:
     """Write the picture named on the command line: 0 when written, 2 for a mistake."""
     args = parse_args(argv)
     prog = 'linkage-plot'
+    if args.what == 'roll-centre':
+        from .axle_plot import main as roll_centre
+        return roll_centre(args.paths)
     if args.what == 'latency':
         if len(args.paths) != 2:
             return fail(prog, 'latency: expected BENCH.csv OUT.png')

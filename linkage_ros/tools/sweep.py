@@ -28,7 +28,9 @@ ALIGNMENT_COLUMNS = [
     'mechanical_trail_mm', 'track_change_mm', 'wheelbase_change_mm',
     'wheel_center_lateral_shift_mm', 'wheel_center_longitudinal_shift_mm', 'svic_x_mm',
     'svic_z_mm', 'fvic_y_mm', 'fvic_z_mm', 'screw_axis_x', 'screw_axis_y', 'screw_axis_z',
-    'screw_pitch_mm_per_rad']
+    'screw_pitch_mm_per_rad', 'caster_geometric_deg', 'kingpin_inclination_geometric_deg',
+    'scrub_radius_geometric_mm', 'mechanical_trail_geometric_mm',
+    'kingpin_offset_wheel_centre_geometric_mm']
 
 
 def table(result, scene=None, with_rack=False):
@@ -51,15 +53,20 @@ def table(result, scene=None, with_rack=False):
 def alignment_table(scene, result):
     """Return the ALIGNMENT_COLUMNS of a Sweep, shape (n, len(ALIGNMENT_COLUMNS))."""
     from ..core.alignment import alignment
+    from ..core.kingpin import geometric_kingpin
     from ..core.mechanism import compile_scene
     a = alignment(scene, compile_scene(scene), result.wheel_center, result.rotation,
                   result.rack)
+    k = geometric_kingpin(scene, result.joints, result.wheel_center, a.contact_patch,
+                          result.rack)
     deg = np.degrees
     return np.column_stack((
         deg(a.camber_gain), deg(a.bump_steer), a.wheel_center_velocity[:, :2], deg(a.caster),
         deg(a.kingpin_inclination), a.scrub_radius, a.mechanical_trail, a.track_change,
         a.wheelbase_change, a.lateral_shift, a.longitudinal_shift, a.side_view_ic,
-        a.front_view_ic, a.screw_axis, a.screw_pitch))
+        a.front_view_ic, a.screw_axis, a.screw_pitch, deg(k.caster),
+        deg(k.kingpin_inclination), k.scrub_radius, k.mechanical_trail,
+        k.offset_wheel_centre))
 
 
 def write_csv(results, stream, scene=None, with_rack=False):
