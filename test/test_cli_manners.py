@@ -9,7 +9,7 @@ from pathlib import Path
 import subprocess
 import sys
 
-from linkage_ros.record.bag import McapRecorder
+from linkage_ros.record.mcap_writer import McapRecorder
 from linkage_ros.tools import replay, rerun_convert
 from mcap.reader import make_reader
 import pytest

@@ -255,7 +255,7 @@ def test_a_truncated_bag_is_converted_up_to_the_cut_with_a_warning(tmp_path, cap
 
 
 def test_recording_and_viewing_modules_import_only_their_own_library():
-    code = ('import sys, linkage_ros.record.bag; a = "rerun" in sys.modules; '
+    code = ('import sys, linkage_ros.record.mcap_writer; a = "rerun" in sys.modules; '
             'import linkage_ros.record.rerun_view; b = "mcap" in sys.modules; print(a, b)')
     fresh = subprocess.run([sys.executable, '-c', code], capture_output=True, text=True,
                            timeout=60)

@@ -73,13 +73,13 @@ def main(argv=None):
 
 def run(args):
     """Carry out parsed arguments; raises Mistake or LinkageError for a user mistake."""
-    for feature, module in (('reading bags', 'linkage_ros.record.bag'),
+    for feature, module in (('reading bags', 'linkage_ros.record.mcap_reader'),
                             ('writing .rrd files', 'linkage_ros.record.rerun_view')):
         try:
             importlib.import_module(module)
         except ImportError as exc:
             raise cli.Mistake(cli.missing_package(exc, feature)) from None
-    from ..record.bag import read_bag
+    from ..record.mcap_reader import read_bag
     cli.check_input(args.bag)
     output = args.output or cli.default_output(args.bag, '.rrd')
     cli.check_output(output, '-o' if args.output else 'output', inputs=[args.bag])
