@@ -15,8 +15,8 @@ import sys
 from linkage_ros.core.geometry import carrier_points
 from linkage_ros.core.kinematics import sweep, travel_range
 from linkage_ros.core.scene import link_polylines, load_scene
-from linkage_ros.record.rerun_view import (link_points, RerunRecorder, rotation_from_quaternion,
-                                           wheel_circle)
+from linkage_ros.record.rerun_draw import link_points, rotation_from_quaternion, wheel_circle
+from linkage_ros.record.rerun_view import RerunRecorder
 from linkage_ros.tools.rerun_convert import main
 import numpy as np
 import pytest
