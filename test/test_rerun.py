@@ -29,7 +29,7 @@ RERUN = Path(sys.executable).parent / 'rerun'
 SCENES = ('five_link', 'double_wishbone', 'macpherson')
 DYNAMIC = {'/suspension/carrier', '/suspension/links', '/plots/travel_mm', '/plots/camber_deg',
            '/plots/toe_deg'}
-STATIC = {'/suspension', '/suspension/base_points', '/suspension/carrier',
+STATIC = {'/suspension', '/suspension/base_points', '/suspension/labels', '/suspension/carrier',
           '/suspension/carrier/joints', '/suspension/carrier/wheel', '/suspension/links',
           '/plots/travel_mm', '/plots/camber_deg', '/plots/toe_deg'}
 
@@ -197,9 +197,9 @@ def test_a_vehicle_recording_shows_every_corner_in_one_3d_view_beside_the_plots(
         if 'ViewContents:query' in batch.schema.names:
             kind, origin, _ = views.get(path, (None, None, None))
             views[path] = (kind, origin, batch.column('ViewContents:query').to_pylist()[0])
-    assert sorted((kind, origin) for kind, origin, _ in views.values()) == [
-        ('3D', '/'), ('TimeSeries', '/plots'), ('TimeSeries', '/plots'),
-        ('TimeSeries', '/plots')]
+    assert sorted((kind, origin) for kind, origin, _ in views.values()) == [   # its front
+        ('3D', '/'), ('TimeSeries', '/plots'), ('TimeSeries', '/plots'),      # steers: travel,
+        ('TimeSeries', '/plots'), ('TimeSeries', '/plots')]                   # camber, toe, rack
     for _, _, query in views.values():     # every corner in every view
         assert len(query) == len(corners) and all(
             any(f'/{c}/' in q for q in query) for c in corners)

@@ -2,35 +2,63 @@
 Reading a recording back: every readable message of an MCAP file, and what is damaged.
 
     bag = read_bag('run.mcap')        # or a rosbag2 bag folder holding one .mcap
-    bag.messages                      # BagMessage: topic, type name, CDR bytes, times (ns)
+    bag.messages                      # BagMessage: topic, type name, CDR bytes, times (ns),
+                                      # message encoding, schema as stored
     bag.truncated, bag.describe()     # damage found, named with its byte offset
+    m.carries('std_msgs/msg/Float64') # the type a consumer expects, in CDR?
+    bag.decode(m, cdr.float64_of)     # the value, or None: counted lost, named by losses()
 
 The records are walked by mcap_scan.Scan (sizes checked before anything is read); this module
 turns what it found into a Bag: the messages of known channels in file order, each topic's
-type, encoding, offered QoS and schema text, the 'rosbag2' metadata's custom data.
+type, encoding, offered QoS and schema text, the metadata records and the 'rosbag2'
+metadata's custom data. A file whose records are intact may still hold a message whose bytes
+do not decode (a 5-byte Float64): Bag.decode counts it, so that a consumer can go on, say
+what was lost, and end with exit status 1 (Bag.complete is then false).
 """
 
 import collections
 from dataclasses import dataclass, field
 import os
 from pathlib import Path
+from typing import NamedTuple
 
 import yaml
 
 from .errors import RecordingError
-from .interfaces import qualified, SCHEMA_ENCODING
+from .interfaces import MESSAGE_ENCODING, qualified, SCHEMA_ENCODING
 from .mcap_scan import MCAP_MAGIC, Scan
+from ..cdr import CdrError, from_cdr
+
+
+class BagSchema(NamedTuple):
+    """A schema as stored: name (the type), encoding ('ros2msg', 'ros2idl', ...), data."""
+
+    name: str
+    encoding: str
+    data: bytes
 
 
 @dataclass(frozen=True)
 class BagMessage:
-    """One message as stored: topic, type name, CDR bytes, log (receive) and publish time (ns)."""
+    """
+    One message as stored: topic, type name, bytes, log (receive) and publish time (ns).
+
+    encoding: its channel's message encoding ('cdr' for ROS 2); schema: its channel's
+    BagSchema (None for a channel without one), to copy as it is (McapRecorder.record's
+    schema=). type_name is the schema's name ('' without one).
+    """
 
     topic: str
     type_name: str
     data: bytes
     log_time: int
     publish_time: int
+    encoding: str = MESSAGE_ENCODING
+    schema: BagSchema | None = None
+
+    def carries(self, type_name):
+        """Tell whether the message is a type_name ('pkg/msg/Type') in CDR."""
+        return self.type_name == type_name and self.encoding == MESSAGE_ENCODING
 
 
 @dataclass
@@ -41,6 +69,8 @@ class Bag:
     truncated: the file is cut short or damaged, so something it held may be lost; problem
     says what was found (each item of damage, '; ' between them); lost: how many messages
     the file's own statistics count beyond those read (None when the statistics are lost).
+    undecoded: {topic: (count, the first one's CdrError text)} of the messages decode()
+    found undecodable; losses() says them.
     """
 
     path: str
@@ -50,11 +80,13 @@ class Bag:
     qos: dict = field(default_factory=dict)       # topic -> first offered QoS profile (dict)
     definitions: dict = field(default_factory=dict)   # type name -> 'ros2msg' schema text
     custom_data: dict = field(default_factory=dict)   # from the 'rosbag2' metadata record
+    metadata: dict = field(default_factory=dict)  # name -> {key: value} of each record
     messages: list = field(default_factory=list)  # BagMessage, in file order
     truncated: bool = False
     problem: str = ''                             # what is damaged ('' for an intact file)
     damage: list = field(default_factory=list)    # Damage, in the order found
     lost: object = None                           # int or None
+    undecoded: dict = field(default_factory=dict)  # topic -> (count, first problem)
 
     @property
     def cut(self):
@@ -68,6 +100,39 @@ class Bag:
         if self.cut:
             return f'bag truncated after {read}{lost} ({self.problem})'
         return f'bag damaged: {read} read{lost} ({self.problem})'
+
+    @property
+    def complete(self):
+        """Tell whether nothing was found lost: no damage, no message that did not decode."""
+        return not self.truncated and not self.undecoded
+
+    def decode(self, message, read=None):
+        """
+        Return what read(message.data) reads, or None if the bytes do not decode.
+
+        read: a reader of CDR bytes that raises cdr.CdrError (cdr.float64_of, cdr.pose_of);
+        by default cdr.from_cdr of the message's type (the rclpy message; LinkageError if
+        no class of that type is installed). A message that does not decode is counted in
+        undecoded under its topic, with the first one's reason, and is left to the caller
+        to skip.
+        """
+        try:
+            return read(message.data) if read else from_cdr(message.type_name, message.data)
+        except CdrError as exc:
+            count, first = self.undecoded.get(message.topic, (0, str(exc)))
+            self.undecoded[message.topic] = (count + 1, first)
+            return None
+
+    def losses(self):
+        """
+        Return one line per topic whose messages did not decode (decode), naming them.
+
+        'N messages on /camber do not decode, left out (the first: std_msgs/Float64 of 5
+        bytes: too short: it needs 12 bytes)'.
+        """
+        return [f'{count} message{"s" if count > 1 else ""} on {topic} do'
+                f'{"" if count > 1 else "es"} not decode, left out (the first: {first})'
+                for topic, (count, first) in self.undecoded.items()]
 
 
 def read_bag(path, topics=None):
@@ -106,11 +171,15 @@ def read_bag(path, topics=None):
 
 def _bag(scan, path, topics):
     """Return the Bag of a Scan: messages of known channels (in file order), topics, damage."""
-    bag = Bag(path, profile=scan.profile, custom_data=_custom_data(scan.metadata))
+    bag = Bag(path, profile=scan.profile, custom_data=_custom_data(scan.metadata),
+              metadata=scan.metadata)
     wanted = None if topics is None else {qualified(t) for t in topics}
+    stored = {}     # channel id -> (type name, BagSchema or None)
     for channel in scan.channels.values():
         schema = scan.schemas.get(channel.schema_id)
         type_name = schema.name if schema else ''
+        stored[channel.id] = (type_name, BagSchema(schema.name, schema.encoding,
+                                                   bytes(schema.data)) if schema else None)
         bag.topics.setdefault(channel.topic, type_name)
         bag.encodings.setdefault(channel.topic, channel.message_encoding)
         qos = _offered_qos(channel.metadata.get('offered_qos_profiles', ''))
@@ -128,8 +197,9 @@ def _bag(scan, path, topics):
             orphans[channel_id] += 1
             first.setdefault(channel_id, offset)
         elif wanted is None or channel.topic in wanted:
-            bag.messages.append(BagMessage(channel.topic, bag.topics[channel.topic], data,
-                                           log_time, publish_time))
+            type_name, schema = stored[channel_id]
+            bag.messages.append(BagMessage(channel.topic, type_name, data, log_time,
+                                           publish_time, channel.message_encoding, schema))
     for channel_id, count in sorted(orphans.items()):
         scan.note('channel', first[channel_id], f'{count} message'
                   f'{"s" if count > 1 else ""} of channel {channel_id}, which the file '

@@ -29,6 +29,7 @@ from .errors import RecordingError
 from .interfaces import (DEFAULT_QOS, dump, message_definition, MESSAGE_ENCODING,
                          METADATA_VERSION, PROFILE, qos_profile_dict, qualified,
                          SCHEMA_ENCODING, type_hash)
+from .output_file import claim, whereabouts
 from ..cdr import to_cdr
 
 CHUNK_SIZE = 64 * 1024         # bytes of uncompressed messages per chunk
@@ -43,8 +44,8 @@ class _RawFile:
     built (mcap wraps RawIOBase in a buffer, so this is deliberately not one).
     """
 
-    def __init__(self, path):
-        self._file = open(path, 'wb', buffering=0)
+    def __init__(self, fd):
+        self._file = open(fd, 'wb', buffering=0)
 
     def write(self, data):
         view = memoryview(data)
@@ -56,6 +57,9 @@ class _RawFile:
 
     def flush(self):
         pass
+
+    def fileno(self):
+        return self._file.fileno()
 
     def close(self):
         self._file.close()
@@ -81,24 +85,31 @@ class McapRecorder:
     definitions: {type name: 'ros2msg' schema text} used instead of the installed .msg files
     (a copied bag keeps its own, read_bag's Bag.definitions).
 
-    A write error (disk full, file-size limit, file gone) stops the recording: error holds
-    the reason from then on, whichever thread met it, and record() raises RecordingError.
-    The file keeps every chunk written before; close() does not raise for the lost end.
+    The file is claimed (output_file.claim): a second recorder of the same file, in this
+    process or another, is refused with RecordingError, and the file is left alone.
+
+    A write error (disk full, file-size limit) or the file removed or replaced stops the
+    recording: error says why from then on, whichever thread met it, and record() raises
+    RecordingError. Removal is seen by the flush thread (every flush_period) and whenever
+    error is read (the node reads it every diagnostic period). The file keeps every chunk
+    written before; close() does not raise for the lost end.
     """
 
     def __init__(self, path, *, qos=None, custom_data=None, chunk_size=CHUNK_SIZE,
                  flush_period=FLUSH_PERIOD, definitions=None):
         self.path = Path(path)
-        self._file = None
+        self._where = os.path.abspath(path)    # what whereabouts checks, whatever the cwd
         try:
             self.path.parent.mkdir(parents=True, exist_ok=True)
-            self._file = _RawFile(self.path)
+        except OSError as exc:
+            raise RecordingError(path, f'cannot write ({exc.strerror or exc})') from None
+        self._file = _RawFile(claim(self.path))
+        try:
             self._writer = Writer(self._file, chunk_size=chunk_size,
                                   compression=CompressionType.ZSTD)
             self._writer.start(profile=PROFILE, library=_library())
         except OSError as exc:
-            if self._file is not None:
-                self._file.close()
+            self._file.close()
             raise RecordingError(path, f'cannot write ({exc.strerror or exc})') from None
         self._qos = {qualified(k): qos_profile_dict(v) for k, v in (qos or {}).items()}
         self._custom = {str(k): str(v) for k, v in (custom_data or {}).items()}
@@ -109,7 +120,7 @@ class McapRecorder:
         self._pending = 0
         self._lock = threading.Lock()
         self._closed = False
-        self.error = ''          # why the recording stopped; '' while it records
+        self._error = ''          # why the recording stopped; '' while it records
         self._stop = threading.Event()
         self._flusher = None
         if flush_period:
@@ -122,20 +133,30 @@ class McapRecorder:
     def message_count(self):
         return sum(t.count for t in self._topics.values())
 
-    def record(self, topic, type_name, data, receive_ns, publish_ns):
+    @property
+    def error(self):
+        """Say why the recording stopped ('' while it records); checks that the file is there."""
+        if not self._error and not self._closed:
+            self._watch()
+        return self._error
+
+    def record(self, topic, type_name, data, receive_ns, publish_ns, schema=None):
         """
         Write a message on topic with its ROS 2 type name.
 
         data is CDR bytes (as the node publishes them, or a raw subscription receives them)
-        or an rclpy message.
+        or an rclpy message. schema: (name, encoding, data) of a schema to store as it is
+        (the first message of a topic registers it), for a type whose definition is not
+        installed or not a .msg (rosbag2 writes 'ros2idl' schemas for IDL types); by
+        default the 'ros2msg' definition of type_name.
         """
         data = to_cdr(data)
         with self._lock:
             if self._closed:
                 raise RecordingError(self.path, 'recording is closed')
-            if self.error:
-                raise RecordingError(self.path, self.error)
-            entry = self._topics.get(topic) or self._add_topic(topic, type_name)
+            if self._error:
+                raise RecordingError(self.path, self._error)
+            entry = self._topics.get(topic) or self._add_topic(topic, type_name, schema)
             if entry.type_name != type_name:
                 raise RecordingError(self.path, f'topic {entry.name} is recorded as '
                                      f'{entry.type_name}, got a {type_name}')
@@ -154,7 +175,7 @@ class McapRecorder:
     def flush(self):
         """Write the chunk being built now (the node need not call this; a thread does)."""
         with self._lock:
-            if not self._closed and self._pending and not self.error:
+            if not self._closed and self._pending and not self._error:
                 try:
                     self._writer.flush()
                 except OSError as exc:
@@ -172,7 +193,7 @@ class McapRecorder:
             self._flusher.join()
         atexit.unregister(self.close)
         try:
-            if not self.error:
+            if not self._error:
                 self._writer.add_metadata('rosbag2', {'serialized_metadata': dump(
                     self.bag_metadata())})
                 self._writer.finish()
@@ -213,32 +234,47 @@ class McapRecorder:
             'ros_distro': os.environ.get('ROS_DISTRO', 'jazzy'),
         }
 
-    def _add_topic(self, topic, type_name):
+    def _add_topic(self, topic, type_name, schema=None):
         name = qualified(topic)
-        if type_name not in self._schemas:
-            self._schemas[type_name] = self._writer.register_schema(
-                name=type_name, encoding=SCHEMA_ENCODING,
-                data=(self._definitions.get(type_name)
-                      or message_definition(type_name)).encode())
+        key = type_name if schema is None else tuple(schema)
+        if key not in self._schemas:
+            if schema is None:
+                schema = (type_name, SCHEMA_ENCODING, (self._definitions.get(type_name)
+                                                       or message_definition(type_name)))
+            text = schema[2]
+            self._schemas[key] = self._writer.register_schema(
+                name=schema[0], encoding=schema[1],
+                data=text.encode() if isinstance(text, str) else bytes(text))
         qos = self._qos.get(name, dict(DEFAULT_QOS))
         digest = type_hash(type_name)
         channel_id = self._writer.register_channel(
-            topic=name, message_encoding=MESSAGE_ENCODING, schema_id=self._schemas[type_name],
+            topic=name, message_encoding=MESSAGE_ENCODING, schema_id=self._schemas[key],
             metadata={'offered_qos_profiles': dump([qos]), 'topic_type_hash': digest})
         self._topics[topic] = entry = _Topic(name, type_name, channel_id, qos, digest)
         return entry
 
     def _flush_loop(self, period):
-        while not self._stop.wait(period) and not self.error:
+        while not self._stop.wait(period) and not self._error:
+            self._watch()
             try:
                 self.flush()
             except RecordingError:
                 return          # self.error says why; the node reports it
 
+    def _watch(self):
+        """Stop the recording if its file was removed or replaced (output_file.whereabouts)."""
+        try:
+            problem = whereabouts(self._file.fileno(), self._where)
+        except (OSError, ValueError):   # closed meanwhile by another thread
+            return
+        if problem:
+            with self._lock:
+                self._error = self._error or problem
+
     def _failed(self, exc):
         """Remember the first write error as the reason the recording stopped; return it."""
-        self.error = self.error or f'cannot write ({exc.strerror or exc})'
-        return self.error
+        self._error = self._error or f'cannot write ({exc.strerror or exc})'
+        return self._error
 
 
 def _library():

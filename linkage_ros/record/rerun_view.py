@@ -8,6 +8,7 @@ failed write, so the mirror stops, whole, short of a size limit or a full disk.
 
 from __future__ import annotations
 
+import collections
 import math
 import os
 import resource
@@ -18,9 +19,10 @@ from typing import Any, TYPE_CHECKING
 import numpy as np
 import rerun as rr
 
+from .errors import RecordingError
+from .output_file import claim, whereabouts
 from .rerun_draw import new_recording, send_poses, send_values
-from ..cdr import float64_of, pose_of, to_cdr
-from ..core.errors import LinkageError
+from ..cdr import CdrError, float64_of, pose_of, to_cdr
 from ..core.geometry import MM_PER_M
 
 if TYPE_CHECKING:
@@ -30,12 +32,20 @@ if TYPE_CHECKING:
 
 
 def topic_role(topic: str) -> str | None:
-    """Return what a topic carries, from its last name: 'travel', 'pose', 'camber', 'toe', None."""
+    """
+    Return what a topic carries, from its last name.
+
+    'travel', 'rack', 'pose', 'camber', 'toe', or None for a topic that is not drawn.
+    """
     return ROLES.get(topic.rstrip('/').rsplit('/', 1)[-1])
 
 
-ROLES = {'wheel_travel': 'travel', 'wheel_carrier_pose': 'pose', 'camber': 'camber',
-         'toe': 'toe'}
+ROLES = {'wheel_travel': 'travel', 'steering_rack': 'rack', 'wheel_carrier_pose': 'pose',
+         'camber': 'camber', 'toe': 'toe'}
+FLOAT64 = 'std_msgs/msg/Float64'
+ROLE_TYPES = {'travel': FLOAT64, 'rack': FLOAT64, 'camber': FLOAT64, 'toe': FLOAT64,
+              'pose': 'geometry_msgs/msg/PoseStamped'}   # the type each role is drawn from
+PLOTS = {'travel': 'travel_mm', 'rack': 'rack_mm', 'camber': 'camber_deg', 'toe': 'toe_deg'}
 BATCH_ROWS = 256       # rows buffered before they are sent as columns
 BATCH_DELAY = 0.5      # s (wall clock): or once the oldest buffered row is this old
 FLUSH_TIMEOUT = 2.0    # s: a flush of the .rrd that takes longer means its writer stopped
@@ -99,20 +109,6 @@ def lack_of_room(path, room=ROOM):
     return ''
 
 
-def probe_write(path):
-    """
-    Create path and write a byte to it, or raise OSError (/dev/full, no permission, no room).
-
-    rerun-sdk would fail too, but only after a warning of its own on stderr; the file is
-    written anew by the recording.
-    """
-    fd = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o666)
-    try:
-        os.write(fd, b'\0')
-    finally:
-        os.close(fd)
-
-
 class RerunRecorder:
     """
     A sink that mirrors the node's messages to a .rrd file (same calls as McapRecorder).
@@ -121,30 +117,42 @@ class RerunRecorder:
     Scene} of a vehicle, all in this one file, each corner under its name and fed the topics
     of its namespace (/front_left/camber; other corners' topics are not drawn).
 
-    Commands (wheel_travel) advance the 'command' sequence; pose, camber and toe are logged at
-    the current command; other topics (diagnostics) are not drawn. Rows are buffered and sent
-    as columns (rr.send_columns) every batch_rows rows or batch_delay s, and at close: logging
-    row by row costs about 10 times more per command.
+    Commands (wheel_travel) advance the 'command' sequence; the rack (steering_rack), pose,
+    camber and toe are logged at the current command, each pose with the last rack; other
+    topics (diagnostics) are not drawn, nor a message of another type than its topic's role
+    (ROLE_TYPES), nor one whose bytes do not decode (cdr.CdrError): a hostile sample must not
+    stop the mirror. Those are counted in skipped ({topic: count}). Rows are buffered and
+    sent as columns (rr.send_columns) every batch_rows rows or batch_delay s, and at close:
+    logging row by row costs about 10 times more per command.
+
+    rack: give the view a rack plot if a scene steers (False for a recording known to have
+    no rack command).
+
+    The file is claimed as McapRecorder's is (output_file.claim: a second recorder of it is
+    refused), and watched: removed or replaced, the recording stops and error says so.
     """
 
     def __init__(self, path: str | PathLike, scene: Scene | None = None,
                  recording_id: str | None = None, batch_rows: int = BATCH_ROWS,
                  batch_delay: float = BATCH_DELAY,
-                 corners: dict[str, Scene] | None = None) -> None:
+                 corners: dict[str, Scene] | None = None, rack: bool = True) -> None:
         if (scene is None) == (not corners):
             raise ValueError('RerunRecorder: give either scene or corners, exactly one')
         self.scenes = {'': scene} if scene is not None else dict(corners)
         self.path = str(path)
+        self._where = os.path.abspath(path)
         self.sequence = 0
         self.batch_rows = batch_rows
         self.batch_delay = batch_delay
+        self.skipped = collections.Counter()
+        self._fd = claim(path)   # held until the end: the lock, and the file watched
         try:
-            probe_write(path)
-            self._rec = new_recording(path, self.scenes, recording_id)
-        except OSError as exc:
-            raise LinkageError(path, f'cannot write ({exc.strerror or exc})') from None
-        except RuntimeError as exc:   # how rerun-sdk says a failed write
-            raise LinkageError(path, f'cannot write ({exc})') from None
+            self._rec = new_recording(path, self.scenes, recording_id, rack)
+        except (OSError, RuntimeError) as exc:   # RuntimeError: how rerun-sdk says it
+            os.close(self._fd)
+            raise RecordingError(path, f'cannot write ({getattr(exc, "strerror", None) or exc})'
+                                 ) from None
+        self._racks = dict.fromkeys(self.scenes, 0.0)   # root: last rack (mm)
         self._rows = {}        # (root, role): [(receive_ns, sequence, value)]
         self._buffered = 0
         self._oldest = None
@@ -157,16 +165,26 @@ class RerunRecorder:
         role, root = topic_role(topic), self._root(topic)
         if role is None or root is None or self._closed:
             return
+        if type_name != ROLE_TYPES[role]:
+            self.skipped[topic] += 1
+            return
         if not isinstance(msg, bytes):
             msg = to_cdr(msg)
-        if role == 'pose':
-            (x, y, z), q = pose_of(msg)
-            value = (x * MM_PER_M, y * MM_PER_M, z * MM_PER_M, *q)
-        elif role == 'travel':
+        try:
+            if role == 'pose':
+                (x, y, z), q = pose_of(msg)
+                value = (x * MM_PER_M, y * MM_PER_M, z * MM_PER_M, *q, self._racks[root])
+            elif role in ('travel', 'rack'):
+                value = MM_PER_M * float64_of(msg)
+            else:
+                value = math.degrees(float64_of(msg))
+        except CdrError:
+            self.skipped[topic] += 1
+            return
+        if role == 'travel':
             self.sequence += 1
-            value = MM_PER_M * float64_of(msg)
-        else:
-            value = math.degrees(float64_of(msg))
+        elif role == 'rack':
+            self._racks[root] = value
         self._rows.setdefault((root, role), []).append((receive_ns, self.sequence, value))
         self._buffered += 1
         now = time.monotonic()
@@ -197,6 +215,12 @@ class RerunRecorder:
         """
         if self._closed:
             return
+        gone = whereabouts(self._fd, self._where)
+        if gone:                  # what is written reaches no one: stop, touch nothing at path
+            self._error = f'{gone}; the .rrd ends there'
+            self._closed = True
+            self._end()
+            return
         problem = lack_of_room(self.path)
         if problem:
             self._error = f'{problem}; the .rrd ends there'
@@ -211,10 +235,9 @@ class RerunRecorder:
             if role == 'pose':
                 values = np.array(values)
                 send_poses(self._rec, self.scenes[root], times, sequence, values[:, :3],
-                           values[:, 3:], root)
+                           values[:, 3:7], root, values[:, 7])
             else:
-                name = 'travel_mm' if role == 'travel' else f'{role}_deg'
-                send_values(self._rec, name, times, sequence, values, root)
+                send_values(self._rec, PLOTS[role], times, sequence, values, root)
             rows.clear()
         self._buffered = 0
         self._oldest = None
@@ -229,6 +252,12 @@ class RerunRecorder:
         (the node asks once a diagnostic period).
         """
         if self._error is None and not self._closed:
+            gone = whereabouts(self._fd, self._where)
+            if gone:
+                self._error = f'{gone}; the .rrd ends there'
+                self._closed = True
+                self._end()
+                return self._error
             try:
                 self._rec.flush(timeout_sec=FLUSH_TIMEOUT)
             except RuntimeError:
@@ -251,6 +280,13 @@ class RerunRecorder:
                 self._broken()
         if self._rec not in _ABANDONED:
             self._rec.disconnect()
+        self._release()
+
+    def _release(self):
+        """Close the claimed file descriptor (and so its lock), once."""
+        if self._fd is not None:
+            os.close(self._fd)
+            self._fd = None
 
     def _broken(self):
         """
@@ -265,7 +301,9 @@ class RerunRecorder:
         self._rec.__class__ = _LeftAlone
         _ABANDONED.append(self._rec)
         rr.unregister_shutdown()
-        cut_to_whole_messages(self.path)
+        if self._fd is not None and not whereabouts(self._fd, self._where):
+            cut_to_whole_messages(self.path)   # never a file put in its place
+        self._release()
 
     def __enter__(self) -> RerunRecorder:
         return self
