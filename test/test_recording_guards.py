@@ -149,8 +149,8 @@ def test_a_rerun_mirror_holds_its_file_too(tmp_path):
         pass
 
 
-def test_a_node_recording_mcap_and_rerun_to_one_file_is_refused_in_one_line(node_process,
-                                                                           tmp_path):
+def test_a_node_recording_mcap_and_rerun_to_one_file_is_refused_in_one_line(
+        node_process, tmp_path):
     path = tmp_path / 'run.out'
     process = node_process('-p', f'record_mcap:={path}', '-p', f'rerun_rrd:={path}')
     status, _, err = process.finish()
