@@ -145,18 +145,20 @@ class McapRecorder:
         Write a message on topic with its ROS 2 type name.
 
         data is CDR bytes (as the node publishes them, or a raw subscription receives them)
-        or an rclpy message. schema: (name, encoding, data) of a schema to store as it is
-        (the first message of a topic registers it), for a type whose definition is not
-        installed or not a .msg (rosbag2 writes 'ros2idl' schemas for IDL types); by
-        default the 'ros2msg' definition of type_name.
+        or an rclpy message. schema: (name, encoding, data) of a schema to store as it is,
+        for a type whose definition is not installed or not a .msg (rosbag2 writes
+        'ros2idl' schemas for IDL types); by default the 'ros2msg' definition of type_name.
+        A topic keeps its first type (RecordingError for another), except with schemas
+        given: a copy keeps each channel of a topic that a bag holds in several types.
         """
         data = to_cdr(data)
+        key = topic if schema is None else (topic, _schema_key(schema))
         with self._lock:
             if self._closed:
                 raise RecordingError(self.path, 'recording is closed')
             if self._error:
                 raise RecordingError(self.path, self._error)
-            entry = self._topics.get(topic) or self._add_topic(topic, type_name, schema)
+            entry = self._topics.get(key) or self._add_topic(key, topic, type_name, schema)
             if entry.type_name != type_name:
                 raise RecordingError(self.path, f'topic {entry.name} is recorded as '
                                      f'{entry.type_name}, got a {type_name}')
@@ -234,23 +236,20 @@ class McapRecorder:
             'ros_distro': os.environ.get('ROS_DISTRO', 'jazzy'),
         }
 
-    def _add_topic(self, topic, type_name, schema=None):
+    def _add_topic(self, key, topic, type_name, schema=None):
         name = qualified(topic)
-        key = type_name if schema is None else tuple(schema)
-        if key not in self._schemas:
+        kind = type_name if schema is None else _schema_key(schema)
+        if kind not in self._schemas:
             if schema is None:
                 schema = (type_name, SCHEMA_ENCODING, (self._definitions.get(type_name)
                                                        or message_definition(type_name)))
-            text = schema[2]
-            self._schemas[key] = self._writer.register_schema(
-                name=schema[0], encoding=schema[1],
-                data=text.encode() if isinstance(text, str) else bytes(text))
+            self._schemas[kind] = self._writer.register_schema(*_schema_key(schema))
         qos = self._qos.get(name, dict(DEFAULT_QOS))
         digest = type_hash(type_name)
         channel_id = self._writer.register_channel(
-            topic=name, message_encoding=MESSAGE_ENCODING, schema_id=self._schemas[key],
+            topic=name, message_encoding=MESSAGE_ENCODING, schema_id=self._schemas[kind],
             metadata={'offered_qos_profiles': dump([qos]), 'topic_type_hash': digest})
-        self._topics[topic] = entry = _Topic(name, type_name, channel_id, qos, digest)
+        self._topics[key] = entry = _Topic(name, type_name, channel_id, qos, digest)
         return entry
 
     def _flush_loop(self, period):
@@ -275,6 +274,12 @@ class McapRecorder:
         """Remember the first write error as the reason the recording stopped; return it."""
         self._error = self._error or f'cannot write ({exc.strerror or exc})'
         return self._error
+
+
+def _schema_key(schema):
+    """Return a schema (name, encoding, data: str or bytes) as (name, encoding, bytes)."""
+    name, encoding, data = schema
+    return name, encoding, data.encode() if isinstance(data, str) else bytes(data)
 
 
 def _library():

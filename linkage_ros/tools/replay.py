@@ -215,13 +215,15 @@ def copy_messages(bag, recorder, progress=None):
     """
     Copy every message read from bag (CDR bytes, times) into recorder.
 
-    recorder is made with the bag's QoS and definitions. Returns how many messages were left
-    out (no ROS 2 type, or not CDR).
+    recorder is made with the bag's QoS and definitions; each topic's schema is copied as it
+    is stored ('ros2idl' too). Returns how many messages were left out (no ROS 2 type, or not
+    CDR).
     """
     skipped = 0
     for i, m in enumerate(bag.messages):
         if m.type_name and bag.encodings.get(m.topic) == 'cdr':
-            recorder.record(m.topic, m.type_name, m.data, m.log_time, m.publish_time)
+            recorder.record(m.topic, m.type_name, m.data, m.log_time, m.publish_time,
+                            schema=m.schema)
         else:
             skipped += 1
         if progress:
