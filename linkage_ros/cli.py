@@ -29,10 +29,11 @@ EXIT_STATUS = ('2 a mistake in the command: an unknown option, a bad value, a mi
 # For the programs that read recordings, which may be damaged.
 EXIT_STATUSES = """exit status:
   0  done; the input was complete
-  1  done, but the input was damaged: what could be read was used (and the warning says
-     what was lost)
+  1  done, but the input was damaged: what could be read was used, even if nothing could;
+     a message whose bytes do not decode counts as damage (the warnings say what was lost)
   2  a mistake in the command: an unknown option, a bad value, a missing or unwritable
-     file, a missing optional package (one line on stderr says which)"""
+     file, an output that is an input, a file that is not MCAP at all, a missing optional
+     package (one line on stderr says which)"""
 
 # Top-level module -> (pip package, extra of linkage_ros that installs it).
 PACKAGES = {'mcap': ('mcap', 'record'), 'zstandard': ('zstandard', 'record'),

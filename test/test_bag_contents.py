@@ -10,6 +10,7 @@ import struct
 
 from linkage_ros import cdr
 from linkage_ros.record.mcap_reader import read_bag
+from linkage_ros.record.mcap_writer import McapRecorder
 from linkage_ros.tools import replay
 from mcap.reader import make_reader
 from mcap.writer import CompressionType, Writer
@@ -126,3 +127,20 @@ def test_decode_counts_and_names_what_does_not_decode_and_reads_the_rest(tmp_pat
                             'std_msgs/Float64 of 5 bytes: too short: it needs 12 bytes)']
     # The default reader is rclpy's message of the stored type:
     assert bag.decode(bag.messages[0]).data == 0.25
+
+
+def test_metadata_given_to_the_recorder_is_in_the_file_even_after_a_hard_kill(tmp_path):
+    path = tmp_path / 'run.mcap'
+    stored = {'linkage_ros': {'scene_yaml': 'name: x\nunits: mm\n', 'vehicle_yaml': ''}}
+    recorder = McapRecorder(path, flush_period=0, metadata=stored)
+    recorder.record('/camber', FLOAT64, cdr.float64_cdr(0.1), 1, 1)
+    recorder.flush()
+    cut = tmp_path / 'cut.mcap'      # as a hard kill leaves it: no summary, no close
+    cut.write_bytes(path.read_bytes())
+    recorder.close()
+    with open(path, 'rb') as stream:      # mcap's reader: ours, and rosbag2's at close
+        records = {m.name: m.metadata for m in make_reader(stream).iter_metadata()}
+    assert sorted(records) == ['linkage_ros', 'rosbag2']
+    assert records['linkage_ros'] == stored['linkage_ros']
+    bag = read_bag(cut)
+    assert bag.truncated and bag.metadata == stored

@@ -84,6 +84,9 @@ class McapRecorder:
     custom_data: {str: str} stored in the bag metadata (e.g. scene name, solver method).
     definitions: {type name: 'ros2msg' schema text} used instead of the installed .msg files
     (a copied bag keeps its own, read_bag's Bag.definitions).
+    metadata: {record name: {str: str}} written as MCAP metadata records at once, after the
+    header, so that a file cut by a hard kill keeps them (Bag.metadata reads them back; e.g.
+    'linkage_ros': {'scene_yaml': the scene file's content}, which linkage-rerun draws).
 
     The file is claimed (output_file.claim): a second recorder of the same file, in this
     process or another, is refused with RecordingError, and the file is left alone.
@@ -96,7 +99,7 @@ class McapRecorder:
     """
 
     def __init__(self, path, *, qos=None, custom_data=None, chunk_size=CHUNK_SIZE,
-                 flush_period=FLUSH_PERIOD, definitions=None):
+                 flush_period=FLUSH_PERIOD, definitions=None, metadata=None):
         self.path = Path(path)
         self._where = os.path.abspath(path)    # what whereabouts checks, whatever the cwd
         try:
@@ -108,6 +111,9 @@ class McapRecorder:
             self._writer = Writer(self._file, chunk_size=chunk_size,
                                   compression=CompressionType.ZSTD)
             self._writer.start(profile=PROFILE, library=_library())
+            for name, values in (metadata or {}).items():
+                self._writer.add_metadata(str(name), {str(k): str(v) for k, v in
+                                                      values.items()})
         except OSError as exc:
             self._file.close()
             raise RecordingError(path, f'cannot write ({exc.strerror or exc})') from None
