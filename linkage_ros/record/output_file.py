@@ -23,7 +23,8 @@ def claim(path):
 
     The lock (flock, exclusive, not waited for) is held as long as the fd is open; another
     recorder of the same file is refused with RecordingError, and the file is left as it was
-    (it is truncated only once the lock is held). A byte is written first, so that a file
+    (it is truncated only once the lock is held). Only regular files are locked (a device
+    such as /dev/null may take several recordings). A byte is written first, so that a file
     that cannot be written (/dev/full, a full disk) is refused here with the reason.
     """
     try:
@@ -31,14 +32,15 @@ def claim(path):
     except OSError as exc:
         raise RecordingError(path, f'cannot write ({exc.strerror or exc})') from None
     try:
+        regular = stat.S_ISREG(os.fstat(fd).st_mode)   # not /dev/null, which all may share
         try:
-            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+            if regular:
+                fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
         except OSError as exc:
             if exc.errno in (errno.EWOULDBLOCK, errno.EAGAIN):
                 raise RecordingError(path, 'another recorder is writing this file (it holds '
                                      'its lock); give another file name') from None
             # A file system without locks (some network ones): recorded unlocked.
-        regular = stat.S_ISREG(os.fstat(fd).st_mode)
         if regular:
             os.ftruncate(fd, 0)
         os.write(fd, b'\0')

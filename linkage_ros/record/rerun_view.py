@@ -148,10 +148,12 @@ class RerunRecorder:
         self._fd = claim(path)   # held until the end: the lock, and the file watched
         try:
             self._rec = new_recording(path, self.scenes, recording_id, rack)
-        except (OSError, RuntimeError) as exc:   # RuntimeError: how rerun-sdk says it
+        except BaseException as exc:
             os.close(self._fd)
-            raise RecordingError(path, f'cannot write ({getattr(exc, "strerror", None) or exc})'
-                                 ) from None
+            if not isinstance(exc, (OSError, RuntimeError)):   # RuntimeError: rerun-sdk's
+                raise
+            reason = getattr(exc, 'strerror', None) or exc
+            raise RecordingError(path, f'cannot write ({reason})') from None
         self._racks = dict.fromkeys(self.scenes, 0.0)   # root: last rack (mm)
         self._rows = {}        # (root, role): [(receive_ns, sequence, value)]
         self._buffered = 0
