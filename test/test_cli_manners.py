@@ -9,7 +9,7 @@ from pathlib import Path
 import subprocess
 import sys
 
-from linkage_ros.record.bag import McapRecorder
+from linkage_ros.record.mcap_writer import McapRecorder
 from linkage_ros.tools import replay, rerun_convert
 from mcap.reader import make_reader
 import pytest
@@ -188,8 +188,8 @@ def test_every_rerun_mistake_is_one_line_and_status_2_and_writes_nothing(
         ([str(EXAMPLE), '--scene', 'nowhere', '-o', out], 'nowhere: scene: no such file'),
         ([str(named), '-o', out], 'gone_scene: scene: no such file, and not a bundled scene '
          '(bundled: '),
-        ([str(foreign_bag), '-o', out], f'{foreign_bag}: no wheel_travel, wheel_carrier_pose, '
-         'camber or toe messages to convert (topics: /speed)'),
+        ([str(foreign_bag), '-o', out], f'{foreign_bag}: no wheel_travel, steering_rack, '
+         'wheel_carrier_pose, camber or toe messages to convert (topics: /speed)'),
     ]
     for argv, expected in mistakes:
         assert status_of(rerun_convert.main, argv) == 2, argv

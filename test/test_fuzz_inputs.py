@@ -17,7 +17,8 @@ from hypothesis import given, HealthCheck, settings, strategies as st
 from linkage_ros.core.errors import LinkageError
 from linkage_ros.core.scene import load_scene, SceneError
 from linkage_ros.core.vehicle import load_vehicle
-from linkage_ros.record.bag import Bag, McapRecorder, read_bag, RecordingError
+from linkage_ros.record.mcap_reader import Bag, read_bag, RecordingError
+from linkage_ros.record.mcap_writer import McapRecorder
 import pytest
 from std_msgs.msg import Float64
 import yaml

@@ -13,7 +13,7 @@ import subprocess
 import sys
 import time
 
-from linkage_ros.record.bag import McapRecorder
+from linkage_ros.record.mcap_writer import McapRecorder
 from linkage_ros.ros.messages import status_values
 from linkage_ros.tools.replay import main
 from mcap.reader import make_reader

@@ -67,7 +67,8 @@ def read_commands(path, topic=DEFAULT_TOPIC):
 
     Raises ReplayError if the topic is missing or is not std_msgs/msg/Float64 in CDR.
     """
-    from ..record.bag import qualified, read_bag
+    from ..record.interfaces import qualified
+    from ..record.mcap_reader import read_bag
     from ..cdr import from_cdr
     bag = read_bag(path)
     name = qualified(topic)
@@ -129,7 +130,7 @@ def solve_commands(commands, scene, method, sinks, topic=DEFAULT_TOPIC, progress
     Returns the number of commands that could not be solved.
     """
     from ..cdr import float64_cdr, to_cdr
-    from ..record.bag import qualified
+    from ..record.interfaces import qualified
     from ..ros import messages
     from ..ros.health import Health
     from ..ros.node import NODE_NAME, PARAMETERS
@@ -182,7 +183,7 @@ def benchmark(commands, scene, method, repeat=3, stream=None):
     other rows add McapRecorder, RerunRecorder or both, file closing included. Best of repeat.
     """
     import tempfile
-    from ..record.bag import McapRecorder
+    from ..record.mcap_writer import McapRecorder
     from ..record.rerun_view import RerunRecorder
     stream = stream or sys.stdout
     modes = {'no recording': lambda d: [],
@@ -214,13 +215,15 @@ def copy_messages(bag, recorder, progress=None):
     """
     Copy every message read from bag (CDR bytes, times) into recorder.
 
-    recorder is made with the bag's QoS and definitions. Returns how many messages were left
-    out (no ROS 2 type, or not CDR).
+    recorder is made with the bag's QoS and definitions; each topic's schema is copied as it
+    is stored ('ros2idl' too). Returns how many messages were left out (no ROS 2 type, or not
+    CDR).
     """
     skipped = 0
     for i, m in enumerate(bag.messages):
         if m.type_name and bag.encodings.get(m.topic) == 'cdr':
-            recorder.record(m.topic, m.type_name, m.data, m.log_time, m.publish_time)
+            recorder.record(m.topic, m.type_name, m.data, m.log_time, m.publish_time,
+                            schema=m.schema)
         else:
             skipped += 1
         if progress:
@@ -260,7 +263,7 @@ def publish_commands(commands, topic, rate=1.0, wait=10.0, progress=None, clock=
     from rclpy.qos import QoSProfile
     from std_msgs.msg import Float64
 
-    from ..record.bag import qualified
+    from ..record.interfaces import qualified
     rclpy.init()
     node = rclpy.create_node('linkage_replay', start_parameter_services=False)
     published = 0
@@ -416,7 +419,7 @@ def parse_args(argv):
 
 def _imports(args):
     """Import what this run needs; a missing optional package is a Mistake naming it."""
-    needs = [('reading and writing bags', 'linkage_ros.record.bag')]
+    needs = [('reading and writing bags', 'linkage_ros.record.mcap_writer')]
     if not args.copy:
         needs.append(('solving commands', 'linkage_ros.ros.messages'))
     if args.publish:
@@ -444,7 +447,8 @@ def main(argv=None):
 def run(args):
     """Carry out parsed arguments; raises Mistake or LinkageError for a user mistake."""
     _imports(args)
-    from ..record.bag import McapRecorder, qualified
+    from ..record.interfaces import qualified
+    from ..record.mcap_writer import McapRecorder
     if args.bag:
         cli.check_input(args.bag)
     scene = None if args.copy else load_scene(args.scene)
@@ -457,7 +461,7 @@ def run(args):
     if args.sweep:
         commands, bag = sweep_commands(scene, args.start, args.stop, args.step, args.hz), None
     elif args.copy:
-        from ..record.bag import read_bag
+        from ..record.mcap_reader import read_bag
         bag, commands = read_bag(args.bag), []
     else:
         commands, bag = read_commands(args.bag, args.topic)
