@@ -50,6 +50,7 @@ class Bag:
     qos: dict = field(default_factory=dict)       # topic -> first offered QoS profile (dict)
     definitions: dict = field(default_factory=dict)   # type name -> 'ros2msg' schema text
     custom_data: dict = field(default_factory=dict)   # from the 'rosbag2' metadata record
+    metadata: dict = field(default_factory=dict)  # record name -> {str: str}, the first of each
     messages: list = field(default_factory=list)  # BagMessage, in file order
     truncated: bool = False
     problem: str = ''                             # what is damaged ('' for an intact file)
@@ -106,11 +107,13 @@ def read_bag(path, topics=None):
 
 def _bag(scan, path, topics):
     """Return the Bag of a Scan: messages of known channels (in file order), topics, damage."""
-    bag = Bag(path, profile=scan.profile, custom_data=_custom_data(scan.metadata))
+    bag = Bag(path, profile=scan.profile, custom_data=_custom_data(scan.metadata),
+              metadata=dict(scan.metadata))
     wanted = None if topics is None else {qualified(t) for t in topics}
+    types = {}   # channel id -> type name: a topic may have channels of several types
     for channel in scan.channels.values():
         schema = scan.schemas.get(channel.schema_id)
-        type_name = schema.name if schema else ''
+        type_name = types[channel.id] = schema.name if schema else ''
         bag.topics.setdefault(channel.topic, type_name)
         bag.encodings.setdefault(channel.topic, channel.message_encoding)
         qos = _offered_qos(channel.metadata.get('offered_qos_profiles', ''))
@@ -128,8 +131,8 @@ def _bag(scan, path, topics):
             orphans[channel_id] += 1
             first.setdefault(channel_id, offset)
         elif wanted is None or channel.topic in wanted:
-            bag.messages.append(BagMessage(channel.topic, bag.topics[channel.topic], data,
-                                           log_time, publish_time))
+            bag.messages.append(BagMessage(channel.topic, types[channel_id], data, log_time,
+                                           publish_time))
     for channel_id, count in sorted(orphans.items()):
         scan.note('channel', first[channel_id], f'{count} message'
                   f'{"s" if count > 1 else ""} of channel {channel_id}, which the file '

@@ -80,6 +80,8 @@ class McapRecorder:
     custom_data: {str: str} stored in the bag metadata (e.g. scene name, solver method).
     definitions: {type name: 'ros2msg' schema text} used instead of the installed .msg files
     (a copied bag keeps its own, read_bag's Bag.definitions).
+    metadata: {record name: {str: str}}, metadata records written at the start of the file
+    (so that a file cut by a hard kill keeps them), e.g. {'linkage_ros': {'scene_yaml': ...}}.
 
     A write error (disk full, file-size limit, file gone) stops the recording: error holds
     the reason from then on, whichever thread met it, and record() raises RecordingError.
@@ -87,7 +89,7 @@ class McapRecorder:
     """
 
     def __init__(self, path, *, qos=None, custom_data=None, chunk_size=CHUNK_SIZE,
-                 flush_period=FLUSH_PERIOD, definitions=None):
+                 flush_period=FLUSH_PERIOD, definitions=None, metadata=None):
         self.path = Path(path)
         self._file = None
         try:
@@ -96,6 +98,9 @@ class McapRecorder:
             self._writer = Writer(self._file, chunk_size=chunk_size,
                                   compression=CompressionType.ZSTD)
             self._writer.start(profile=PROFILE, library=_library())
+            for name, values in (metadata or {}).items():
+                self._writer.add_metadata(str(name), {str(k): str(v)
+                                                      for k, v in values.items()})
         except OSError as exc:
             if self._file is not None:
                 self._file.close()
