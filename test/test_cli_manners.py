@@ -114,13 +114,13 @@ def test_replay_subcommand_help_gives_every_option_default_and_unit_examples_and
 # --- statuses 0 and 1 ----------------------------------------------------------------------
 
 def test_a_complete_bag_gives_status_0_and_a_damaged_one_status_1(tmp_path):
-    assert replay.main([str(EXAMPLE), '-o', str(tmp_path / 'a.mcap')]) == 0
-    assert replay.main([str(EXAMPLE), '--copy', '-o', str(tmp_path / 'b.mcap')]) == 0
+    assert replay.main(['solve', str(EXAMPLE), '-o', str(tmp_path / 'a.mcap')]) == 0
+    assert replay.main(['copy', str(EXAMPLE), '-o', str(tmp_path / 'b.mcap')]) == 0
     assert rerun_convert.main([str(EXAMPLE), '-o', str(tmp_path / 'a.rrd')]) == 0
     cut = tmp_path / 'cut.mcap'
     cut.write_bytes(EXAMPLE.read_bytes()[:-100])
-    assert replay.main([str(cut), '-o', str(tmp_path / 'c.mcap')]) == 1
-    assert replay.main([str(cut), '--copy', '-o', str(tmp_path / 'd.mcap')]) == 1
+    assert replay.main(['solve', str(cut), '-o', str(tmp_path / 'c.mcap')]) == 1
+    assert replay.main(['copy', str(cut), '-o', str(tmp_path / 'd.mcap')]) == 1
     assert rerun_convert.main([str(cut), '-o', str(tmp_path / 'b.rrd')]) == 1
 
 
@@ -128,9 +128,9 @@ def test_default_outputs_go_to_the_current_folder(tmp_path, monkeypatch):
     work = tmp_path / 'work'
     work.mkdir()
     monkeypatch.chdir(work)
-    assert replay.main([str(EXAMPLE)]) == 0
-    assert replay.main([str(EXAMPLE), '--copy']) == 0
-    assert replay.main(['--sweep', '--from', '0', '--to', '2']) == 0
+    assert replay.main(['solve', str(EXAMPLE)]) == 0
+    assert replay.main(['copy', str(EXAMPLE)]) == 0
+    assert replay.main(['sweep', '--from', '0', '--to', '2']) == 0
     assert rerun_convert.main([str(EXAMPLE)]) == 0
     assert sorted(p.name for p in work.iterdir()) == [
         'five_link_sweep.mcap', 'five_link_sweep.rrd', 'five_link_sweep_copy.mcap',
@@ -175,6 +175,7 @@ def replay_mistakes(tmp_path, foreign_bag):
          'got -1'),
         (['sweep', '--from', 'inf'], 'argument --from: must be a finite number, got inf'),
         (['sweep', '--to', 'x'], "argument --to: expected a number, got 'x'"),
+        (['sweep', '--from', '-80mm'], "argument --from: expected a number, got '-80mm'"),
         (['solve', bag, '--rate', '2'], 'error: --rate is not an option of linkage-replay solve '
          '(it is one of: publish) (see linkage-replay solve --help)'),
         (['sweep', '--clock'], 'error: --clock is not an option of linkage-replay sweep (it is '

@@ -224,6 +224,7 @@ def parse_args(argv):
     parser = make_parser()
     try:
         argv, note = translate(list(sys.argv[1:] if argv is None else argv))
+        argv = _joined_values(argv, parser)
     except cli.Mistake as exc:
         sys.exit(cli.fail(PROG, exc))
     args, extras = parser.parse_known_args(argv)
@@ -240,6 +241,27 @@ def parse_args(argv):
         if given or (args.command == 'publish' and args.scene):
             sub.error(f'{(given or ["--scene"])[0]} makes a sweep: give it without BAG')
     return args
+
+
+def _joined_values(argv, parser):
+    """
+    Join a number option and a value that starts with '-' ('--from', '-1e300': --from=-1e300).
+
+    argparse takes '-1e300' or '-80mm' for an option of its own ('expected one argument');
+    joined, the value is checked as a number, and a mistake is said as such.
+    """
+    numeric = {'--from', '--to', '--step', '--hz', '--rate', '--wait'}
+    known = set().union(*(options for _, options in parser.commands.values()))
+    joined, i = [], 0
+    while i < len(argv):
+        if argv[i] in numeric and i + 1 < len(argv) and argv[i + 1].startswith('-') \
+                and argv[i + 1] not in known:
+            joined.append(f'{argv[i]}={argv[i + 1]}')
+            i += 2
+        else:
+            joined.append(argv[i])
+            i += 1
+    return joined
 
 
 def _misplaced(parser, command, extras, note):
@@ -259,6 +281,11 @@ def _misplaced(parser, command, extras, note):
     if 'sweep' in owners and set(owners) <= {'sweep', 'publish', 'bench'}:
         return f'{option} needs --sweep'
     return f'{option} is not used with {flags.get(command, "a BAG alone")}'
+
+
+def counted(n, noun):
+    """Say a count with its noun: '1 command', '3 commands'."""
+    return f'{n} {noun}{"" if n == 1 else "s"}'
 
 
 class Progress:
@@ -371,7 +398,8 @@ def run(args):
         if not commands:
             print(f'{PROG}: nothing to time: no commands', file=sys.stderr)
             return status
-        print(f'{PROG}: {scene.name}: timing {len(commands)} commands, method {args.method}, '
+        print(f'{PROG}: {scene.name}: timing {counted(len(commands), "command")}, method '
+              f'{args.method}, '
               'best of 3', file=sys.stderr)
         from .replay_solve import benchmark
         benchmark(commands, scene, args.method)
@@ -398,7 +426,7 @@ def _warn(read, verb):
         missing = (f'; no {read.topic} among what could be read'
                    if read.topic not in bag.topics else '')
         print(f'{PROG}: warning: {bag.path}: {bag.describe()}{missing}; {verb} the '
-              f'{len(read.commands)} commands read', file=sys.stderr)
+              f'{counted(len(read.commands), "command")} read', file=sys.stderr)
         status = cli.DAMAGED
     for line in read.warnings():
         print(f'{PROG}: warning: {line}', file=sys.stderr)
@@ -409,7 +437,7 @@ def _publish(args, commands, source, status):
     from ..record.interfaces import qualified
     from .replay_publish import check_rate, publish_commands
     check_rate(commands, args.rate)
-    print(f'{PROG}: publishing {len(commands)} commands from {source} on '
+    print(f'{PROG}: publishing {counted(len(commands), "command")} from {source} on '
           f'{qualified(args.topic)} at rate {args.rate:g}', file=sys.stderr)
     published = publish_commands(commands, args.topic, args.rate, args.wait,
                                  Progress(len(commands), 'commands published'), args.clock)
@@ -423,7 +451,7 @@ def _copy(args, output):
     status = cli.DAMAGED if bag.truncated else cli.DONE
     if bag.truncated:
         print(f'{PROG}: warning: {args.bag}: {bag.describe()}; copied the '
-              f'{len(bag.messages)} messages read', file=sys.stderr)
+              f'{counted(len(bag.messages), "message")} read', file=sys.stderr)
     metadata = {name: values for name, values in bag.metadata.items() if name != 'rosbag2'}
     with McapRecorder(output, qos=bag.qos, custom_data=bag.custom_data,
                       definitions=bag.definitions, metadata=metadata) as recorder:
@@ -431,7 +459,8 @@ def _copy(args, output):
     if skipped:
         print(f'{PROG}: warning: {skipped} messages left out: their topics have no ROS 2 '
               'type or are not CDR', file=sys.stderr)
-    print(f'{PROG}: wrote {len(bag.messages) - skipped} messages to {output}', file=sys.stderr)
+    print(f'{PROG}: wrote {counted(len(bag.messages) - skipped, "message")} to {output}',
+          file=sys.stderr)
     return status
 
 
@@ -439,7 +468,7 @@ def _solve(args, commands, scene, source, output, stored, status):
     from ..record.interfaces import qualified
     from ..record.mcap_writer import McapRecorder
     from .replay_solve import solve_commands
-    print(f'{PROG}: {scene.name}: solving {len(commands)} commands from {source} on '
+    print(f'{PROG}: {scene.name}: solving {counted(len(commands), "command")} from {source} on '
           f'{qualified(args.topic)}, method {args.method}', file=sys.stderr)
     custom = {'scene': scene.name, 'method': args.method, 'source': Path(source).name}
     with McapRecorder(output, custom_data=custom,
@@ -447,8 +476,9 @@ def _solve(args, commands, scene, source, output, stored, status):
         failures = solve_commands(commands, scene, args.method, [recorder], args.topic,
                                   Progress(len(commands), 'commands solved'), args.frame_id)
         written = recorder.message_count
-    print(f'{PROG}: wrote {written} messages to {output}; {len(commands) - failures} commands '
-          f'solved, {failures} not (see /diagnostics)', file=sys.stderr)
+    print(f'{PROG}: wrote {counted(written, "message")} to {output}; '
+          f'{counted(len(commands) - failures, "command")} solved, {failures} not (see '
+          '/diagnostics)', file=sys.stderr)
     return status
 
 

@@ -153,9 +153,9 @@ def sweep_commands(scene, start=None, stop=None, step=None, hz=SWEEP_HZ, t0=None
                           f'(got {start:g}, {stop:g}, {step:g}, {hz:g})')
     count = abs(stop - start) / step + 1      # float: may be far beyond any integer in use
     if not count <= MAX_SWEEP_COMMANDS:
-        raise ReplayError('--step', f'{step:g} mm from {start:g} to {stop:g} mm makes {count:.3g}'
-                          f' commands, more than the {MAX_SWEEP_COMMANDS:,} a sweep may have '
-                          '(choose a larger --step)')
+        raise ReplayError('--from/--to/--step', f'{step:g} mm from {start:g} to {stop:g} mm '
+                          f'makes {count:.3g} commands, more than the {MAX_SWEEP_COMMANDS:,} a '
+                          'sweep may have (choose a larger --step)')
     if hz > 1e9:
         raise ReplayError('--hz', f'{hz:g} Hz is a command every {1e9 / hz:.3g} ns, faster than '
                           'the 1 ns resolution of ROS 2 times (at most 1e+09 Hz)')
