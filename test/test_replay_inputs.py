@@ -161,6 +161,8 @@ def test_a_damaged_file_that_yields_nothing_is_status_1_naming_the_damage(
     assert main(['copy', str(bag), '-o', str(tmp_path / 'copy.mcap')]) == 1
     assert main(['bench', str(bag)]) == 1
     assert 'nothing to time' in capsys.readouterr().err
+    assert main(['publish', str(bag), '--wait', '60']) == 1      # at once: no ROS started
+    assert 'nothing to publish' in capsys.readouterr().err
 
 
 @pytest.mark.parametrize('content', [None, b'', b'PK\x03\x04 not a bag'])
@@ -250,7 +252,7 @@ def test_an_output_that_is_the_scene_file_is_refused(tmp_path, capsys):
     ('../escaped', 'escaped_sweep.mcap'),
     ('/tmp/absolute', 'tmp_absolute_sweep.mcap'),
     ('..', 'scene_sweep.mcap'),
-    ('front left (v2)', 'front_left__v2__sweep.mcap'),
+    ('front left (v2)', 'front_left_v2_sweep.mcap'),
 ])
 def test_the_default_sweep_file_is_named_from_the_scene_name_made_safe(
         tmp_path, monkeypatch, name, expected):

@@ -379,7 +379,7 @@ def run(args):
         commands, bag, stored = read.commands, read.bag, read.bag.metadata.get(METADATA)
         status = _warn(read, {'solve': 'solving', 'publish': 'publishing',
                               'bench': 'timing'}[args.command])
-        if scene is None:
+        if scene is None and args.command != 'publish':   # publishing needs no scene
             scene = stored_scene(bag, read.topic)
             if scene is not None:
                 print(f'{PROG}: the scene stored in {bag_path}: {scene.name}', file=sys.stderr)
@@ -437,6 +437,9 @@ def _publish(args, commands, source, status):
     from ..record.interfaces import qualified
     from .replay_publish import check_rate, publish_commands
     check_rate(commands, args.rate)
+    if not commands:
+        print(f'{PROG}: nothing to publish: no commands', file=sys.stderr)
+        return status
     print(f'{PROG}: publishing {counted(len(commands), "command")} from {source} on '
           f'{qualified(args.topic)} at rate {args.rate:g}', file=sys.stderr)
     published = publish_commands(commands, args.topic, args.rate, args.wait,

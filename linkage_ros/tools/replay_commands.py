@@ -174,11 +174,13 @@ def file_stem(name):
     """
     Return name made safe as the start of a file name in the current folder.
 
-    Only letters, digits, '_', '.' and '-' are kept (others become '_'), and no leading
-    dot or underscore: a scene named '../escaped' or '/tmp/x' gives 'escaped' or 'tmp_x',
-    one of only dots and slashes 'scene'.
+    Runs of characters other than letters, digits, '_', '.' and '-' become '_', and no
+    leading or trailing '.', '_' or '-' is kept (at most 100 characters): a scene named
+    '../escaped' or '/tmp/x' gives 'escaped' or 'tmp_x', one of only dots 'scene'. (The
+    input work gives Scene.file_stem, the same rule: use it once it is in.)
     """
-    return re.sub(r'[^A-Za-z0-9_.-]', '_', str(name)).lstrip('._') or 'scene'
+    stem = re.sub(r'[^A-Za-z0-9_.-]+', '_', str(name)).strip('._-')
+    return stem[:100].rstrip('._-') or 'scene'
 
 
 def stored_scene(bag, topic):
