@@ -21,6 +21,7 @@ from linkage_ros.record.mcap_writer import McapRecorder
 from linkage_ros.ros import messages
 from linkage_ros.ros.testing import spin_until, stamp_ns
 from linkage_ros.tools import replay
+from linkage_ros.tools.replay_solve import status_name
 from mcap.reader import make_reader
 from mcap_ros2.decoder import DecoderFactory
 from rclpy.qos import QoSProfile
@@ -35,7 +36,8 @@ S = 10**9   # ns per s
 STREAM = [(0, 0.0), (S // 2, 0.04), (3 * S // 4, 0.5), (S, None),
           (5 * S // 4, math.nan), (3 * S // 2, 0.01), (7 * S // 4, 0.02), (2 * S, None),
           (9 * S // 4, 0.05), (3 * S, None), (13 * S // 4, -0.03), (7 * S // 2, math.inf)]
-NAME = 'suspension_kinematics: five_link'
+# What the node, started with its default name, calls the corner (replay names it the same).
+NAME = status_name(load_scene('five_link'))
 
 
 def pose_key(msg):

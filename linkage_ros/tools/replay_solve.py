@@ -24,9 +24,15 @@ DIAGNOSTICS_TOPIC = '/diagnostics'
 
 def node_defaults():
     """Return the node's defaults that replay answers with: {parameter name: value}."""
-    from ..ros.node import NODE_NAME, PARAMETERS
+    from ..ros.node import PARAMETERS
     names = ('frame_id', 'max_step_mm', 'condition_warn', 'diagnostic_period')
-    return dict({name: PARAMETERS[name][0] for name in names}, node_name=NODE_NAME)
+    return {name: PARAMETERS[name][0] for name in names}
+
+
+def status_name(scene):
+    """Return the name of the DiagnosticStatus the node (default name) gives scene's corner."""
+    from ..ros.node import NODE_NAME
+    return f'{NODE_NAME}: {scene.name}'
 
 
 def solve_commands(commands, scene, method, sinks, topic=DEFAULT_TOPIC, progress=None,
@@ -53,7 +59,7 @@ def solve_commands(commands, scene, method, sinks, topic=DEFAULT_TOPIC, progress
     responder = Responder(scene, method=method, max_step_mm=defaults['max_step_mm'],
                           condition_warn=defaults['condition_warn'],
                           frame_id=frame_id or defaults['frame_id'],
-                          status_name=f'{defaults["node_name"]}: {scene.name}',
+                          status_name=status_name(scene),
                           period_ns=int(round(period_s * 1e9)))
 
     def emit(name, type_name, data, time_ns, publish_ns=None):
