@@ -34,13 +34,13 @@ step vehicle node
 .venv/bin/suspension_node --ros-args -p vehicle:=demo_vehicle > node3.log 2>&1 &
 NODE=$!; sleep 4; kill -TERM $NODE; wait $NODE; echo "vehicle node rc=$?"
 step replay
-.venv/bin/linkage-replay bags/five_link_sweep.mcap -o solved.mcap --scene five_link; echo "rc=$?"
-.venv/bin/linkage-replay bags/five_link_sweep.mcap --copy -o copy.mcap; echo "rc=$?"
+.venv/bin/linkage-replay solve bags/five_link_sweep.mcap -o solved.mcap --scene five_link; echo "rc=$?"
+.venv/bin/linkage-replay copy bags/five_link_sweep.mcap -o copy.mcap; echo "rc=$?"
 step rerun
 .venv/bin/linkage-rerun bags/five_link_sweep.mcap -o five_link_sweep.rrd; echo "rc=$?"
 step sim time
 ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST .venv/bin/suspension_node --ros-args -p use_sim_time:=true > node4.log 2>&1 &
-ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST .venv/bin/linkage-replay bags/five_link_sweep.mcap --publish --clock; echo "rc=$?"
+ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST .venv/bin/linkage-replay publish bags/five_link_sweep.mcap --clock; echo "rc=$?"
 kill %1; wait; echo done
 step quick discovery
 export FASTRTPS_DEFAULT_PROFILES_FILE=$PWD/config/fastdds_quick_discovery.xml
