@@ -230,8 +230,8 @@ def test_an_output_that_is_a_file_inside_the_input_bag_folder_is_refused(tmp_pat
             target = folder / name
             assert main([command, str(folder), '-o', str(target)]) == 2
             err = capsys.readouterr().err
-            assert err == (f'linkage-replay: -o: {target} is the input {target}; give another '
-                           'file name\n')
+            assert err == (f'linkage-replay: -o: {target} is {target}, in the input {folder}; '
+                           'give another file name\n')
     via_link = tmp_path / 'link.mcap'
     via_link.symlink_to(folder / 'run.mcap')
     assert main(['solve', str(folder), '-o', str(via_link)]) == 2

@@ -163,12 +163,8 @@ def run(args):
 
 
 def _inputs(bag_path, scene):
-    """Return every file this run reads: the bag, the files of a bag folder, the scene file."""
-    inputs = []
-    if bag_path:
-        inputs.append(bag_path)
-        if Path(bag_path).is_dir():
-            inputs += [str(p) for p in sorted(Path(bag_path).iterdir()) if p.is_file()]
+    """Return every file this run reads: the bag (a bag folder stands for its files), the scene."""
+    inputs = [bag_path] if bag_path else []
     if scene is not None and Path(scene.source).is_file():
         inputs.append(scene.source)
     return inputs
