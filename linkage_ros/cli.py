@@ -131,7 +131,8 @@ def millimetres(text: str) -> float:
     try:
         return float(text)
     except ValueError:
-        unit = re.fullmatch(r'\s*[-+]?[0-9.eE+-]+\s*([a-zA-Z]+)\s*', text)
+        unit = re.fullmatch(r'\s*[-+]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][-+]?[0-9]+)?\s*'
+                            r'([a-zA-Z]+)\s*', text)
         if unit:
             number = text[:unit.start(1)].strip()
             example = f' (e.g. {number})' if unit.group(1) == 'mm' else ''

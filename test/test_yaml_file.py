@@ -68,7 +68,7 @@ def test_a_syntax_error_is_one_line_with_file_line_column_and_problem(tmp_path):
     message = refusal(load_scene, path)
     # PyYAML: "while parsing a flow sequence ... did not find expected ',' or ']'" at the
     # start of line 3 (the sequence opened on line 2), echoing both lines
-    assert message == (f"{path}: line 3, column 1: not valid YAML: while parsing a flow "
+    assert message == (f'{path}: line 3, column 1: not valid YAML: while parsing a flow '
                        "sequence (from line 2), did not find expected ',' or ']'")
 
 
@@ -103,6 +103,12 @@ def test_aliases_that_share_a_point_are_read(tmp_path):
     text = 'a: &p [1, 2, 3]\nb: [*p, *p]\nc: {<<: {x: 1}, y: 2}\n'
     assert read_yaml(written(tmp_path, text)) == {'a': [1, 2, 3], 'b': [[1, 2, 3], [1, 2, 3]],
                                                   'c': {'x': 1, 'y': 2}}
+
+
+def test_a_number_with_an_exponent_and_no_point_is_a_number(tmp_path):
+    # YAML 1.1 (PyYAML) reads 1e-3 as text: "travel.step: expected a number, got '1e-3'"
+    assert read_yaml(written(tmp_path, 'a: 1e-3\nb: -2E5\nc: 12\nd: 1.5\ne: 1e\n')) == {
+        'a': 0.001, 'b': -200000.0, 'c': 12, 'd': 1.5, 'e': '1e'}
 
 
 def test_a_date_stays_text_and_an_impossible_one_is_no_error(tmp_path):

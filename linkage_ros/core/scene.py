@@ -228,7 +228,8 @@ def scene_warnings(scene: Scene) -> tuple[str, ...]:
         guess = ': a file written in mm but labelled units: m?'
     elif scene.units == 'mm' and all(size < low for _, size in odd):
         guess = ': a file written in m but labelled units: mm?'
-    return (f'{scene.source}: {" and ".join(said for said, _ in odd)} outside '
+    verb = 'is' if len(odd) == 1 else 'are'
+    return (f'{scene.source}: {" and ".join(said for said, _ in odd)} {verb} outside '
             f'{low:g}-{high:g} mm, implausible for a road vehicle{guess} (solved as given)',
             ) + singular_design_warnings(scene)
 
@@ -263,8 +264,8 @@ def _spin_axis_point(check, carrier, wheel_center, side, constraints):
     for key in STATIC_KEYS:
         value = check.number(block, key, f'carrier.static.{key}', length=False)
         if not abs(value) < 90.0:
-            check.fail(f'carrier.static.{key}', f'{value!r} deg: within -90 and 90 deg, or the '
-                       'spin axis does not point outboard')
+            check.fail(f'carrier.static.{key}', f'{value:g} deg: must be between -90 and 90 '
+                       'deg, or the spin axis does not point outboard')
         angles.append(math.radians(value))
     camber, toe = angles
     sign = 1.0 if side == 'left' else -1.0

@@ -12,12 +12,14 @@ A file is refused, with SceneError naming the file and where in it, when it is
 - tagged with anything but plain data (`!!python/object`, `!!binary`, `!!set`, `!mine`);
 - giving one key twice in a mapping (YAML would keep the last silently).
 Dates are not converted (`2024-01-01` stays text): a scene has no dates, and an invalid one
-(`2001-13-45`) would otherwise fail deep inside the YAML library.
+(`2001-13-45`) would otherwise fail deep inside the YAML library. A number with an exponent
+and no point (`1e-3`) is a number, as in YAML 1.2 (PyYAML's YAML 1.1 reads it as text).
 """
 
 from __future__ import annotations
 
 from pathlib import Path
+import re
 from typing import Any, TYPE_CHECKING
 
 import yaml
@@ -59,6 +61,7 @@ class _PlainLoader(_Base):
         for first, resolvers in _Base.yaml_implicit_resolvers.items()}
 
     def construct_mapping(self, node, deep=False):
+        """Build a mapping, refusing a key given twice (merged keys may be overridden)."""
         seen = {}
         for key_node, _ in node.value:
             if isinstance(key_node, yaml.ScalarNode) and key_node.tag != _CORE + 'merge':
@@ -69,6 +72,12 @@ class _PlainLoader(_Base):
                         f'{seen[key].line + 1})', key_node.start_mark)
                 seen[key] = key_node.start_mark
         return super().construct_mapping(node, deep)
+
+
+# 1e-3, -2E5: floats (after the int and float resolvers, which take every other number).
+_PlainLoader.add_implicit_resolver(_CORE + 'float',
+                                   re.compile(r'^[-+]?[0-9][0-9_]*[eE][-+]?[0-9]+$'),
+                                   list('-+0123456789'))
 
 
 def read_yaml(path: str | PathLike, what: str = 'scene') -> Any:

@@ -40,6 +40,19 @@ def save_figure(fig, path, dpi):
 
 def plot_camber_toe(scenes, path):
     """Write a two-panel PNG (camber, toe in deg against travel in mm) of the given scenes."""
+    import matplotlib.pyplot as plt
+    fig = camber_toe_figure(scenes)
+    save_figure(fig, path, dpi=110)
+    plt.close(fig)
+
+
+def camber_toe_figure(scenes):
+    """
+    Return the figure of plot_camber_toe: camber and toe (deg) against travel (mm).
+
+    The scenes' reference tables are drawn as dots, with a legend entry if any has one; the
+    title names the scenes unless they are all bundled.
+    """
     import matplotlib
     matplotlib.use('Agg')
     import matplotlib.pyplot as plt
@@ -66,8 +79,7 @@ def plot_camber_toe(scenes, path):
     ax_camber.legend(fontsize=8)
     fig.suptitle(f'linkage_ros: {title(scenes)}')
     fig.tight_layout()
-    save_figure(fig, path, dpi=110)
-    plt.close(fig)
+    return fig
 
 
 def reference_rows(scene):
