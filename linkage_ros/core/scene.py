@@ -44,8 +44,9 @@ THIN = 1e-6
 # outside is solved as given, with a warning (mechanisms of other sizes are legitimate).
 PLAUSIBLE_MM = (50.0, 3000.0)
 
-# The keys of a scene file, of its blocks, and of a constraint by type; FREE_KEYS
-# (description, source, notes) and x_... keys are allowed everywhere, reference at the top.
+# The keys of a scene file, of its blocks, and of a constraint (base for a sphere or a line,
+# axis for a circle); FREE_KEYS (description, source, notes) and x_... keys are allowed in
+# every mapping, reference at the top.
 SCENE_KEYS = ('name', 'units', 'side', 'wheel_radius', 'carrier', 'constraints', 'travel')
 SCENE_FREE_KEYS = FREE_KEYS + ('reference',)
 CARRIER_KEYS = ('wheel_center', 'spin_axis_point', 'static', 'third_point')
