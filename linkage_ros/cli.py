@@ -52,6 +52,10 @@ class Parser(argparse.ArgumentParser):
     def __init__(self, prog: str, description: str, epilog: str = '', **kwargs) -> None:
         super().__init__(prog=prog, description=description, epilog=epilog,
                          formatter_class=argparse.RawDescriptionHelpFormatter, **kwargs)
+        # An argument that starts with '-' and a digit is a value, not an option: argparse
+        # takes only -80 and -0.5 so, and said "expected one argument" for --grid -20:20:10,
+        # --from -1e3 or --from -80mm (which then fails as a number, with its own line).
+        self._negative_number_matcher = re.compile(r'^-\.?[0-9]')
 
     def error(self, message: str) -> None:
         """Print one line naming the mistake and exit with status 2."""
@@ -116,6 +120,39 @@ def held_stderr():
             os.close(saved)
         store.seek(0)   # reached only when the body did not raise
         os.write(2, store.read())
+
+
+def millimetres(text: str) -> float:
+    """
+    Return an option's value in mm as a float: an argparse type.
+
+    A unit after the number (-80mm) is refused, saying how to give it: the programs take
+    millimetres as plain numbers.
+    """
+    try:
+        return float(text)
+    except ValueError:
+        unit = re.fullmatch(r'\s*[-+]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][-+]?[0-9]+)?\s*'
+                            r'([a-zA-Z]+)\s*', text)
+        if unit:
+            number = text[:unit.start(1)].strip()
+            example = f' (e.g. {number})' if unit.group(1) == 'mm' else ''
+            raise argparse.ArgumentTypeError(
+                f'{text!r}: give millimetres as a plain number, without a unit{example}') \
+                from None
+        raise argparse.ArgumentTypeError(f'expected a number of millimetres, got {text!r}') \
+            from None
+
+
+def counted(count: int, noun: str) -> str:
+    """Say a count with its noun in the right number: '1 position', '3 positions'."""
+    return f'{count} {noun}' + ('' if count == 1 else 's')
+
+
+def warn(prog: str, warnings: tuple = ()) -> None:
+    """Print each warning (of a Scene or a Vehicle) once, 'prog: warning: ...', on stderr."""
+    for line in dict.fromkeys(warnings):
+        print(f'{prog}: warning: {line}', file=sys.stderr)
 
 
 def fail(prog: str, message: object) -> int:

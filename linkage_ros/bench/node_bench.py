@@ -583,6 +583,8 @@ def parse_args(argv):
     unknown = [s for s in args.only if s not in SECTIONS]
     if unknown:
         parser.error(f'--only: unknown section {unknown[0]!r} (sections: {", ".join(SECTIONS)})')
+    if args.plot and 'latency' not in args.only:   # the plot is of the latency section
+        parser.error('--plot draws the latency section: add latency to --only')
     if args.scale < 1 or args.duration <= 0 or args.latency_rate <= 0 or not args.rates:
         parser.error('--scale >= 1, --duration > 0, --latency-rate > 0 and --rates are required')
     return args, ros_args
