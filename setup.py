@@ -44,6 +44,7 @@ setup(
         'pytest11': ['linkage_ros = linkage_ros.ros.testing'],
         'console_scripts': [
             'linkage-sweep = linkage_ros.tools.sweep:main',
+            'linkage-axle = linkage_ros.tools.axle:main',
             'suspension_node = linkage_ros.ros.node:main',
             'linkage-node-bench = linkage_ros.bench.node_bench:main',
             'linkage-replay = linkage_ros.tools.replay:main',

@@ -8,6 +8,8 @@ step sweep double_wishbone
 .venv/bin/linkage-sweep double_wishbone --from -40 --to 40 --step 10 --csv double_wishbone.csv; echo "rc=$?"; head -2 double_wishbone.csv
 step sweep out of reach
 .venv/bin/linkage-sweep five_link --from 0 --to 1000 --step 100 > /dev/null; echo "rc=$?"
+step kinematic map
+.venv/bin/linkage-map double_wishbone --out maps; echo "rc=$?"; ls maps
 step misspelt parameter
 .venv/bin/suspension_node --ros-args -p sceen:=macpherson; echo "rc=$?"
 step python snippet
@@ -34,13 +36,13 @@ step vehicle node
 .venv/bin/suspension_node --ros-args -p vehicle:=demo_vehicle > node3.log 2>&1 &
 NODE=$!; sleep 4; kill -TERM $NODE; wait $NODE; echo "vehicle node rc=$?"
 step replay
-.venv/bin/linkage-replay bags/five_link_sweep.mcap -o solved.mcap --scene five_link; echo "rc=$?"
-.venv/bin/linkage-replay bags/five_link_sweep.mcap --copy -o copy.mcap; echo "rc=$?"
+.venv/bin/linkage-replay solve bags/five_link_sweep.mcap -o solved.mcap --scene five_link; echo "rc=$?"
+.venv/bin/linkage-replay copy bags/five_link_sweep.mcap -o copy.mcap; echo "rc=$?"
 step rerun
 .venv/bin/linkage-rerun bags/five_link_sweep.mcap -o five_link_sweep.rrd; echo "rc=$?"
 step sim time
 ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST .venv/bin/suspension_node --ros-args -p use_sim_time:=true > node4.log 2>&1 &
-ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST .venv/bin/linkage-replay bags/five_link_sweep.mcap --publish --clock; echo "rc=$?"
+ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST .venv/bin/linkage-replay publish bags/five_link_sweep.mcap --clock; echo "rc=$?"
 kill %1; wait; echo done
 step quick discovery
 export FASTRTPS_DEFAULT_PROFILES_FILE=$PWD/config/fastdds_quick_discovery.xml

@@ -4,6 +4,8 @@ ROS 2 messages as CDR bytes, the form in which DDS carries them and MCAP stores 
 Pure functions, usable without DDS: the recorders, the replay and the node share them.
 
     float64_cdr(value), float64_of(CDR), pose_of(CDR)  -> built or read in place, no rclpy
+    pose_stamped_cdr(stamp, frame_id, position, q)     -> geometry_msgs/PoseStamped, no rclpy
+    joint_state_cdr(stamp, frame_id, names, position)  -> sensor_msgs/JointState, no rclpy
     CdrError                                           bytes that do not hold the message
     from_cdr(type_name, data), to_cdr(msg)             -> rclpy message <-> CDR bytes
     message_class(type_name), type_name(message)       -> 'pkg/msg/Type' <-> rclpy class
@@ -14,11 +16,15 @@ little-endian), then every field aligned to its size, counted from the header's 
 
 from __future__ import annotations
 
+import functools
 import importlib
 import struct
-from typing import Any
+from typing import Any, TYPE_CHECKING
 
 from .core.errors import LinkageError
+
+if TYPE_CHECKING:
+    from collections.abc import Sequence
 
 CDR_LE = b'\x00\x01\x00\x00'
 _FLOAT64 = struct.Struct('<4sd')
@@ -50,6 +56,72 @@ def float64_cdr(value: float) -> bytes:
 def float64_of(data: bytes) -> float:
     """Read the value of a std_msgs/Float64 in CDR bytes (either byte order); else CdrError."""
     return struct.unpack_from(_order('std_msgs/Float64', data, 12) + 'd', data, 4)[0]
+
+
+def pose_stamped_cdr(stamp: tuple[int, int], frame_id: str, position: Sequence[float],
+                     quaternion: Sequence[float]) -> bytes:
+    """
+    Return a geometry_msgs/PoseStamped (CDR bytes, little-endian).
+
+    stamp: (sec, nanosec); position (x, y, z) in m in frame_id; quaternion (x, y, z, w).
+    Built from a cached struct layout per frame_id: about 1 us, against about 30 for rclpy's
+    message class and serializer (this is on the node's path for every command).
+    """
+    layout, frame = _pose_layout(frame_id)
+    return layout.pack(CDR_LE, stamp[0], stamp[1], len(frame), frame, *position, *quaternion)
+
+
+@functools.lru_cache(maxsize=16)
+def _pose_layout(frame_id):
+    # header: stamp (int32 sec, uint32 nanosec), frame_id (uint32 length with the NUL, bytes,
+    # NUL); then the pose's 7 float64, aligned to 8.
+    frame = frame_id.encode() + b'\0'
+    pad = -(12 + len(frame)) % 8
+    return struct.Struct(f'<4siII{len(frame)}s{pad}x7d'), frame
+
+
+def joint_state_cdr(stamp: tuple[int, int], frame_id: str, names: Sequence[str],
+                    position: Sequence[float], velocity: Sequence[float] = (),
+                    effort: Sequence[float] = ()) -> bytes:
+    """
+    Return a sensor_msgs/JointState (CDR bytes, little-endian).
+
+    stamp: (sec, nanosec); names: the joints; position (m or rad), velocity, effort: one
+    value per joint or none. The layout is cached per frame_id, names and counts (a few us).
+    """
+    layout, strings = _joint_state_layout(frame_id, tuple(names), len(position), len(velocity),
+                                          len(effort))
+    return layout.pack(CDR_LE, stamp[0], stamp[1], strings, len(position), *position,
+                       len(velocity), *velocity, len(effort), *effort)
+
+
+@functools.lru_cache(maxsize=16)
+def _joint_state_layout(frame_id, names, positions, velocities, efforts):
+    # header: stamp, frame_id; name: sequence<string> (uint32 count, then each string as a
+    # uint32 length with the NUL, its bytes and the NUL, aligned to 4); position, velocity,
+    # effort: sequence<double> (uint32 count aligned to 4, the values aligned to 8). The
+    # strings are the same for every message of these names: packed once, here.
+    strings = bytearray()
+
+    def put(data):
+        strings.extend(bytes(-(8 + len(strings)) % 4) + data)   # 8: the stamp before
+
+    def string(text):
+        raw = text.encode() + b'\0'
+        return struct.pack('<I', len(raw)) + raw
+
+    put(string(frame_id))
+    put(struct.pack('<I', len(names)))
+    for name in names:
+        put(string(name))
+    fmt, offset = f'<4siI{len(strings)}s', 8 + len(strings)
+    for count in (positions, velocities, efforts):
+        pad = -offset % 4
+        fmt, offset = fmt + f'{pad}xI', offset + pad + 4
+        if count:
+            pad = -offset % 8
+            fmt, offset = fmt + f'{pad}x{count}d', offset + pad + 8 * count
+    return struct.Struct(fmt), bytes(strings)
 
 
 def pose_of(data: bytes) -> tuple[tuple[float, ...], tuple[float, ...]]:

@@ -13,6 +13,7 @@ import errno
 import functools
 import os
 from pathlib import Path
+import re
 import select
 import signal
 import sys
@@ -28,10 +29,11 @@ EXIT_STATUS = ('2 a mistake in the command: an unknown option, a bad value, a mi
 # For the programs that read recordings, which may be damaged.
 EXIT_STATUSES = """exit status:
   0  done; the input was complete
-  1  done, but the input was damaged: what could be read was used (and the warning says
-     what was lost)
+  1  done, but the input was damaged: what could be read was used, even if nothing could;
+     a message whose bytes do not decode counts as damage (the warnings say what was lost)
   2  a mistake in the command: an unknown option, a bad value, a missing or unwritable
-     file, a missing optional package (one line on stderr says which)"""
+     file, an output that is an input, a file that is not MCAP at all, a missing optional
+     package (one line on stderr says which)"""
 
 # Top-level module -> (pip package, extra of linkage_ros that installs it).
 PACKAGES = {'mcap': ('mcap', 'record'), 'zstandard': ('zstandard', 'record'),
@@ -50,6 +52,10 @@ class Parser(argparse.ArgumentParser):
     def __init__(self, prog: str, description: str, epilog: str = '', **kwargs) -> None:
         super().__init__(prog=prog, description=description, epilog=epilog,
                          formatter_class=argparse.RawDescriptionHelpFormatter, **kwargs)
+        # An argument that starts with '-' and a digit is a value, not an option: argparse
+        # takes only -80 and -0.5 so, and said "expected one argument" for --grid -20:20:10,
+        # --from -1e3 or --from -80mm (which then fails as a number, with its own line).
+        self._negative_number_matcher = re.compile(r'^-\.?[0-9]')
 
     def error(self, message: str) -> None:
         """Print one line naming the mistake and exit with status 2."""
@@ -116,6 +122,39 @@ def held_stderr():
         os.write(2, store.read())
 
 
+def millimetres(text: str) -> float:
+    """
+    Return an option's value in mm as a float: an argparse type.
+
+    A unit after the number (-80mm) is refused, saying how to give it: the programs take
+    millimetres as plain numbers.
+    """
+    try:
+        return float(text)
+    except ValueError:
+        unit = re.fullmatch(r'\s*[-+]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][-+]?[0-9]+)?\s*'
+                            r'([a-zA-Z]+)\s*', text)
+        if unit:
+            number = text[:unit.start(1)].strip()
+            example = f' (e.g. {number})' if unit.group(1) == 'mm' else ''
+            raise argparse.ArgumentTypeError(
+                f'{text!r}: give millimetres as a plain number, without a unit{example}') \
+                from None
+        raise argparse.ArgumentTypeError(f'expected a number of millimetres, got {text!r}') \
+            from None
+
+
+def counted(count: int, noun: str) -> str:
+    """Say a count with its noun in the right number: '1 position', '3 positions'."""
+    return f'{count} {noun}' + ('' if count == 1 else 's')
+
+
+def warn(prog: str, warnings: tuple = ()) -> None:
+    """Print each warning (of a Scene or a Vehicle) once, 'prog: warning: ...', on stderr."""
+    for line in dict.fromkeys(warnings):
+        print(f'{prog}: warning: {line}', file=sys.stderr)
+
+
 def fail(prog: str, message: object) -> int:
     """Print one line, 'prog: message', on stderr; return exit status 2."""
     print(f'{prog}: {message}', file=sys.stderr)
@@ -139,9 +178,10 @@ def writable_file(path: str, inputs: tuple = ()) -> str:
     if not folder.is_dir():
         return f'cannot write {path}: {folder} is not a folder'
     for other in inputs:
-        if other is not None and target.exists() and Path(other).exists() \
-                and os.path.samefile(target, other):
-            return f'{path} is the input {other}; give another file name'
+        same = other is not None and same_file(path, other)
+        if same:
+            where = f'the input {other}' if same == other else f'{same}, in the input {other}'
+            return f'{path} is {where}; give another file name'
     existed = target.exists()
     try:
         with open(target, 'ab'):
@@ -150,6 +190,24 @@ def writable_file(path: str, inputs: tuple = ()) -> str:
         return f'cannot write {path}: {exc.strerror or exc}'
     if not existed:
         target.unlink()
+    return ''
+
+
+def same_file(output: str, source: str) -> str:
+    """
+    Return the file of source that writing output would overwrite, or ''.
+
+    Compared by resolved path (links and '..' followed) and, where both exist, as one file
+    (a hard link). A source that is a folder (a rosbag2 bag folder) stands for every file
+    in it: its .mcap is never overwritten.
+    """
+    target = Path(output).resolve()
+    origin = Path(source)
+    files = sorted(origin.iterdir()) if origin.is_dir() else [origin]
+    for file in files:
+        if file.resolve() == target or (target.exists() and file.exists()
+                                        and os.path.samefile(target, file)):
+            return str(file) if origin.is_dir() else source
     return ''
 
 
@@ -168,7 +226,18 @@ def check_input(path: str, option: str = 'BAG') -> None:
 
 def default_output(source: str, suffix: str) -> str:
     """Return the source's stem + suffix in the current folder (never beside the source)."""
-    return str(Path.cwd() / (Path(source).stem + suffix))
+    return str(Path.cwd() / (safe_name(Path(os.path.abspath(source)).stem) + suffix))
+
+
+def safe_name(text: str, fallback: str = 'output') -> str:
+    """
+    Return text as a file name that stays in the current folder, for a default output.
+
+    Every run of characters other than letters, digits, '.', '_' and '-' (a '/' among them)
+    becomes '_', and leading dots, '_' and '-' go: '../escaped' -> 'escaped'. fallback if
+    nothing is left.
+    """
+    return re.sub(r'[^\w.-]+', '_', str(text)).lstrip('._-') or fallback
 
 
 def missing_package(exc: ImportError, feature: str) -> str:

@@ -9,7 +9,8 @@ project code.
 import struct
 import tracemalloc
 
-from linkage_ros.record.bag import McapRecorder, read_bag, RecordingError
+from linkage_ros.record.mcap_reader import read_bag, RecordingError
+from linkage_ros.record.mcap_writer import McapRecorder
 from linkage_ros.tools import replay, rerun_convert
 from mcap.reader import make_reader
 from mcap.stream_reader import breakup_chunk, StreamReader

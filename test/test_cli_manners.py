@@ -9,7 +9,7 @@ from pathlib import Path
 import subprocess
 import sys
 
-from linkage_ros.record.bag import McapRecorder
+from linkage_ros.record.mcap_writer import McapRecorder
 from linkage_ros.tools import replay, rerun_convert
 from mcap.reader import make_reader
 import pytest
@@ -48,39 +48,79 @@ def foreign_bag(tmp_path):
 
 # --- --help --------------------------------------------------------------------------------
 
-@pytest.mark.parametrize('prog', sorted(PROGRAMS))
-def test_help_says_what_it_does_every_option_default_and_unit_an_example_and_the_statuses(
-        prog, capsys):
-    assert status_of(PROGRAMS[prog], ['--help']) == 0
-    text = capsys.readouterr().out
-    assert text.startswith(f'usage: {prog} ')
-    assert f'{prog}: convert a recorded run' in text or f'{prog}: solve the wheel-travel' in text
-    for status in ('0  done; the input was complete', '1  done, but the input was damaged',
-                   '2  a mistake in the command'):
-        assert status in text
-    assert f'  {prog} run.mcap' in text                      # an example
+STATUSES = ('0  done; the input was complete', '1  done, but the input was damaged',
+            '2  a mistake in the command')
+
+
+def help_of(main, argv, capsys):
+    """Return the text main(argv) prints on stdout, asserting status 0."""
+    assert status_of(main, argv) == 0
+    return capsys.readouterr().out
+
+
+def test_rerun_help_says_what_it_does_every_option_default_an_example_and_the_statuses(capsys):
+    text = help_of(rerun_convert.main, ['--help'], capsys)
+    assert text.startswith('usage: linkage-rerun ')
+    assert 'linkage-rerun: convert a recorded run' in text
+    assert all(status in text for status in STATUSES)
+    assert '  linkage-rerun run.mcap' in text                      # an example
     assert "BAG's name" in text and 'in the current folder' in text   # the default output
-    if prog == 'linkage-replay':
-        for option in ('--topic', '--scene', '--method', '--frame-id', '--rate', '--wait',
-                       '--from', '--to', '--step', '--hz'):
-            assert f'\n  {option} ' in text
-        for unit in ('std_msgs/msg/Float64 in m (default /wheel_travel)', '(default five_link)',
-                     '(default fast)', '(default base_link)', '> 0 (default 1;',
-                     's to wait for a subscriber, >= 0 (default 10)', 'first travel, mm',
-                     'last travel, mm', 'travel step, mm, > 0', 'rate, Hz, > 0 (default 50)'):
-            assert unit in ' '.join(text.split()), unit
+
+
+def test_replay_help_names_each_subcommand_with_examples_and_the_statuses(capsys):
+    text = help_of(replay.main, ['--help'], capsys)
+    assert text.startswith('usage: linkage-replay ')
+    assert 'linkage-replay: solve the wheel-travel' in text
+    assert all(status in text for status in STATUSES)
+    for command in ('solve', 'sweep', 'copy', 'publish', 'bench'):
+        assert f'\n    {command} ' in text                          # listed with its summary
+        assert f'\n  linkage-replay {command} ' in text             # and an example
+    assert 'BAG alone (solve),\n--sweep, --copy, --publish, --benchmark' in text   # old spellings
+
+
+# subcommand: (its options, what its help says of units and defaults)
+SUBCOMMAND_HELP = {
+    'solve': (('--topic', '--scene', '--method', '--frame-id', '-o'),
+              ('std_msgs/msg/Float64 in m (default /wheel_travel)',
+               'the scene the recording stores, else five_link', '(default fast)',
+               '(default base_link)', "BAG's name + _solved.mcap, in the current folder")),
+    'sweep': (('--scene', '--from', '--to', '--step', '--hz', '-o'),
+              ('(default five_link)', 'first travel, mm', 'last travel, mm',
+               'travel step, mm, > 0', 'rate, Hz, > 0 (default 50)',
+               "the scene's name (its letters, digits, _ . -) + _sweep.mcap, in the current "
+               'folder')),
+    'copy': (('-o',), ("BAG's name + _copy.mcap, in the current folder",)),
+    'publish': (('--topic', '--rate', '--clock', '--wait', '--from', '--hz'),
+                ('> 0 (default 1;', 's to wait for a subscriber, >= 0 (default 10)',
+                 'without it, the commands of a sweep', 'sweep: first travel, mm')),
+    'bench': (('--topic', '--scene', '--method', '--step'), ('CSV table on stdout',)),
+}
+
+
+@pytest.mark.parametrize('command', sorted(SUBCOMMAND_HELP))
+def test_replay_subcommand_help_gives_every_option_default_and_unit_examples_and_statuses(
+        command, capsys):
+    text = help_of(replay.main, [command, '--help'], capsys)
+    assert text.startswith(f'usage: linkage-replay {command} ')
+    assert all(status in text for status in STATUSES)
+    assert f'\n  linkage-replay {command} ' in text                 # an example
+    options, phrases = SUBCOMMAND_HELP[command]
+    for option in options:
+        assert f'\n  {option} ' in text, option
+    for phrase in phrases:
+        assert phrase in ' '.join(text.split()), phrase
 
 
 # --- statuses 0 and 1 ----------------------------------------------------------------------
 
 def test_a_complete_bag_gives_status_0_and_a_damaged_one_status_1(tmp_path):
-    assert replay.main([str(EXAMPLE), '-o', str(tmp_path / 'a.mcap')]) == 0
-    assert replay.main([str(EXAMPLE), '--copy', '-o', str(tmp_path / 'b.mcap')]) == 0
+    assert replay.main(['solve', str(EXAMPLE), '-o', str(tmp_path / 'a.mcap')]) == 0
+    assert replay.main(['copy', str(EXAMPLE), '-o', str(tmp_path / 'b.mcap')]) == 0
     assert rerun_convert.main([str(EXAMPLE), '-o', str(tmp_path / 'a.rrd')]) == 0
     cut = tmp_path / 'cut.mcap'
     cut.write_bytes(EXAMPLE.read_bytes()[:-100])
-    assert replay.main([str(cut), '-o', str(tmp_path / 'c.mcap')]) == 1
-    assert replay.main([str(cut), '--copy', '-o', str(tmp_path / 'd.mcap')]) == 1
+    assert replay.main(['solve', str(cut), '-o', str(tmp_path / 'c.mcap')]) == 1
+    assert replay.main(['copy', str(cut), '-o', str(tmp_path / 'd.mcap')]) == 1
     assert rerun_convert.main([str(cut), '-o', str(tmp_path / 'b.rrd')]) == 1
 
 
@@ -88,9 +128,9 @@ def test_default_outputs_go_to_the_current_folder(tmp_path, monkeypatch):
     work = tmp_path / 'work'
     work.mkdir()
     monkeypatch.chdir(work)
-    assert replay.main([str(EXAMPLE)]) == 0
-    assert replay.main([str(EXAMPLE), '--copy']) == 0
-    assert replay.main(['--sweep', '--from', '0', '--to', '2']) == 0
+    assert replay.main(['solve', str(EXAMPLE)]) == 0
+    assert replay.main(['copy', str(EXAMPLE)]) == 0
+    assert replay.main(['sweep', '--from', '0', '--to', '2']) == 0
     assert rerun_convert.main([str(EXAMPLE)]) == 0
     assert sorted(p.name for p in work.iterdir()) == [
         'five_link_sweep.mcap', 'five_link_sweep.rrd', 'five_link_sweep_copy.mcap',
@@ -104,7 +144,7 @@ def test_default_outputs_go_to_the_current_folder(tmp_path, monkeypatch):
 # --- status 2: one line each ---------------------------------------------------------------
 
 def replay_mistakes(tmp_path, foreign_bag):
-    """(argv, the line's expected end) of linkage-replay mistakes."""
+    """(argv, the line's expected end) of linkage-replay mistakes, in the subcommand spelling."""
     out = str(tmp_path / 'out.mcap')
     folder = tmp_path / 'empty_folder'
     folder.mkdir()
@@ -114,23 +154,67 @@ def replay_mistakes(tmp_path, foreign_bag):
     missing = tmp_path / 'missing'
     return [
         (['--bogus'], 'error: unrecognized arguments: --bogus (see linkage-replay --help)'),
-        ([], 'error: give a BAG or --sweep (one of them) (see linkage-replay --help)'),
-        ([bag, '--sweep'], 'error: give a BAG or --sweep (one of them)'),
-        ([str(tmp_path / 'none.mcap')], f'BAG {tmp_path / "none.mcap"}: no such file or folder'),
-        ([str(folder), '-o', out], f'{folder}: a bag folder must hold exactly one .mcap file '
-         '(found: none)'),
-        ([bag, '--publish', '--rate', '0'], 'error: argument --rate: must be a finite number '
-         'above 0, got 0'),
-        ([bag, '--publish', '--rate', 'nan'], 'argument --rate: must be a finite number above '
+        ([], 'error: choose what to do: solve, sweep, copy, publish, bench (see linkage-replay '
+         '--help)'),
+        (['solve'], 'error: the following arguments are required: BAG (see linkage-replay '
+         'solve --help)'),
+        (['sweep', bag], f'error: a sweep takes no BAG (unrecognized arguments: {bag})'),
+        (['solve', str(tmp_path / 'none.mcap')], f'BAG {tmp_path / "none.mcap"}: no such file '
+         'or folder'),
+        (['solve', str(folder), '-o', out], f'{folder}: a bag folder must hold exactly one '
+         '.mcap file (found: none)'),
+        (['publish', bag, '--rate', '0'], 'error: argument --rate: must be a finite number '
+         'above 0, got 0 (see linkage-replay publish --help)'),
+        (['publish', bag, '--rate', 'nan'], 'argument --rate: must be a finite number above '
          '0, got nan'),
-        ([bag, '--publish', '--rate', 'fast'], "argument --rate: expected a number, got 'fast'"),
-        ([bag, '--publish', '--wait', '-1'], 'argument --wait: must be a finite number at '
+        (['publish', bag, '--rate', 'fast'], "argument --rate: expected a number, got 'fast'"),
+        (['publish', bag, '--wait', '-1'], 'argument --wait: must be a finite number at '
          'least 0, got -1'),
-        (['--sweep', '--hz', '0'], 'argument --hz: must be a finite number above 0, got 0'),
-        (['--sweep', '--step', '-1'], 'argument --step: must be a finite number above 0, '
+        (['sweep', '--hz', '0'], 'argument --hz: must be a finite number above 0, got 0'),
+        (['sweep', '--step', '-1'], 'argument --step: must be a finite number above 0, '
          'got -1'),
-        (['--sweep', '--from', 'inf'], 'argument --from: must be a finite number, got inf'),
-        (['--sweep', '--to', 'x'], "argument --to: expected a number, got 'x'"),
+        (['sweep', '--from', 'inf'], 'argument --from: must be a finite number, got inf'),
+        (['sweep', '--to', 'x'], "argument --to: expected a number, got 'x'"),
+        (['sweep', '--from', '-80mm'], "argument --from: expected a number, got '-80mm'"),
+        (['solve', bag, '--rate', '2'], 'error: --rate is not an option of linkage-replay solve '
+         '(it is one of: publish) (see linkage-replay solve --help)'),
+        (['sweep', '--clock'], 'error: --clock is not an option of linkage-replay sweep (it is '
+         'one of: publish)'),
+        (['solve', bag, '--from', '3'], 'error: --from is not an option of linkage-replay solve '
+         '(it is one of: sweep, publish, bench)'),
+        (['publish', bag, '--hz', '3'], 'error: --hz makes a sweep: give it without BAG'),
+        (['bench', bag, '--step', '3'], 'error: --step makes a sweep: give it without BAG'),
+        (['publish', bag, '--scene', 'macpherson'], 'error: --scene makes a sweep: give it '
+         'without BAG'),
+        (['copy', bag, '--scene', 'macpherson'], 'error: --scene is not an option of '
+         'linkage-replay copy'),
+        (['publish', bag, '--method', 'paper'], 'error: --method is not an option of '
+         'linkage-replay publish (it is one of: solve, sweep, bench)'),
+        (['publish', bag, '-o', out], 'error: -o is not an option of linkage-replay publish'),
+        (['bench', bag, '-o', out], 'error: -o is not an option of linkage-replay bench'),
+        (['solve', bag, '--method', 'quick'], 'error: argument --method: invalid choice: '
+         "'quick'"),
+        (['solve', bag, '--scene', 'nowhere'], 'nowhere: scene: no such file, and not a bundled '
+         'scene'),
+        (['solve', bag, '-o', str(missing / 'out.mcap')], f'-o: cannot write '
+         f'{missing / "out.mcap"}: no folder {missing}'),
+        (['solve', bag, '-o', str(folder)], f'-o: {folder} is a folder, not a file'),
+        (['solve', bag, '-o', str(blocker / 'out.mcap')], f'-o: cannot write '
+         f'{blocker / "out.mcap"}: {blocker} is not a folder'),
+        (['copy', bag, '-o', bag], f'-o: {bag} is the input {bag}; give another file name'),
+        (['solve', bag, '-o', '/sys/out.mcap'], '-o: cannot write /sys/out.mcap: Permission '
+         'denied'),
+        (['solve', bag, '--topic', '/camber_x'], 'no topic /camber_x (topics present: '),
+        (['solve', str(foreign_bag), '-o', out], f'{foreign_bag}: no topic /wheel_travel '
+         '(topics present: /speed (std_msgs/msg/Float64)); choose the wheel-travel topic with '
+         '--topic'),
+    ]
+
+
+def old_spelling_mistakes(tmp_path):
+    """(argv, the line's expected end) of mistakes in the spelling of earlier versions."""
+    bag = str(EXAMPLE)
+    return [
         ([bag, '--rate', '2'], 'error: --rate needs --publish'),
         ([bag, '--wait', '2'], 'error: --wait needs --publish'),
         (['--sweep', '--clock'], 'error: --clock needs --publish'),
@@ -139,23 +223,12 @@ def replay_mistakes(tmp_path, foreign_bag):
         ([bag, '--copy', '--scene', 'macpherson'], 'error: --scene is not used with --copy'),
         ([bag, '--copy', '--topic', '/x'], 'error: --topic is not used with --copy'),
         ([bag, '--publish', '--method', 'paper'], 'error: --method is not used with --publish'),
-        ([bag, '--publish', '-o', out], 'error: -o is not used with --publish'),
-        ([bag, '--benchmark', '-o', out], 'error: -o is not used with --benchmark'),
-        ([bag, '--copy', '--publish'], 'error: argument --publish: not allowed with argument '
-         '--copy'),
+        ([bag, '--publish', '-o', 'x.mcap'], 'error: -o is not used with --publish'),
+        ([bag, '--benchmark', '-o', 'x.mcap'], 'error: -o is not used with --benchmark'),
+        ([bag, '--copy', '--publish'], 'error: --copy and --publish: choose one'),
         (['--sweep', '--copy'], 'error: --copy needs a BAG'),
-        ([bag, '--method', 'quick'], "error: argument --method: invalid choice: 'quick'"),
-        ([bag, '--scene', 'nowhere'], 'nowhere: scene: no such file, and not a bundled scene'),
-        ([bag, '-o', str(missing / 'out.mcap')], f'-o: cannot write {missing / "out.mcap"}: no '
-         f'folder {missing}'),
-        ([bag, '-o', str(folder)], f'-o: {folder} is a folder, not a file'),
-        ([bag, '-o', str(blocker / 'out.mcap')], f'-o: cannot write {blocker / "out.mcap"}: '
-         f'{blocker} is not a folder'),
+        ([bag, '--sweep'], 'error: a sweep takes no BAG'),
         ([bag, '--copy', '-o', bag], f'-o: {bag} is the input {bag}; give another file name'),
-        ([bag, '-o', '/sys/out.mcap'], '-o: cannot write /sys/out.mcap: Permission denied'),
-        ([bag, '--topic', '/camber_x'], 'no topic /camber_x (topics present: '),
-        ([str(foreign_bag), '-o', out], f'{foreign_bag}: no topic /wheel_travel (topics '
-         'present: /speed (std_msgs/msg/Float64)); choose the wheel-travel topic with --topic'),
     ]
 
 
@@ -166,6 +239,16 @@ def test_every_replay_mistake_is_one_line_and_status_2_and_writes_nothing(
         line = one_line(capsys, 'linkage-replay')
         assert expected in line, (argv, line)
         assert not (tmp_path / 'out.mcap').exists()
+
+
+def test_every_old_spelling_mistake_is_one_line_in_the_old_terms_and_status_2(
+        tmp_path, capsys, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    for argv, expected in old_spelling_mistakes(tmp_path):
+        assert status_of(replay.main, argv) == 2, argv
+        line = one_line(capsys, 'linkage-replay')
+        assert expected in line, (argv, line)
+    assert list(tmp_path.iterdir()) == []
 
 
 def test_every_rerun_mistake_is_one_line_and_status_2_and_writes_nothing(
@@ -188,8 +271,8 @@ def test_every_rerun_mistake_is_one_line_and_status_2_and_writes_nothing(
         ([str(EXAMPLE), '--scene', 'nowhere', '-o', out], 'nowhere: scene: no such file'),
         ([str(named), '-o', out], 'gone_scene: scene: no such file, and not a bundled scene '
          '(bundled: '),
-        ([str(foreign_bag), '-o', out], f'{foreign_bag}: no wheel_travel, wheel_carrier_pose, '
-         'camber or toe messages to convert (topics: /speed)'),
+        ([str(foreign_bag), '-o', out], f'{foreign_bag}: no wheel_travel, steering_rack, '
+         'wheel_carrier_pose, camber or toe messages to convert (topics: /speed)'),
     ]
     for argv, expected in mistakes:
         assert status_of(rerun_convert.main, argv) == 2, argv
@@ -205,9 +288,9 @@ def test_every_rerun_mistake_is_one_line_and_status_2_and_writes_nothing(
     ('mcap', ['linkage_ros.tools.replay', str(EXAMPLE), '--copy'],
      'linkage-replay: reading and writing bags needs the Python package mcap, which is not '
      "installed: pip install -e '.[record]' (in a linkage_ros checkout) or pip install mcap"),
-    ('rclpy', ['linkage_ros.tools.replay', str(EXAMPLE), '--publish'],
-     'linkage-replay: --publish needs the Python package ros-jazzy-rclpy, which is not '
-     "installed: pip install -e '.[ros]'"),
+    ('rclpy', ['linkage_ros.tools.replay', 'publish', str(EXAMPLE)],
+     'linkage-replay: publishing on ROS 2 needs the Python package ros-jazzy-rclpy, which is '
+     "not installed: pip install -e '.[ros]'"),
     ('rerun', ['linkage_ros.tools.rerun_convert', str(EXAMPLE)],
      'linkage-rerun: writing .rrd files needs the Python package rerun-sdk, which is not '
      "installed: pip install -e '.[view]' (in a linkage_ros checkout) or pip install "

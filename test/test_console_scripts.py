@@ -57,6 +57,9 @@ def test_an_unknown_option_is_one_line_naming_it_with_status_2(name, tmp_path):
      '--plot: cannot write /no/such/folder/x.png: no folder /no/such/folder'),
     ('linkage-node-bench', ['--scene', 'nowhere'], 'nowhere: scene: no such file'),
     ('linkage-node-bench', ['--only', 'core,speed'], "--only: unknown section 'speed'"),
+    # it wrote nothing and said nothing: the plot is of the latency section
+    ('linkage-node-bench', ['--plot', 'x.png', '--only', 'core,sweep'],
+     '--plot draws the latency section: add latency to --only'),
     ('linkage-bench', ['--out', 'setup.py'], '--out: setup.py is a file, not a folder'),
     ('linkage-bench', ['--scenes', 'nowhere'], 'nowhere: scene: no such file'),
     ('linkage-bench', ['--entries', 'magic'], "--entries: unknown ['magic']"),

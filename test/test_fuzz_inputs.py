@@ -15,9 +15,12 @@ import tracemalloc
 
 from hypothesis import given, HealthCheck, settings, strategies as st
 from linkage_ros.core.errors import LinkageError
-from linkage_ros.core.scene import load_scene, SceneError
+from linkage_ros.core.kinematics import travel_range
+from linkage_ros.core.limits import MAX_POSITIONS, positions_needed
+from linkage_ros.core.scene import load_scene, safe_stem, SceneError
 from linkage_ros.core.vehicle import load_vehicle
-from linkage_ros.record.bag import Bag, McapRecorder, read_bag, RecordingError
+from linkage_ros.record.mcap_reader import Bag, read_bag, RecordingError
+from linkage_ros.record.mcap_writer import McapRecorder
 import pytest
 from std_msgs.msg import Float64
 import yaml
@@ -114,10 +117,18 @@ def test_any_yaml_structure_as_a_scene_or_vehicle_gives_a_result_or_a_linkage_er
         load(loader, write(folder, name, data))
 
 
+# Hostile files of issue 23 (since refused as they are read, see test_yaml_file): aliases
+# that multiply, a recursive alias, a tag that would run code, a key twice.
+HOSTILE = ['a: &a [1, 1, 1, 1, 1, 1, 1, 1, 1, 1]\n' + ''.join(
+    f'{b}: &{b} [{", ".join([f"*{a}"] * 10)}]\n' for a, b in zip('abcdefgh', 'bcdefghi'))
+    + 'name: *i\n', 'a: &a [1, *a]\nname: *a\n', 'units: !!python/object/apply:os.system [x]',
+    'units: mm\nunits: m\n']
+
+
 @FUZZ
 @given(text=st.text(max_size=60) | st.binary(max_size=60) | st.sampled_from([
     'a: 2001-13-45', 'units: [', '\x00', 'carrier: !!binary x', '- ' * 2000 + 'x',
-    '[' * 2000, 'units: mm\nside: left\ncarrier: 2001-02-30']))
+    '[' * 2000, 'units: mm\nside: left\ncarrier: 2001-02-30', *HOSTILE]))
 def test_any_text_or_bytes_as_a_scene_or_vehicle_gives_a_linkage_error(folder, text):
     for loader, name in ((load_scene, 'scene.yaml'), (load_vehicle, 'vehicle.yaml')):
         load(loader, write(folder, name, text=text))
@@ -134,10 +145,11 @@ def test_a_bundled_scene_with_one_field_broken_loads_or_names_the_field(folder, 
     written = write(folder, 'scene.yaml', broken(data, path, new, delete))
     result = load(load_scene, written)
     if isinstance(result, SceneError) and path and isinstance(path[0], str):
-        # An element names its constraint: a constraint broken may be the element's error.
+        # A constraint broken may be the error of what names it: an element, the kingpin.
         top = result.field.split('.')[0].split('[')[0]
         assert result.field == 'file' or top in (
-            path[0], 'carrier', 'constraints', 'travel', 'scene', 'elements'), (path, str(result))
+            path[0], 'carrier', 'constraints', 'travel', 'scene', 'kingpin', 'elements'), (
+                path, str(result))
 
 
 @FUZZ
@@ -151,7 +163,30 @@ def test_a_bundled_vehicle_with_one_field_broken_loads_or_names_the_field(folder
     written = write(folder, 'vehicle.yaml', broken(data, path, new, delete))
     result = load(load_vehicle, written)
     if isinstance(result, SceneError) and result.source == str(written) and len(path) > 1:
-        assert result.field.split('.')[0] in (path[0], 'file', 'corners'), (path, str(result))
+        assert result.field.split('.')[0] in (path[0], 'file', 'corners', 'axles'), (
+            path, str(result))
+
+
+@FUZZ
+@given(name=st.text() | st.sampled_from(['..', '.', '../../x', '/abs/x', '-rf', '']))
+def test_any_scene_name_gives_a_file_stem_that_stays_in_its_folder(folder, name):
+    stem = safe_stem(name)
+    assert 0 < len(stem) <= 100 and '/' not in stem and '\x00' not in stem
+    assert stem not in ('.', '..') and not stem.startswith(('-', '.'))
+    assert (folder / f'{stem}.mcap').resolve().parent == folder.resolve()
+
+
+@FUZZ
+@given(start=st.floats() | st.integers(-10**400, 10**400), stop=st.floats(),
+       step=st.floats() | st.integers(-10**400, 10**400))
+def test_any_travel_range_gives_a_bounded_count_or_a_linkage_error(start, stop, step):
+    try:
+        count = positions_needed(start, stop, step)
+    except LinkageError as exc:
+        assert exc.where == 'travel' and ('finite' in exc.problem or 'limit' in exc.problem)
+        return
+    assert 1 <= count <= MAX_POSITIONS
+    assert count == len(travel_range(float(start), stop, float(step)))
 
 
 # --- bags ----------------------------------------------------------------------------------

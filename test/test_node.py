@@ -313,7 +313,8 @@ def test_without_sinks_neither_mcap_nor_rerun_is_imported(domain_id):
         'from linkage_ros.ros.node import SuspensionNode\n'
         f'ctx = rclpy.context.Context(); rclpy.init(context=ctx, domain_id={domain_id})\n'
         'SuspensionNode(context=ctx).destroy_node(); rclpy.try_shutdown(context=ctx)\n'
-        "names = ('mcap', 'rerun', 'linkage_ros.record.bag', 'linkage_ros.record.rerun_view')\n"
+        "names = ('mcap', 'rerun', 'linkage_ros.record.mcap_writer', "
+        "'linkage_ros.record.rerun_view')\n"
         'print(sorted(n for n in names if n in sys.modules))\n')
     result = subprocess.run([sys.executable, '-c', script], capture_output=True, text=True,
                             timeout=60, env={**os.environ,

@@ -9,7 +9,8 @@ makes this fail until the picture is made again and committed.
 
 from pathlib import Path
 
-from linkage_ros.tools.plot import main
+from linkage_ros.core.scene import load_scene
+from linkage_ros.tools.plot import camber_toe_figure, main
 from matplotlib.testing.compare import compare_images
 import pytest
 
@@ -36,3 +37,38 @@ def test_a_picture_that_cannot_be_written_whole_is_one_line_and_status_2(capsys)
     assert main(['camber-toe', '/dev/full']) == 2
     assert capsys.readouterr().err == ('linkage-plot: /dev/full: cannot write (No space left '
                                        'on device)\n')
+
+
+def legend_and_title(scenes):
+    import matplotlib.pyplot as plt
+    fig = camber_toe_figure(scenes)
+    try:
+        legend = [t.get_text() for t in fig.axes[0].get_legend().get_texts()]
+        return legend, fig._suptitle.get_text()
+    finally:
+        plt.close(fig)
+
+
+def test_a_user_s_scene_is_named_in_the_title_with_no_empty_reference_entry(tmp_path):
+    # it was titled 'bundled scenes', with a legend entry for reference dots it did not have
+    text = (ROOT / 'config' / 'scenes' / 'five_link.yaml').read_text()
+    path = tmp_path / 'my_scene.yaml'
+    path.write_text(text.split('# Reference results')[0].replace('name: five_link',
+                                                                 'name: my_corner'))
+    legend, title = legend_and_title([load_scene(path)])
+    assert title == 'linkage_ros: my_corner, left wheel'
+    assert legend == ['my_corner']
+
+
+def test_the_bundled_scenes_are_titled_so_with_their_reference_entry():
+    legend, title = legend_and_title([load_scene(n) for n in ('five_link', 'double_wishbone')])
+    assert title == 'linkage_ros: bundled scenes, left wheel'
+    assert legend == ['five_link', 'double_wishbone', 'reference (refdata)']
+
+
+def test_a_scene_s_warnings_are_printed_before_the_picture(tmp_path, capsys):
+    stress = ROOT / 'config' / 'stress' / 'five_link_submillimetre.yaml'
+    assert main(['camber-toe', str(tmp_path / 'small.png'), str(stress)]) == 0
+    err = capsys.readouterr().err.splitlines()
+    assert err[0].startswith(f'linkage-plot: warning: {stress}: wheel_radius 0.033 mm')
+    assert err[1:] == [f'linkage-plot: wrote {tmp_path / "small.png"}']

@@ -22,8 +22,9 @@ from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
 from geometry_msgs.msg import PoseStamped
 from linkage_ros.core.kinematics import sweep
 from linkage_ros.core.scene import load_scene
-from linkage_ros.record.bag import (McapRecorder, message_definition, read_bag, RecordingError,
-                                    SEPARATOR, share_dirs)
+from linkage_ros.record.interfaces import message_definition, SEPARATOR, share_dirs
+from linkage_ros.record.mcap_reader import read_bag, RecordingError
+from linkage_ros.record.mcap_writer import McapRecorder
 from mcap.reader import make_reader
 from mcap.stream_reader import breakup_chunk, StreamReader
 from mcap_ros2.decoder import DecoderFactory
@@ -297,7 +298,7 @@ def test_hard_kill_loses_only_the_chunk_being_built(tmp_path):
     script = textwrap.dedent(f"""
         import os, signal, time
         from std_msgs.msg import Float64
-        from linkage_ros.record.bag import McapRecorder
+        from linkage_ros.record.mcap_writer import McapRecorder
         rec = McapRecorder({str(path)!r}, flush_period=0.1)
         for i in range(100):
             rec.record('/wheel_travel', 'std_msgs/msg/Float64', Float64(data=i), i + 1, i + 1)

@@ -13,7 +13,7 @@ import sys
 
 from conftest import connect, Probe, spin_until
 from linkage_ros.cdr import float64_of
-from linkage_ros.record.bag import McapRecorder, RecordingError
+from linkage_ros.record.mcap_writer import McapRecorder, RecordingError
 from mcap.stream_reader import StreamReader
 import pytest
 from rerun.chunk import RrdReader
@@ -162,7 +162,7 @@ def test_a_full_file_system_stops_both_recordings_loudly_and_keeps_what_they_wro
 RECORD_UNDER_A_LIMIT = """
 import resource, signal, sys, time
 from std_msgs.msg import Float64
-from linkage_ros.record.bag import McapRecorder, RecordingError
+from linkage_ros.record.mcap_writer import McapRecorder, RecordingError
 signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
 resource.setrlimit(resource.RLIMIT_FSIZE, ({limit}, {limit}))
 recorder = McapRecorder(sys.argv[1], chunk_size=10**9, flush_period=0.05)

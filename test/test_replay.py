@@ -9,11 +9,12 @@ import math
 import os
 from pathlib import Path
 import random
+import re
 import subprocess
 import sys
 import time
 
-from linkage_ros.record.bag import McapRecorder
+from linkage_ros.record.mcap_writer import McapRecorder
 from linkage_ros.ros.messages import status_values
 from linkage_ros.tools.replay import main
 from mcap.reader import make_reader
@@ -78,7 +79,7 @@ def test_example_bag_outputs_match_the_reference_data_of_the_scene():
 
 def test_replaying_the_example_bag_reproduces_its_outputs(tmp_path):
     out = tmp_path / 'again.mcap'
-    assert main([str(EXAMPLE), '-o', str(out)]) == 0
+    assert main(['solve', str(EXAMPLE), '-o', str(out)]) == 0
     recorded, replayed = decoded(EXAMPLE), decoded(out)
     assert [(t, time) for t, time, _ in replayed] == [(t, time) for t, time, _ in recorded]
     for (_, _, a), (topic, _, b) in zip(recorded, replayed):
@@ -99,7 +100,7 @@ def test_replaying_the_example_bag_reproduces_its_outputs(tmp_path):
 
 def test_each_command_is_followed_by_pose_camber_toe_at_its_receive_time(tmp_path):
     out = tmp_path / 'sweep.mcap'
-    assert main(['--sweep', '--from', '-2', '--to', '2', '--step', '1', '--hz', '10', '-o',
+    assert main(['sweep', '--from', '-2', '--to', '2', '--step', '1', '--hz', '10', '-o',
                  str(out)]) == 0
     with AnyReader([out]) as reader:
         rows = [(c.topic, t, reader.deserialize(raw, c.msgtype))
@@ -119,7 +120,7 @@ def test_each_command_is_followed_by_pose_camber_toe_at_its_receive_time(tmp_pat
 def test_diagnostics_are_reported_every_second_of_the_recorded_time(tmp_path):
     bag, out = tmp_path / 'in.mcap', tmp_path / 'out.mcap'
     write_commands(bag, [0.001 * (i % 20) for i in range(250)])    # 2.5 s at 100 Hz
-    assert main([str(bag), '-o', str(out)]) == 0
+    assert main(['solve', str(bag), '-o', str(out)]) == 0
     reports = [(t, msg) for topic, t, msg in decoded(out) if topic == '/diagnostics']
     assert [t - T0 for t, _ in reports] == [10**9, 2 * 10**9, 249 * 10**7]
     assert [status_values(m.status[0])['commands'] for _, m in reports] == ['100', '100', '50']
@@ -128,7 +129,7 @@ def test_diagnostics_are_reported_every_second_of_the_recorded_time(tmp_path):
 def test_a_command_out_of_reach_gives_an_error_diagnostic_and_no_pose(tmp_path):
     bag, out = tmp_path / 'in.mcap', tmp_path / 'out.mcap'
     write_commands(bag, [0.01, 0.5, 0.02])                 # 500 mm: beyond the bump stop
-    assert main([str(bag), '-o', str(out)]) == 0
+    assert main(['solve', str(bag), '-o', str(out)]) == 0
     messages = decoded(out)
     # At once: the ERROR of the failed command, the OK of the next (a change of level); then
     # the report after the last command.
@@ -143,14 +144,14 @@ def test_a_command_out_of_reach_gives_an_error_diagnostic_and_no_pose(tmp_path):
 
 
 def test_a_topic_of_another_type_is_refused_naming_its_type_and_the_topics(tmp_path, capsys):
-    assert main([str(EXAMPLE), '--topic', '/wheel_carrier_pose']) == 2
+    assert main(['solve', str(EXAMPLE), '--topic', '/wheel_carrier_pose']) == 2
     err = capsys.readouterr().err
     assert 'topic /wheel_carrier_pose carries geometry_msgs/msg/PoseStamped' in err
     assert '/wheel_travel (std_msgs/msg/Float64)' in err
 
 
 def test_a_missing_topic_is_refused_listing_the_topics_present(capsys):
-    assert main([str(EXAMPLE), '--topic', 'travel']) == 2
+    assert main(['solve', str(EXAMPLE), '--topic', 'travel']) == 2
     err = capsys.readouterr().err
     assert 'no topic /travel' in err and '/camber (std_msgs/msg/Float64)' in err
 
@@ -158,7 +159,7 @@ def test_a_missing_topic_is_refused_listing_the_topics_present(capsys):
 def test_another_topic_name_is_solved_and_answered_in_its_namespace(tmp_path):
     bag, out = tmp_path / 'in.mcap', tmp_path / 'out.mcap'
     write_commands(bag, [0.0, 0.01], topic='/car/front_left/bump')
-    assert main([str(bag), '--topic', '/car/front_left/bump', '-o', str(out)]) == 0
+    assert main(['solve', str(bag), '--topic', '/car/front_left/bump', '-o', str(out)]) == 0
     topics = [t for t, _, _ in decoded(out)]
     assert topics == ['/car/front_left/bump', '/car/front_left/wheel_carrier_pose',
                       '/car/front_left/camber', '/car/front_left/toe'] * 2 + ['/diagnostics']
@@ -167,7 +168,7 @@ def test_another_topic_name_is_solved_and_answered_in_its_namespace(tmp_path):
 def test_a_foreign_file_is_refused_clearly(tmp_path, capsys):
     path = tmp_path / 'run.mcap'
     path.write_bytes(b'PK\x03\x04 a zip file, not a recording')
-    assert main([str(path)]) == 2
+    assert main(['solve', str(path)]) == 2
     assert 'not an MCAP file' in capsys.readouterr().err
 
 
@@ -193,7 +194,7 @@ def test_a_truncated_bag_is_solved_up_to_the_cut_with_a_warning(tmp_path, capsys
     cut, kept = cut_bag(tmp_path)
     assert 0 < kept < 300
     out = tmp_path / 'out.mcap'
-    assert main([str(cut), '-o', str(out)]) == 1
+    assert main(['solve', str(cut), '-o', str(out)]) == 1
     assert f'bag truncated after {kept} messages' in capsys.readouterr().err
     messages = decoded(out)
     assert len(by_topic(messages, '/wheel_travel')) == kept
@@ -203,7 +204,7 @@ def test_a_truncated_bag_is_solved_up_to_the_cut_with_a_warning(tmp_path, capsys
 def test_copy_turns_a_truncated_recording_into_a_complete_one(tmp_path, capsys):
     cut, kept = cut_bag(tmp_path)
     out = tmp_path / 'recovered.mcap'
-    assert main([str(cut), '--copy', '-o', str(out)]) == 1
+    assert main(['copy', str(cut), '-o', str(out)]) == 1
     assert 'copied the' in capsys.readouterr().err
     with AnyReader([out]) as reader:       # needs the summary: the file is complete again
         values = [reader.deserialize(raw, c.msgtype).data for c, _, raw in reader.messages()]
@@ -230,8 +231,8 @@ def test_publish_republishes_the_commands_in_order_at_the_recorded_pace(tmp_path
                                  lambda msg: received.append((time.monotonic(), msg.data)), 100)
         executor = SingleThreadedExecutor(context=ctx)
         executor.add_node(node)
-        proc = subprocess.Popen([sys.executable, '-m', 'linkage_ros.tools.replay', str(bag),
-                                 '--publish', '--rate', '0.5', '--wait', '20'], env=env,
+        proc = subprocess.Popen([sys.executable, '-m', 'linkage_ros.tools.replay', 'publish',
+                                 str(bag), '--rate', '0.5', '--wait', '20'], env=env,
                                 stderr=subprocess.PIPE, text=True)
         deadline = time.monotonic() + 40
         while len(received) < len(travels) and time.monotonic() < deadline:
@@ -247,9 +248,124 @@ def test_publish_republishes_the_commands_in_order_at_the_recorded_pace(tmp_path
 
 
 def test_benchmark_prints_one_row_per_recording_mode(capsys):
-    assert main(['--sweep', '--from', '0', '--to', '3', '--benchmark']) == 0
+    assert main(['bench', '--from', '0', '--to', '3']) == 0
     lines = capsys.readouterr().out.strip().splitlines()
     assert lines[0] == 'mode,commands,us_per_command,ratio,extra_us_per_message'
     assert [line.split(',')[:2] for line in lines[1:]] == [
         ['no recording', '4'], ['McapRecorder', '4'], ['RerunRecorder', '4'], ['both', '4']]
     assert lines[1].split(',')[3] == '1.000'
+
+
+# --- the earlier spellings -----------------------------------------------------------------
+
+def without_times(messages):
+    """Return [(topic, the message's text without its stamp)]: a sweep's start is now."""
+    return [(topic, re.sub(r'stamp=Time\([^)]*\)', '', repr(msg))) for topic, _, msg in messages]
+
+
+@pytest.mark.parametrize('old, new', [
+    ([str(EXAMPLE), '-o', 'OUT'], ['solve', str(EXAMPLE), '-o', 'OUT']),
+    ([str(EXAMPLE), '--copy', '-o', 'OUT'], ['copy', str(EXAMPLE), '-o', 'OUT']),
+    (['--sweep', '--from', '0', '--to', '2', '-o', 'OUT'],
+     ['sweep', '--from', '0', '--to', '2', '-o', 'OUT']),
+])
+def test_an_earlier_spelling_does_the_same_and_names_the_new_one(tmp_path, capsys, old, new):
+    outputs = []
+    for argv in (old, new):
+        outputs.append(tmp_path / f'{len(outputs)}.mcap')
+        assert main([str(outputs[-1]) if a == 'OUT' else a for a in argv]) == 0
+    err = capsys.readouterr().err
+    written = [a if a != 'OUT' else str(outputs[0]) for a in new]
+    typed = [a if a != 'OUT' else str(outputs[0]) for a in old]
+    note = (f'linkage-replay: note: linkage-replay {" ".join(typed)} is now spelled '
+            f'linkage-replay {" ".join(written)}\n')
+    assert err.count('note:') == 1 and note in err
+    assert without_times(decoded(outputs[0])) == without_times(decoded(outputs[1]))
+
+
+def test_benchmark_in_the_earlier_spelling_prints_the_table_and_names_bench(capsys):
+    assert main(['--sweep', '--from', '0', '--to', '3', '--benchmark']) == 0
+    captured = capsys.readouterr()
+    assert captured.out.startswith('mode,commands,us_per_command,ratio,extra_us_per_message\n')
+    assert captured.err.endswith('is now spelled linkage-replay bench --from 0 --to 3\n')
+
+
+# --- the scene a recording stores ----------------------------------------------------------
+
+def write_stored(path, metadata, travels_m, topic='/wheel_travel'):
+    """Write Float64 commands at 100 Hz with metadata records, as a node's recording."""
+    from std_msgs.msg import Float64
+    with McapRecorder(path, metadata=metadata) as rec:
+        for i, value in enumerate(travels_m):
+            rec.record(topic, 'std_msgs/msg/Float64', Float64(data=value), T0 + i * 10**7,
+                       T0 + i * 10**7)
+
+
+def stored_metadata(path):
+    """{record name: {key: value}} of an MCAP's metadata records, by mcap's reader."""
+    with open(path, 'rb') as stream:
+        return {m.name: m.metadata for m in make_reader(stream).iter_metadata()}
+
+
+def test_solve_uses_the_scene_a_recording_stores_when_its_file_is_gone(
+        tmp_path, monkeypatch, capsys):
+    from linkage_ros import Continuation, load_scene
+    text = (ROOT / 'config' / 'scenes' / 'macpherson.yaml').read_text().replace(
+        'name: macpherson', 'name: my_corner', 1)
+    scene_file = tmp_path / 'a' / 'my_corner.yaml'
+    scene_file.parent.mkdir()
+    scene_file.write_text(text)
+    travels = [-0.02, 0.0, 0.03]
+    expected = [Continuation(load_scene(scene_file)).solve(t * 1000.0) for t in travels]
+    bag = tmp_path / 'a' / 'run.mcap'
+    write_stored(bag, {'linkage_ros': {'scene_yaml': text}}, travels)
+    scene_file.unlink()                                   # the path as typed is gone
+    other = tmp_path / 'b'
+    other.mkdir()
+    monkeypatch.chdir(other)
+    assert main(['solve', str(bag), '-o', 'solved.mcap']) == 0
+    assert f'the scene stored in {bag}: my_corner' in capsys.readouterr().err
+    poses = by_topic(decoded(other / 'solved.mcap'), '/wheel_carrier_pose')
+    assert [p.pose.position.z for p in poses] == pytest.approx(
+        [s.wheel_center[2] / 1000.0 for s in expected], abs=1e-12)
+    # replay's recording stores it in turn, so it can be solved again anywhere
+    assert stored_metadata(other / 'solved.mcap')['linkage_ros'] == {'scene_yaml': text}
+    assert main(['solve', 'solved.mcap', '-o', 'again.mcap']) == 0
+    assert 'the scene stored in solved.mcap: my_corner' in capsys.readouterr().err
+
+
+def test_a_sweep_stores_the_text_of_its_scene_file(tmp_path):
+    out = tmp_path / 'sweep.mcap'
+    assert main(['sweep', '--scene', 'macpherson', '--from', '0', '--to', '1', '-o',
+                 str(out)]) == 0
+    assert stored_metadata(out)['linkage_ros'] == {
+        'scene_yaml': (ROOT / 'config' / 'scenes' / 'macpherson.yaml').read_text()}
+
+
+def test_a_vehicle_recording_is_solved_with_the_corner_its_topic_names(tmp_path, capsys):
+    from linkage_ros import Continuation
+    from linkage_ros.core.vehicle import load_vehicle
+    text = (ROOT / 'config' / 'vehicles' / 'demo_vehicle.yaml').read_text()
+    bag, out = tmp_path / 'car.mcap', tmp_path / 'out.mcap'
+    write_stored(bag, {'linkage_ros': {'vehicle_yaml': text}}, [0.01, 0.02],
+                 topic='/front_right/wheel_travel')
+    assert main(['solve', str(bag), '--topic', '/front_right/wheel_travel', '-o',
+                 str(out)]) == 0
+    assert f'the scene stored in {bag}: front_right' in capsys.readouterr().err
+    corner = Continuation(load_vehicle('demo_vehicle').corners['front_right'])
+    poses = by_topic(decoded(out), '/front_right/wheel_carrier_pose')
+    for travel, pose in zip([0.01, 0.02], poses):
+        centre = corner.solve(travel * 1000.0).wheel_center / 1000.0    # m; y < 0: right
+        assert [pose.pose.position.x, pose.pose.position.y, pose.pose.position.z] == \
+            pytest.approx(centre.tolist(), abs=1e-12)
+
+
+def test_a_stored_scene_with_an_alias_is_refused_in_one_line(tmp_path, capsys):
+    bag = tmp_path / 'run.mcap'
+    write_stored(bag, {'linkage_ros': {'scene_yaml': 'a: &x [1, 2]\nname: *x\n'}}, [0.0])
+    assert main(['solve', str(bag), '-o', str(tmp_path / 'out.mcap')]) == 2
+    assert capsys.readouterr().err == (
+        f'linkage-replay: {bag} (its scene_yaml): file: not valid YAML (an alias (*) at line '
+        '2: not allowed in a stored file)\n')
+    assert main(['solve', str(bag), '--scene', 'five_link', '-o',
+                 str(tmp_path / 'out.mcap')]) == 0              # --scene takes precedence

@@ -15,8 +15,8 @@ import sys
 from linkage_ros.core.geometry import carrier_points
 from linkage_ros.core.kinematics import sweep, travel_range
 from linkage_ros.core.scene import link_polylines, load_scene
-from linkage_ros.record.rerun_view import (link_points, RerunRecorder, rotation_from_quaternion,
-                                           wheel_circle)
+from linkage_ros.record.rerun_draw import link_points, rotation_from_quaternion, wheel_circle
+from linkage_ros.record.rerun_view import RerunRecorder
 from linkage_ros.tools.rerun_convert import main
 import numpy as np
 import pytest
@@ -29,7 +29,7 @@ RERUN = Path(sys.executable).parent / 'rerun'
 SCENES = ('five_link', 'double_wishbone', 'macpherson')
 DYNAMIC = {'/suspension/carrier', '/suspension/links', '/plots/travel_mm', '/plots/camber_deg',
            '/plots/toe_deg'}
-STATIC = {'/suspension', '/suspension/base_points', '/suspension/carrier',
+STATIC = {'/suspension', '/suspension/base_points', '/suspension/labels', '/suspension/carrier',
           '/suspension/carrier/joints', '/suspension/carrier/wheel', '/suspension/links',
           '/plots/travel_mm', '/plots/camber_deg', '/plots/toe_deg'}
 
@@ -197,9 +197,9 @@ def test_a_vehicle_recording_shows_every_corner_in_one_3d_view_beside_the_plots(
         if 'ViewContents:query' in batch.schema.names:
             kind, origin, _ = views.get(path, (None, None, None))
             views[path] = (kind, origin, batch.column('ViewContents:query').to_pylist()[0])
-    assert sorted((kind, origin) for kind, origin, _ in views.values()) == [
-        ('3D', '/'), ('TimeSeries', '/plots'), ('TimeSeries', '/plots'),
-        ('TimeSeries', '/plots')]
+    assert sorted((kind, origin) for kind, origin, _ in views.values()) == [   # its front
+        ('3D', '/'), ('TimeSeries', '/plots'), ('TimeSeries', '/plots'),      # steers: travel,
+        ('TimeSeries', '/plots'), ('TimeSeries', '/plots')]                   # camber, toe, rack
     for _, _, query in views.values():     # every corner in every view
         assert len(query) == len(corners) and all(
             any(f'/{c}/' in q for q in query) for c in corners)
@@ -255,7 +255,7 @@ def test_a_truncated_bag_is_converted_up_to_the_cut_with_a_warning(tmp_path, cap
 
 
 def test_recording_and_viewing_modules_import_only_their_own_library():
-    code = ('import sys, linkage_ros.record.bag; a = "rerun" in sys.modules; '
+    code = ('import sys, linkage_ros.record.mcap_writer; a = "rerun" in sys.modules; '
             'import linkage_ros.record.rerun_view; b = "mcap" in sys.modules; print(a, b)')
     fresh = subprocess.run([sys.executable, '-c', code], capture_output=True, text=True,
                            timeout=60)

@@ -1,6 +1,7 @@
 """Scene loading: every malformed scene fails with one SceneError naming file, field, problem."""
 
 import copy
+from pathlib import Path
 
 from linkage_ros.core.scene import bundled_scenes, load_scene, mirror, SceneError
 import numpy as np
@@ -208,3 +209,138 @@ def test_mirror_flips_y_and_side():
     assert right.side == 'right'
     assert right.wheel_center == pytest.approx([0.0, -760.0, 300.0])
     assert right.constraints[0].base[:, 1] == pytest.approx(-left.constraints[0].base[:, 1])
+
+
+# --- keys the format does not know ---------------------------------------------------------
+
+@pytest.mark.parametrize('edit, field, problem', [
+    (lambda d: d.update(unit=d.pop('units')), 'unit', 'unknown key (did you mean units?)'),
+    (lambda d: d['carrier'].update(wheel_centre=d['carrier'].pop('wheel_center')),
+     'carrier.wheel_centre', 'unknown key (did you mean wheel_center?)'),
+    (lambda d: d['constraints'][1].update(cariier=d['constraints'][1].pop('carrier')),
+     'constraints[1].cariier', 'unknown key (did you mean carrier?)'),
+    (lambda d: d['travel'].update(stpe=d['travel'].pop('step')), 'travel.stpe',
+     'unknown key (did you mean step?)')])
+def test_a_misspelt_key_is_named_with_the_key_it_resembles(tmp_path, edit, field, problem):
+    # the error was "units: missing (required)", naming the key the user did give
+    err = load_broken(tmp_path, edit)
+    assert (err.field, err.problem) == (field, problem)
+
+
+def test_an_unknown_key_like_no_other_lists_the_keys_there_are(tmp_path):
+    err = load_broken(tmp_path, lambda d: d.update(zzz=1))
+    assert (err.field, err.problem) == ('zzz', 'unknown key (known: name, units, side, '
+                                        'wheel_radius, carrier, constraints, travel, elements, '
+                                        'kingpin; also allowed: description, source, notes, '
+                                        'reference, x_...)')
+
+
+def test_free_keys_are_kept_for_the_user_and_ignored_by_the_solver(tmp_path):
+    data = copy.deepcopy(VALID)
+    data.update(description='probe', source='drawing 12', notes='n', reference={'rows': []},
+                x_supplier='ACME')
+    data['carrier']['notes'] = 'measured at curb weight'
+    data['constraints'][0].update(description='upper link', x_part='A-1')
+    scene = load_scene(write(tmp_path, data))
+    assert scene.description == 'probe'
+    assert scene.extras == {'source': 'drawing 12', 'notes': 'n', 'reference': {'rows': []},
+                            'x_supplier': 'ACME'}
+
+
+def test_every_bundled_scene_uses_only_known_and_free_keys():
+    for name in bundled_scenes():
+        load_scene(name)   # a bundled scene with a key the format refuses would raise
+
+
+def test_an_axis_on_a_sphere_is_refused_not_ignored(tmp_path):
+    err = load_broken(tmp_path, lambda d: d['constraints'][0].update(axis=[[0, 0, 0]] * 2))
+    assert err.field == 'constraints[0] (upper_front).axis'
+    assert err.problem == 'not used by a sphere, which takes base'
+
+
+def test_a_name_that_is_not_text_is_refused(tmp_path):
+    err = load_broken(tmp_path, lambda d: d.update(name=[['lol'] * 3] * 3))
+    assert (err.field, err.problem) == ('name', 'expected text, got list')
+
+
+# --- implausible sizes: a warning, not a refusal -------------------------------------------
+
+def test_a_scene_in_mm_labelled_m_loads_with_one_warning_that_says_why(tmp_path):
+    # five_link's numbers (mm) labelled m: a corner 1520 km wide with a 330 m tyre
+    data = dict(copy.deepcopy(VALID), units='m', wheel_radius=330)
+    path = write(tmp_path, data)
+    scene = load_scene(path)
+    assert scene.wheel_center[1] == 760_000.0
+    assert scene.warnings == (
+        f'{path}: wheel_radius 330000 mm and half-track 760000 mm (|y| of the wheel centre) '
+        'are outside 50-3000 mm, implausible for a road vehicle: a file written in mm but '
+        'labelled units: m? (solved as given)',)
+    assert mirror(scene).warnings == scene.warnings
+
+
+def test_a_scene_in_m_labelled_mm_is_warned_of_too(tmp_path):
+    data = copy.deepcopy(VALID)
+    data['carrier'] = {'wheel_center': [0.0, 0.76, 0.3], 'spin_axis_point': [0.0, 0.66, 0.3]}
+    for c in data['constraints']:
+        c['base'] = [v / 1000 for v in c['base']]
+        c['carrier'] = [v / 1000 for v in c['carrier']]
+    data['travel'] = {'min': -0.08, 'max': 0.08, 'step': 0.001}
+    scene = load_scene(write(tmp_path, data))
+    assert len(scene.warnings) == 1
+    assert 'half-track 0.76 mm (|y| of the wheel centre) is outside 50-3000 mm' \
+        in scene.warnings[0]
+    assert scene.warnings[0].endswith('a file written in m but labelled units: mm? (solved as '
+                                      'given)')
+
+
+def test_bundled_scenes_are_of_a_plausible_size_and_stress_scenes_warn_but_load():
+    assert [s for s in bundled_scenes() if load_scene(s).warnings] == []
+    stress = Path(__file__).resolve().parent.parent / 'config' / 'stress'
+    huge = load_scene(stress / 'five_link_kilometres.yaml')
+    tiny = load_scene(stress / 'five_link_submillimetre.yaml')
+    assert 'wheel_radius 3.3e+06 mm and half-track 7.6e+06 mm' in huge.warnings[0]
+    assert 'half-track 0.076 mm' in tiny.warnings[0]
+
+
+# --- travel blocks that no sweep could hold ------------------------------------------------
+
+def test_a_travel_step_too_small_to_sweep_is_refused_with_what_it_would_need(tmp_path):
+    err = load_broken(tmp_path, lambda d: d['travel'].update(step=1e-300))
+    assert err.field == 'travel.step'
+    assert err.problem == ('1.6e+302 positions (from -80 to 80 mm at steps of 1e-300 mm) '
+                           'would need about 1.49e+296 GiB; the limit is 1,000,000 positions '
+                           '(a larger step, or a shorter range)')
+
+
+# --- names and paths -----------------------------------------------------------------------
+
+def test_a_bare_name_is_the_bundled_scene_whatever_the_current_folder_holds(
+        tmp_path, monkeypatch):
+    # a suffix-less file five_link here once replaced the bundled scene silently
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / 'five_link').write_text(yaml.safe_dump(dict(VALID, name='impostor')))
+    assert load_scene('five_link').name == 'five_link'
+    assert load_scene('./five_link').name == 'impostor'
+
+
+def test_a_bare_name_of_a_file_here_that_is_not_bundled_says_how_to_give_the_path(
+        tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / 'mine').write_text(yaml.safe_dump(VALID))
+    with pytest.raises(SceneError, match=r'^mine: scene: not a bundled scene \(bundled: .*\); '
+                       r'a bare name means a bundled scene: for the file mine in this folder, '
+                       r'give \./mine$'):
+        load_scene('mine')
+    assert load_scene('./mine').name == 'probe'
+
+
+@pytest.mark.parametrize('name, stem', [
+    ('five_link', 'five_link'), ('../escaped', 'escaped'), ('/etc/passwd', 'etc_passwd'),
+    ('a/../../b', 'a_.._.._b'), ('-rf', 'rf'), ('..', 'scene'), ('', 'scene'),
+    ('Kurvenfahrt ÄÖÜ', 'Kurvenfahrt'), ('x' * 300, 'x' * 100)])
+def test_a_scene_name_gives_a_file_stem_that_stays_in_its_folder(tmp_path, name, stem):
+    data = dict(copy.deepcopy(VALID), name=name)
+    scene = load_scene(write(tmp_path, data))
+    assert scene.file_stem == stem
+    out = tmp_path / f'{scene.file_stem}_sweep.mcap'
+    assert out.resolve().parent == tmp_path.resolve()

@@ -11,7 +11,7 @@ import subprocess
 import sys
 
 from builtin_interfaces.msg import Time
-from linkage_ros.record.bag import McapRecorder
+from linkage_ros.record.mcap_writer import McapRecorder
 from linkage_ros.ros.messages import status_values
 from linkage_ros.ros.node import SuspensionNode
 from linkage_ros.ros.testing import Probe, spin_until, stamp_ns

@@ -125,3 +125,76 @@ def test_alignment_option_adds_its_columns(capsys):
     _, rows, _, _ = run(capsys, 'double_wishbone', '--step', '80', '--alignment')
     assert float(rows[1]['kingpin_inclination_deg']) == pytest.approx(10.66, abs=0.05)
     assert float(rows[1]['scrub_radius_mm']) > 0
+
+
+def test_a_negative_grid_after_a_space_is_read_as_the_grid(capsys):
+    # argparse took -20:20:10 for an option: "expected one argument"
+    code, rows, _, _ = run(capsys, 'double_wishbone', '--step', '80', '--grid', '-20:20:10')
+    assert code == 0
+    assert sorted({float(r['rack_mm']) for r in rows}) == [-20.0, -10.0, 0.0, 10.0, 20.0]
+
+
+def test_negative_travels_in_any_float_spelling_are_read(capsys):
+    code, rows, _, _ = run(capsys, 'five_link', '--from', '-4e1', '--to', '-.5e1', '--step',
+                           '35')
+    assert code == 0 and [float(r['travel_mm']) for r in rows] == [-40.0, -5.0]
+
+
+@pytest.mark.parametrize('value, said', [
+    ('-80mm', "'-80mm': give millimetres as a plain number, without a unit (e.g. -80)"),
+    ('-0.08m', "'-0.08m': give millimetres as a plain number, without a unit"),
+    ('eighty', "expected a number of millimetres, got 'eighty'")])
+def test_a_travel_with_a_unit_is_one_line_saying_to_give_a_plain_number(capsys, value, said):
+    with pytest.raises(SystemExit) as exited:
+        main(['five_link', '--from', value])
+    err = capsys.readouterr().err
+    assert exited.value.code == 2
+    assert err == f'linkage-sweep: error: argument --from: {said} (see linkage-sweep --help)\n'
+
+
+def test_one_position_is_said_in_the_singular(capsys):
+    code, rows, _, err = run(capsys, 'five_link', '--from', '10', '--to', '10')
+    assert code == 0 and len(rows) == 1
+    assert err.splitlines()[0] == 'linkage-sweep: five_link: 1 position from 10 to 10 mm, ' \
+        'method fast'
+
+
+@pytest.mark.parametrize('option, said', [
+    (['--step', '1e-300'], '--from, --to, --step: 1.6e+302 positions (from -80 to 80 mm at '
+     'steps of 1e-300 mm) would need about 1.49e+296 GiB'),
+    (['--from', '0', '--to', '100', '--step', '1e-9'], '--from, --to, --step: 1e+11 positions '
+     '(from 0 to 100 mm at steps of 1e-09 mm) would need about 9.31e+04 GiB'),
+    (['--step', '5e-324'], '--from, --to, --step: more than 1e308 positions (from -80 to 80 '
+     'mm at steps of 4.94066e-324 mm) would need more memory than there is'),
+    (['--step', '80', '--grid=-20:20:1e-4'], '--grid: 1.2e+06 positions (3 travels x 400001 '
+     'racks) would need about 1.12 GiB'),
+    (['--step', '80', '--grid=0:1:1e-300'], '--grid: 1e+300 positions (from 0 to 1 mm at steps '
+     'of 1e-300 mm) would need about 9.31e+293 GiB')])
+def test_a_request_beyond_a_million_positions_is_one_line_saying_what_it_needs(
+        capsys, option, said):
+    # each was a traceback (a MemoryError or numpy's "Maximum allowed size exceeded")
+    code, _, out, err = run(capsys, 'double_wishbone', *option)
+    assert (code, out) == (2, '')
+    assert err == f'linkage-sweep: {said}; the limit is 1,000,000 positions (a larger step, ' \
+        'or a shorter range)\n'
+
+
+def test_a_scene_whose_travel_step_no_sweep_could_hold_is_one_line(tmp_path, capsys):
+    scene = (Path(__file__).parent.parent / 'config' / 'scenes' / 'five_link.yaml').read_text()
+    path = tmp_path / 'fine.yaml'
+    path.write_text(scene.replace('step: 1}', 'step: 1e-300}'))
+    code, _, out, err = run(capsys, str(path))
+    assert (code, out) == (2, '')
+    assert err.startswith(f'linkage-sweep: {path}: travel.step: 1.6e+302 positions ')
+    assert err.count('\n') == 1
+
+
+def test_a_scene_s_warnings_are_printed_once_before_it_is_solved(capsys):
+    stress = Path(__file__).parent.parent / 'config' / 'stress' / 'five_link_kilometres.yaml'
+    code, rows, _, err = run(capsys, str(stress), '--from', '0', '--to', '0')
+    assert code == 0 and len(rows) == 1
+    assert err.splitlines()[0] == (
+        f'linkage-sweep: warning: {stress}: wheel_radius 3.3e+06 mm and half-track 7.6e+06 mm '
+        '(|y| of the wheel centre) are outside 50-3000 mm, implausible for a road vehicle: a '
+        'file written in mm but labelled units: m? (solved as given)')
+    assert err.count('warning') == 1

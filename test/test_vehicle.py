@@ -77,7 +77,8 @@ def test_a_corner_scene_that_names_no_scene_file_names_the_vehicle_field(tmp_pat
 
 @pytest.mark.parametrize('name', ['', 'demo_vehicl', 'config'])
 def test_a_vehicle_that_is_no_file_and_not_bundled_lists_the_bundled_ones(name):
-    with pytest.raises(SceneError, match=r"^'.*': vehicle: .* not a bundled vehicle "
+    # '' is said to be empty, as an empty scene name is
+    with pytest.raises(SceneError, match=r"^'.*': vehicle: (.* not a bundled vehicle|empty: .*) "
                        r'\(bundled: demo_vehicle\)$'):
         load_vehicle(name)
 
@@ -88,3 +89,53 @@ def test_a_corner_scene_path_is_read_from_the_vehicle_folder(tmp_path):
     path = tmp_path / 'car.yaml'
     path.write_text('corners:\n  rear_left: {scene: mine.yaml}\n')
     assert load_vehicle(path).corners['rear_left'].source == str(tmp_path / 'mine.yaml')
+
+
+def test_a_misspelt_corner_key_is_named_with_the_key_it_resembles(tmp_path):
+    # mirorr: true was ignored, and the right-hand corner silently was a left one
+    path = tmp_path / 'car.yaml'
+    path.write_text('corners:\n  rear_right: {scene: five_link, mirorr: true}\n')
+    with pytest.raises(SceneError) as raised:
+        load_vehicle(path)
+    assert (raised.value.field, raised.value.problem) == (
+        'corners.rear_right.mirorr', 'unknown key (did you mean mirror?)')
+
+
+def test_a_misspelt_top_level_key_is_named_before_corners_is_said_missing(tmp_path):
+    path = tmp_path / 'car.yaml'
+    path.write_text('corner:\n  rear_left: {scene: five_link}\n')
+    with pytest.raises(SceneError) as raised:
+        load_vehicle(path)
+    assert (raised.value.field, raised.value.problem) == (
+        'corner', 'unknown key (did you mean corners?)')
+
+
+def test_axle_and_free_keys_are_kept_in_extras_for_their_readers(tmp_path):
+    # wheelbase, cg_height and axles are core.axle's; description, source, notes, x_... the user's
+    path = tmp_path / 'car.yaml'
+    path.write_text('wheelbase: 2800\ncg_height: 550\naxles: {front: [front_left]}\n'
+                    'description: test car\nx_owner: me\n'
+                    'corners:\n  rear_left: {scene: five_link}\n')
+    assert load_vehicle(path).extras == {
+        'wheelbase': 2800, 'cg_height': 550, 'axles': {'front': ['front_left']},
+        'description': 'test car', 'x_owner': 'me'}
+
+
+def test_a_vehicle_carries_its_corners_scene_warnings_once(tmp_path):
+    stress = Path(__file__).parent.parent / 'config' / 'stress' / 'five_link_kilometres.yaml'
+    path = tmp_path / 'car.yaml'
+    path.write_text(f'corners:\n  rear_left: {{scene: {stress}}}\n'
+                    f'  rear_right: {{scene: {stress}, mirror: true}}\n'
+                    '  front_left: {scene: five_link}\n')
+    vehicle = load_vehicle(path)
+    assert vehicle.warnings == vehicle.corners['rear_left'].warnings
+    assert len(vehicle.warnings) == 1 and 'implausible for a road vehicle' in vehicle.warnings[0]
+
+
+def test_a_bare_name_is_the_bundled_vehicle_whatever_the_current_folder_holds(
+        tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / 'demo_vehicle').write_text('corners:\n  rear_left: {scene: five_link}\n')
+    assert list(load_vehicle('demo_vehicle').corners) == [
+        'front_left', 'front_right', 'rear_left', 'rear_right']
+    assert list(load_vehicle('./demo_vehicle').corners) == ['rear_left']

@@ -32,7 +32,6 @@ import io
 import os
 from pathlib import Path
 import signal
-import struct
 import subprocess
 import sys
 import tempfile
@@ -46,7 +45,7 @@ from rclpy.node import Node
 from sensor_msgs.msg import JointState
 from std_msgs.msg import Float64
 
-from ..cdr import float64_cdr
+from ..cdr import float64_cdr, joint_state_cdr
 from ..cli import EXIT_STATUS, Parser, program, writable_file
 from ..core.errors import LinkageError
 from ..core.scene import config_dir, load_scene
@@ -253,23 +252,8 @@ class Target:
 
 
 def joint_state_layout(names):
-    """
-    Return a function travel (m) -> CDR of a sensor_msgs/JointState (zero stamp).
-
-    The message gives every joint of names that position; the positions' place is found in,
-    and checked against, rclpy's own serialization.
-    """
-    from rclpy.serialization import deserialize_message, serialize_message
-    marker = struct.pack(f'<{len(names)}d', *range(1, len(names) + 1))
-    template = serialize_message(JointState(name=names, position=list(range(1, len(names) + 1))))
-    start, end = template.index(marker), template.index(marker) + len(marker)
-
-    def layout(travel):
-        return template[:start] + struct.pack(f'<{len(names)}d', *[float(travel)] * len(
-            names)) + template[end:]
-    back = deserialize_message(layout(0.125), JointState)
-    assert list(back.name) == names and list(back.position) == [0.125] * len(names)
-    return layout
+    """Return a function travel (m) -> CDR of a sensor_msgs/JointState (zero stamp)."""
+    return lambda travel: joint_state_cdr((0, 0), '', names, [float(travel)] * len(names))
 
 
 def start_process(command, domain_id, log_dir, env=None):
@@ -599,6 +583,8 @@ def parse_args(argv):
     unknown = [s for s in args.only if s not in SECTIONS]
     if unknown:
         parser.error(f'--only: unknown section {unknown[0]!r} (sections: {", ".join(SECTIONS)})')
+    if args.plot and 'latency' not in args.only:   # the plot is of the latency section
+        parser.error('--plot draws the latency section: add latency to --only')
     if args.scale < 1 or args.duration <= 0 or args.latency_rate <= 0 or not args.rates:
         parser.error('--scale >= 1, --duration > 0, --latency-rate > 0 and --rates are required')
     return args, ros_args

@@ -495,6 +495,21 @@ def residual_many(eqs, centers, rotations, racks, out):
 
 
 @jit
+def slope_many(jac, out):
+    """
+    Write d(free unknowns)/d(travel) of n solved poses into out (n, 5): J_free x = -J_travel.
+
+    jac (n, 5, 6): the Jacobians there (the implicit function theorem; NaN where singular).
+    """
+    rhs = np.empty(5)
+    for n in range(jac.shape[0]):
+        for i in range(5):
+            rhs[i] = -jac[n, i, 2]
+        if not solve_free(jac[n], rhs, out[n]):
+            out[n, :] = np.nan
+
+
+@jit
 def exp_so3_many(omegas, out):
     """Write the rotation matrices of n rotation vectors omegas (n, 3) into out (n, 3, 3)."""
     for n in range(omegas.shape[0]):

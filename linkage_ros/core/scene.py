@@ -3,7 +3,10 @@ Scene files: design-position hardpoints of one suspension corner, loaded and val
 
 A scene is YAML with declared units (mm or m) and ISO 8855 axes (x forward, y left, z up).
 Everything is converted to millimetres on load; the rest of the package works in mm.
-A malformed scene raises SceneError naming the file, the field and the problem.
+A malformed scene raises SceneError naming the file, the field and the problem; a key the
+format does not know is one (with the closest known key suggested). A scene that loads but
+looks wrong (the size of a road vehicle's wheel missed by far: a unit slip?) carries
+warnings, one line each, for the programs to print: the core prints nothing.
 """
 
 from __future__ import annotations
@@ -11,13 +14,19 @@ from __future__ import annotations
 from dataclasses import dataclass, field, replace
 import math
 from pathlib import Path
+import re
 from typing import Any, TYPE_CHECKING
 
 import numpy as np
-import yaml
 
+# bundled_scenes, config_dir and scene_dir are also read from here, where they were.
+from .bundled import bundled_scenes, config_dir, resolve, scene_dir  # noqa: F401
 from .errors import LinkageError
+from .fields import Fields, FREE_KEYS
 from .geometry import perpendicular, unit
+# LENGTH_LIMIT_MM, SceneError and within_length_limit are also read from here, where they were.
+from .limits import LENGTH_LIMIT_MM, positions_needed, within_length_limit  # noqa: F401
+from .yaml_file import read_yaml, SceneError  # noqa: F401 (SceneError: kept here)
 
 if TYPE_CHECKING:
     from collections.abc import Sequence
@@ -31,19 +40,22 @@ SIDES = ('left', 'right')
 # Relative size (to the scene's largest dimension) below which two points are "coincident"
 # and a triangle or arm is "too thin" to define a frame.
 THIN = 1e-6
-# Lengths beyond this (1e6 km) are typos: their squares, which the solver forms, lose every
-# digit of a suspension's millimetres, and near 1e154 mm they overflow.
-LENGTH_LIMIT_MM = 1e12
+# Wheel radius and half-track (|y| of the wheel centre) of a road vehicle, mm: a scene
+# outside is solved as given, with a warning (mechanisms of other sizes are legitimate).
+PLAUSIBLE_MM = (50.0, 3000.0)
 
-SOURCE_CONFIG = Path(__file__).resolve().parents[2] / 'config'   # in a source checkout
-
-
-class SceneError(LinkageError):
-    """A scene or vehicle file is malformed; the message names the file, field and problem."""
-
-    def __init__(self, source: str | PathLike, field_name: str, problem: str) -> None:
-        super().__init__(f'{source}: {field_name}', problem)
-        self.source, self.field = str(source), field_name
+# The keys of a scene file, of its blocks, and of a constraint (base for a sphere or a line,
+# axis for a circle); FREE_KEYS (description, source, notes) and x_... keys are allowed in
+# every mapping, reference at the top.
+SCENE_KEYS = ('name', 'units', 'side', 'wheel_radius', 'carrier', 'constraints', 'travel',
+              'elements')
+# Keys of features beyond the solver, checked by their own modules and kept in Scene.extras.
+FEATURE_KEYS = ('kingpin',)
+SCENE_FREE_KEYS = FREE_KEYS + ('reference',)
+CARRIER_KEYS = ('wheel_center', 'spin_axis_point', 'static', 'third_point')
+STATIC_KEYS = ('camber', 'toe')
+TRAVEL_KEYS = ('min', 'max', 'step')
+ALL_CONSTRAINT_KEYS = ('name', 'type', 'base', 'axis', 'carrier', 'steer')
 
 
 @dataclass(frozen=True)
@@ -85,6 +97,9 @@ class Scene:
     wheel_radius: float = 0.0     # mm; 0 = not given
     description: str = ''
     extras: dict = field(default_factory=dict, compare=False)
+    # One line each, naming the file: what looks wrong in a scene that loads (see
+    # scene_warnings). The programs print them once on stderr; the node logs them.
+    warnings: tuple[str, ...] = field(default=(), compare=False)
     elements: tuple = ()          # springs, dampers, lengths (elements.Element), mm
 
     @property
@@ -113,6 +128,23 @@ class Scene:
         """Convert a length (or an array of them) from the scene's units to mm."""
         return value * UNITS_TO_MM[self.units]
 
+    @property
+    def file_stem(self) -> str:
+        """Return the scene's name made safe as a file name's stem in any folder (safe_stem)."""
+        return safe_stem(self.name)
+
+
+def safe_stem(name: str) -> str:
+    """
+    Return name as a file-name stem that stays in the folder it is written to.
+
+    Anything but letters, digits, '_', '.', '-' becomes '_' (so no '/' is left), and leading
+    and trailing '.', '_', '-' go (no '..', no hidden file, no option): '../escaped' ->
+    'escaped', '/tmp/x' -> 'tmp_x'. At most 100 characters; 'scene' if nothing is left.
+    """
+    stem = re.sub(r'[^A-Za-z0-9_.-]+', '_', str(name)).strip('._-')
+    return stem[:100].rstrip('._-') or 'scene'
+
 
 def link_polylines(scene: Scene, joints: ArrayLike) -> list[np.ndarray]:
     """
@@ -132,77 +164,35 @@ def link_polylines(scene: Scene, joints: ArrayLike) -> list[np.ndarray]:
     return lines
 
 
-def bundled_scenes() -> list[str]:
-    """Return the names of the scenes shipped in config/scenes."""
-    return sorted(p.stem for p in scene_dir().glob('*.yaml'))
-
-
-def config_dir() -> Path:
-    """Return the package's config/ folder: the source tree's, or the installed share/ one."""
-    if SOURCE_CONFIG.is_dir():
-        return SOURCE_CONFIG
-    try:
-        from ament_index_python.packages import get_package_share_directory
-        return Path(get_package_share_directory('linkage_ros')) / 'config'
-    except Exception:  # not in an ament install: fall back to sys.prefix/share
-        import sys
-        return Path(sys.prefix) / 'share' / 'linkage_ros' / 'config'
-
-
-def scene_dir() -> Path:
-    """Return the folder of the bundled scenes."""
-    return config_dir() / 'scenes'
-
-
 def resolve_scene_path(name_or_path: str | PathLike) -> Path:
     """Resolve a bundled scene name ('five_link') or a path to a YAML file; else SceneError."""
-    bundled = f'bundled: {", ".join(bundled_scenes())}'
-    if not str(name_or_path).strip():   # Path('') would be the current folder
-        raise SceneError(repr(str(name_or_path)), 'scene', 'empty: give a bundled scene name '
-                         f'or the path of a scene YAML file ({bundled})')
-    path = Path(name_or_path)
-    if path.suffix in ('.yaml', '.yml') or path.is_file():
-        return path
-    candidate = scene_dir() / f'{name_or_path}.yaml'
-    if candidate.exists():
-        return candidate
-    if path.is_dir():
-        raise SceneError(name_or_path, 'scene', f'a folder, not a scene file ({bundled})')
-    raise SceneError(name_or_path, 'scene', f'no such file, and not a bundled scene ({bundled})')
+    return resolve(name_or_path, 'scene')
 
 
 def load_scene(name_or_path: str | PathLike) -> Scene:
     """Load and validate a scene file; returns a Scene in mm. Raises SceneError."""
     path = resolve_scene_path(name_or_path)
-    try:
-        text = path.read_text()
-    except OSError as exc:
-        raise SceneError(path, 'file', f'cannot read ({exc.strerror or exc})') from None
-    except UnicodeDecodeError as exc:
-        raise SceneError(path, 'file', f'not UTF-8 text ({exc})') from None
-    try:
-        data = yaml.safe_load(text)
-    except (yaml.YAMLError, ValueError, RecursionError) as exc:   # ValueError: 2001-13-45
-        raise SceneError(path, 'file', f'not valid YAML ({exc})') from None
-    return parse_scene(data, source=str(path))
+    return parse_scene(read_yaml(path, 'scene'), source=str(path))
 
 
 def parse_scene(data: Any, source: str = '<scene>') -> Scene:
     """Validate a scene mapping (as read from YAML) and return a Scene in mm."""
-    check = _Checker(source)
+    check = Fields(source)
     if not isinstance(data, dict):
         check.fail('file', 'expected a mapping of scene keys')
+    check.keys(data, SCENE_KEYS + FEATURE_KEYS, free=SCENE_FREE_KEYS)
     units = check.choice(data, 'units', tuple(UNITS_TO_MM))
     side = check.choice(data, 'side', SIDES)
     scale = check.scale = UNITS_TO_MM[units]
     carrier = check.mapping(data, 'carrier')
+    check.keys(carrier, CARRIER_KEYS, 'carrier')
     wheel_center = check.point(carrier, 'wheel_center', 'carrier.wheel_center') * scale
-    spin_point = check.point(carrier, 'spin_axis_point', 'carrier.spin_axis_point') * scale
+    constraints = tuple(_parse_constraint(check, item, i, scale)
+                        for i, item in enumerate(check.sequence(data, 'constraints')))
+    spin_point = _spin_axis_point(check, carrier, wheel_center, side, constraints)
     given_p = None
     if carrier.get('third_point') is not None:
         given_p = check.point(carrier, 'third_point', 'carrier.third_point') * scale
-    constraints = tuple(_parse_constraint(check, item, i, scale)
-                        for i, item in enumerate(check.sequence(data, 'constraints')))
     travel = _parse_travel(check, data.get('travel'), scale)
     radius = check.number(data, 'wheel_radius', 'wheel_radius', default=0.0, minimum=0.0) * scale
     scene_size = _size([wheel_center, spin_point] + [c.carrier for c in constraints]
@@ -213,17 +203,87 @@ def parse_scene(data: Any, source: str = '<scene>') -> Scene:
     _check_third_point(check, wheel_center, spin_point, third_point, constraints,
                        'carrier.third_point' if given_p is not None else 'carrier',
                        given_p is not None, scene_size)
+    if data.get('kingpin') is not None:   # a misspelt joint fails on load, not in a sweep
+        from .kingpin import check_kingpin
+        check_kingpin(source, data['kingpin'], constraints)
     from .elements import parse_elements   # here: elements.py reads SceneError from here
-    return Scene(name=str(data.get('name') or Path(source).stem), source=source, side=side,
-                 units=units, wheel_center=wheel_center, spin_axis_point=spin_point,
-                 third_point=third_point, constraints=constraints, travel=travel,
-                 wheel_radius=radius, description=str(data.get('description', '')).strip(),
-                 extras={k: v for k, v in data.items() if k not in _KNOWN_KEYS},
-                 elements=parse_elements(check, data.get('elements'), constraints))
+    scene = Scene(name=check.text(data, 'name') or Path(source).stem, source=source,
+                  side=side, units=units, wheel_center=wheel_center, spin_axis_point=spin_point,
+                  third_point=third_point, constraints=constraints, travel=travel,
+                  wheel_radius=radius, description=check.text(data, 'description').strip(),
+                  extras={k: v for k, v in data.items()
+                          if k not in SCENE_KEYS and k != 'description'},
+                  elements=parse_elements(check, data.get('elements'), constraints))
+    return replace(scene, warnings=scene_warnings(scene))
 
 
-_KNOWN_KEYS = {'name', 'units', 'side', 'carrier', 'constraints', 'travel', 'wheel_radius',
-               'description', 'elements'}
+def scene_warnings(scene: Scene) -> tuple[str, ...]:
+    """
+    Return what looks wrong in a scene that loads, one line each, naming its file.
+
+    A size no road vehicle has: a wheel radius or a half-track (|y| of the wheel centre)
+    outside PLAUSIBLE_MM, as a scene written in mm but labelled units: m gives (a corner
+    768 km wide). The scene is solved as given: mechanisms of other sizes are legitimate.
+    """
+    low, high = PLAUSIBLE_MM
+    sizes = [(f'wheel_radius {scene.wheel_radius:.6g} mm', scene.wheel_radius)] \
+        if scene.wheel_radius else []
+    sizes.append((f'half-track {abs(scene.wheel_center[1]):.6g} mm (|y| of the wheel centre)',
+                  abs(scene.wheel_center[1])))
+    odd = [(said, size) for said, size in sizes if not low <= size <= high]
+    if not odd:
+        return singular_design_warnings(scene)
+    guess = ''
+    if scene.units == 'm' and all(size > high for _, size in odd):
+        guess = ': a file written in mm but labelled units: m?'
+    elif scene.units == 'mm' and all(size < low for _, size in odd):
+        guess = ': a file written in m but labelled units: mm?'
+    verb = 'is' if len(odd) == 1 else 'are'
+    return (f'{scene.source}: {" and ".join(said for said, _ in odd)} {verb} outside '
+            f'{low:g}-{high:g} mm, implausible for a road vehicle{guess} (solved as given)',
+            ) + singular_design_warnings(scene)
+
+
+def singular_design_warnings(scene: Scene) -> tuple[str, ...]:
+    """
+    Return a warning if the design position itself is singular (none yet).
+
+    Issue 23 item 2: the integrator wires here the core's condition number of the design
+    position, and warns when it is beyond the scene's tolerance.
+    """
+    return ()
+
+
+def _spin_axis_point(check, carrier, wheel_center, side, constraints):
+    """
+    Return N (mm): carrier.spin_axis_point, or derived from carrier.static {camber, toe}.
+
+    Static camber and toe (deg; camber + = top outboard, toe + = toe-in, on either side) give
+    the outboard spin axis a = (cos c sin t, s cos c cos t, -sin c), s = +1 left, -1 right:
+    the inverse of geometry.camber_toe. N is placed inboard on it, as far from M as the
+    carrier's joints are on average (a distance of the scene's own size).
+    """
+    if 'static' not in carrier:
+        return check.point(carrier, 'spin_axis_point', 'carrier.spin_axis_point') * check.scale
+    if 'spin_axis_point' in carrier:
+        check.fail('carrier.static', 'give spin_axis_point or static, not both (static '
+                   'derives the spin axis from the camber and toe)')
+    block = check.mapping(carrier, 'static', 'carrier.static')
+    check.keys(block, STATIC_KEYS, 'carrier.static')
+    angles = []
+    for key in STATIC_KEYS:
+        value = check.number(block, key, f'carrier.static.{key}', length=False)
+        if not abs(value) < 90.0:
+            check.fail(f'carrier.static.{key}', f'{value:g} deg: must be between -90 and 90 '
+                       'deg, or the spin axis does not point outboard')
+        angles.append(math.radians(value))
+    camber, toe = angles
+    sign = 1.0 if side == 'left' else -1.0
+    axis = np.array([math.cos(camber) * math.sin(toe), sign * math.cos(camber) * math.cos(toe),
+                     -math.sin(camber)])
+    reach = [np.linalg.norm(c.carrier - wheel_center) for c in constraints]
+    distance = float(np.mean(reach)) if reach and np.mean(reach) > 0 else 100.0
+    return wheel_center - distance * axis
 
 
 def choose_third_point(wheel_center: np.ndarray, spin_point: np.ndarray,
@@ -251,9 +311,14 @@ def _parse_constraint(check, item, index, scale):
     where = f'constraints[{index}]'
     if not isinstance(item, dict):
         check.fail(where, 'expected a mapping with name, type, base or axis, carrier')
-    name = item.get('name')
+    check.keys(item, ALL_CONSTRAINT_KEYS, where)
+    name = check.text(item, 'name', where=f'{where}.name')
     where = f'constraints[{index}] ({name})' if name else where
     kind = check.choice(item, 'type', tuple(EQUATIONS_PER_TYPE), f'{where}.type')
+    other = 'base' if kind == 'circle' else 'axis'
+    if other in item:
+        check.fail(f'{where}.{other}', f'not used by a {kind}, which takes '
+                   + ('axis: two points on the revolute axis' if kind == 'circle' else 'base'))
     if kind == 'circle':
         axis = item.get('axis')
         if not isinstance(axis, (list, tuple)) or len(axis) != 2:
@@ -266,7 +331,7 @@ def _parse_constraint(check, item, index, scale):
     steer = item.get('steer', '')
     if steer not in ('', None, 'rack'):
         check.fail(f'{where}.steer', f"unknown value {steer!r} (expected 'rack')")
-    return Constraint(name=str(name or f'{kind}_{index}'), type=kind, base=base * scale,
+    return Constraint(name=name or f'{kind}_{index}', type=kind, base=base * scale,
                       carrier=carrier * scale, steer=steer or '')
 
 
@@ -275,6 +340,7 @@ def _parse_travel(check, block, scale):
         return (-80.0, 80.0, 1.0)
     if not isinstance(block, dict):
         check.fail('travel', 'expected a mapping {min, max, step}')
+    check.keys(block, TRAVEL_KEYS, 'travel')
     low = check.number(block, 'min', 'travel.min') * scale
     high = check.number(block, 'max', 'travel.max') * scale
     step = check.number(block, 'step', 'travel.step', minimum=0.0) * scale
@@ -282,6 +348,10 @@ def _parse_travel(check, block, scale):
         check.fail('travel.step', f'must be positive, got {step / scale:g}')
     if high < low:
         check.fail('travel', f'max ({high / scale:g}) is below min ({low / scale:g})')
+    try:
+        positions_needed(low, high, step)
+    except LinkageError as exc:   # a step so small that the sweep could not be held
+        check.fail('travel.step', exc.problem)
     return (low, high, step)
 
 
@@ -330,96 +400,8 @@ def _check_third_point(check, wheel_center, spin_point, third_point, constraints
             check.fail(where, problem + hint)
 
 
-def _finite(value):
-    """Tell whether a number is finite (an integer beyond the float range is not)."""
-    try:
-        return math.isfinite(value)
-    except OverflowError:
-        return False
-
-
-def within_length_limit(value: float, scale: float) -> bool:
-    """Tell whether value (scene units, scale mm each) is a length within LENGTH_LIMIT_MM."""
-    try:
-        return abs(value) * scale <= LENGTH_LIMIT_MM   # False for NaN
-    except OverflowError:                              # an integer beyond the float range
-        return False
-
-
 def _size(points):
     return float(max(np.max(np.abs(p)) for p in points))
-
-
-class _Checker:
-    """Field readers that raise SceneError with the file and field named."""
-
-    def __init__(self, source):
-        self.source = source
-        self.scale = 1.0   # mm per scene unit, once units is read
-
-    def length(self, value, where, what):
-        """Refuse a finite number whose length in mm is beyond LENGTH_LIMIT_MM."""
-        if not within_length_limit(value, self.scale):
-            self.fail(where, f'{what} {value!r} is beyond {LENGTH_LIMIT_MM:g} mm in magnitude '
-                      '(a typo? lengths this large leave no precision for millimetres)')
-
-    def fail(self, field_name, problem):
-        raise SceneError(self.source, field_name, problem)
-
-    def _get(self, data, key, where):
-        if key not in data or data[key] is None:
-            self.fail(where, 'missing (required)')
-        return data[key]
-
-    def mapping(self, data, key):
-        value = self._get(data, key, key)
-        if not isinstance(value, dict):
-            self.fail(key, f'expected a mapping, got {type(value).__name__}')
-        return value
-
-    def sequence(self, data, key):
-        value = self._get(data, key, key)
-        if not isinstance(value, list):
-            self.fail(key, f'expected a list, got {type(value).__name__}')
-        return value
-
-    def choice(self, data, key, options, where=None):
-        where = where or key
-        value = self._get(data, key, where)
-        if value not in options:
-            self.fail(where, f'unknown value {value!r} (expected one of: {", ".join(options)})')
-        return value
-
-    def number(self, data, key, where, default=None, minimum=None):
-        if data.get(key) is None:
-            if default is None:
-                self.fail(where, 'missing (required)')
-            return default
-        value = data[key]
-        if isinstance(value, bool) or not isinstance(value, (int, float)):
-            self.fail(where, f'expected a number, got {value!r}')
-        if not _finite(value):
-            self.fail(where, f'must be finite, got {value!r}')
-        if minimum is not None and value < minimum:
-            self.fail(where, f'must be at least {minimum:g}, got {value!r}')
-        self.length(value, where, 'value')
-        return float(value)
-
-    def point(self, data, key, where):
-        return self.vector(self._get(data, key, where), where)
-
-    def vector(self, value, where):
-        if not isinstance(value, (list, tuple)):
-            self.fail(where, f'expected a point [x, y, z], got {value!r}')
-        if len(value) != 3:
-            self.fail(where, f'expected 3 coordinates [x, y, z], got {len(value)}')
-        for v in value:
-            if isinstance(v, bool) or not isinstance(v, (int, float)):
-                self.fail(where, f'coordinate {v!r} is not a number')
-            if not _finite(v):
-                self.fail(where, f'coordinate {v!r} is not finite')
-            self.length(v, where, 'coordinate')
-        return np.array(value, dtype=float)
 
 
 def mirror(scene: Scene) -> Scene:
@@ -434,7 +416,7 @@ def mirror(scene: Scene) -> Scene:
                  spin_axis_point=scene.spin_axis_point * flip,
                  third_point=scene.third_point * flip, constraints=constraints,
                  travel=scene.travel, wheel_radius=scene.wheel_radius,
-                 description=scene.description, extras=scene.extras,
+                 description=scene.description, extras=scene.extras, warnings=scene.warnings,
                  elements=tuple(e.transformed(flip, 0.0) for e in scene.elements))
 
 

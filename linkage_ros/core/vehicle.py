@@ -13,27 +13,36 @@ folder). mirror: true mirrors the scene in y (a left scene becomes the right cor
 the offset is added. travel_joint and rack_joint (optional) name the joints of
 sensor_msgs/JointState that carry the corner's wheel travel and, for a corner whose scene has
 a steer: rack link, the steering rack: suspension_node then answers every named corner of a
-joint_states message at once. Errors raise SceneError naming the vehicle file and the field.
+joint_states message at once. Errors raise SceneError naming the vehicle file and the field;
+a key the format does not know is one (with the closest known key suggested). The vehicle's
+axle keys (wheelbase, cg_height, axles) are read by core.axle, not here: they are kept in
+Vehicle.extras with the free keys (description, source, notes, x_...).
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass, field, replace
-from pathlib import Path
 import re
 from typing import TYPE_CHECKING
 
-import yaml
-
-from .scene import (config_dir, LENGTH_LIMIT_MM, load_scene, mirror, resolve_scene_path,
-                    SceneError, translate, UNITS_TO_MM, within_length_limit)
+from .bundled import is_bare_name, resolve, vehicle_dir  # noqa: F401 (vehicle_dir: kept here)
+from .fields import Fields
+from .limits import LENGTH_LIMIT_MM, within_length_limit
+from .scene import load_scene, mirror, resolve_scene_path, SceneError, translate, UNITS_TO_MM
+from .yaml_file import read_yaml
 
 if TYPE_CHECKING:
     from os import PathLike
 
     from .scene import Scene
+    from .vehicle_axles import VehicleAxles
 
 CORNER_NAME = re.compile(r'^[a-z][a-z0-9_]*$')   # becomes a ROS namespace
+
+# The keys of a vehicle file and of a corner; AXLE_KEYS are read by vehicle_axles.py.
+VEHICLE_KEYS = ('name', 'units', 'corners')
+AXLE_KEYS = ('wheelbase', 'cg_height', 'axles')
+CORNER_KEYS = ('scene', 'offset', 'mirror', 'travel_joint', 'rack_joint')
 
 
 @dataclass(frozen=True)
@@ -45,45 +54,41 @@ class Vehicle:
     corners: dict[str, Scene]      # corner name -> Scene, in vehicle coordinates (mm)
     # corner name -> (travel_joint, rack_joint), '' where not named
     joints: dict[str, tuple[str, str]] = field(default_factory=dict)
+    # wheelbase, cg_height and axles; None if the file has none of these keys
+    axles: VehicleAxles | None = None
+    # the file's other keys as read: description, source, notes, x_...
+    extras: dict = field(default_factory=dict, compare=False)
 
-
-def vehicle_dir() -> Path:
-    """Return the folder of the bundled vehicle files."""
-    return config_dir() / 'vehicles'
+    @property
+    def warnings(self) -> tuple[str, ...]:
+        """Return the warnings of the corners' scenes (Scene.warnings), each once, in order."""
+        return tuple(dict.fromkeys(w for scene in self.corners.values() for w in scene.warnings))
 
 
 def load_vehicle(name_or_path: str | PathLike) -> Vehicle:
     """Load a vehicle file (bundled name under config/vehicles, or a path)."""
-    path = Path(name_or_path)
-    if not path.is_file() and path.suffix not in ('.yaml', '.yml'):
-        bundled = vehicle_dir() / f'{name_or_path}.yaml'
-        if not str(name_or_path).strip() or not bundled.is_file():
-            names = ', '.join(sorted(p.stem for p in vehicle_dir().glob('*.yaml')))
-            what = 'a folder' if path.is_dir() else 'no such file'
-            raise SceneError(repr(str(name_or_path)), 'vehicle', f'{what}, and not a bundled '
-                             f'vehicle (bundled: {names})')
-        path = bundled
-    try:
-        data = yaml.safe_load(path.read_text())
-    except OSError as exc:
-        raise SceneError(path, 'file', f'cannot read ({exc.strerror or exc})') from None
-    except UnicodeDecodeError as exc:
-        raise SceneError(path, 'file', f'not UTF-8 text ({exc})') from None
-    except (yaml.YAMLError, ValueError, RecursionError) as exc:   # ValueError: 2001-13-45
-        raise SceneError(path, 'file', f'not valid YAML ({exc})') from None
+    path = resolve(name_or_path, 'vehicle')
+    data = read_yaml(path, 'vehicle')
+    check = Fields(str(path))
     if not isinstance(data, dict) or not isinstance(data.get('corners'), dict) \
             or not data['corners']:
-        raise SceneError(path, 'corners', 'expected a mapping of corner names to '
-                         '{scene, offset, mirror}')
+        check.keys(data if isinstance(data, dict) else {}, VEHICLE_KEYS + AXLE_KEYS)
+        check.fail('corners', 'expected a mapping of corner names to {scene, offset, mirror}')
+    check.keys(data, VEHICLE_KEYS + AXLE_KEYS)
     units = data.get('units', 'mm')
     if not isinstance(units, str) or units not in UNITS_TO_MM:
-        raise SceneError(path, 'units', f'unknown value {units!r} (expected one of: mm, m)')
+        check.fail('units', f'unknown value {units!r} (expected one of: mm, m)')
     corners, joints = {}, {}
     for corner, spec in data['corners'].items():
         corners[corner] = _corner(path, corner, spec, UNITS_TO_MM[units])
         joints[corner] = _joints(path, corner, spec, corners[corner])
-    return Vehicle(name=str(data.get('name') or path.stem), source=str(path), corners=corners,
-                   joints=joints)
+    axles = None
+    if any(key in data for key in AXLE_KEYS):   # axle code loads only for a file that has axles
+        from .vehicle_axles import parse_axles
+        axles = parse_axles(path, data, corners, UNITS_TO_MM[units])
+    return Vehicle(name=check.text(data, 'name') or path.stem, source=str(path),
+                   corners=corners, joints=joints, axles=axles,
+                   extras={k: v for k, v in data.items() if k not in VEHICLE_KEYS + AXLE_KEYS})
 
 
 def _joints(path, corner, spec, scene):
@@ -106,6 +111,8 @@ def _corner(path, corner, spec, scale):
     if not isinstance(corner, str) or not CORNER_NAME.match(corner):
         raise SceneError(path, where, 'corner names are lower-case ROS names '
                          '(letters, digits, underscores), e.g. front_left')
+    if isinstance(spec, dict):
+        Fields(str(path)).keys(spec, CORNER_KEYS, where)
     if not isinstance(spec, dict) or not isinstance(spec.get('scene'), str):
         raise SceneError(path, f'{where}.scene', 'missing (required): a scene name or path')
     scene = load_scene(_scene_file(path, where, spec['scene']))
@@ -125,13 +132,13 @@ def _corner(path, corner, spec, scale):
 
 def _scene_file(path, where, scene_ref):
     """
-    Return the scene file a corner names: a path from the vehicle's folder, or as given.
+    Return the scene file a corner names: a path from the vehicle's folder, or bundled.
 
     A reference that names no file is the vehicle file's mistake, so the error names the
     vehicle and the corner's field, not the reference ('' would otherwise read as '.').
     """
     local = path.parent / scene_ref
-    if local.suffix in ('.yaml', '.yml') and local.is_file():
+    if not is_bare_name(scene_ref) and local.is_file():   # a bare name is a bundled scene
         return local
     try:
         found = resolve_scene_path(scene_ref)

@@ -23,14 +23,13 @@ can reach a pose topic; its Health says ERROR with the reason.
 
 from __future__ import annotations
 
-import functools
-import struct
 from typing import TYPE_CHECKING
 
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
 from std_msgs.msg import Float64MultiArray, MultiArrayDimension, MultiArrayLayout
 
-from ..cdr import CDR_LE, float64_cdr, float64_of
+from .. import cdr
+from ..cdr import float64_cdr, float64_of
 from ..core.geometry import M_PER_MM, MM_PER_M
 
 if TYPE_CHECKING:
@@ -109,10 +108,9 @@ def alignment_values(msg: Float64MultiArray) -> dict[str, float]:
     return {dim.label: value for dim, value in zip(msg.layout.dim, msg.data)}
 
 
-# The answer to a command is sent as CDR bytes built here directly: rclpy's message classes
-# cost about 20 us to build a PoseStamped and 10 more to serialize it, most of the node's
-# callback. The layout is XCDR1 little-endian as rmw_fastrtps writes it: a 4-byte
-# encapsulation header, then every field aligned to its size, counted from the header's end.
+# The answer to a command is sent as CDR bytes built directly (linkage_ros.cdr): rclpy's
+# message classes cost about 20 us to build a PoseStamped and 10 more to serialize it, most
+# of the node's callback.
 ANSWER_TYPES = {'wheel_carrier_pose': 'geometry_msgs/msg/PoseStamped',
                 'camber': 'std_msgs/msg/Float64', 'toe': 'std_msgs/msg/Float64'}
 
@@ -140,19 +138,9 @@ def pose_stamped_cdr(solution: Solution, stamp: tuple[int, int], frame_id: str) 
     position as a unit quaternion (so the design position reads (0, 0, 0, 1)), at stamp
     (sec, nanosec).
     """
-    layout, frame = _pose_layout(frame_id)
     x, y, z = solution.wheel_center.tolist()
-    return layout.pack(CDR_LE, stamp[0], stamp[1], len(frame), frame, x * M_PER_MM,
-                       y * M_PER_MM, z * M_PER_MM, *solution.quaternion.tolist())
-
-
-@functools.lru_cache(maxsize=16)
-def _pose_layout(frame_id):
-    # header: stamp (int32 sec, uint32 nanosec), frame_id (uint32 length with the NUL, bytes,
-    # NUL); then the pose's 7 float64, aligned to 8.
-    frame = frame_id.encode() + b'\0'
-    pad = -(12 + len(frame)) % 8
-    return struct.Struct(f'<4siII{len(frame)}s{pad}x7d'), frame
+    return cdr.pose_stamped_cdr(stamp, frame_id, (x * M_PER_MM, y * M_PER_MM, z * M_PER_MM),
+                                solution.quaternion.tolist())
 
 
 def health_status(health: Health, name: str, hardware_id: str,

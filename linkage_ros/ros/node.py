@@ -456,7 +456,7 @@ def open_sinks(params, scenes, qos):
     try:
         if params['record_mcap']:
             try:
-                from ..record.bag import McapRecorder
+                from ..record.mcap_writer import McapRecorder
             except ImportError as exc:
                 raise LinkageError('record_mcap',
                                    missing_package(exc, 'recording to MCAP')) from None

@@ -5,6 +5,8 @@ linkage-plot: the pictures of the README, as PNG files (needs matplotlib: the pl
     linkage-plot alignment OUT.png [SCENE ...]     the alignment set against travel
     linkage-plot latency BENCH.csv OUT.png         latency against command rate, node and echo,
                                                    from the tables a linkage-node-bench run wrote
+    linkage-plot roll-centre OUT.png [VEHICLE [AXLE]]   an axle's roll centre in heave and roll
+                                                   (default demo_vehicle front; axle_plot.py)
 Default scenes: five_link, double_wishbone, macpherson, in that order (one colour each).
 """
 
@@ -16,7 +18,8 @@ import sys
 
 import numpy as np
 
-from ..cli import EXIT_STATUS, fail, missing_package, Parser, program, writable_file
+from ..cli import EXIT_STATUS, fail, missing_package, Parser, program, warn, writable_file
+from ..core.bundled import scene_dir
 from ..core.kinematics import sweep, travel_range
 from ..core.scene import load_scene, SceneError
 
@@ -39,19 +42,33 @@ def save_figure(fig, path, dpi):
 
 def plot_camber_toe(scenes, path):
     """Write a two-panel PNG (camber, toe in deg against travel in mm) of the given scenes."""
+    import matplotlib.pyplot as plt
+    fig = camber_toe_figure(scenes)
+    save_figure(fig, path, dpi=110)
+    plt.close(fig)
+
+
+def camber_toe_figure(scenes):
+    """
+    Return the figure of plot_camber_toe: camber and toe (deg) against travel (mm).
+
+    The scenes' reference tables are drawn as dots, with a legend entry if any has one; the
+    title names the scenes unless they are all bundled.
+    """
     import matplotlib
     matplotlib.use('Agg')
     import matplotlib.pyplot as plt
 
     fig, (ax_camber, ax_toe) = plt.subplots(1, 2, figsize=(10, 4), sharex=True)
+    references = 0
     for scene in scenes:
         low, high, step = scene.travel
         result = sweep(scene, travel_range(low, high, step))
         ax_camber.plot(result.travel, np.degrees(result.camber), label=scene.name)
         ax_toe.plot(result.travel, np.degrees(result.toe), label=scene.name)
-        reference = scene.extras.get('reference')
-        if reference:
-            rows = np.array(reference['rows'], dtype=float)
+        rows = reference_rows(scene)
+        if len(rows):
+            references += 1
             ax_camber.plot(rows[:, 0], rows[:, 1], 'k.', ms=5)
             ax_toe.plot(rows[:, 0], rows[:, 2], 'k.', ms=5)
     for ax, what in ((ax_camber, 'camber_deg (+ = top outboard)'),
@@ -59,12 +76,39 @@ def plot_camber_toe(scenes, path):
         ax.set_xlabel('travel_mm (+ = bump)')
         ax.set_ylabel(what)
         ax.grid(True, alpha=0.3)
-    ax_camber.plot([], [], 'k.', label='reference (refdata)')
+    if references:
+        ax_camber.plot([], [], 'k.', label='reference (refdata)')
     ax_camber.legend(fontsize=8)
-    fig.suptitle('linkage_ros: bundled scenes, left wheel')
+    fig.suptitle(f'linkage_ros: {title(scenes)}')
     fig.tight_layout()
-    save_figure(fig, path, dpi=110)
-    plt.close(fig)
+    return fig
+
+
+def reference_rows(scene):
+    """
+    Return the rows (travel_mm, camber_deg, toe_deg) of a scene's reference table, (k, 3).
+
+    Empty when the scene has none, or when its reference block is not such a table (the
+    block is free text to the loader).
+    """
+    reference = scene.extras.get('reference')
+    try:
+        rows = np.array(reference['rows'], dtype=float)
+    except (TypeError, KeyError, ValueError, IndexError):
+        return np.empty((0, 3))
+    return rows if rows.ndim == 2 and rows.shape[1] >= 3 else np.empty((0, 3))
+
+
+def title(scenes):
+    """
+    Say what the scenes are, for a picture's title: 'bundled scenes, left wheel'.
+
+    Scenes not from the bundled folder are named; the side is each scene's own.
+    """
+    bundled = all(Path(s.source).resolve().parent == scene_dir().resolve() for s in scenes)
+    what = 'bundled scenes' if bundled else ', '.join(s.name for s in scenes)
+    sides = sorted({s.side for s in scenes})
+    return f'{what}, ' + (f'{sides[0]} wheel' if len(sides) == 1 else 'left and right wheels')
 
 
 ALIGNMENT_PANELS = [
@@ -165,10 +209,11 @@ def parse_args(argv: list[str] | None) -> argparse.Namespace:
                     '  linkage-plot camber-toe bags/plots/camber_toe.png\n'
                     '  linkage-plot latency doc/bench/node_bench.csv bags/plots/node_latency.png'
                     f'\n\nexit status: 0 written; {EXIT_STATUS}')
-    parser.add_argument('what', choices=('camber-toe', 'alignment', 'latency'),
+    parser.add_argument('what', choices=('camber-toe', 'alignment', 'latency', 'roll-centre'),
                         help='which picture')
     parser.add_argument('paths', nargs='+', metavar='PATH',
-                        help='OUT.png [SCENE ...]; for latency: BENCH.csv OUT.png')
+                        help='OUT.png [SCENE ...]; for latency: BENCH.csv OUT.png; for '
+                        'roll-centre: OUT.png [VEHICLE [AXLE]]')
     return parser.parse_args(argv)
 
 
@@ -177,6 +222,9 @@ def main(argv: list[str] | None = None) -> int:
     """Write the picture named on the command line: 0 when written, 2 for a mistake."""
     args = parse_args(argv)
     prog = 'linkage-plot'
+    if args.what == 'roll-centre':
+        from .axle_plot import main as roll_centre
+        return roll_centre(args.paths)
     if args.what == 'latency':
         if len(args.paths) != 2:
             return fail(prog, 'latency: expected BENCH.csv OUT.png')
@@ -193,6 +241,8 @@ def main(argv: list[str] | None = None) -> int:
             scenes = [load_scene(n) for n in names]
         except SceneError as exc:
             return fail(prog, exc)
+        for scene in scenes:
+            warn(prog, scene.warnings)
     problem = writable_file(out)
     if problem:
         return fail(prog, problem)

@@ -5,44 +5,75 @@ for example:
     linkage-rerun run.mcap                 writes ./run.rrd
     linkage-rerun run.mcap -o view.rrd --scene double_wishbone
     rerun run.rrd                          opens the viewer: 3D view of the corner beside
-                                           travel, camber and toe
+                                           travel, camber and toe (and the steering rack)
 
 BAG is an MCAP file with the ROS 2 profile or a rosbag2 bag folder holding one. Reads
-wheel_travel, wheel_carrier_pose, camber and toe (by their last name, any namespace) and logs
-them as columns (see rerun_view). The scene is --scene, else the one the bag names in its
-metadata (custom_data 'scene', written by linkage-replay), else five_link. A bag cut short
-or damaged gives a warning naming what was found, and its readable messages are converted.
-Progress goes to stderr.
+wheel_travel, steering_rack, wheel_carrier_pose, camber and toe (by their last name, any
+namespace; std_msgs/msg/Float64 and geometry_msgs/msg/PoseStamped in CDR) and logs them as
+columns (see record.rerun_draw). A topic of such a name but of another type is skipped, with
+a line. The scene is --scene, else the one the recording stores (the scene or vehicle file's
+content, in its 'linkage_ros' metadata), else the one it names (custom data 'vehicle' or
+'scene'), else five_link. A bag cut short or damaged gives a warning naming what was found,
+and its readable messages are converted; a message whose bytes do not decode is left out and
+named. Either ends with status 1, even when nothing could be drawn (the .rrd then holds the
+scene alone). Progress goes to stderr.
 """
 
 import importlib
 import math
+from pathlib import Path
 import sys
+import tempfile
 
 from .. import cli
 from ..core.errors import LinkageError
 from ..core.scene import load_scene
+from ..core.vehicle import load_vehicle
 
 PROG = 'linkage-rerun'
 DEFAULT_SCENE = 'five_link'
-ROLES = 'wheel_travel, wheel_carrier_pose, camber or toe'
+ROLES = 'wheel_travel, steering_rack, wheel_carrier_pose, camber or toe'
+METADATA = 'linkage_ros'     # the recording's metadata record holding the files' content
+SCENE_KEY, VEHICLE_KEY = 'scene_yaml', 'vehicle_yaml'
 
 
-def convert(bag, scene, output, recording_id=None):
+def drawable(bag):
     """
-    Log the drawable messages of a Bag (from read_bag) into output (.rrd).
+    Return the messages of a Bag that can be drawn, and what was skipped.
 
-    Returns {role: samples logged}.
+    (messages, {topic: type found}): messages of a drawn role (rerun_view.topic_role) and
+    its type (ROLE_TYPES) whose bytes decode; a topic of another type is in the dict, and a
+    message that does not decode is counted in bag.undecoded (bag.losses()).
+    """
+    from ..cdr import float64_of, pose_of
+    from ..record.rerun_view import ROLE_TYPES, topic_role
+    messages, foreign = [], {}
+    for m in bag.messages:
+        role = topic_role(m.topic)
+        if role is None:
+            continue
+        if not m.carries(ROLE_TYPES[role]):
+            foreign.setdefault(m.topic, f'{m.type_name or "no schema"} in {m.encoding}')
+        elif bag.decode(m, pose_of if role == 'pose' else float64_of) is not None:
+            messages.append(m)
+    return messages, foreign
+
+
+def convert(messages, output, scene=None, corners=None, recording_id=None):
+    """
+    Log messages (BagMessages that decode, from drawable) into output (.rrd).
+
+    scene: the one Scene drawn, or corners: {corner name: Scene} of a vehicle. Returns
+    {role: samples logged}.
     """
     from ..record.rerun_view import RerunRecorder, topic_role
     counts = {}
+    rack = any(topic_role(m.topic) == 'rack' for m in messages)
     with RerunRecorder(output, scene, recording_id=recording_id, batch_rows=math.inf,
-                       batch_delay=math.inf) as viewer:
-        for m in bag.messages:
-            role = topic_role(m.topic)
-            if role is None:
-                continue
+                       batch_delay=math.inf, corners=corners, rack=rack) as viewer:
+        for m in messages:
             viewer.record(m.topic, m.type_name, m.data, m.log_time, m.publish_time)
+            role = topic_role(m.topic)
             counts[role] = counts.get(role, 0) + 1
     return counts
 
@@ -54,10 +85,12 @@ def parse_args(argv):
     parser.add_argument('bag', metavar='BAG',
                         help='recorded run: an .mcap file, or a rosbag2 bag folder holding one')
     parser.add_argument('-o', '--output', metavar='OUT',
-                        help=".rrd file to write; its folder must exist (default: BAG's name "
-                        'with .rrd, in the current folder)')
+                        help='.rrd file to write; its folder must exist; never BAG or a file '
+                        "in BAG's folder (default: BAG's name with .rrd, in the current "
+                        'folder)')
     parser.add_argument('--scene', help='bundled scene name or scene YAML path (default: the '
-                        f'scene named in the bag metadata, else {DEFAULT_SCENE})')
+                        'scene or vehicle the recording stores or names, else '
+                        f'{DEFAULT_SCENE})')
     return parser.parse_args(argv)
 
 
@@ -73,43 +106,81 @@ def main(argv=None):
 
 def run(args):
     """Carry out parsed arguments; raises Mistake or LinkageError for a user mistake."""
-    for feature, module in (('reading bags', 'linkage_ros.record.bag'),
+    for feature, module in (('reading bags', 'linkage_ros.record.mcap_reader'),
                             ('writing .rrd files', 'linkage_ros.record.rerun_view')):
         try:
             importlib.import_module(module)
         except ImportError as exc:
             raise cli.Mistake(cli.missing_package(exc, feature)) from None
-    from ..record.bag import read_bag
+    from ..record.mcap_reader import read_bag
     cli.check_input(args.bag)
     output = args.output or cli.default_output(args.bag, '.rrd')
     cli.check_output(output, '-o' if args.output else 'output', inputs=[args.bag])
     bag = read_bag(args.bag)
-    named = bag.custom_data.get('scene')
-    try:
-        scene = load_scene(args.scene or named or DEFAULT_SCENE)
-    except LinkageError as exc:
-        if args.scene or not named:
-            raise
-        raise cli.Mistake(f'{exc} (the scene the bag names; choose one with --scene)') \
-            from None
-    damaged = f' ({bag.describe()})' if bag.truncated else ''
-    if not any(_drawable(topic) for topic in bag.topics) or not bag.messages:
+    scene, corners = drawing(args, bag)
+    messages, foreign = drawable(bag)
+    if bag.complete and not messages:
+        wrong = ''.join(f'; {topic} is {kind}' for topic, kind in foreign.items())
         raise cli.Mistake(f'{args.bag}: no {ROLES} messages to convert (topics: '
-                          f'{", ".join(bag.topics) or "none"}){damaged}')
+                          f'{", ".join(bag.topics) or "none"}{wrong})')
+    for topic, kind in foreign.items():
+        print(f'{PROG}: {args.bag}: {topic} skipped: it carries {kind}, not what is drawn '
+              'from it', file=sys.stderr)
     if bag.truncated:
         print(f'{PROG}: warning: {args.bag}: {bag.describe()}; converting those',
               file=sys.stderr)
-    print(f'{PROG}: {scene.name}: converting {len(bag.messages)} messages of {args.bag}',
+    for line in bag.losses():
+        print(f'{PROG}: warning: {args.bag}: {line}', file=sys.stderr)
+    name = scene.name if scene is not None else 'vehicle'
+    print(f'{PROG}: {name}: converting {len(messages)} messages of {args.bag}',
           file=sys.stderr)
-    counts = convert(bag, scene, output)
-    summary = ', '.join(f'{n} {role}' for role, n in counts.items()) or 'nothing'
+    counts = convert(messages, output, scene, corners)
+    summary = ', '.join(f'{n} {role}' for role, n in counts.items()) or 'nothing but the scene'
     print(f'{PROG}: wrote {output}: {summary}', file=sys.stderr)
-    return cli.DAMAGED if bag.truncated else cli.DONE
+    return cli.DONE if bag.complete else cli.DAMAGED
 
 
-def _drawable(topic):
-    from ..record.rerun_view import topic_role
-    return topic_role(topic) is not None
+def drawing(args, bag):
+    """
+    Return (scene, corners) to draw a Bag with: one Scene, or {corner: Scene} of a vehicle.
+
+    --scene; else the content stored in the recording's 'linkage_ros' metadata (vehicle_yaml,
+    scene_yaml); else the vehicle or scene named in its custom data; else DEFAULT_SCENE.
+    """
+    if args.scene:
+        return load_scene(args.scene), None
+    stored = bag.metadata.get(METADATA, {})
+    for key, load in ((VEHICLE_KEY, load_vehicle), (SCENE_KEY, load_scene)):
+        if stored.get(key):
+            loaded = _from_text(stored[key], load, f'{args.bag}: the {key} it stores')
+            return (loaded, None) if key == SCENE_KEY else (None, loaded.corners)
+    vehicle, named = bag.custom_data.get('vehicle'), bag.custom_data.get('scene')
+    try:
+        if vehicle:
+            return None, load_vehicle(vehicle).corners
+        return load_scene(named or DEFAULT_SCENE), None
+    except LinkageError as exc:
+        if not (vehicle or named):
+            raise
+        named = 'vehicle the bag names; choose a scene' if vehicle else 'scene the bag names; ' \
+            'choose one'
+        raise cli.Mistake(f'{exc} (the {named} with --scene)') from None
+
+
+def _from_text(text, load, what):
+    """
+    Load a scene or vehicle file's content with load: the loader's checks and bounds apply.
+
+    A mistake in it is a Mistake naming what (the bag and the metadata key).
+    """
+    with tempfile.TemporaryDirectory() as folder:
+        path = Path(folder) / 'stored.yaml'
+        path.write_text(text)
+        try:
+            return load(path)
+        except LinkageError as exc:
+            raise cli.Mistake(f'{str(exc).replace(str(path), what)} (choose a scene with '
+                              '--scene)') from None
 
 
 if __name__ == '__main__':

@@ -10,9 +10,10 @@ import time
 
 import numpy as np
 
-from ..cli import EXIT_STATUS, fail, Parser, program, writable_file
+from ..cli import counted, EXIT_STATUS, fail, millimetres, Parser, program, warn, writable_file
 from ..core.errors import LinkageError
 from ..core.kinematics import Continuation, METHODS, sweep, travel_range
+from ..core.limits import check_position_count, positions_needed
 from ..core.scene import load_scene, SceneError
 
 PROG = 'linkage-sweep'
@@ -28,7 +29,9 @@ ALIGNMENT_COLUMNS = [
     'mechanical_trail_mm', 'track_change_mm', 'wheelbase_change_mm',
     'wheel_center_lateral_shift_mm', 'wheel_center_longitudinal_shift_mm', 'svic_x_mm',
     'svic_z_mm', 'fvic_y_mm', 'fvic_z_mm', 'screw_axis_x', 'screw_axis_y', 'screw_axis_z',
-    'screw_pitch_mm_per_rad']
+    'screw_pitch_mm_per_rad', 'caster_geometric_deg', 'kingpin_inclination_geometric_deg',
+    'scrub_radius_geometric_mm', 'mechanical_trail_geometric_mm',
+    'kingpin_offset_wheel_centre_geometric_mm']
 
 
 def table(result, scene=None, with_rack=False, elements=None):
@@ -56,15 +59,20 @@ def table(result, scene=None, with_rack=False, elements=None):
 def alignment_table(scene, result):
     """Return the ALIGNMENT_COLUMNS of a Sweep, shape (n, len(ALIGNMENT_COLUMNS))."""
     from ..core.alignment import alignment
+    from ..core.kingpin import geometric_kingpin
     from ..core.mechanism import compile_scene
     a = alignment(scene, compile_scene(scene), result.wheel_center, result.rotation,
                   result.rack)
+    k = geometric_kingpin(scene, result.joints, result.wheel_center, a.contact_patch,
+                          result.rack)
     deg = np.degrees
     return np.column_stack((
         deg(a.camber_gain), deg(a.bump_steer), a.wheel_center_velocity[:, :2], deg(a.caster),
         deg(a.kingpin_inclination), a.scrub_radius, a.mechanical_trail, a.track_change,
         a.wheelbase_change, a.lateral_shift, a.longitudinal_shift, a.side_view_ic,
-        a.front_view_ic, a.screw_axis, a.screw_pitch))
+        a.front_view_ic, a.screw_axis, a.screw_pitch, deg(k.caster),
+        deg(k.kingpin_inclination), k.scrub_radius, k.mechanical_trail,
+        k.offset_wheel_centre))
 
 
 def header(scene=None, with_rack=False, elements=None):
@@ -99,7 +107,10 @@ EPILOG = """columns: travel_mm, camber_deg (+ = top outboard), toe_deg (+ = toe-
 examples:
   linkage-sweep five_link --csv five_link_sweep.csv
   linkage-sweep double_wishbone --from -40 --to 40 --step 10 --rack 5 --alignment
-  linkage-sweep my_corner.yaml --grid=-20:20:10 > grid.csv
+  linkage-sweep my_corner.yaml --grid -20:20:10 > grid.csv
+
+Travels and racks are plain numbers of mm (--from -80, not -80mm). A request is refused
+before it runs when it would solve more than 1,000,000 positions (travels x racks).
 
 exit status: 0 every travel solved; 1 a travel is out of reach (the rows solved before it
 are written, the message names the limit); """ + EXIT_STATUS
@@ -108,17 +119,17 @@ are written, the message names the limit); """ + EXIT_STATUS
 def parse_args(argv):
     parser = Parser('linkage-sweep', __doc__, EPILOG)
     parser.add_argument('scene', help='bundled scene name (e.g. five_link) or path to a YAML file')
-    parser.add_argument('--from', dest='start', type=float,
+    parser.add_argument('--from', dest='start', type=millimetres,
                         help="first travel, mm (default: the scene's travel block)")
-    parser.add_argument('--to', dest='stop', type=float,
+    parser.add_argument('--to', dest='stop', type=millimetres,
                         help="last travel, mm (default: the scene's travel block)")
-    parser.add_argument('--step', type=float,
+    parser.add_argument('--step', type=millimetres,
                         help="travel step, mm, > 0 (default: the scene's travel block)")
     parser.add_argument('--method', choices=METHODS, default='fast',
                         help='fast (pose Newton, compiled) or paper (Alexandru 2018); '
                         'default fast')
     parser.add_argument('--csv', help='write the table to this file (default: stdout)')
-    parser.add_argument('--rack', type=float, default=None,
+    parser.add_argument('--rack', type=millimetres, default=None,
                         help='steering rack travel, mm (+ = rack to the left); adds rack_mm')
     parser.add_argument('--grid', metavar='FROM:TO:STEP',
                         help='solve a travel x rack grid: rack from FROM to TO at STEP, mm')
@@ -162,7 +173,8 @@ def benchmark(scene, travels, rounds):
         print(f'linkage-sweep: benchmark round {r + 1}/{rounds}', file=sys.stderr)
     worst = max(sweep(scene, travels, method=m).residual.max() for m in METHODS)
     fast = np.median(times['fast sweep'])
-    print(f'{scene.name}: {len(travels)} positions from {travels[0]:g} to {travels[-1]:g} mm, '
+    print(f'{scene.name}: {counted(len(travels), "position")} from {travels[0]:g} to '
+          f'{travels[-1]:g} mm, '
           f'largest residual {worst:.2g} mm')
     print(f'{"method":<30}{"median_us_per_position":>24}{"p95_us":>10}{"ratio_to_fast":>15}')
     for name, values in times.items():
@@ -178,6 +190,7 @@ def main(argv: list[str] | None = None) -> int:
         scene = load_scene(args.scene)
     except SceneError as exc:
         return fail(PROG, exc)
+    warn(PROG, scene.warnings)
     problem = args.csv and writable_file(args.csv)
     if problem:
         return fail(PROG, f'--csv: {problem}')
@@ -185,14 +198,14 @@ def main(argv: list[str] | None = None) -> int:
     start = low if args.start is None else args.start
     stop = high if args.stop is None else args.stop
     step = step if args.step is None else args.step
-    if not (step > 0 and np.isfinite([start, stop, step]).all()):
-        return fail(PROG, f'--from, --to and --step must be finite and --step > 0 (got '
-                          f'{start}, {stop}, {step})')
-    travels = travel_range(start, stop, step)
     try:
+        count = positions_needed(start, stop, step, '--from, --to, --step')
         racks = rack_values(args)
+        check_position_count(count * len(racks), '--grid', f'{counted(count, "travel")} x '
+                             f'{counted(len(racks), "rack")}')
     except LinkageError as exc:
         return fail(PROG, exc)
+    travels = travel_range(start, stop, step)
     if racks != [0.0] and not any(c.steer == 'rack' for c in scene.constraints):
         return fail(PROG, f'{scene.name}: no constraint is marked steer: rack, so a rack input '
                           'moves nothing')
@@ -201,7 +214,7 @@ def main(argv: list[str] | None = None) -> int:
     if args.benchmark:
         benchmark(scene, travels, args.benchmark)
         return 0
-    print(f'linkage-sweep: {scene.name}: {len(travels)} positions from {start:g} to '
+    print(f'linkage-sweep: {scene.name}: {counted(len(travels), "position")} from {start:g} to '
           f'{stop:g} mm, method {args.method}', file=sys.stderr)
     results = []
     for i, rack in enumerate(racks):
@@ -227,8 +240,8 @@ def main(argv: list[str] | None = None) -> int:
                           f'({exc.strerror or exc})')
     failed = [r for r in results if not r.success]
     if failed:
-        print(f'linkage-sweep: {failed[0].message} '
-              f'({sum(len(r.travel) for r in results)} positions written)', file=sys.stderr)
+        written = counted(sum(len(r.travel) for r in results), 'position')
+        print(f'linkage-sweep: {failed[0].message} ({written} written)', file=sys.stderr)
         return 1
     worst = max(r.residual.max() for r in results if len(r.travel))
     print(f'linkage-sweep: done, largest residual {worst:.2g} mm', file=sys.stderr)
@@ -249,6 +262,7 @@ def rack_values(args):
     if not (step > 0 and np.isfinite([start, stop, step]).all()):
         raise LinkageError('--grid', f'FROM, TO, STEP must be finite and STEP > 0, got '
                            f'{args.grid!r}')
+    positions_needed(start, stop, step, '--grid')
     return list(travel_range(start, stop, step))
 
 

@@ -1,0 +1,138 @@
+"""
+Field readers of scene and vehicle files: each value checked, each mistake named by its field.
+
+A mistake raises SceneError(file, field, problem), the field written as a path into the file
+('constraints[2] (lower_front).base'). A key the file format does not know is refused with
+the closest known key suggested ('unknown key wheel_centre (did you mean wheel_center?)'),
+so that a misspelt key is not reported as the right one missing.
+"""
+
+from __future__ import annotations
+
+import difflib
+import re
+from typing import Any, TYPE_CHECKING
+
+import numpy as np
+
+from .limits import finite, LENGTH_LIMIT_MM, within_length_limit
+from .yaml_file import SceneError
+
+if TYPE_CHECKING:
+    from collections.abc import Collection
+
+# Keys any mapping of a scene or vehicle file may hold, kept and ignored by the solver; and
+# the prefix of a user's own keys (x_supplier: ...).
+FREE_KEYS = ('description', 'source', 'notes')
+OWN_KEY_PREFIX = 'x_'
+PLAIN_KEY = re.compile(r'^[A-Za-z_][A-Za-z0-9_-]*$')   # named as it is; others by repr
+
+
+class Fields:
+    """Field readers that raise SceneError with the file and field named."""
+
+    def __init__(self, source: str) -> None:
+        self.source = source
+        self.scale = 1.0   # mm per scene unit, once units is read
+
+    def fail(self, field_name: str, problem: str):
+        """Raise SceneError for field_name of this file."""
+        raise SceneError(self.source, field_name, problem)
+
+    def keys(self, data: dict, known: Collection[str], where: str = '',
+             free: Collection[str] = FREE_KEYS) -> None:
+        """
+        Refuse a key of data that is neither known nor free (nor x_...), naming it.
+
+        where: the field path of data ('' for the top level, 'carrier', ...).
+        """
+        for key in data:
+            if key in known or key in free or (isinstance(key, str)
+                                               and key.startswith(OWN_KEY_PREFIX)):
+                continue
+            shown = key if isinstance(key, str) and PLAIN_KEY.match(key) else repr(key)
+            name = f'{where}.{shown}' if where else shown
+            close = difflib.get_close_matches(str(key), [str(k) for k in known], n=1)
+            hint = (f'did you mean {close[0]}?' if close else
+                    f'known: {", ".join(known)}; also allowed: {", ".join(free)}, '
+                    f'{OWN_KEY_PREFIX}...')
+            self.fail(name, f'unknown key ({hint})')
+
+    def length(self, value: float, where: str, what: str) -> None:
+        """Refuse a finite number whose length in mm is beyond LENGTH_LIMIT_MM."""
+        if not within_length_limit(value, self.scale):
+            self.fail(where, f'{what} {value!r} is beyond {LENGTH_LIMIT_MM:g} mm in magnitude '
+                      '(a typo? lengths this large leave no precision for millimetres)')
+
+    def _get(self, data, key, where):
+        if key not in data or data[key] is None:
+            self.fail(where, 'missing (required)')
+        return data[key]
+
+    def mapping(self, data: dict, key: str, where: str | None = None) -> dict:
+        """Return data[key], a mapping."""
+        where = where or key
+        value = self._get(data, key, where)
+        if not isinstance(value, dict):
+            self.fail(where, f'expected a mapping, got {type(value).__name__}')
+        return value
+
+    def sequence(self, data: dict, key: str) -> list:
+        """Return data[key], a list."""
+        value = self._get(data, key, key)
+        if not isinstance(value, list):
+            self.fail(key, f'expected a list, got {type(value).__name__}')
+        return value
+
+    def choice(self, data: dict, key: str, options: tuple, where: str | None = None) -> Any:
+        """Return data[key], one of options."""
+        where = where or key
+        value = self._get(data, key, where)
+        if not isinstance(value, (str, int, float)) or value not in options:
+            self.fail(where, f'unknown value {value!r} (expected one of: {", ".join(options)})')
+        return value
+
+    def text(self, data: dict, key: str, default: str = '', where: str | None = None) -> str:
+        """Return data[key] as text, a number written as text; default if absent."""
+        value = data.get(key)
+        if value is None:
+            return default
+        if isinstance(value, bool) or not isinstance(value, (str, int, float)):
+            self.fail(where or key, f'expected text, got {type(value).__name__}')
+        return str(value)
+
+    def number(self, data: dict, key: str, where: str, default: float | None = None,
+               minimum: float | None = None, length: bool = True) -> float:
+        """Return data[key], a finite number: a length within the limit unless not length."""
+        if data.get(key) is None:
+            if default is None:
+                self.fail(where, 'missing (required)')
+            return default
+        value = data[key]
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            self.fail(where, f'expected a number, got {value!r}')
+        if not finite(value):
+            self.fail(where, f'must be finite, got {value!r}')
+        if minimum is not None and value < minimum:
+            self.fail(where, f'must be at least {minimum:g}, got {value!r}')
+        if length:
+            self.length(value, where, 'value')
+        return float(value)
+
+    def point(self, data: dict, key: str, where: str) -> np.ndarray:
+        """Return data[key], a point [x, y, z] in the file's units, (3,)."""
+        return self.vector(self._get(data, key, where), where)
+
+    def vector(self, value: Any, where: str) -> np.ndarray:
+        """Return value, a point [x, y, z] in the file's units, (3,)."""
+        if not isinstance(value, (list, tuple)):
+            self.fail(where, f'expected a point [x, y, z], got {value!r}')
+        if len(value) != 3:
+            self.fail(where, f'expected 3 coordinates [x, y, z], got {len(value)}')
+        for v in value:
+            if isinstance(v, bool) or not isinstance(v, (int, float)):
+                self.fail(where, f'coordinate {v!r} is not a number')
+            if not finite(v):
+                self.fail(where, f'coordinate {v!r} is not finite')
+            self.length(v, where, 'coordinate')
+        return np.array(value, dtype=float)

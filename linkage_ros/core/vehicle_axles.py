@@ -1,0 +1,157 @@
+"""
+The axles of a vehicle file, and the vehicle-level data that axle quantities need.
+
+    wheelbase: 2800            # scene units of the file (units:); from two axles if absent
+    cg_height: 550             # above the ground; needed for anti-dive, -lift and -squat
+    axles:
+      front: {left: front_left, right: front_right, brake_share: 0.6, drive_share: 0.0,
+              brakes: outboard}          # outboard | inboard
+      rear:  {left: rear_left, right: rear_right, brake_share: 0.4, drive_share: 1.0,
+              brakes: outboard}
+
+An axle is front or rear, and names the vehicle's left and right corners. brake_share and
+drive_share (0 to 1, default 0) are the axle's shares of the braking and the driving force; an
+axle with a share asks for its anti-dive (front) or anti-lift (rear) under braking, and its
+anti-lift (front) or anti-squat (rear) under drive, which need cg_height and the wheelbase.
+vehicle.py imports this module only for a file that has these keys. Errors raise SceneError
+naming the vehicle file and the key.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+import math
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from .scene import LENGTH_LIMIT_MM, SceneError, within_length_limit
+
+if TYPE_CHECKING:
+    from .axle import Axle
+    from .scene import Scene
+    from .vehicle import Vehicle
+
+AXLE_NAMES = ('front', 'rear')
+BRAKES = ('outboard', 'inboard')
+AXLE_KEYS = ('left', 'right', 'brake_share', 'drive_share', 'brakes')
+
+
+@dataclass(frozen=True)
+class AxleSpec:
+    """One axle of a vehicle file: its corners and its shares of braking and drive."""
+
+    name: str                  # 'front' | 'rear'
+    left: str                  # corner names
+    right: str
+    brake_share: float = 0.0   # 0..1 of the vehicle's braking force
+    drive_share: float = 0.0   # 0..1 of the vehicle's driving force
+    brakes: str = 'outboard'   # outboard (torque into the carrier) | inboard (into the body)
+
+
+@dataclass(frozen=True)
+class VehicleAxles:
+    """The vehicle-level data of a vehicle file (mm)."""
+
+    source: str
+    wheelbase: float = math.nan   # mm; nan where neither given nor derivable
+    cg_height: float = math.nan   # mm above the ground; nan where not given
+    axles: dict[str, AxleSpec] = field(default_factory=dict)
+
+
+def parse_axles(path: object, data: dict, corners: dict[str, Scene],
+                scale: float) -> VehicleAxles:
+    """
+    Read wheelbase, cg_height and axles of a vehicle file's mapping; raise SceneError if bad.
+
+    corners are the vehicle's placed scenes (mm); scale is mm per unit of the file.
+    """
+    axles = {}
+    block = data.get('axles', {})
+    if not isinstance(block, dict):
+        raise SceneError(path, 'axles', 'expected a mapping of front and/or rear to {left, '
+                         'right, brake_share, drive_share, brakes}')
+    for name, spec in block.items():
+        axles[name] = _axle(path, name, spec, corners)
+    wheelbase = _length(path, data, 'wheelbase', scale)
+    if math.isnan(wheelbase) and len(axles) == 2:
+        wheelbase = float(np.mean([corners[c].wheel_center[0] for c in
+                                   (axles['front'].left, axles['front'].right)])
+                          - np.mean([corners[c].wheel_center[0] for c in
+                                     (axles['rear'].left, axles['rear'].right)]))
+    cg_height = _length(path, data, 'cg_height', scale)
+    for axle in axles.values():
+        shares = [k for k in ('brake_share', 'drive_share') if getattr(axle, k)]
+        if shares and math.isnan(cg_height):
+            raise SceneError(path, 'cg_height', f'missing: axles.{axle.name}.{shares[0]} asks '
+                             'for anti-dive, -lift or -squat, which need the height of the '
+                             'centre of gravity above the ground')
+        if shares and not wheelbase > 0:
+            raise SceneError(path, 'wheelbase', f'missing: axles.{axle.name}.{shares[0]} '
+                             'asks for anti-dive, -lift or -squat, which need the wheelbase '
+                             '(give wheelbase, or a front and a rear axle)')
+    return VehicleAxles(source=str(path), wheelbase=wheelbase, cg_height=cg_height,
+                        axles=axles)
+
+
+def _axle(path, name, spec, corners):
+    where = f'axles.{name}'
+    if name not in AXLE_NAMES:
+        raise SceneError(path, where, f'unknown axle (expected one of: {", ".join(AXLE_NAMES)})')
+    if not isinstance(spec, dict):
+        raise SceneError(path, where, 'expected a mapping {left, right, brake_share, '
+                         'drive_share, brakes}')
+    for key in spec:
+        if key not in AXLE_KEYS:
+            raise SceneError(path, f'{where}.{key}', f'unknown key (expected: '
+                             f'{", ".join(AXLE_KEYS)})')
+    sides = []
+    for side in ('left', 'right'):
+        corner = spec.get(side)
+        if not isinstance(corner, str) or corner not in corners:
+            raise SceneError(path, f'{where}.{side}', f'{corner!r} is not a corner of the '
+                             f'vehicle (corners: {", ".join(corners)})')
+        expected = 1.0 if side == 'left' else -1.0
+        if corners[corner].side_sign != expected:
+            raise SceneError(path, f'{where}.{side}', f'corner {corner} is a '
+                             f'{corners[corner].side} wheel (mirror: true makes a right one)')
+        sides.append(corner)
+    shares = [_share(path, f'{where}.{key}', spec.get(key, 0.0))
+              for key in ('brake_share', 'drive_share')]
+    brakes = spec.get('brakes', 'outboard')
+    if brakes not in BRAKES:
+        raise SceneError(path, f'{where}.brakes', f'unknown value {brakes!r} (expected one '
+                         f'of: {", ".join(BRAKES)})')
+    return AxleSpec(name, *sides, *shares, brakes)
+
+
+def _share(path, where, value):
+    if isinstance(value, bool) or not isinstance(value, (int, float)) \
+            or not 0.0 <= value <= 1.0:
+        raise SceneError(path, where, f'expected a share from 0 to 1, got {value!r}')
+    return float(value)
+
+
+def _length(path, data, key, scale):
+    value = data.get(key)
+    if value is None:
+        return math.nan
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not value > 0 \
+            or not within_length_limit(value, scale):
+        raise SceneError(path, key, f'expected a positive length within {LENGTH_LIMIT_MM:g} '
+                         f'mm, got {value!r}')
+    return float(value) * scale
+
+
+def axle_of(vehicle: Vehicle, name: str) -> Axle:
+    """Return the named axle of a vehicle as an Axle, or raise SceneError naming the file."""
+    from .axle import Axle
+    data = vehicle.axles
+    if data is None or name not in data.axles:
+        known = ', '.join(data.axles) if data is not None and data.axles else 'none'
+        raise SceneError(vehicle.source, 'axles', f'no axle {name!r} (axles: {known})')
+    spec = data.axles[name]
+    return Axle(left=vehicle.corners[spec.left], right=vehicle.corners[spec.right],
+                name=name, front=name == 'front', wheelbase=data.wheelbase,
+                cg_height=data.cg_height, brake_share=spec.brake_share,
+                drive_share=spec.drive_share, brakes=spec.brakes)

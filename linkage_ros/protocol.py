@@ -1,0 +1,130 @@
+"""
+How suspension_node answers a corner's commands, without ROS: the node and linkage-replay share it.
+
+    responder = Responder(scene, method='fast', max_step_mm=5.0, condition_warn=1e4,
+                          frame_id='base_link', status_name='suspension_kinematics: five_link',
+                          period_ns=10**9)
+    due = responder.due(now_ns)           # a periodic report due by now? (its time, or None)
+    reply = responder.answer(travel_mm, rack_mm, stamp, sent)
+    reply.outputs                         # [(output name, type name, CDR bytes)] to publish
+    reply.report                          # /diagnostics must say so at once
+
+One command: solved by continuation from the last good pose (Continuation); a solved command
+is answered by wheel_carrier_pose (geometry_msgs/PoseStamped: wheel centre in m, carrier
+rotation relative to design), camber and toe (std_msgs/Float64, rad), stamped with stamp; a
+command that cannot be solved (NaN, infinite, out of reach) gets no answer and keeps the last
+good pose. Every command is counted into the corner's Health (linkage_ros.ros.health), whose
+status goes to /diagnostics at once for a failure or a change of level, and every diagnostic
+period (period_ns) of the clock the caller gives: the node's timer, or a recording's timeline.
+
+ROS-free: this module imports the core, cdr (the answer's CDR bytes) and the Health logic,
+never rclpy or a message package; a DiagnosticStatus is built from responder.health by
+linkage_ros.ros.messages.health_status.
+"""
+
+from __future__ import annotations
+
+from typing import Callable, NamedTuple, TYPE_CHECKING
+
+from .cdr import float64_cdr, pose_stamped_cdr
+from .core.geometry import M_PER_MM
+from .core.kinematics import Continuation
+from .ros.health import Health
+
+if TYPE_CHECKING:
+    from .core.kinematics import Solution
+    from .core.scene import Scene
+
+# output name (relative to the corner's namespace): ROS 2 type, in publishing order
+ANSWER_TYPES = {'wheel_carrier_pose': 'geometry_msgs/msg/PoseStamped',
+                'camber': 'std_msgs/msg/Float64', 'toe': 'std_msgs/msg/Float64'}
+
+
+class Reply(NamedTuple):
+    """
+    What answering one command gives.
+
+    solution: the core's Solution (mm, rad; status says why it failed). outputs: [(output
+    name, type name, CDR bytes)] in publishing order (the pose first: a controller waits for
+    it), empty for a command that was not solved. sent: what was sent, for a failed command
+    ('/wheel_travel 0.5 m'), else ''. report: /diagnostics must say so at once (the command
+    failed, or the level changed).
+    """
+
+    solution: Solution
+    outputs: list
+    sent: str
+    report: bool
+
+
+class Responder:
+    """
+    One corner of suspension_node: its solver, its answers, its Health and report times.
+
+    Lengths of commands in mm (the core's unit), times in ns of the caller's clock.
+    """
+
+    def __init__(self, scene: Scene, *, method: str, max_step_mm: float,
+                 condition_warn: float, frame_id: str, status_name: str,
+                 period_ns: int, start_ns: int | None = None) -> None:
+        """
+        Make the corner's solver and Health.
+
+        status_name: the DiagnosticStatus name ('suspension_kinematics: five_link').
+        period_ns: the diagnostic period; start_ns: when its first period starts (the node:
+        its clock at start), or None for the time of the first call of due().
+        """
+        self.scene, self.method, self.frame_id = scene, method, frame_id
+        self.status_name = status_name
+        self.solver = Continuation(scene, method=method, max_step=max_step_mm)
+        self.health = Health(condition_warn)
+        self.period = int(period_ns)
+        if self.period <= 0:
+            raise ValueError(f'period_ns must be above 0, got {period_ns!r}')
+        self._next = None if start_ns is None else int(start_ns) + self.period
+
+    def answer(self, travel_mm: float | None, rack_mm: float | None,
+               stamp: tuple[int, int], sent: str | Callable[[], str] = '') -> Reply:
+        """
+        Solve one command and build its answer; count it into the Health.
+
+        travel_mm, rack_mm: the command (None = unchanged: a rack command is solved at the
+        last travel). stamp: (sec, nanosec) of the answer. sent: what was sent where ('/
+        wheel_travel 0.5 m'), or a function that says it, called only for a failed command;
+        a failure's status message starts with it.
+        """
+        travel = self.solver.travel if travel_mm is None else travel_mm
+        solution = self.solver.solve(travel, rack_mm)
+        if solution.success:
+            x, y, z = solution.wheel_center.tolist()
+            outputs = [
+                ('wheel_carrier_pose', ANSWER_TYPES['wheel_carrier_pose'], pose_stamped_cdr(
+                    stamp, self.frame_id, (x * M_PER_MM, y * M_PER_MM, z * M_PER_MM),
+                    solution.quaternion.tolist())),
+                ('camber', ANSWER_TYPES['camber'], float64_cdr(solution.camber)),
+                ('toe', ANSWER_TYPES['toe'], float64_cdr(solution.toe))]
+            said = ''
+        else:
+            outputs = []
+            said = sent() if callable(sent) else sent
+        return Reply(solution, outputs, said, self.health.add(solution, said))
+
+    def due(self, now_ns: int) -> int | None:
+        """
+        Return the time (ns) of the periodic report due by now_ns, or None if none is.
+
+        Periods are counted from start_ns (or from the first call), as the node's timer
+        counts them from its start. The report due is the first period end not reported yet;
+        the next is then the first period end after now_ns: periods that a gap in the
+        commands (or a jump of the clock) passed over give one report, not one each. The
+        caller sends the status with that stamp and then starts a new period
+        (health.reset_period()).
+        """
+        if self._next is None:
+            self._next = int(now_ns) + self.period
+            return None
+        if now_ns < self._next:
+            return None
+        due = self._next
+        self._next += self.period * ((int(now_ns) - self._next) // self.period + 1)
+        return due

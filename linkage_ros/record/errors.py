@@ -1,0 +1,7 @@
+"""The error of the recording modules: a file that cannot be written or read, a type unknown."""
+
+from ..core.errors import LinkageError
+
+
+class RecordingError(LinkageError):
+    """A recording cannot be written or read: RecordingError(file or type, problem)."""

@@ -1,0 +1,237 @@
+"""
+linkage-axle: solve an axle of a vehicle in heave, roll and steer; write a CSV table (mm, deg).
+
+The axle's two corners move together: in heave both wheels travel by the heave; in roll by
+phi (+ = right side down) the right wheel goes to bump and the left to rebound by
+(t / 2) tan(phi), t the design track. The table gives the roll centre, track, camber and toe
+relative to the body and to the ground, the anti-dive, anti-lift or anti-squat the axle has,
+and with a rack the steer angles and Ackermann (definitions and sources: doc/axle.md).
+"""
+
+import math
+import sys
+import time
+
+import numpy as np
+
+from ..cli import EXIT_STATUS, fail, Parser, program, writable_file
+from ..core.axle import solve_axle, wheel_travels
+from ..core.errors import LinkageError
+from ..core.kinematics import sweep, travel_range
+from ..core.scene import SceneError
+from ..core.vehicle import load_vehicle
+
+PROG = 'linkage-axle'
+MAX_ROLL_DEG = 45.0   # |roll| beyond this is a typo: tan(phi) runs away near 90 deg
+
+EPILOG = """columns: heave_mm, roll_deg (+ = right side down), rack_mm (+ = rack to the left),
+  left_travel_mm, right_travel_mm (+ = bump), roll_centre_y_mm (vehicle frame, + = left),
+  roll_centre_height_mm (above the ground line through the contact patches), track_mm (at
+  the contact patches), left_/right_camber_deg (+ = top outboard) and left_/right_toe_deg
+  (+ = toe-in) relative to the body, the same relative to the ground (*_ground_deg); then
+  anti_dive_pct, anti_lift_pct or anti_squat_pct as the axle's brake_share and drive_share
+  ask; with --rack or --rack-grid: left_/right_steer_deg (yaw, + = to the left),
+  mean_steer_deg and ackermann_pct. A corner without wheel_radius has no contact patch: the
+  patch columns are left out, and stderr says so. Roll-centre, track and Ackermann columns
+  need wheel_radius in both scenes, Ackermann also the wheelbase; anti quantities need
+  cg_height (and the wheelbase) in the vehicle file.
+
+examples:
+  linkage-axle demo_vehicle --axle front --heave=-40:40:10
+  linkage-axle demo_vehicle --axle rear --roll=-4:4:1 --csv roll.csv
+  linkage-axle demo_vehicle --axle front --rack-grid=-30:30:10 --heave 0
+
+A negative FROM needs the = (--roll=-4:4:1), or it reads as an option.
+
+exit status: 0 every position solved; 1 a position is out of reach of a wheel (the rows
+solved before it are written, the message names the limit); """ + EXIT_STATUS
+
+
+def parse_args(argv):
+    parser = Parser(PROG, __doc__, EPILOG)
+    parser.add_argument('vehicle', nargs='?', default='demo_vehicle',
+                        help='bundled vehicle name or path to a vehicle YAML file with axles '
+                        '(default demo_vehicle)')
+    parser.add_argument('--axle', default='front', help='front or rear (default front)')
+    parser.add_argument('--heave', metavar='FROM[:TO:STEP]',
+                        help="heave, mm, + = bump (default: the left corner's travel block "
+                        'when --roll is not given, else 0)')
+    parser.add_argument('--roll', metavar='FROM[:TO:STEP]',
+                        help=f'body roll, deg, + = right side down, |roll| < {MAX_ROLL_DEG:g} '
+                        '(default 0)')
+    steer = parser.add_mutually_exclusive_group()
+    steer.add_argument('--rack', type=float, metavar='MM',
+                       help='steering rack travel, mm, + = to the left; adds the steer and '
+                       'Ackermann columns')
+    steer.add_argument('--rack-grid', metavar='FROM:TO:STEP',
+                       help='solve every heave and roll at each rack from FROM to TO, mm')
+    parser.add_argument('--csv', metavar='FILE',
+                        help='write the table to this file (default: stdout)')
+    parser.add_argument('--benchmark', type=int, metavar='ROUNDS', default=0,
+                        help='instead of a table, time an axle position against one and two '
+                        'corner positions at 1x, 10x and 100x the positions, ROUNDS rounds')
+    args = parser.parse_args(argv)
+    if args.benchmark < 0:
+        parser.error(f'--benchmark: expected a number of rounds >= 0, got {args.benchmark}')
+    return args
+
+
+def values(option, text):
+    """Return the values of FROM[:TO:STEP] (mm or deg), or raise LinkageError naming option."""
+    try:
+        parts = [float(v) for v in text.split(':')]
+    except ValueError:
+        parts = []
+    if len(parts) == 1 and math.isfinite(parts[0]):
+        return np.array(parts)
+    if len(parts) != 3 or not (np.isfinite(parts).all() and parts[2] > 0):
+        raise LinkageError(option, f'expected FROM or FROM:TO:STEP, finite numbers and STEP > '
+                           f'0, got {text!r}')
+    return travel_range(*parts)
+
+
+def positions(args, axle):
+    """Return heave (mm), roll (deg) and rack (mm) of every position: rack, heave, roll order."""
+    roll = np.zeros(1) if args.roll is None else values('--roll', args.roll)
+    if np.abs(roll).max() >= MAX_ROLL_DEG:
+        raise LinkageError('--roll', f'|roll| must stay below {MAX_ROLL_DEG:g} deg, got '
+                           f'{args.roll!r}')
+    if args.heave is not None:
+        heave = values('--heave', args.heave)
+    elif args.roll is None:
+        heave = travel_range(*axle.left.travel)
+    else:
+        heave = np.zeros(1)
+    if args.rack_grid is not None:
+        rack = values('--rack-grid', args.rack_grid)
+    else:
+        rack = np.array([0.0 if args.rack is None else args.rack])
+        if not np.isfinite(rack).all():
+            raise LinkageError('--rack', f'must be finite, got {args.rack}')
+    grid = np.meshgrid(rack, heave, roll, indexing='ij')
+    return grid[1].ravel(), grid[2].ravel(), grid[0].ravel()
+
+
+def table(axle, result, with_rack):
+    """
+    Return (header, rows) of an AxleResult: column names and an (n, columns) array, mm, deg.
+
+    Contact-patch columns only when both corners have a wheel radius; steer columns with_rack.
+    """
+    deg = np.degrees
+    columns = [('heave_mm', result.heave), ('roll_deg', deg(result.roll)),
+               ('rack_mm', result.rack), ('left_travel_mm', result.travel[:, 0]),
+               ('right_travel_mm', result.travel[:, 1])]
+    if axle.has_patches:
+        columns += [('roll_centre_y_mm', result.roll_centre[:, 0]),
+                    ('roll_centre_height_mm', result.roll_centre_height),
+                    ('track_mm', result.track)]
+    for what in ('camber', 'toe', 'camber_ground', 'toe_ground'):
+        for k, side in enumerate(('left', 'right')):
+            columns.append((f'{side}_{what}_deg', deg(getattr(result, what)[:, k])))
+    for name, point, _ in axle.anti_quantities():
+        if point == 'centre' or axle.has_patches:
+            columns.append((f'{name}_pct', result.anti[name]))
+    if with_rack:
+        columns += [('left_steer_deg', deg(result.steer[:, 0])),
+                    ('right_steer_deg', deg(result.steer[:, 1])),
+                    ('mean_steer_deg', deg(result.mean_steer))]
+        if axle.has_patches and axle.wheelbase > 0:
+            columns.append(('ackermann_pct', result.ackermann))
+    header = [name for name, _ in columns]
+    rows = np.column_stack([np.asarray(c, dtype=float) for _, c in columns])
+    return header, rows.reshape(len(result.heave), len(header))
+
+
+def write_csv(header, rows, stream):
+    """Write a table to stream as CSV, values to 10 significant digits (no '-0')."""
+    row_format = ','.join(['%.10g'] * len(header)) + '\n'
+    stream.write(','.join(header) + '\n')
+    stream.writelines(row_format % tuple(row) for row in (rows + 0.0).tolist())
+
+
+def benchmark(axle, heave, roll, rack, rounds):
+    """
+    Print the median time per position (us) of an axle and of its corners, side by side.
+
+    At 1x, 10x and 100x the positions (the heaves repeated, each copy shifted by a small
+    fraction of a millimetre so that no two positions are the same). The time is this
+    process's CPU time: the work, which other processes on a shared machine disturb less
+    than they disturb the wall-clock time.
+    """
+    print(f'{axle.name} axle of {axle.left.name} and {axle.right.name}: {len(heave)} '
+          'positions (1x)')
+    print(f'{"positions":>10}{"one_corner_us":>15}{"two_corners_us":>16}{"axle_us":>10}'
+          f'{"axle/one_corner":>17}{"axle/two_corners":>18}')
+    left, right = wheel_travels(axle, heave, np.radians(roll))
+    for scale in (1, 10, 100):
+        shift = np.repeat(np.arange(scale) * 1e-3, len(heave))
+        h, r, k = np.tile(heave, scale) + shift, np.tile(roll, scale), np.tile(rack, scale)
+        tl, tr = np.tile(left, scale) + shift, np.tile(right, scale) + shift
+        runs = {'one': lambda: sweep(axle.left, tl, rack=k[0]),
+                'two': lambda: (sweep(axle.left, tl, rack=k[0]),
+                                sweep(axle.right, tr, rack=k[0])),
+                'axle': lambda: solve_axle(axle, h, np.radians(r), k)}
+        times = {name: [] for name in runs}
+        for _ in range(rounds):
+            for name, run in runs.items():
+                start = time.process_time()
+                run()
+                times[name].append((time.process_time() - start) / len(h) * 1e6)
+        one, two, both = (float(np.median(times[name])) for name in runs)
+        print(f'{len(h):>10}{one:>15.2f}{two:>16.2f}{both:>10.2f}{both / one:>17.2f}'
+              f'{both / two:>18.2f}', flush=True)
+        print(f'{PROG}: benchmark {scale}x done', file=sys.stderr)
+
+
+@program(PROG)
+def main(argv: list[str] | None = None) -> int:
+    """Run linkage-axle: 0 when done, 1 if a position is out of reach, 2 for a mistake."""
+    args = parse_args(argv)
+    try:
+        from ..core.vehicle_axles import axle_of
+        vehicle = load_vehicle(args.vehicle)
+        axle = axle_of(vehicle, args.axle)
+        heave, roll, rack = positions(args, axle)
+    except (SceneError, LinkageError) as exc:
+        return fail(PROG, exc)
+    with_rack = args.rack is not None or args.rack_grid is not None
+    if with_rack and not axle.steered:
+        return fail(PROG, f'{vehicle.name} {axle.name} axle: no corner has a steer: rack '
+                          'link, so a rack input moves nothing')
+    problem = args.csv and writable_file(args.csv)
+    if problem:
+        return fail(PROG, f'--csv: {problem}')
+    if args.benchmark:
+        benchmark(axle, heave, roll, rack, args.benchmark)
+        return 0
+    print(f'{PROG}: {vehicle.name} {axle.name} axle ({axle.left.name}, {axle.right.name}): '
+          f"{len(heave)} position{'' if len(heave) == 1 else 's'}", file=sys.stderr)
+    result = solve_axle(axle, heave, np.radians(roll), rack)
+    for note in result.notes:
+        print(f'{PROG}: {note}', file=sys.stderr)
+    if with_rack and not axle.wheelbase > 0:
+        print(f'{PROG}: {vehicle.source} has no wheelbase (and not two axles to derive it '
+              'from): no Ackermann', file=sys.stderr)
+    header, rows = table(axle, result, with_rack)
+    try:
+        if args.csv:
+            with open(args.csv, 'w') as stream:
+                write_csv(header, rows, stream)
+        else:
+            write_csv(header, rows, sys.stdout)
+            sys.stdout.flush()
+    except BrokenPipeError:
+        raise                      # stdout's reader went away: program() ends quietly
+    except OSError as exc:         # a full disk; --csv was writable when checked
+        return fail(PROG, f'{args.csv or "stdout"}: cannot write the table '
+                          f'({exc.strerror or exc})')
+    if not result.success:
+        print(f'{PROG}: {result.message} ({len(rows)} positions written)', file=sys.stderr)
+        return 1
+    print(f'{PROG}: done', file=sys.stderr)
+    return 0
+
+
+if __name__ == '__main__':
+    sys.exit(main())

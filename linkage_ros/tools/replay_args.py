@@ -1,0 +1,265 @@
+"""
+The command line of linkage-replay: its subcommands, their options, and the earlier spellings.
+
+    parse_args(argv, description)  -> argparse Namespace (args.command: solve, sweep, copy,
+                                      publish or bench; args.note: the line naming the new
+                                      spelling of an earlier one, else None)
+
+Each subcommand has its own parser, --help, examples and exit statuses; an option given to a
+subcommand that does not take it is named with the subcommands that do (in the earlier
+spelling: '--rate needs --publish').
+"""
+
+import argparse
+import math
+import shlex
+import sys
+import textwrap
+
+from .replay_commands import DEFAULT_TOPIC, SWEEP_HZ
+from .. import cli
+from ..core.kinematics import METHODS
+
+PROG = 'linkage-replay'
+FRAME_ID = 'base_link'
+
+EXIT_STATUSES = """exit status:
+  0  done; the input was complete
+  1  done, but the input was damaged or held messages that do not decode: what could be
+     read was used (even if that is nothing), and the warning says what was lost
+  2  a mistake in the command: an unknown option, a bad value, a path that is not a bag
+     (missing, or not MCAP), an output that cannot be written, a missing optional package
+     (one line on stderr says which)"""
+
+# subcommand: (summary, [(example arguments, what it does)])
+COMMANDS = {
+    'solve': ('solve the commands of a recorded run as suspension_node answers them',
+              [('run.mcap', 'writes ./run_solved.mcap'),
+               ('run.mcap -o again.mcap --scene macpherson', ''),
+               ('car/ --topic /front_left/wheel_travel', 'a corner of a vehicle')]),
+    'sweep': ("solve the commands of a travel sweep (the scene's range and step by default)",
+              [('', 'writes ./five_link_sweep.mcap'),
+               ('--scene macpherson --from -40 --to 40 --step 0.5 -o sweep.mcap', '')]),
+    'copy': ('copy every readable message (any topic, type and QoS) into a complete MCAP: '
+             'recovers a recording cut by a hard kill or damaged',
+             [('run.mcap', 'writes ./run_copy.mcap'), ('cut.mcap -o fixed.mcap', '')]),
+    'publish': ('republish the commands on ROS 2 (rclpy) at the recorded pace instead of '
+                'solving them',
+                [('run.mcap --rate 2 --clock', 'twice as fast, with /clock'),
+                 ('--scene macpherson --hz 100', 'the commands of a sweep')]),
+    'bench': ('time solving the commands with no recording, McapRecorder, RerunRecorder and '
+              'both; print a CSV table on stdout (us per command)',
+              [('run.mcap', ''), ('--from -80 --to 80 --step 0.1', 'the commands of a sweep')]),
+}
+
+
+def examples(*commands):
+    """Return the example lines of commands, their comments in one column."""
+    lines = []
+    for command in commands:
+        for arguments, comment in COMMANDS[command][1]:
+            line = f'  {PROG} {command} {arguments}'.rstrip()
+            lines.append(f'{line:<60} {comment}'.rstrip() if comment else line)
+    return '\n'.join(lines)
+
+
+LEGACY = {'--publish': 'publish', '--copy': 'copy', '--benchmark': 'bench', '--sweep': 'sweep'}
+SWEEP_OPTIONS = ('--from', '--to', '--step', '--hz')
+
+
+class Parser(cli.Parser):
+    """A subcommand's parser: its mistakes are one line that starts with linkage-replay."""
+
+    def error(self, message):
+        """Print one line naming the mistake and exit with status 2."""
+        sys.exit(cli.fail(PROG, f'error: {message} (see {self.prog} --help)'))
+
+
+def _number(minimum, strict):
+    """Return an argparse type: a finite number above (strict) or at least minimum."""
+    def parse(text):
+        try:
+            value = float(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f'expected a number, got {text!r}') from None
+        if not math.isfinite(value) or value < minimum or (strict and value == minimum):
+            relation = 'above' if strict else 'at least'
+            raise argparse.ArgumentTypeError(f'must be a finite number {relation} '
+                                             f'{minimum:g}, got {text}')
+        return value
+    return parse
+
+
+def _finite(text):
+    """Parse a finite number (an argparse type)."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f'expected a number, got {text!r}') from None
+    if not math.isfinite(value):
+        raise argparse.ArgumentTypeError(f'must be a finite number, got {text}')
+    return value
+
+
+def _options(parser, command):
+    """Add the options of a subcommand to its parser; return their option strings."""
+    source = command in ('publish', 'bench')   # a BAG, or without one a sweep
+    known = set()
+
+    def option(*names, **kwargs):
+        known.update(names)
+        parser.add_argument(*names, **kwargs)
+
+    if command != 'sweep':
+        parser.add_argument('bag', nargs='?' if source else None, metavar='BAG',
+                            help='recorded run: an .mcap file, or a rosbag2 bag folder holding '
+                            'one' + ('; without it, the commands of a sweep' if source else ''))
+    if command in ('solve', 'sweep', 'copy'):
+        suffix = {'solve': "BAG's name + _solved.mcap", 'copy': "BAG's name + _copy.mcap",
+                  'sweep': "the scene's name (its letters, digits, _ . -) + _sweep.mcap"
+                  }[command]
+        option('-o', '--output', metavar='OUT', help='MCAP file to write; its folder must '
+               f'exist (default: {suffix}, in the current folder)')
+    if command != 'copy':
+        option('--topic', default=DEFAULT_TOPIC, help='wheel-travel topic, '
+               f'std_msgs/msg/Float64 in m (default {DEFAULT_TOPIC})')
+        stored = (' (default: the scene the recording stores, else five_link)'
+                  if command in ('solve', 'bench') else ' (default five_link)')
+        option('--scene', help=('sweep: ' if command == 'publish' else '') +
+               'bundled scene name or scene YAML path' + stored)
+    if command in ('solve', 'sweep', 'bench'):
+        option('--method', choices=METHODS, default='fast', help='solver (default fast)')
+    if command in ('solve', 'sweep'):
+        option('--frame-id', default=FRAME_ID,
+               help=f'frame of wheel_carrier_pose (default {FRAME_ID})')
+    if command == 'publish':
+        option('--rate', type=_number(0.0, True), default=1.0,
+               help='playback speed factor, > 0 (default 1; 2 = twice as fast)')
+        option('--clock', action='store_true', help='also publish /clock (rosgraph_msgs/Clock) '
+               "at the commands' recorded times, for nodes with use_sim_time:=true")
+        option('--wait', type=_number(0.0, False), default=10.0,
+               help='s to wait for a subscriber, >= 0 (default 10)')
+    if command in ('sweep', 'publish', 'bench'):
+        which = 'sweep: ' if source else ''
+        option('--from', dest='start', type=_finite,
+               help=f"{which}first travel, mm (default: the scene's travel min)")
+        option('--to', dest='stop', type=_finite,
+               help=f"{which}last travel, mm (default: the scene's travel max)")
+        option('--step', type=_number(0.0, True),
+               help=f"{which}travel step, mm, > 0 (default: the scene's step)")
+        option('--hz', type=_number(0.0, True),
+               help=f'{which}command rate, Hz, > 0 (default {SWEEP_HZ:g})')
+    return known
+
+
+def make_parser(description):
+    """
+    Return the parser of linkage-replay and its subcommands.
+
+    parser.commands: {subcommand: (its parser, its option strings)}.
+    """
+    summary, text = description.strip().split('\n', 1)
+    parser = cli.Parser(prog=PROG, description=summary, epilog=f'{text}\n\nexamples:\n'
+                        f'{examples(*COMMANDS)}\n\n{EXIT_STATUSES}')
+    subparsers = parser.add_subparsers(dest='command', metavar='COMMAND',
+                                       parser_class=Parser)
+    parser.commands = {}
+    for command, (summary, _) in COMMANDS.items():
+        sub = subparsers.add_parser(
+            command, help=summary, description=textwrap.fill(f'{PROG} {command}: {summary}.',
+                                                             92),
+            epilog=f'examples:\n{examples(command)}\n\n{EXIT_STATUSES}')
+        parser.commands[command] = sub, _options(sub, command)
+    return parser
+
+
+def translate(argv):
+    """
+    Return (argv in the subcommand spelling, the note to print or None).
+
+    The earlier spellings: BAG alone solves; --sweep, --copy, --publish and --benchmark
+    chose the others (--publish and --benchmark with --sweep: of a sweep's commands). Taken
+    as such when a mode flag or a word that can be a BAG is among the arguments.
+    """
+    if not argv or argv[0] in COMMANDS or argv[0] in ('-h', '--help') or not any(
+            a in LEGACY or not a.startswith('-') for a in argv):
+        return list(argv), None
+    modes = [a for a in argv if a in LEGACY]
+    rest = [a for a in argv if a not in LEGACY]
+    chosen = [m for m in dict.fromkeys(modes) if m != '--sweep']
+    if len(chosen) > 1:
+        raise cli.Mistake(f'error: {chosen[0]} and {chosen[1]}: choose one (see {PROG} --help)')
+    if chosen == ['--copy'] and '--sweep' in modes:
+        raise cli.Mistake(f'error: --copy needs a BAG (see {PROG} --help)')
+    command = LEGACY[chosen[0]] if chosen else 'sweep' if '--sweep' in modes else 'solve'
+    new = [command, *rest]
+    return new, f'{PROG}: note: {shlex.join([PROG, *argv])} is now spelled ' \
+                f'{shlex.join([PROG, *new])}'
+
+
+def parse_args(argv, description):
+    """
+    Parse linkage-replay's arguments (either spelling); a mistake exits with status 2.
+
+    args.note: for an earlier spelling, the line that names the new one, else None.
+    """
+    parser = make_parser(description)
+    try:
+        argv, note = translate(list(sys.argv[1:] if argv is None else argv))
+        argv = _joined_values(argv, parser)
+    except cli.Mistake as exc:
+        sys.exit(cli.fail(PROG, exc))
+    args, extras = parser.parse_known_args(argv)
+    if args.command is None:
+        parser.error(f'unrecognized arguments: {" ".join(extras)}' if extras else
+                     f'choose what to do: {", ".join(COMMANDS)}')
+    sub = parser.commands[args.command][0]
+    if extras:
+        sub.error(_misplaced(parser, args.command, extras, note))
+    args.note = note
+    if args.command in ('publish', 'bench') and args.bag:
+        given = [o for o, dest in zip(SWEEP_OPTIONS, ('start', 'stop', 'step', 'hz'))
+                 if getattr(args, dest) is not None]
+        if given or (args.command == 'publish' and args.scene):
+            sub.error(f'{(given or ["--scene"])[0]} makes a sweep: give it without BAG')
+    return args
+
+
+def _joined_values(argv, parser):
+    """
+    Join a number option and a value that starts with '-' ('--from', '-1e300': --from=-1e300).
+
+    argparse takes '-1e300' or '-80mm' for an option of its own ('expected one argument');
+    joined, the value is checked as a number, and a mistake is said as such.
+    """
+    numeric = {'--from', '--to', '--step', '--hz', '--rate', '--wait'}
+    known = set().union(*(options for _, options in parser.commands.values()))
+    joined, i = [], 0
+    while i < len(argv):
+        if argv[i] in numeric and i + 1 < len(argv) and argv[i + 1].startswith('-') \
+                and argv[i + 1] not in known:
+            joined.append(f'{argv[i]}={argv[i + 1]}')
+            i += 2
+        else:
+            joined.append(argv[i])
+            i += 1
+    return joined
+
+
+def _misplaced(parser, command, extras, note):
+    """Say what is wrong with arguments a subcommand does not take."""
+    option = next((e.split('=')[0] for e in extras if e.startswith('-')), None)
+    if option is None and command == 'sweep':
+        return f'a sweep takes no BAG (unrecognized arguments: {" ".join(extras)})'
+    owners = [name for name, (_, known) in parser.commands.items() if option in known]
+    if not owners:
+        return f'unrecognized arguments: {" ".join(extras)}'
+    if note is None:
+        return f'{option} is not an option of {PROG} {command} (it is one of: ' \
+               f'{", ".join(owners)})'
+    flags = {command: flag for flag, command in LEGACY.items()}
+    if owners == ['publish']:
+        return f'{option} needs --publish'
+    if 'sweep' in owners and set(owners) <= {'sweep', 'publish', 'bench'}:
+        return f'{option} needs --sweep'
+    return f'{option} is not used with {flags.get(command, "a BAG alone")}'

@@ -1,0 +1,134 @@
+"""
+Solve a stream of wheel-travel commands as suspension_node answers them, into sinks.
+
+    solve_commands(commands, scene, method, sinks, topic)   the answers and /diagnostics
+    benchmark(commands, scene, method)                     us per command, with each sink
+
+The answering is the node's own (linkage_ros.protocol.Responder, with the node's parameter
+defaults); time is the recording's: each command at its receive time, a diagnostics report
+every period of it.
+"""
+
+import math
+from pathlib import Path
+import sys
+import time
+
+from .replay_commands import DEFAULT_TOPIC, FLOAT64, stamp_of
+from ..core.errors import LinkageError
+from ..protocol import Responder
+
+DIAGNOSTIC_ARRAY = 'diagnostic_msgs/msg/DiagnosticArray'
+DIAGNOSTICS_TOPIC = '/diagnostics'
+
+
+def node_defaults():
+    """Return the node's defaults that replay answers with: {parameter name: value}."""
+    from ..ros.node import PARAMETERS
+    names = ('frame_id', 'max_step_mm', 'condition_warn', 'diagnostic_period')
+    return {name: PARAMETERS[name][0] for name in names}
+
+
+def status_name(scene):
+    """Return the name of the DiagnosticStatus the node (default name) gives scene's corner."""
+    from ..ros.node import NODE_NAME
+    return f'{NODE_NAME}: {scene.name}'
+
+
+def solve_commands(commands, scene, method, sinks, topic=DEFAULT_TOPIC, progress=None,
+                   frame_id=None, period_s=None):
+    """
+    Solve each command as the node does; hand it and what the node publishes to each sink.
+
+    Sinks: McapRecorder, RerunRecorder (.record(topic, type, CDR, t, t_pub)). On the recorded
+    timeline: pose, camber and toe for a solved command, at its receive time; /diagnostics
+    as the node sends them (Responder): a report every period_s of recorded time (default:
+    the node's diagnostic_period), at once for a failed command or a change of level, and a
+    last one after the last command (a gap in the commands gives one report, not one per
+    period). Outputs are in the command topic's namespace; frame_id defaults to the node's.
+
+    Returns the number of commands that could not be solved.
+    """
+    from ..cdr import float64_cdr, to_cdr
+    from ..record.interfaces import qualified
+    from ..ros import messages
+    defaults = node_defaults()
+    topic = qualified(topic)
+    namespace = topic.rsplit('/', 1)[0]
+    period_s = defaults['diagnostic_period'] if period_s is None else period_s
+    responder = Responder(scene, method=method, max_step_mm=defaults['max_step_mm'],
+                          condition_warn=defaults['condition_warn'],
+                          frame_id=frame_id or defaults['frame_id'],
+                          status_name=status_name(scene),
+                          period_ns=int(round(period_s * 1e9)))
+
+    def emit(name, type_name, data, time_ns, publish_ns=None):
+        for sink in sinks:
+            sink.record(name, type_name, data, time_ns,
+                        time_ns if publish_ns is None else publish_ns)
+
+    def report(time_ns):
+        status = messages.health_status(responder.health, responder.status_name, scene.name,
+                                        method)
+        emit(DIAGNOSTICS_TOPIC, DIAGNOSTIC_ARRAY,
+             to_cdr(messages.diagnostics([status], stamp_of(time_ns))), time_ns)
+
+    failures, t = 0, 0
+    for i, command in enumerate(commands):
+        t = command.log_time
+        due = responder.due(t)
+        if due is not None:           # the period ended before this command
+            report(due)
+            responder.health.reset_period()
+        emit(topic, FLOAT64, float64_cdr(command.travel), t, command.publish_time)
+        reply = responder.answer(command.travel * 1000.0, None, divmod(t, 10**9),
+                                 lambda: f'{topic} {command.travel!r} m')
+        for name, type_name, data in reply.outputs:
+            emit(f'{namespace}/{name}', type_name, data, t)
+        failures += not reply.solution.success
+        if reply.report:
+            report(t)
+        if progress:
+            progress.update(i + 1)
+    if commands:
+        report(t)
+    return failures
+
+
+def benchmark(commands, scene, method, repeat=3, stream=None):
+    """
+    Time solving the commands alone and with each sink; print a table (us per command).
+
+    'no recording' solves and builds the messages (as the node does to publish them); the
+    other rows add McapRecorder, RerunRecorder or both, file closing included. Best of repeat.
+    """
+    import tempfile
+
+    from ..record.mcap_writer import McapRecorder
+    from ..record.rerun_view import RerunRecorder
+    if not commands:
+        raise LinkageError('bench', 'no commands to time')
+    stream = stream or sys.stdout
+    modes = {'no recording': lambda d: [],
+             'McapRecorder': lambda d: [McapRecorder(d / 'bench.mcap')],
+             'RerunRecorder': lambda d: [RerunRecorder(d / 'bench.rrd', scene)],
+             'both': lambda d: [McapRecorder(d / 'bench.mcap'),
+                                RerunRecorder(d / 'bench.rrd', scene)]}
+    messages = 4 * len(commands)   # the command, pose, camber, toe (diagnostics: a few)
+    print('mode,commands,us_per_command,ratio,extra_us_per_message', file=stream)
+    base = None
+    for mode, make in modes.items():
+        best = math.inf
+        for _ in range(repeat):
+            with tempfile.TemporaryDirectory() as folder:
+                start = time.perf_counter()
+                sinks = make(Path(folder))
+                solve_commands(commands, scene, method, sinks)
+                for sink in sinks:
+                    sink.close()
+                best = min(best, time.perf_counter() - start)
+        per_command = 1e6 * best / len(commands)
+        base = per_command if base is None else base
+        extra = 1e6 * best / messages - base * len(commands) / messages
+        print(f'{mode},{len(commands)},{per_command:.1f},{per_command / base:.3f},{extra:.1f}',
+              file=stream)
