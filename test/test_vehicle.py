@@ -110,15 +110,18 @@ def test_a_misspelt_top_level_key_is_named_before_corners_is_said_missing(tmp_pa
         'corner', 'unknown key (did you mean corners?)')
 
 
-def test_axle_and_free_keys_are_kept_in_extras_for_their_readers(tmp_path):
-    # wheelbase, cg_height and axles are core.axle's; description, source, notes, x_... the user's
+def test_axle_keys_are_read_into_axles_and_free_keys_kept_in_extras(tmp_path):
+    # wheelbase, cg_height and axles are core.vehicle_axles'; description, x_... the user's
     path = tmp_path / 'car.yaml'
-    path.write_text('wheelbase: 2800\ncg_height: 550\naxles: {front: [front_left]}\n'
+    path.write_text('wheelbase: 2800\ncg_height: 550\n'
+                    'axles: {front: {left: front_left, right: front_right}}\n'
                     'description: test car\nx_owner: me\n'
-                    'corners:\n  rear_left: {scene: five_link}\n')
-    assert load_vehicle(path).extras == {
-        'wheelbase': 2800, 'cg_height': 550, 'axles': {'front': ['front_left']},
-        'description': 'test car', 'x_owner': 'me'}
+                    'corners:\n  front_left: {scene: double_wishbone}\n'
+                    '  front_right: {scene: double_wishbone, mirror: true}\n')
+    vehicle = load_vehicle(path)
+    assert vehicle.extras == {'description': 'test car', 'x_owner': 'me'}
+    assert (vehicle.axles.wheelbase, vehicle.axles.cg_height) == (2800.0, 550.0)
+    assert list(vehicle.axles.axles) == ['front']
 
 
 def test_a_vehicle_carries_its_corners_scene_warnings_once(tmp_path):

@@ -27,7 +27,6 @@ computed compiled (element_kernel.py): a few microseconds per answer.
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
-import difflib
 import math
 import re
 from typing import NamedTuple, TYPE_CHECKING
@@ -46,7 +45,7 @@ if TYPE_CHECKING:
     from .scene import Constraint, Scene
 
 TYPES = ('spring', 'damper', 'length')
-KEYS = ('name', 'type', 'body', 'point', 'rate', 'free_length', 'description') + tuple(KINDS)
+KEYS = ('name', 'type', 'body', 'point', 'rate', 'free_length') + tuple(KINDS)
 NAME = re.compile(r'^[A-Za-z][A-Za-z0-9_]*$')   # becomes the start of table column names
 
 
@@ -87,7 +86,7 @@ def parse_elements(check, items: object,
     """
     Read and validate a scene file's elements list (None: no elements).
 
-    check is the scene parser's field reader (fail, point, number, scale), so a mistake
+    check is the scene parser's field reader (fields.Fields), so a mistake
     raises SceneError naming the file and the field.
     """
     if items is None:
@@ -113,11 +112,7 @@ def _parse_element(check, item, index, constraints):
         check.fail(f'{where}.name', f'expected a name of letters, digits and _ starting with a '
                    f'letter (it starts the table columns), got {name!r}')
     where = f'elements[{index}] ({name})'
-    for key in item:
-        if key not in KEYS and not (isinstance(key, str) and key.startswith('x_')):
-            close = difflib.get_close_matches(str(key), KEYS, n=1)
-            hint = f'did you mean {close[0]}?' if close else f'known: {", ".join(KEYS)}'
-            check.fail(f'{where}.{key}', f'unknown key ({hint})')
+    check.keys(item, KEYS, where)   # free keys (description, notes, x_...) pass
     kind = check.choice(item, 'type', TYPES, f'{where}.type')
     scale = check.scale
     mount, body = parse_mount(item, constraints, where, scale,

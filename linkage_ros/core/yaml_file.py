@@ -101,13 +101,23 @@ def read_yaml(path: str | PathLike, what: str = 'scene') -> Any:
         text = raw.decode('utf-8')
     except UnicodeDecodeError as exc:
         raise SceneError(path, 'file', f'not UTF-8 text ({exc})') from None
+    return parse_yaml(text, path)
+
+
+def parse_yaml(text: str, where: str | PathLike) -> Any:
+    """
+    Return the data of YAML text with read_yaml's bounds (values, depth, plain tags only).
+
+    where names the text in errors (a file, or a recording's stored scene); the text's length
+    is the caller's to bound (read_yaml reads at most FILE_LIMIT_BYTES). Raises SceneError.
+    """
     try:
         _check_events(text)
-        return yaml.load(text, Loader=_PlainLoader)
+        return yaml.load(text, Loader=_PlainLoader)   # noqa: S506 (_PlainLoader is safe)
     except yaml.MarkedYAMLError as exc:
-        raise _located(path, exc) from None
+        raise _located(where, exc) from None
     except (yaml.YAMLError, ValueError, RecursionError) as exc:
-        raise SceneError(path, 'file', f'not valid YAML ({_one_line(str(exc))})') from None
+        raise SceneError(where, 'file', f'not valid YAML ({_one_line(str(exc))})') from None
 
 
 def _size_of(path):

@@ -28,17 +28,13 @@ import sys
 import time
 
 from .replay_args import parse_args, PROG
-from .replay_commands import (file_stem, METADATA, read_commands, stored_scene, stored_text,
+from .replay_commands import (METADATA, read_commands, stored_scene, stored_text,
                               SWEEP_HZ)
 from .. import cli
+from ..cli import counted
 from ..core.errors import LinkageError
 
 PROGRESS_PERIOD = 1.0   # s between progress lines
-
-
-def counted(n, noun):
-    """Say a count with its noun: '1 command', '3 commands'."""
-    return f'{n} {noun}{"" if n == 1 else "s"}'
 
 
 class Progress:
@@ -124,7 +120,7 @@ def run(args):
     if args.command in ('solve', 'sweep', 'copy'):
         suffix = {'solve': '_solved.mcap', 'copy': '_copy.mcap'}.get(args.command)
         output = args.output or (cli.default_output(bag_path, suffix) if bag_path else
-                                 str(Path.cwd() / f'{file_stem(scene.name)}_sweep.mcap'))
+                                 str(Path.cwd() / f'{scene.file_stem}_sweep.mcap'))
         cli.check_output(output, '-o' if args.output else 'output',
                          inputs=_inputs(bag_path, scene))
     if args.command == 'copy':

@@ -4,7 +4,6 @@ The wheel-travel commands linkage-replay works on: read from a bag, or made for 
     read_commands(path, topic)      -> Commands: the decoded commands, the bag, what was lost
     sweep_commands(scene, ...)      -> [Command] of a travel sweep on a timeline
     stored_scene(bag, topic)        -> the scene a recording stores, or None
-    file_stem(name)                 -> a name made safe as the start of a file name
 
 A command is std_msgs/msg/Float64 in CDR, travel in m. A message that does not decode (too
 short, not CDR) is lost and named; messages of another type on the command topic are skipped
@@ -16,7 +15,6 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 import math
 from pathlib import Path
-import re
 import time
 
 from ..core.errors import LinkageError
@@ -31,7 +29,6 @@ MAX_SWEEP_COMMANDS = 1_000_000
 # ROS 2 stamps hold int32 seconds: the last time they can say is 2038-01-19 03:14:07 UTC.
 LAST_STAMP_S = 2**31 - 1
 METADATA = 'linkage_ros'   # the recording's metadata record that stores its scene
-STORED_LIMIT = 1 << 20     # bytes: a stored scene or vehicle file larger than this is refused
 
 
 class ReplayError(LinkageError):
@@ -170,19 +167,6 @@ def sweep_commands(scene, start=None, stop=None, step=None, hz=SWEEP_HZ, t0=None
             for i, travel in enumerate(travel_range(start, stop, step))]
 
 
-def file_stem(name):
-    """
-    Return name made safe as the start of a file name in the current folder.
-
-    Runs of characters other than letters, digits, '_', '.' and '-' become '_', and no
-    leading or trailing '.', '_' or '-' is kept (at most 100 characters): a scene named
-    '../escaped' or '/tmp/x' gives 'escaped' or 'tmp_x', one of only dots 'scene'. (The
-    input work gives Scene.file_stem, the same rule: use it once it is in.)
-    """
-    stem = re.sub(r'[^A-Za-z0-9_.-]+', '_', str(name)).strip('._-')
-    return stem[:100].rstrip('._-') or 'scene'
-
-
 def stored_scene(bag, topic):
     """
     Return the scene a recording stores for topic's corner, or None if it stores none.
@@ -235,26 +219,11 @@ def _vehicle_corner(bag, topic, text):
 
 
 def _safe_yaml(path, key, text):
-    """Parse a stored YAML text; a large one, an alias or bad YAML is a SceneError."""
-    import yaml
-
+    """Parse a stored YAML text with the loader's bounds; a large one or bad YAML is SceneError."""
     from ..core.scene import SceneError
+    from ..core.yaml_file import FILE_LIMIT_BYTES, parse_yaml
     where = f'{path} (its {key})'
-    if len(text) > STORED_LIMIT:
-        raise SceneError(where, 'file', f'{len(text)} characters, more than the '
-                         f'{STORED_LIMIT} a stored scene may have')
-
-    class NoAliases(yaml.SafeLoader):
-        # A recording comes from anyone: an alias chain ("billion laughs") would expand.
-        def compose_node(self, parent, index):
-            if self.check_event(yaml.AliasEvent):
-                mark = self.peek_event().start_mark
-                raise yaml.YAMLError(f'an alias (*) at line {mark.line + 1}: not allowed in '
-                                     'a stored file')
-            return super().compose_node(parent, index)
-
-    try:
-        return yaml.load(text, Loader=NoAliases)   # noqa: S506 (a SafeLoader)
-    except (yaml.YAMLError, ValueError, RecursionError) as exc:
-        raise SceneError(where, 'file', f'not valid YAML ({" ".join(str(exc).split())})') \
-            from None
+    if len(text.encode()) > FILE_LIMIT_BYTES:
+        raise SceneError(where, 'file', f'{len(text.encode()):,} bytes, over the limit of '
+                         f'{FILE_LIMIT_BYTES:,} bytes a scene file may have')
+    return parse_yaml(text, where)
