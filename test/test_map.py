@@ -11,11 +11,13 @@ from pathlib import Path
 import subprocess
 import sys
 
+from linkage_ros.core.axle import solve_axle
 from linkage_ros.core.kinematics import Continuation, Sweep
 from linkage_ros.core.mechanism import carrier_points
 from linkage_ros.core.scene import load_scene
+from linkage_ros.core.vehicle import load_vehicle
+from linkage_ros.core.vehicle_axles import axle_of
 from linkage_ros.tools.kinematic_map import main
-from linkage_ros.tools.map_grid import axle_map, wheel_column
 from linkage_ros.tools.sweep import header, table
 import numpy as np
 import pyarrow.parquet as pq
@@ -90,7 +92,7 @@ def test_points_beyond_a_travel_limit_are_nan_and_listed_with_status_1(tmp_path,
     code, err = run_map(tmp_path, capsys, 'five_link', '--travel', '-100:450:50')
     stored = np.load(tmp_path / 'five_link.npz')
     assert code == 1
-    assert f'2 grid points are out of reach: NaN in the map, listed in {tmp_path}' in err
+    assert f'2 solves are out of reach: NaN in the map, listed in {tmp_path}' in err
     beyond = stored['travel_mm'] > 387.469
     assert np.isnan(stored['camber_deg'][beyond]).all()
     assert np.isfinite(stored['camber_deg'][~beyond]).all()
@@ -104,7 +106,7 @@ def test_points_beyond_a_travel_limit_are_nan_and_listed_with_status_1(tmp_path,
 def test_quantities_a_corner_has_not_are_left_out_and_said(tmp_path, capsys):
     code, err = run_map(tmp_path, capsys, 'five_link', '--travel', '-20:20:20')
     assert code == 0
-    assert ('five_link: left out, not defined for this corner: caster_deg, '
+    assert ('five_link: left out, not defined here: caster_deg, '
             'kingpin_inclination_deg, scrub_radius_mm, mechanical_trail_mm') in err
     assert 'caster_deg' not in np.load(tmp_path / 'five_link.npz').files
 
@@ -129,7 +131,6 @@ def test_a_grid_too_large_for_memory_is_one_line_saying_what_it_needs(tmp_path, 
 
 
 @pytest.mark.parametrize('argv, said', [
-    (['--axle', 'front'], "linkage-map: --axle: an axle's map"),
     (['--rack', '0:10:5'], 'linkage-map: --rack: no corner has a steer: rack link'),
     (['--travel', '10:0:0'], 'linkage-map: --travel: FROM, TO, STEP must be finite and '
                              "STEP > 0, got '10:0:0'"),
@@ -153,23 +154,42 @@ def test_parquet_without_pyarrow_names_the_extra_to_install(tmp_path):
                            'checkout) or pip install pyarrow\n')
 
 
-def test_an_axle_map_of_a_mirrored_pair_has_its_roll_centre_on_the_centreline():
-    # The roll-centre function is the caller's (core.axle's when it lands); here the classic
-    # construction: each patch's line square to its velocity in the front view, intersected.
-    def roll_centre(patch, velocity):
-        normals = velocity[:, :, 1:]
-        rhs = np.einsum('nki,nki->nk', normals, patch[:, :, 1:])
-        return np.linalg.solve(normals, rhs[:, :, None])[:, :, 0]
+def test_an_axle_map_holds_what_the_axle_module_solves_at_each_pair_of_travels(tmp_path,
+                                                                               capsys):
+    # The reference: core.axle.solve_axle, its own continuation, at the heave and roll that
+    # give each (left, right) pair: heave (l + r) / 2, tan(roll) = (r - l) / design track.
+    code, err = run_map(tmp_path, capsys, 'demo_vehicle', '--axle', 'front', '--travel',
+                        '-60:60:30', '--format', 'csv,npz,parquet')
+    assert code == 0 and 'front axle: 5 x 5 (left travel x right travel)' in err
+    stored = np.load(tmp_path / 'front_axle.npz')
+    axle = axle_of(load_vehicle('demo_vehicle'), 'front')
+    left, right = np.meshgrid(stored['left_travel_mm'], stored['right_travel_mm'],
+                              indexing='ij')
+    solved = solve_axle(axle, (left + right).ravel() / 2,
+                        np.arctan((right - left).ravel() / axle.design_track))
+    assert solved.success
+    expected = {'roll_centre_y_mm': solved.roll_centre[:, 0],
+                'roll_centre_z_mm': solved.roll_centre[:, 1],
+                'roll_centre_height_mm': solved.roll_centre_height, 'track_mm': solved.track,
+                'left_camber_deg': np.degrees(solved.camber[:, 0]),
+                'right_camber_deg': np.degrees(solved.camber[:, 1]),
+                'left_toe_deg': np.degrees(solved.toe[:, 0]),
+                'right_toe_deg': np.degrees(solved.toe[:, 1])}
+    assert sorted(stored.files) == sorted(['left_travel_mm', 'right_travel_mm', *expected])
+    for name, values in expected.items():
+        assert stored[name].ravel() == pytest.approx(values, rel=1e-9, abs=1e-9), name
+    # a mirrored pair at equal travels: the roll centre on the centreline
+    assert np.diag(stored['roll_centre_y_mm']) == pytest.approx(0.0, abs=1e-6)
+    with open(tmp_path / 'front_axle.csv') as stream:
+        assert stream.readline() == 'axle,left_travel_mm,right_travel_mm,quantity,value\n'
 
-    scene = load_scene('double_wishbone')
-    from linkage_ros.core.scene import mirror
-    travels = np.array([-40.0, 0.0, 40.0])
-    left, right = wheel_column(scene, travels), wheel_column(mirror(scene), travels)
-    axle = axle_map(left, right, roll_centre)
-    assert np.diag(axle['roll_centre_y_mm']) == pytest.approx(0.0, abs=1e-9)
-    assert np.diag(axle['track_mm']) == pytest.approx(2 * left.patch[:, 1])
-    assert axle['right_camber_deg'][0] == pytest.approx(left.camber)   # mirrored wheel
-    assert axle['left_toe_deg'][:, 2] == pytest.approx(left.toe)
+
+def test_an_axle_map_of_a_scene_or_a_missing_axle_is_one_line(tmp_path, capsys):
+    code, err = run_map(tmp_path, capsys, 'five_link', '--axle', 'front')
+    assert code == 2 and err == ('linkage-map: --axle: five_link is a scene; an axle is in a '
+                                 'vehicle file (e.g. demo_vehicle)\n')
+    code, err = run_map(tmp_path, capsys, 'demo_vehicle', '--axle', 'middle')
+    assert code == 2 and err.endswith("axles: no axle 'middle' (axles: front, rear)\n")
 
 
 def test_benchmark_prints_with_and_without_elements_at_three_sizes(capsys):

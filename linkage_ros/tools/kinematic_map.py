@@ -7,21 +7,24 @@ NumPy .npz (grid axes and arrays) and, with the map extra, Parquet (map_files.py
 of reach are NaN and listed in out_of_reach.csv, never extrapolated (doc/maps.md).
 """
 
+from functools import partial
 import os
 from pathlib import Path
 import re
 import sys
 import time
+from typing import Callable, NamedTuple
 
 import numpy as np
 import yaml
 
 from .map_files import FORMATS, UNREACHED, write_map, write_unreached
-from .map_grid import corner_map, Grid, quantities
+from .map_grid import axle_grid_map, AXLE_QUANTITIES, corner_map, Grid, GridMap, quantities
 from ..cli import EXIT_STATUS, fail, Parser, program
 from ..core.errors import LinkageError
 from ..core.scene import load_scene
 from ..core.vehicle import load_vehicle, vehicle_dir
+from ..core.vehicle_axles import axle_of
 
 PROG = 'linkage-map'
 GRID_OPTIONS = ('--travel', '--rack')
@@ -34,13 +37,16 @@ EPILOG = """writes into DIR, per corner (the scene's name, or the vehicle's corn
   <corner>.csv      long form: corner,travel_mm,rack_mm,quantity,value (exact floats)
   <corner>.npz      travel_mm (nt,), rack_mm (nr,), one (nt, nr) array per quantity
   <corner>.parquet  with --format ...,parquet (pip install -e '.[map]'): a row per point
-  out_of_reach.csv  corner,travel_mm,rack_mm,reason of every point left NaN
+  out_of_reach.csv  corner,travel_mm,rack_mm,reason of every solve out of reach (NaN)
 The quantities are linkage-sweep's columns with --alignment and --elements, in mm and deg.
-Loading a map into an interpolating lookup: doc/maps.md.
+With --axle NAME instead: <NAME>_axle.* over left_travel_mm x right_travel_mm (rack 0),
+roll_centre_y_mm, roll_centre_z_mm, roll_centre_height_mm, track_mm and both wheels'
+camber and toe (core/axle.py). Loading a map into an interpolating lookup: doc/maps.md.
 
 examples:
   linkage-map double_wishbone --out maps
   linkage-map demo_vehicle --travel -50:50:2 --rack -30:30:10 --out maps --format csv,npz,parquet
+  linkage-map demo_vehicle --axle front --out maps
 
 exit status: 0 every grid point solved; 1 done, but some points are out of reach (NaN, listed
 in out_of_reach.csv); """ + EXIT_STATUS
@@ -56,7 +62,9 @@ def parse_args(argv):
                         help='steering rack grid, mm, + = rack to the left (default -40:40:5 '
                         'for a corner with a steer: rack link; 0 for the others)')
     parser.add_argument('--axle', metavar='NAME',
-                        help="an axle's map over (left travel, right travel) (not yet)")
+                        help="instead of the corners' maps, the map of the vehicle's axle NAME "
+                        'over (left travel, right travel) at rack 0: roll centre, track, both '
+                        "wheels' camber and toe")
     parser.add_argument('--out', metavar='DIR', help='folder for the map files (made if '
                         'missing)')
     parser.add_argument('--format', default='csv,npz',
@@ -94,14 +102,15 @@ def grid_option(text, option):
     return Grid(start, stop, step)
 
 
-def load_corners(target):
-    """Return {corner name: Scene} of a scene (its name) or a vehicle file (its corners)."""
+def load_target(target):
+    """Return (Vehicle or None, {corner name: Scene}) of a scene file or a vehicle file."""
     path = Path(target)
     bundled = vehicle_dir() / f'{target}.yaml'
     if (not path.suffix and not path.exists() and bundled.is_file()) or _is_vehicle(path):
-        return load_vehicle(target).corners
+        vehicle = load_vehicle(target)
+        return vehicle, vehicle.corners
     scene = load_scene(target)
-    return {re.sub(r'[^A-Za-z0-9_.-]+', '_', scene.name).strip('._-') or 'scene': scene}
+    return None, {re.sub(r'[^A-Za-z0-9_.-]+', '_', scene.name).strip('._-') or 'scene': scene}
 
 
 def _is_vehicle(path):
@@ -118,27 +127,61 @@ def steered(scene):
     return any(c.steer == 'rack' for c in scene.constraints)
 
 
-def grids(corners, args):
-    """Return {corner: (travel Grid, rack Grid or None for rack 0 only)}; LinkageError if bad."""
+class Job(NamedTuple):
+    """One map to make: its name, grid size, quantities and how to solve it."""
+
+    name: str
+    shape: tuple[int, int]
+    quantities: int
+    solve: Callable[[], GridMap]
+
+
+def corner_jobs(corners, args):
+    """Return a Job per corner over (travel, rack); LinkageError for a bad grid."""
     travel = args.travel and grid_option(args.travel, '--travel')
     rack = args.rack and grid_option(args.rack, '--rack')
     if rack and not any(steered(s) for s in corners.values()):
         raise LinkageError('--rack', 'no corner has a steer: rack link, so a rack moves '
                            'nothing')
-    return {name: (travel or Grid(*scene.travel),
-                   (rack or DEFAULT_RACK) if steered(scene) else None)
-            for name, scene in corners.items()}
-
-
-def memory_needed(corners, axes):
-    """Return (grid points, bytes) the maps need; counted, nothing allocated."""
-    points = total = 0
+    jobs = []
     for name, scene in corners.items():
-        travel, rack = axes[name]
-        count = travel.count * (rack.count if rack else 1)
-        points += count
-        total = max(total, count * len(quantities(scene)) * BYTES_PER_VALUE)
-    return points, total
+        travels = travel or Grid(*scene.travel)
+        racks = (rack or DEFAULT_RACK) if steered(scene) else None
+        jobs.append(Job(name, (travels.count, racks.count if racks else 1),
+                        len(quantities(scene)),
+                        partial(solve_corner, scene, travels, racks, name)))
+    return jobs
+
+
+def axle_job(vehicle, args):
+    """Return the Job of the axle --axle names over (left travel, right travel), rack 0."""
+    if vehicle is None:
+        raise LinkageError('--axle', f'{args.target} is a scene; an axle is in a vehicle file '
+                           '(e.g. demo_vehicle)')
+    if args.rack:
+        raise LinkageError('--rack', "an axle's map is over both wheels' travels at rack 0; "
+                           'map its steered corners without --axle for the rack')
+    axle = axle_of(vehicle, args.axle)
+    travel = grid_option(args.travel, '--travel') if args.travel else Grid(*axle.left.travel)
+    return Job(f'{axle.name} axle', (travel.count, travel.count), len(AXLE_QUANTITIES),
+               partial(solve_axle, axle, travel))
+
+
+def solve_corner(scene, travel, rack, name):
+    """Solve a corner's map over the Grids travel and rack (None: rack 0 only)."""
+    return corner_map(scene, travel.values(), rack.values() if rack else np.zeros(1), name)
+
+
+def solve_axle(axle, travel):
+    """Solve an axle's map, both wheels over the Grid travel."""
+    return axle_grid_map(axle, travel.values())
+
+
+def memory_needed(jobs):
+    """Return (grid points, bytes) the maps need; counted, nothing allocated."""
+    points = sum(job.shape[0] * job.shape[1] for job in jobs)
+    return points, max(job.shape[0] * job.shape[1] * job.quantities * BYTES_PER_VALUE
+                       for job in jobs)
 
 
 def memory_available():
@@ -195,17 +238,13 @@ def main(argv: list[str] | None = None) -> int:
     """Run linkage-map: 0 when done, 1 if points are out of reach, 2 for a mistake."""
     args = parse_args(argv)
     try:
-        corners = load_corners(args.target)
-        axes = grids(corners, args)
+        vehicle, corners = load_target(args.target)
+        jobs = [axle_job(vehicle, args)] if args.axle is not None else corner_jobs(corners, args)
         if args.benchmark:
             from .map_bench import benchmark
             benchmark(corners, args.benchmark)
             return 0
-        if args.axle is not None:
-            raise LinkageError('--axle', "an axle's map (roll centre, track, both wheels' "
-                               'camber and toe over left x right travel) is not built yet: it '
-                               'needs the axle module (core/axle.py)')
-        points, need = memory_needed(corners, axes)
+        points, need = memory_needed(jobs)
         available = memory_available()
         if available is not None and need > available:
             raise LinkageError('grid', f'{points:,} points need about {_gb(need)} of memory '
@@ -216,22 +255,21 @@ def main(argv: list[str] | None = None) -> int:
     except LinkageError as exc:
         return fail(PROG, exc)
     maps = []
-    for name, scene in corners.items():
-        travel, rack = axes[name]
+    for job in jobs:
         started = time.perf_counter()
-        maps.append(corner_map(scene, travel.values(), rack.values() if rack else np.zeros(1),
-                               name))
+        maps.append(job.solve())
         written = write_map(folder, maps[-1], formats)
-        print(f'{PROG}: {name}: {travel.count} x {rack.count if rack else 1} (travel x rack) '
+        first, second = (n.replace('_mm', '').replace('_', ' ') for n in maps[-1].axis_names)
+        print(f'{PROG}: {job.name}: {job.shape[0]} x {job.shape[1]} ({first} x {second}) '
               f'grid points, {len(maps[-1].quantities)} quantities, solved in '
               f'{time.perf_counter() - started:.2f} s -> '
               f'{", ".join(str(p) for p in written)}', file=sys.stderr)
         if maps[-1].undefined:
-            print(f'{PROG}: {name}: left out, not defined for this corner: '
+            print(f'{PROG}: {job.name}: left out, not defined here: '
                   f'{", ".join(maps[-1].undefined)}', file=sys.stderr)
     lost = write_unreached(folder / UNREACHED, maps)
     if lost:
-        print(f'{PROG}: {lost} grid points are out of reach: NaN in the map, listed in '
+        print(f'{PROG}: {lost} solves are out of reach: NaN in the map, listed in '
               f'{folder / UNREACHED}', file=sys.stderr)
         return 1
     return 0
