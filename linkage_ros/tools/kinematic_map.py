@@ -1,10 +1,11 @@
 """
-linkage-map: kinematic maps of a corner or of every corner of a vehicle, for simulators.
+linkage-map: kinematic maps of a corner, of every corner of a vehicle, or of an axle.
 
 Every quantity of linkage-sweep's tables (pose, camber, toe, the alignment set, the scene's
-elements) on a regular (travel, rack) grid, written as lookup tables: CSV in long form,
-NumPy .npz (grid axes and arrays) and, with the map extra, Parquet (map_files.py). Points out
-of reach are NaN and listed in out_of_reach.csv, never extrapolated (doc/maps.md).
+elements) on a regular (travel, rack) grid, or an axle's roll centre, track, cambers and toes
+over (left travel, right travel), written as lookup tables for simulators: CSV in long form,
+NumPy .npz (grid axes and arrays) and, with the map extra, Parquet. Points out of reach are
+NaN and listed in out_of_reach.csv, never extrapolated (doc/maps.md).
 """
 
 from functools import partial
