@@ -8,6 +8,8 @@ step sweep double_wishbone
 .venv/bin/linkage-sweep double_wishbone --from -40 --to 40 --step 10 --csv double_wishbone.csv; echo "rc=$?"; head -2 double_wishbone.csv
 step sweep out of reach
 .venv/bin/linkage-sweep five_link --from 0 --to 1000 --step 100 > /dev/null; echo "rc=$?"
+step kinematic map
+.venv/bin/linkage-map double_wishbone --out maps; echo "rc=$?"; ls maps
 step misspelt parameter
 .venv/bin/suspension_node --ros-args -p sceen:=macpherson; echo "rc=$?"
 step python snippet

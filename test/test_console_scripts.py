@@ -18,7 +18,8 @@ SCRIPTS = sorted(e.name for e in distribution('linkage_ros').entry_points
                  if e.group == 'console_scripts')
 # Positional arguments a script requires, so that the unknown option is the only mistake.
 REQUIRED = {'linkage-sweep': ['five_link'], 'linkage-plot': ['camber-toe', 'out.png'],
-            'linkage-rerun': ['run.mcap'], 'linkage-replay': ['run.mcap']}
+            'linkage-rerun': ['run.mcap'], 'linkage-replay': ['run.mcap'],
+            'linkage-map': ['five_link']}
 
 
 def run(name, *args, cwd=None):

@@ -230,9 +230,9 @@ def test_a_misspelt_key_is_named_with_the_key_it_resembles(tmp_path, edit, field
 def test_an_unknown_key_like_no_other_lists_the_keys_there_are(tmp_path):
     err = load_broken(tmp_path, lambda d: d.update(zzz=1))
     assert (err.field, err.problem) == ('zzz', 'unknown key (known: name, units, side, '
-                                        'wheel_radius, carrier, constraints, travel, kingpin; '
-                                        'also '
-                                        'allowed: description, source, notes, reference, x_...)')
+                                        'wheel_radius, carrier, constraints, travel, elements, '
+                                        'kingpin; also allowed: description, source, notes, '
+                                        'reference, x_...)')
 
 
 def test_free_keys_are_kept_for_the_user_and_ignored_by_the_solver(tmp_path):

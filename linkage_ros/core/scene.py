@@ -47,7 +47,8 @@ PLAUSIBLE_MM = (50.0, 3000.0)
 # The keys of a scene file, of its blocks, and of a constraint (base for a sphere or a line,
 # axis for a circle); FREE_KEYS (description, source, notes) and x_... keys are allowed in
 # every mapping, reference at the top.
-SCENE_KEYS = ('name', 'units', 'side', 'wheel_radius', 'carrier', 'constraints', 'travel')
+SCENE_KEYS = ('name', 'units', 'side', 'wheel_radius', 'carrier', 'constraints', 'travel',
+              'elements')
 # Keys of features beyond the solver, checked by their own modules and kept in Scene.extras.
 FEATURE_KEYS = ('kingpin',)
 SCENE_FREE_KEYS = FREE_KEYS + ('reference',)
@@ -99,6 +100,7 @@ class Scene:
     # One line each, naming the file: what looks wrong in a scene that loads (see
     # scene_warnings). The programs print them once on stderr; the node logs them.
     warnings: tuple[str, ...] = field(default=(), compare=False)
+    elements: tuple = ()          # springs, dampers, lengths (elements.Element), mm
 
     @property
     def side_sign(self) -> float:
@@ -204,12 +206,14 @@ def parse_scene(data: Any, source: str = '<scene>') -> Scene:
     if data.get('kingpin') is not None:   # a misspelt joint fails on load, not in a sweep
         from .kingpin import check_kingpin
         check_kingpin(source, data['kingpin'], constraints)
+    from .elements import parse_elements   # here: elements.py reads SceneError from here
     scene = Scene(name=check.text(data, 'name') or Path(source).stem, source=source,
                   side=side, units=units, wheel_center=wheel_center, spin_axis_point=spin_point,
                   third_point=third_point, constraints=constraints, travel=travel,
                   wheel_radius=radius, description=check.text(data, 'description').strip(),
                   extras={k: v for k, v in data.items()
-                          if k not in SCENE_KEYS and k != 'description'})
+                          if k not in SCENE_KEYS and k != 'description'},
+                  elements=parse_elements(check, data.get('elements'), constraints))
     return replace(scene, warnings=scene_warnings(scene))
 
 
@@ -412,7 +416,8 @@ def mirror(scene: Scene) -> Scene:
                  spin_axis_point=scene.spin_axis_point * flip,
                  third_point=scene.third_point * flip, constraints=constraints,
                  travel=scene.travel, wheel_radius=scene.wheel_radius,
-                 description=scene.description, extras=scene.extras, warnings=scene.warnings)
+                 description=scene.description, extras=scene.extras, warnings=scene.warnings,
+                 elements=tuple(e.transformed(flip, 0.0) for e in scene.elements))
 
 
 def translate(scene: Scene, offset: ArrayLike) -> Scene:
@@ -423,4 +428,5 @@ def translate(scene: Scene, offset: ArrayLike) -> Scene:
                         for c in scene.constraints)
     return replace(scene, wheel_center=scene.wheel_center + offset,
                    spin_axis_point=scene.spin_axis_point + offset,
-                   third_point=scene.third_point + offset, constraints=constraints)
+                   third_point=scene.third_point + offset, constraints=constraints,
+                   elements=tuple(e.transformed(1.0, offset) for e in scene.elements))

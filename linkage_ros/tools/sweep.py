@@ -34,12 +34,13 @@ ALIGNMENT_COLUMNS = [
     'kingpin_offset_wheel_centre_geometric_mm']
 
 
-def table(result, scene=None, with_rack=False):
+def table(result, scene=None, with_rack=False, elements=None):
     """
     Return the values of a Sweep in mm and deg as an (n, columns) array.
 
-    The columns are COLUMNS, then rack_mm if with_rack, then the alignment columns if a scene
-    is given. Built column-wise: linear in n.
+    The columns are header(scene, with_rack, elements): COLUMNS, then rack_mm if with_rack,
+    then the alignment columns if a scene is given, then the element columns of the scene
+    elements. Built column-wise: linear in n.
     """
     n = len(result.travel)
     columns = [result.travel, np.degrees(result.camber), np.degrees(result.toe),
@@ -48,6 +49,10 @@ def table(result, scene=None, with_rack=False):
         columns.append(np.full(n, result.rack))
     if scene is not None:
         columns.append(alignment_table(scene, result))
+    if elements is not None:
+        from ..core.elements import element_table, element_values
+        columns.append(element_table(elements, element_values(
+            elements, result.wheel_center, result.rotation, result.rack)))
     return np.column_stack([np.reshape(c, (n, -1)).astype(float) for c in columns])
 
 
@@ -70,25 +75,34 @@ def alignment_table(scene, result):
         k.offset_wheel_centre))
 
 
-def write_csv(results, stream, scene=None, with_rack=False):
+def header(scene=None, with_rack=False, elements=None):
+    """Return the column names of table(result, scene, with_rack, elements)."""
+    from ..core.elements import element_columns
+    return COLUMNS + (RACK_COLUMNS if with_rack else []) + (
+        ALIGNMENT_COLUMNS if scene is not None else []) + (
+        element_columns(elements) if elements is not None else [])
+
+
+def write_csv(results, stream, scene=None, with_rack=False, elements=None):
     """
     Write Sweeps (one or several, e.g. a rack grid) as one CSV table.
 
     Values are written to 10 significant digits.
     """
-    header = COLUMNS + (RACK_COLUMNS if with_rack else []) + (
-        ALIGNMENT_COLUMNS if scene is not None else [])
-    row_format = ','.join(['%.10g'] * len(header)) + '\n'
-    stream.write(','.join(header) + '\n')
+    columns = header(scene, with_rack, elements)
+    row_format = ','.join(['%.10g'] * len(columns)) + '\n'
+    stream.write(','.join(columns) + '\n')
     for result in results:
-        rows = table(result, scene, with_rack) + 0.0   # + 0.0: no '-0' in the table
+        rows = table(result, scene, with_rack, elements) + 0.0   # + 0.0: no '-0' in the table
         stream.writelines(row_format % tuple(row) for row in rows.tolist())
 
 
 EPILOG = """columns: travel_mm, camber_deg (+ = top outboard), toe_deg (+ = toe-in), wheel centre
   x, y, z in mm (vehicle frame: x forward, y left, z up), the carrier rotation relative to
   design as a quaternion qx, qy, qz, qw, residual_mm, iterations; then rack_mm with --rack or
-  --grid, and the alignment set with --alignment.
+  --grid, the alignment set with --alignment, and with --elements each element's
+  <name>_length_mm and <name>_ratio (d length / d travel), and for a spring with a rate
+  <name>_force_N (+ = compressed) and <name>_wheel_rate_N_per_mm (doc/elements.md).
 
 examples:
   linkage-sweep five_link --csv five_link_sweep.csv
@@ -122,6 +136,8 @@ def parse_args(argv):
     parser.add_argument('--alignment', action='store_true',
                         help='add the alignment columns (gains, steer axis, scrub, trail, '
                         'instant centres, screw axis)')
+    parser.add_argument('--elements', action='store_true',
+                        help="add the columns of the scene's springs, dampers and lengths")
     parser.add_argument('--benchmark', type=int, metavar='ROUNDS', default=0,
                         help='instead of a table, time paper and fast sweeps side by side '
                         'over ROUNDS interleaved rounds and print the median per position')
@@ -193,6 +209,8 @@ def main(argv: list[str] | None = None) -> int:
     if racks != [0.0] and not any(c.steer == 'rack' for c in scene.constraints):
         return fail(PROG, f'{scene.name}: no constraint is marked steer: rack, so a rack input '
                           'moves nothing')
+    if args.elements and not scene.elements:
+        return fail(PROG, f'--elements: {scene.name} lists no elements (doc/elements.md)')
     if args.benchmark:
         benchmark(scene, travels, args.benchmark)
         return 0
@@ -206,7 +224,8 @@ def main(argv: list[str] | None = None) -> int:
         if not results[-1].success:
             break
     table = {'scene': scene if args.alignment else None,
-             'with_rack': args.rack is not None or args.grid is not None}
+             'with_rack': args.rack is not None or args.grid is not None,
+             'elements': scene if args.elements else None}
     try:
         if args.csv:
             with open(args.csv, 'w') as stream:

@@ -1,0 +1,280 @@
+"""
+linkage-map: kinematic maps of a corner, of every corner of a vehicle, or of an axle.
+
+Every quantity of linkage-sweep's tables (pose, camber, toe, the alignment set, the scene's
+elements) on a regular (travel, rack) grid, or an axle's roll centre, track, cambers and toes
+over (left travel, right travel), written as lookup tables for simulators: CSV in long form,
+NumPy .npz (grid axes and arrays) and, with the map extra, Parquet. Points out of reach are
+NaN and listed in out_of_reach.csv, never extrapolated (doc/maps.md).
+"""
+
+from functools import partial
+import os
+from pathlib import Path
+import re
+import sys
+import time
+from typing import Callable, NamedTuple
+
+import numpy as np
+import yaml
+
+from .map_files import FORMATS, UNREACHED, write_map, write_unreached
+from .map_grid import axle_grid_map, AXLE_QUANTITIES, corner_map, Grid, GridMap, quantities
+from ..cli import EXIT_STATUS, fail, Parser, program
+from ..core.errors import LinkageError
+from ..core.scene import load_scene
+from ..core.vehicle import load_vehicle, vehicle_dir
+from ..core.vehicle_axles import axle_of
+
+PROG = 'linkage-map'
+GRID_OPTIONS = ('--travel', '--rack')
+DEFAULT_RACK = Grid(-40.0, 40.0, 5.0)   # mm, steered corners when --rack is not given
+# Bytes a grid point needs per quantity while its corner is solved and written: the map's
+# array, the rows of one rack's sweep and the copy a writer makes (float64 each).
+BYTES_PER_VALUE = 3 * 8
+
+EPILOG = """writes into DIR, per corner (the scene's name, or the vehicle's corner names):
+  <corner>.csv      long form: corner,travel_mm,rack_mm,quantity,value (exact floats)
+  <corner>.npz      travel_mm (nt,), rack_mm (nr,), one (nt, nr) array per quantity
+  <corner>.parquet  with --format ...,parquet (pip install -e '.[map]'): a row per point
+  out_of_reach.csv  corner,travel_mm,rack_mm,reason of every solve out of reach (NaN)
+The quantities are linkage-sweep's columns with --alignment and --elements, in mm and deg.
+With --axle NAME instead: <NAME>_axle.* over left_travel_mm x right_travel_mm (rack 0),
+roll_centre_y_mm, roll_centre_z_mm, roll_centre_height_mm, track_mm and both wheels'
+camber and toe (core/axle.py). Loading a map into an interpolating lookup: doc/maps.md.
+
+examples:
+  linkage-map double_wishbone --out maps
+  linkage-map demo_vehicle --travel -50:50:2 --rack -30:30:10 --out maps --format csv,npz,parquet
+  linkage-map demo_vehicle --axle front --out maps
+
+exit status: 0 every grid point solved; 1 done, but some points are out of reach (NaN, listed
+in out_of_reach.csv); """ + EXIT_STATUS
+
+
+def parse_args(argv):
+    parser = Parser(PROG, __doc__, EPILOG)
+    parser.add_argument('target', metavar='SCENE_OR_VEHICLE',
+                        help='bundled scene or vehicle name, or the path of either file')
+    parser.add_argument('--travel', metavar='FROM:TO:STEP',
+                        help="wheel travel grid, mm (default: each scene's travel block)")
+    parser.add_argument('--rack', metavar='FROM:TO:STEP',
+                        help='steering rack grid, mm, + = rack to the left (default -40:40:5 '
+                        'for a corner with a steer: rack link; 0 for the others)')
+    parser.add_argument('--axle', metavar='NAME',
+                        help="instead of the corners' maps, the map of the vehicle's axle NAME "
+                        'over (left travel, right travel) at rack 0: roll centre, track, both '
+                        "wheels' camber and toe")
+    parser.add_argument('--out', metavar='DIR', help='folder for the map files (made if '
+                        'missing)')
+    parser.add_argument('--format', default='csv,npz',
+                        help=f'comma-separated, of {", ".join(FORMATS)} (default csv,npz)')
+    parser.add_argument('--benchmark', type=int, metavar='ROUNDS', default=0,
+                        help='instead of a map, time answers with and without the elements '
+                        '(1x, 10x, 100x positions) over ROUNDS rounds; print the medians')
+    args = parser.parse_args(joined_grids(sys.argv[1:] if argv is None else argv))
+    if args.benchmark < 0:
+        parser.error(f'--benchmark: expected a number of rounds >= 0, got {args.benchmark}')
+    if not args.out and not args.benchmark:
+        parser.error('--out DIR is required')
+    return args
+
+
+def joined_grids(argv):
+    """Join '--travel -80:80:1' into '--travel=-80:80:1': argparse takes -80:... for an option."""
+    joined = []
+    for arg in argv:
+        if joined and joined[-1] in GRID_OPTIONS and re.match(r'-[0-9.]', arg):
+            joined[-1] = f'{joined[-1]}={arg}'
+        else:
+            joined.append(arg)
+    return joined
+
+
+def grid_option(text, option):
+    """Read FROM:TO:STEP (mm) into a Grid; LinkageError naming the option if it is not one."""
+    try:
+        start, stop, step = (float(v) for v in text.split(':'))
+    except ValueError:
+        raise LinkageError(option, f'expected FROM:TO:STEP in mm, got {text!r}') from None
+    if not (step > 0 and np.isfinite([start, stop, step]).all()):
+        raise LinkageError(option, f'FROM, TO, STEP must be finite and STEP > 0, got {text!r}')
+    return Grid(start, stop, step)
+
+
+def load_target(target):
+    """Return (Vehicle or None, {corner name: Scene}) of a scene file or a vehicle file."""
+    path = Path(target)
+    bundled = vehicle_dir() / f'{target}.yaml'
+    if (not path.suffix and not path.exists() and bundled.is_file()) or _is_vehicle(path):
+        vehicle = load_vehicle(target)
+        return vehicle, vehicle.corners
+    scene = load_scene(target)
+    return None, {re.sub(r'[^A-Za-z0-9_.-]+', '_', scene.name).strip('._-') or 'scene': scene}
+
+
+def _is_vehicle(path):
+    """Tell whether path is a YAML file of a vehicle (a top-level corners mapping)."""
+    try:
+        data = yaml.safe_load(path.read_text()) if path.is_file() else None
+    except (OSError, UnicodeDecodeError, yaml.YAMLError, ValueError, RecursionError):
+        return False   # load_scene then says what is wrong with it
+    return isinstance(data, dict) and isinstance(data.get('corners'), dict)
+
+
+def steered(scene):
+    """Tell whether a rack moves something in the scene (a steer: rack link)."""
+    return any(c.steer == 'rack' for c in scene.constraints)
+
+
+class Job(NamedTuple):
+    """One map to make: its name, grid size, quantities and how to solve it."""
+
+    name: str
+    shape: tuple[int, int]
+    quantities: int
+    solve: Callable[[], GridMap]
+
+
+def corner_jobs(corners, args):
+    """Return a Job per corner over (travel, rack); LinkageError for a bad grid."""
+    travel = args.travel and grid_option(args.travel, '--travel')
+    rack = args.rack and grid_option(args.rack, '--rack')
+    if rack and not any(steered(s) for s in corners.values()):
+        raise LinkageError('--rack', 'no corner has a steer: rack link, so a rack moves '
+                           'nothing')
+    jobs = []
+    for name, scene in corners.items():
+        travels = travel or Grid(*scene.travel)
+        racks = (rack or DEFAULT_RACK) if steered(scene) else None
+        jobs.append(Job(name, (travels.count, racks.count if racks else 1),
+                        len(quantities(scene)),
+                        partial(solve_corner, scene, travels, racks, name)))
+    return jobs
+
+
+def axle_job(vehicle, args):
+    """Return the Job of the axle --axle names over (left travel, right travel), rack 0."""
+    if vehicle is None:
+        raise LinkageError('--axle', f'{args.target} is a scene; an axle is in a vehicle file '
+                           '(e.g. demo_vehicle)')
+    if args.rack:
+        raise LinkageError('--rack', "an axle's map is over both wheels' travels at rack 0; "
+                           'map its steered corners without --axle for the rack')
+    axle = axle_of(vehicle, args.axle)
+    travel = grid_option(args.travel, '--travel') if args.travel else Grid(*axle.left.travel)
+    return Job(f'{axle.name} axle', (travel.count, travel.count), len(AXLE_QUANTITIES),
+               partial(solve_axle, axle, travel))
+
+
+def solve_corner(scene, travel, rack, name):
+    """Solve a corner's map over the Grids travel and rack (None: rack 0 only)."""
+    return corner_map(scene, travel.values(), rack.values() if rack else np.zeros(1), name)
+
+
+def solve_axle(axle, travel):
+    """Solve an axle's map, both wheels over the Grid travel."""
+    return axle_grid_map(axle, travel.values())
+
+
+def memory_needed(jobs):
+    """Return (grid points, bytes) the maps need; counted, nothing allocated."""
+    points = sum(job.shape[0] * job.shape[1] for job in jobs)
+    return points, max(job.shape[0] * job.shape[1] * job.quantities * BYTES_PER_VALUE
+                       for job in jobs)
+
+
+def memory_available():
+    """Return the bytes of memory available (MemAvailable), or None if unknown."""
+    try:
+        with open('/proc/meminfo') as stream:
+            for line in stream:
+                if line.startswith('MemAvailable:'):
+                    return int(line.split()[1]) * 1024
+    except OSError:
+        pass
+    try:
+        return os.sysconf('SC_AVPHYS_PAGES') * os.sysconf('SC_PAGE_SIZE')
+    except (ValueError, OSError):
+        return None
+
+
+def formats_option(text):
+    """Return the formats asked for; LinkageError for an unknown one or a missing pyarrow."""
+    kinds = tuple(dict.fromkeys(k.strip() for k in text.split(',') if k.strip()))
+    unknown = [k for k in kinds if k not in FORMATS]
+    if unknown or not kinds:
+        raise LinkageError('--format', f'unknown format {", ".join(unknown) or repr(text)} '
+                           f'(expected a comma-separated list of: {", ".join(FORMATS)})')
+    if 'parquet' in kinds:
+        try:
+            import pyarrow.parquet  # noqa: F401 (only whether it is there)
+        except ImportError:
+            raise LinkageError('--format parquet', 'needs the Python package pyarrow, which '
+                               "is not installed: pip install -e '.[map]' (in a linkage_ros "
+                               'checkout) or pip install pyarrow') from None
+    return kinds
+
+
+def output_folder(text):
+    """Make the --out folder if missing; LinkageError if it cannot be written into."""
+    folder = Path(text)
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise LinkageError('--out', f'cannot make the folder {text} '
+                           f'({exc.strerror or exc})') from None
+    if not os.access(folder, os.W_OK):
+        raise LinkageError('--out', f'cannot write into the folder {text}')
+    return folder
+
+
+def _gb(value):
+    return f'{value / 1e9:,.1f} GB'
+
+
+@program(PROG)
+def main(argv: list[str] | None = None) -> int:
+    """Run linkage-map: 0 when done, 1 if points are out of reach, 2 for a mistake."""
+    args = parse_args(argv)
+    try:
+        vehicle, corners = load_target(args.target)
+        jobs = [axle_job(vehicle, args)] if args.axle is not None else corner_jobs(corners, args)
+        if args.benchmark:
+            from .map_bench import benchmark
+            benchmark(corners, args.benchmark)
+            return 0
+        points, need = memory_needed(jobs)
+        available = memory_available()
+        if available is not None and need > available:
+            raise LinkageError('grid', f'{points:,} points need about {_gb(need)} of memory '
+                               f'and {_gb(available)} is available: take a larger --travel '
+                               'or --rack step, or a shorter range')
+        formats = formats_option(args.format)
+        folder = output_folder(args.out)
+    except LinkageError as exc:
+        return fail(PROG, exc)
+    maps = []
+    for job in jobs:
+        started = time.perf_counter()
+        maps.append(job.solve())
+        written = write_map(folder, maps[-1], formats)
+        first, second = (n.replace('_mm', '').replace('_', ' ') for n in maps[-1].axis_names)
+        print(f'{PROG}: {job.name}: {job.shape[0]} x {job.shape[1]} ({first} x {second}) '
+              f'grid points, {len(maps[-1].quantities)} quantities, solved in '
+              f'{time.perf_counter() - started:.2f} s -> '
+              f'{", ".join(str(p) for p in written)}', file=sys.stderr)
+        if maps[-1].undefined:
+            print(f'{PROG}: {job.name}: left out, not defined here: '
+                  f'{", ".join(maps[-1].undefined)}', file=sys.stderr)
+    lost = write_unreached(folder / UNREACHED, maps)
+    if lost:
+        print(f'{PROG}: {lost} solves are out of reach: NaN in the map, listed in '
+              f'{folder / UNREACHED}', file=sys.stderr)
+        return 1
+    return 0
+
+
+if __name__ == '__main__':
+    sys.exit(main())

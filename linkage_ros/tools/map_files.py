@@ -1,0 +1,87 @@
+"""
+The files of a kinematic map: CSV in long form, NumPy .npz of axes and arrays, Parquet.
+
+For a corner over (travel, rack), in files named for it:
+
+    <corner>.csv      corner,travel_mm,rack_mm,quantity,value: one value a line, every value
+                      written with the fewest digits that read back to the same float64
+    <corner>.npz      travel_mm (nt,), rack_mm (nr,) and each quantity as an (nt, nr) array:
+                      what a lookup-table block (or scipy's RegularGridInterpolator) takes
+    <corner>.parquet  one row per grid point: travel_mm, rack_mm, then a column per quantity
+    out_of_reach.csv  corner,travel_mm,rack_mm,reason of every point left NaN
+
+An axle's map is the same over (left_travel_mm, right_travel_mm), in <axle>_axle.* files.
+pyarrow (the map extra) is imported only when Parquet is asked for.
+"""
+
+from __future__ import annotations
+
+import csv
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+if TYPE_CHECKING:
+    from .map_grid import GridMap
+
+FORMATS = ('csv', 'npz', 'parquet')
+UNREACHED = 'out_of_reach.csv'
+
+
+def stem(grid: GridMap) -> str:
+    """Return the file name stem of a map: the corner's name, or <axle>_axle."""
+    return grid.name if grid.kind == 'corner' else f'{grid.name}_axle'
+
+
+def write_map(folder: Path, grid: GridMap, formats: tuple[str, ...]) -> list[Path]:
+    """Write a map in each of formats into folder; return the files written."""
+    writers = {'csv': write_long_csv, 'npz': write_npz, 'parquet': write_parquet}
+    paths = []
+    for kind in formats:
+        paths.append(folder / f'{stem(grid)}.{kind}')
+        writers[kind](paths[-1], grid)
+    return paths
+
+
+def write_npz(path: Path, grid: GridMap) -> None:
+    """Write the grid axes and one (n0, n1) array per quantity."""
+    arrays = {name: np.ascontiguousarray(grid.values[:, :, i])
+              for i, name in enumerate(grid.quantities)}
+    axes = dict(zip(grid.axis_names, grid.axes))
+    np.savez(path, **axes, **arrays)
+
+
+def write_long_csv(path: Path, grid: GridMap) -> None:
+    """Write one value a line, grid point by grid point (first axis, then second), exact."""
+    names = grid.quantities
+    with open(path, 'w') as stream:
+        stream.write(f'{grid.kind},{",".join(grid.axis_names)},quantity,value\n')
+        for i, first in enumerate(grid.axes[0].tolist()):
+            for j, second in enumerate(grid.axes[1].tolist()):
+                start = f'{grid.name},{first!r},{second!r},'
+                stream.writelines(f'{start}{name},{value!r}\n'
+                                  for name, value in zip(names, grid.values[i, j].tolist()))
+
+
+def write_parquet(path: Path, grid: GridMap) -> None:
+    """Write one row per grid point: the two axes, then a column per quantity."""
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+    first, second = np.meshgrid(*grid.axes, indexing='ij')
+    columns = dict(zip(grid.axis_names, (first.ravel(), second.ravel())))
+    columns.update((name, grid.values[:, :, i].ravel()) for i, name in enumerate(grid.quantities))
+    pq.write_table(pa.table(columns), path)
+
+
+def write_unreached(path: Path, maps: list[GridMap]) -> int:
+    """List every solve out of reach (its corner, travel and rack), with why; return how many."""
+    count = 0
+    with open(path, 'w', newline='') as stream:
+        writer = csv.writer(stream, lineterminator='\n')
+        writer.writerow(['corner', 'travel_mm', 'rack_mm', 'reason'])
+        for grid in maps:
+            for corner, travel, rack, why in grid.unreached:
+                writer.writerow([corner, repr(travel), repr(rack), why])
+                count += 1
+    return count

@@ -1,0 +1,43 @@
+"""doc/maps.md: its Python runs as written, and its table of mid-cell errors is what it prints."""
+
+import contextlib
+import io
+import os
+from pathlib import Path
+import re
+
+from linkage_ros.tools.kinematic_map import main
+import pytest
+
+DOC = (Path(__file__).resolve().parent.parent / 'doc' / 'maps.md').read_text()
+BLOCKS = re.findall(r'```python\n(.*?)```', DOC, re.S)
+PRINTED = re.search(r'It prints the largest error.*?```\n(.*?)```', DOC, re.S).group(1)
+
+
+@pytest.fixture(scope='module')
+def maps_folder(tmp_path_factory):
+    """Make the two default maps the doc's programs read, in maps/ of a fresh folder."""
+    folder = tmp_path_factory.mktemp('doc')
+    for name in ('double_wishbone', 'five_link'):
+        assert main([name, '--out', str(folder / 'maps')]) == 0
+    return folder
+
+
+def run(code, folder):
+    out, here = io.StringIO(), os.getcwd()
+    os.chdir(folder)
+    try:
+        with contextlib.redirect_stdout(out):
+            exec(compile(code, 'doc/maps.md', 'exec'), {'__name__': '__main__'})
+    finally:
+        os.chdir(here)
+    return out.getvalue()
+
+
+def test_the_loading_example_interpolates_the_map(maps_folder):
+    printed = run(BLOCKS[0], maps_folder)
+    assert re.fullmatch(r'\[ *-?\d+\.\d+(e-?\d+)? +-?\d+\.\d+(e-?\d+)?\]\n', printed)
+
+
+def test_the_mid_cell_error_table_is_what_the_program_prints(maps_folder):
+    assert run(BLOCKS[1], maps_folder) == PRINTED
