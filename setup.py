@@ -42,7 +42,7 @@ setup(
         'pytest11': ['linkage_ros = linkage_ros.ros.testing'],
         'console_scripts': [
             'linkage-sweep = linkage_ros.tools.sweep:main',
-            'suspension_node = linkage_ros.ros.node:main',
+            'suspension_node = linkage_ros.ros.entry:main',
             'linkage-node-bench = linkage_ros.bench.node_bench:main',
             'linkage-replay = linkage_ros.tools.replay:main',
             'linkage-rerun = linkage_ros.tools.rerun_convert:main',

@@ -194,7 +194,7 @@ def test_bundled_params_file_holds_the_node_defaults(ros_context):
                           cli_args=['--ros-args', '--params-file', str(PARAMS_FILE)])
     try:
         assert {name: node.get_parameter(name).value for name in PARAMETERS} == {
-            name: default for name, (default, _) in PARAMETERS.items()}
+            name: spec.default for name, spec in PARAMETERS.items()}
     finally:
         node.destroy_node()
 
@@ -239,7 +239,7 @@ def test_default_condition_warn_leaves_the_scene_travel_range_ok(suspension_node
 @pytest.mark.parametrize('params, error', [
     ({'scene': 'no_such_scene'}, 'not a bundled scene'),
     ({'method': 'slow'}, "method: unknown value 'slow'"),
-    ({'max_step_mm': 0.0}, 'max_step_mm: must be a finite number above 0'),
+    ({'max_step_mm': 0.0}, 'max_step_mm: must be from 0.001 to 1000 mm, got 0.0'),
 ])
 def test_bad_parameter_raises_a_clear_error(ros_context, params, error):
     overrides = [Parameter(k, value=v) for k, v in params.items()]

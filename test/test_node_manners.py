@@ -26,8 +26,9 @@ def run_node(*args, timeout=60):
 def test_help_lists_every_parameter_with_its_default_topics_and_exit_statuses():
     status, out, err = run_node('--help')
     assert status == 0 and err == ''
-    for name, (default, _) in PARAMETERS.items():
-        assert f'  {name} ' in out and repr(default) in out
+    for name, spec in PARAMETERS.items():
+        assert f'  {name} ' in out and repr(spec.default) in out
+        assert spec.low is None or f'({spec.range_text()})' in ' '.join(out.split())
     for topic in ('wheel_travel', 'wheel_carrier_pose', 'camber', 'toe', '/diagnostics'):
         assert topic in out
     assert 'example:' in out and 'exit status: 0' in out and '2 a mistake' in out
@@ -43,7 +44,8 @@ def test_help_lists_every_parameter_with_its_default_topics_and_exit_statuses():
      'record_mcap: /dev/full: cannot write (No space left on device)'),
     (['--ros-args', '-p', 'rerun_rrd:=/dev/full'],   # once a traceback from rerun-sdk
      'rerun_rrd: /dev/full: cannot write ('),
-    (['--ros-args', '-p', 'max_step_mm:=-1.0'], 'max_step_mm: must be a finite number above 0'),
+    (['--ros-args', '-p', 'max_step_mm:=-1.0'],
+     'max_step_mm: must be from 0.001 to 1000 mm, got -1.0'),
     (['--ros-args', '-p', 'scene:=no_such_scene'], 'scene: no such file, and not a bundled scene'),
     (['scene:=five_link'], "unknown argument 'scene:=five_link': parameters go after --ros-args"),
     # These three were tracebacks from rclpy.init, after a line of rcl's own:

@@ -77,7 +77,7 @@ def test_with_use_sim_time_sinks_receive_simulated_times(suspension_node, execut
                                                          send_travel):
     sink = ListSink()
     # A period longer than the jump: no periodic report among the records.
-    node = suspension_node(use_sim_time=True, sinks=[sink], diagnostic_period=1e6)
+    node = suspension_node(use_sim_time=True, sinks=[sink], diagnostic_period=86400.0)
     clock = probe.node.create_publisher(Clock, '/clock', QoSProfile(depth=10))
     set_clock(executor, clock, node, 100 * S)
     send_travel(0.01)

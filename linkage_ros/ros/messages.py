@@ -5,13 +5,15 @@ The core works in mm (vehicle frame: x forward, y left, z up); ROS messages are 
 conversion happens here and only here:
 
     command_mm(Float64 CDR, m)                         -> float mm (travel + = bump, rack
-                                                          + = to the left)
+                                                          + = to the left); CdrError for
+                                                          bytes that are not a Float64
     joint_travel_mm(JointState, joint)                 -> float mm of that joint, or None
     answer(solution, stamp, frame_id)                  -> [(output name, CDR bytes)]: what
                                                           the node publishes for a solved
                                                           command: PoseStamped (wheel centre,
                                                           m; carrier rotation relative to
                                                           design), camber and toe (Float64, rad)
+    status_name(node, corner)                          -> a corner's status name
     health_status(health, name, hardware_id, method)   -> DiagnosticStatus of a corner
     diagnostics(statuses, stamp)                       -> DiagnosticArray
     alignment_array(alignment)                         -> Float64MultiArray: ALIGNMENT_FIELDS
@@ -45,7 +47,11 @@ if TYPE_CHECKING:
 
 
 def command_mm(data: bytes) -> float:
-    """Read a Float64 command in CDR bytes (wheel travel or steering rack, m) in mm (core unit)."""
+    """
+    Read a Float64 command in CDR bytes (wheel travel or steering rack, m) in mm (core unit).
+
+    Bytes that do not hold a Float64 (too short, not CDR) raise linkage_ros.cdr.CdrError.
+    """
     return float64_of(data) * MM_PER_M
 
 
@@ -153,6 +159,16 @@ def _pose_layout(frame_id):
     frame = frame_id.encode() + b'\0'
     pad = -(12 + len(frame)) % 8
     return struct.Struct(f'<4siII{len(frame)}s{pad}x7d'), frame
+
+
+def status_name(node: str, corner: str) -> str:
+    """
+    Return the name of a corner's DiagnosticStatus: '/suspension_kinematics: five_link'.
+
+    node: the node's fully qualified name, so that namespaced nodes report apart; corner: the
+    scene's name, or the corner's in a vehicle.
+    """
+    return f'{node}: {corner}'
 
 
 def health_status(health: Health, name: str, hardware_id: str,
