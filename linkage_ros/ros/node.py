@@ -29,8 +29,9 @@ Topics (names relative to the node's namespace, /diagnostics absolute):
                                                         parameter alignment is true
     pub markers             visualization_msgs/MarkerArray  links and joints (m, frame_id); only
                                                         if parameter markers is true
-    sub /clock              rosgraph_msgs/Clock         only with use_sim_time: the receipt
-                                                        times of Float64 commands
+    sub /clock              rosgraph_msgs/Clock         only with use_sim_time: the node clock,
+                                                        each message taken in turn, in order
+                                                        with the commands (depth qos_depth)
 All of the node's own topics are reliable, keep-last qos_depth (ros/qos.py).
 
 With parameter vehicle (a vehicle file, linkage_ros.core.vehicle) the node serves every corner:
@@ -126,9 +127,9 @@ class SuspensionNode(Node):
         self.faults, self._bad_said, self.corners = [], {}, {}
         self.taking_commands = True
         self.clock = self.get_clock()
-        self._clock_ns = None     # the last /clock time received (use_sim_time)
         try:
             params = parameters.declare(self)
+            self._take_clock_in_order(params['qos_depth'])
             corners = load_corners(params)
             check_outputs(params, corners.inputs)
             scenes = {prefix: scene for prefix, (scene, _, _) in corners.scenes.items()}
@@ -141,9 +142,6 @@ class SuspensionNode(Node):
             self.frame_id = params['frame_id']
             self.diagnostics_pub = self.create_publisher(DiagnosticArray, '/diagnostics',
                                                          self.qos)
-            if self.get_parameter('use_sim_time').value:
-                self.create_subscription(Clock, '/clock', self._on_clock,
-                                         clock_qos(params['qos_depth']))
             self.corners = {prefix.rstrip('/'): Corner(self, self, scene, params, prefix,
                                                        *joints)
                             for prefix, (scene, *joints) in corners.scenes.items()}
@@ -176,16 +174,15 @@ class SuspensionNode(Node):
         """
         Take an input of a corner: record it; return its answer's stamp (sec, nanosec).
 
-        The stamp is stamp's (a builtin_interfaces/Time), or the node clock's time of receipt:
-        with use_sim_time, the time of the last /clock message this node received before the
-        input (rclpy's own clock keeps only the newest /clock message, which may have come
-        after). None once the node has stopped taking commands.
+        The stamp is stamp's (a builtin_interfaces/Time), or the node clock's time of receipt
+        (with use_sim_time, that of the last /clock message taken before the input: see
+        _take_clock_in_order). None once the node has stopped taking commands.
         """
         if not self.taking_commands:
             return None
         if stamp is not None and not self.sinks:
             return stamp.sec, stamp.nanosec
-        now = self._receipt_ns()
+        now = self.clock.now().nanoseconds
         if self.sinks:   # the input's publish time is unknown: EventsExecutor gives no info
             self.sinks.record(topic, type_name, data, now, now)
         return divmod(now, S) if stamp is None else (stamp.sec, stamp.nanosec)
@@ -223,13 +220,29 @@ class SuspensionNode(Node):
 
     # --- the node's own inputs and timer ---------------------------------------------------
 
-    def _on_clock(self, msg):
-        self._clock_ns = msg.clock.sec * S + msg.clock.nanosec
+    def _take_clock_in_order(self, depth):
+        """
+        With use_sim_time, take every /clock message in turn, in order with the commands.
 
-    def _receipt_ns(self):
-        if self._clock_ns is not None and self.clock.ros_time_is_active:
-            return self._clock_ns
-        return self.clock.now().nanoseconds
+        rclpy's time source subscribes to /clock with depth 1: a node busy for a moment then
+        finds only the newest of several /clock messages when it gets to the first, and
+        stamps the commands that came between them all with that later time. Its
+        subscription is replaced here by one of depth messages (best effort, to match any
+        /clock publisher) that hands each message to rclpy's callback, so that the node
+        clock reads, at each command, the last /clock time received before it.
+        """
+        theirs = [sub for sub in self.subscriptions if sub.topic_name == '/clock']
+        if not theirs:   # use_sim_time is false: the node clock is the system clock
+            return
+        callbacks = [sub.callback for sub in theirs]
+        for sub in theirs:
+            self.destroy_subscription(sub)
+
+        def on_clock(msg):
+            for callback in callbacks:
+                callback(msg)
+
+        self.create_subscription(Clock, '/clock', on_clock, clock_qos(depth))
 
     def on_vehicle_joint_states(self, data):
         """Answer every corner whose joints a JointState (for the whole vehicle) names."""
