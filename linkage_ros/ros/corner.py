@@ -47,13 +47,12 @@ UNDECODABLE = 'undecodable'   # the kind of a bad command whose bytes do not dec
 class Outlet(Protocol):
     """What a Corner reports to: the node that owns it."""
 
-    def received(self, topic: str, type_name: str, data: bytes,
-                 stamp: Time | None = None) -> tuple[int, int] | None:
+    def received(self, topic: str, type_name: str, data: bytes) -> tuple[int, int] | None:
         """
-        Take an input (CDR bytes, as it came on topic); return the stamp of its answer.
+        Take an input (CDR bytes, as it came on topic), before it is even decoded.
 
-        (sec, nanosec): stamp's, or the node clock's time of receipt; None once the node
-        takes no more commands (it is shutting down): the input is then dropped.
+        Returns the node clock's time of receipt (sec, nanosec), or None once the node takes
+        no more commands (it is shutting down): the input is then dropped unread.
         """
 
     def publish(self, publisher: Publisher, msg: bytes | object) -> None:
@@ -139,19 +138,18 @@ class Corner:
                     lambda: f'{topic} {float64_of(data)!r} m')
 
     def on_joint_states(self, data: bytes) -> None:
+        # Answered at the message's header stamp, not at the time of receipt.
         topic = self.joints_topic
+        if self.outlet.received(topic, JOINT_STATE, data) is None:
+            return
         try:
             msg = from_cdr(JOINT_STATE, data)
         except CdrError as exc:
-            if self.outlet.received(topic, JOINT_STATE, data) is not None:
-                self.refuse(topic, exc)
-            return
-        stamp = self.outlet.received(topic, JOINT_STATE, data, msg.header.stamp)
-        if stamp is None:
+            self.refuse(topic, exc)
             return
         travel_mm = messages.joint_travel_mm(msg, self.joint)
         if travel_mm is not None:   # other joints' messages are not commands: no answer
-            self.answer(travel_mm, None, stamp,
+            self.answer(travel_mm, None, (msg.header.stamp.sec, msg.header.stamp.nanosec),
                         lambda: joints_sent(topic, msg, [self.joint]))
 
     def answer(self, travel_mm: float | None, rack_mm: float | None, stamp: tuple[int, int],

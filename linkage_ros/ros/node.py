@@ -170,22 +170,20 @@ class SuspensionNode(Node):
 
     # --- the Outlet of the corners ---------------------------------------------------------
 
-    def received(self, topic, type_name, data, stamp=None):
+    def received(self, topic, type_name, data):
         """
-        Take an input of a corner: record it; return its answer's stamp (sec, nanosec).
+        Take an input of a corner: record it; return the time of receipt (sec, nanosec).
 
-        The stamp is stamp's (a builtin_interfaces/Time), or the node clock's time of receipt
-        (with use_sim_time, that of the last /clock message taken before the input: see
-        _take_clock_in_order). None once the node has stopped taking commands.
+        That is the node clock's (with use_sim_time, the time of the last /clock message
+        taken before the input: see _take_clock_in_order). None once the node has stopped
+        taking commands: the input is dropped before it is read.
         """
         if not self.taking_commands:
             return None
-        if stamp is not None and not self.sinks:
-            return stamp.sec, stamp.nanosec
         now = self.clock.now().nanoseconds
         if self.sinks:   # the input's publish time is unknown: EventsExecutor gives no info
             self.sinks.record(topic, type_name, data, now, now)
-        return divmod(now, S) if stamp is None else (stamp.sec, stamp.nanosec)
+        return divmod(now, S)
 
     def publish(self, publisher, msg):
         """Publish msg (CDR bytes or an rclpy message) and hand it to the sinks."""
@@ -247,16 +245,15 @@ class SuspensionNode(Node):
     def on_vehicle_joint_states(self, data):
         """Answer every corner whose joints a JointState (for the whole vehicle) names."""
         topic = self.joint_states_topic
+        if self.received(topic, JOINT_STATE, data) is None:
+            return
         try:
             msg = from_cdr(JOINT_STATE, data)
         except CdrError as exc:
-            if self.received(topic, JOINT_STATE, data) is not None:
-                for corner in self.joint_corners:
-                    corner.refuse(topic, exc)
+            for corner in self.joint_corners:
+                corner.refuse(topic, exc)
             return
-        stamp = self.received(topic, JOINT_STATE, data, msg.header.stamp)
-        if stamp is None:
-            return
+        stamp = msg.header.stamp.sec, msg.header.stamp.nanosec
         for corner in self.joint_corners:
             travel_mm = messages.joint_travel_mm(msg, corner.travel_joint)
             rack_mm = messages.joint_travel_mm(msg, corner.rack_joint) if corner.rack_joint \
