@@ -45,7 +45,7 @@ setup(
         'console_scripts': [
             'linkage-sweep = linkage_ros.tools.sweep:main',
             'linkage-axle = linkage_ros.tools.axle:main',
-            'suspension_node = linkage_ros.ros.node:main',
+            'suspension_node = linkage_ros.ros.entry:main',
             'linkage-node-bench = linkage_ros.bench.node_bench:main',
             'linkage-replay = linkage_ros.tools.replay:main',
             'linkage-rerun = linkage_ros.tools.rerun_convert:main',

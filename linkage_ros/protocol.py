@@ -40,6 +40,27 @@ ANSWER_TYPES = {'wheel_carrier_pose': 'geometry_msgs/msg/PoseStamped',
                 'camber': 'std_msgs/msg/Float64', 'toe': 'std_msgs/msg/Float64'}
 
 
+def answer_outputs(solution: Solution, stamp: tuple[int, int],
+                   frame_id: str) -> list[tuple[str, str, bytes]]:
+    """
+    Return the messages answering one solved command: [(output name, type name, CDR bytes)].
+
+    In publishing order, the pose first (what a controller waits for): wheel_carrier_pose
+    (geometry_msgs/PoseStamped: the wheel centre in m in frame_id, the carrier's rotation
+    relative to design as a unit quaternion, so that design reads (0, 0, 0, 1)), camber and
+    toe (std_msgs/Float64, rad), at stamp (sec, nanosec). Names are relative to the corner's
+    namespace. A solution without a pose raises ValueError saying why it has none.
+    """
+    if not solution.success:
+        raise ValueError(f'no pose for travel {solution.travel!r} mm: {solution.message}')
+    x, y, z = solution.wheel_center.tolist()
+    return [('wheel_carrier_pose', ANSWER_TYPES['wheel_carrier_pose'], pose_stamped_cdr(
+                stamp, frame_id, (x * M_PER_MM, y * M_PER_MM, z * M_PER_MM),
+                solution.quaternion.tolist())),
+            ('camber', ANSWER_TYPES['camber'], float64_cdr(solution.camber)),
+            ('toe', ANSWER_TYPES['toe'], float64_cdr(solution.toe))]
+
+
 class Reply(NamedTuple):
     """
     What answering one command gives.
@@ -96,17 +117,9 @@ class Responder:
         travel = self.solver.travel if travel_mm is None else travel_mm
         solution = self.solver.solve(travel, rack_mm)
         if solution.success:
-            x, y, z = solution.wheel_center.tolist()
-            outputs = [
-                ('wheel_carrier_pose', ANSWER_TYPES['wheel_carrier_pose'], pose_stamped_cdr(
-                    stamp, self.frame_id, (x * M_PER_MM, y * M_PER_MM, z * M_PER_MM),
-                    solution.quaternion.tolist())),
-                ('camber', ANSWER_TYPES['camber'], float64_cdr(solution.camber)),
-                ('toe', ANSWER_TYPES['toe'], float64_cdr(solution.toe))]
-            said = ''
+            outputs, said = answer_outputs(solution, stamp, self.frame_id), ''
         else:
-            outputs = []
-            said = sent() if callable(sent) else sent
+            outputs, said = [], sent() if callable(sent) else sent
         return Reply(solution, outputs, said, self.health.add(solution, said))
 
     def due(self, now_ns: int) -> int | None:

@@ -107,3 +107,60 @@ def test_any_command_is_answered_by_a_finite_pose_or_an_error_status(fuzz_node, 
     assert probe.poses[-1].pose.position.z == pytest.approx(DESIGN_Z_M, abs=1e-9)
     assert all(finite_pose(p) for p in probe.poses)
     assert all(math.isfinite(v) for v in probe.cambers + probe.toes)
+
+
+def test_random_bytes_on_every_input_of_a_vehicle_node_for_10_s_leave_it_answering(
+        suspension_node, probe, executor):
+    # Issue 23's fuzz: random byte strings of 0 to 64 bytes, raw, on every topic the node
+    # subscribes to, for 10 s. The node must stay up (an exception in a callback would come
+    # out of spin_once here), publish nothing that is not finite, and answer a good command
+    # afterwards.
+    import random
+    import time
+
+    from geometry_msgs.msg import PoseStamped
+    from rclpy.serialization import deserialize_message
+    from std_msgs.msg import Float64
+
+    from linkage_ros.ros.qos import QOS
+    from linkage_ros.ros.testing import spin_until
+    node = suspension_node(vehicle='demo_vehicle', diagnostic_period=3600.0)
+    own = [s for s in node.subscriptions if s.topic_name != '/parameter_events']
+    assert len(own) == 7     # four wheel_travel, two steering_rack, one joint_states
+    publishers = [probe.node.create_publisher(s.msg_type, s.topic_name, QOS) for s in own]
+    poses = []
+    probe.node.create_subscription(PoseStamped, '/rear_left/wheel_carrier_pose', poses.append,
+                                   QOS, raw=True)
+    others = []
+    for topic in ('/front_left/wheel_carrier_pose', '/front_right/wheel_carrier_pose',
+                  '/rear_right/wheel_carrier_pose', '/front_left/camber', '/rear_left/toe'):
+        probe.node.create_subscription(PoseStamped if topic.endswith('pose') else Float64,
+                                       topic, others.append, QOS, raw=True)
+    assert spin_until(executor, lambda: all(p.get_subscription_count() for p in publishers))
+    rng = random.Random(23)
+    sent = refused_by_the_publisher = 0
+    deadline = time.monotonic() + 10.0
+    while time.monotonic() < deadline:
+        data = bytes(rng.getrandbits(8) for _ in range(rng.randrange(65)))
+        if rng.random() < 0.5 and len(data) >= 4:   # half of them with a CDR header
+            data = b'\x00\x01\x00\x00' + data[4:]
+        try:
+            rng.choice(publishers).publish(data)
+            sent += 1
+        except Exception:  # longer than the type's largest sample: DDS refuses it at the source
+            refused_by_the_publisher += 1
+        executor.spin_once(timeout_sec=0.0)
+    assert sent > 1000, (sent, refused_by_the_publisher)
+    spin_until(executor, lambda: False, 1.0)     # what is still queued
+    decoded = [deserialize_message(d, PoseStamped) for d in poses] + [
+        deserialize_message(d, PoseStamped if len(d) > 12 else Float64) for d in others]
+    for msg in decoded:
+        values = ([msg.pose.position.x, msg.pose.position.y, msg.pose.position.z,
+                   msg.pose.orientation.w] if isinstance(msg, PoseStamped) else [msg.data])
+        assert all(math.isfinite(v) for v in values), msg
+    count = len(poses)
+    publishers[[s.topic_name for s in own].index('/rear_left/wheel_travel')].publish(
+        Float64(data=0.0))
+    assert spin_until(executor, lambda: len(poses) > count)
+    assert deserialize_message(poses[-1], PoseStamped).pose.position.z == pytest.approx(
+        DESIGN_Z_M, abs=1e-9)     # rear_left is five_link, the vehicle's offset is in x only

@@ -9,6 +9,7 @@ from linkage_ros import cdr
 from linkage_ros.cdr import CdrError, float64_of, from_cdr, pose_of, to_cdr
 from linkage_ros.core.kinematics import Continuation
 from linkage_ros.core.scene import load_scene
+from linkage_ros.protocol import answer_outputs
 from linkage_ros.ros import messages
 from linkage_ros.ros.health import Health
 import numpy as np
@@ -44,17 +45,22 @@ def quaternion_matrix(q):
         [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
 
 
+def answer(solution, stamp, frame_id):
+    """[(output name, CDR bytes)] of protocol.answer_outputs: what the node publishes."""
+    return [(name, data) for name, _, data in answer_outputs(solution, stamp, frame_id)]
+
+
 def answered(solution, frame_id='base_link'):
-    """{output name: message} of messages.answer, read back by rclpy's own deserializer."""
+    """{output name: message} of the answer, read back by rclpy's own deserializer."""
     return {name: deserialize_message(data, PoseStamped if name == 'wheel_carrier_pose'
                                       else Float64)
-            for name, data in messages.answer(solution, (STAMP.sec, STAMP.nanosec), frame_id)}
+            for name, data in answer(solution, (STAMP.sec, STAMP.nanosec), frame_id)}
 
 
 def test_the_answer_is_pose_camber_and_toe_in_that_order(solved):
-    assert [name for name, _ in messages.answer(solved, (0, 0), 'f')] == [
-        'wheel_carrier_pose', 'camber', 'toe']
-    assert set(messages.ANSWER_TYPES) == {'wheel_carrier_pose', 'camber', 'toe'}
+    assert [(name, kind) for name, kind, _ in answer_outputs(solved, (0, 0), 'f')] == [
+        ('wheel_carrier_pose', 'geometry_msgs/msg/PoseStamped'),
+        ('camber', 'std_msgs/msg/Float64'), ('toe', 'std_msgs/msg/Float64')]
 
 
 def test_pose_position_is_the_wheel_centre_in_metres(solved):
@@ -97,7 +103,7 @@ def test_pose_header_carries_stamp_and_frame_of_any_length(solved, frame_id):
 
 def test_the_answer_bytes_are_what_rclpy_serializes(solved):
     # Padding aside (rclpy leaves it uninitialised), the bytes read back the same.
-    for name, data in messages.answer(solved, (STAMP.sec, STAMP.nanosec), 'base_link'):
+    for name, data in answer(solved, (STAMP.sec, STAMP.nanosec), 'base_link'):
         kind = PoseStamped if name == 'wheel_carrier_pose' else Float64
         again = serialize_message(deserialize_message(data, kind))
         assert len(again) == len(data)
@@ -124,7 +130,7 @@ def test_pose_and_float64_are_read_back_in_place_from_any_cdr(solved):
 
 def test_failed_solution_has_no_answer(failed):
     with pytest.raises(ValueError, match='not a finite number'):
-        messages.answer(failed, (0, 0), 'base_link')
+        answer_outputs(failed, (0, 0), 'base_link')
 
 
 def health_of(*solutions, condition_warn=1e4):

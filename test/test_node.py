@@ -13,7 +13,7 @@ import subprocess
 import sys
 
 from conftest import connect, PARAMS_FILE, Probe, spin_until, stamp_ns
-from diagnostic_msgs.msg import DiagnosticStatus
+from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
 from geometry_msgs.msg import PoseStamped
 from linkage_ros.core.kinematics import Continuation, sweep
 from linkage_ros.core.scene import load_scene, SceneError
@@ -194,7 +194,7 @@ def test_bundled_params_file_holds_the_node_defaults(ros_context):
                           cli_args=['--ros-args', '--params-file', str(PARAMS_FILE)])
     try:
         assert {name: node.get_parameter(name).value for name in PARAMETERS} == {
-            name: default for name, (default, _) in PARAMETERS.items()}
+            name: spec.default for name, spec in PARAMETERS.items()}
     finally:
         node.destroy_node()
 
@@ -239,7 +239,7 @@ def test_default_condition_warn_leaves_the_scene_travel_range_ok(suspension_node
 @pytest.mark.parametrize('params, error', [
     ({'scene': 'no_such_scene'}, 'not a bundled scene'),
     ({'method': 'slow'}, "method: unknown value 'slow'"),
-    ({'max_step_mm': 0.0}, 'max_step_mm: must be a finite number above 0'),
+    ({'max_step_mm': 0.0}, 'max_step_mm: must be from 0.001 to 1000 mm, got 0.0'),
 ])
 def test_bad_parameter_raises_a_clear_error(ros_context, params, error):
     overrides = [Parameter(k, value=v) for k, v in params.items()]
@@ -401,3 +401,123 @@ def test_node_bench_quick_run_prints_every_section_with_nothing_lost(domain_id):
         ('node', 'float64_per_corner', '0'), ('echo', 'float64_per_corner', '0'),
         ('node', 'joint_states', '0'), ('echo', 'joint_states', '0')]
     assert [r[0] for r in tables['callback'][1:]][:2] == ['plain', 'alignment']
+
+
+# --- parameters, names, QoS ----------------------------------------------------------------
+
+def test_every_parameter_is_read_only_and_a_number_carries_its_range(ros_context):
+    node = SuspensionNode(context=ros_context, parameter_overrides=[
+        Parameter('max_step_mm', value=2), Parameter('scene', value='double_wishbone')])
+    try:
+        for name, spec in PARAMETERS.items():     # given (max_step_mm, scene) or not
+            descriptor = node.describe_parameter(name)
+            assert descriptor.read_only, name
+            if isinstance(spec.default, float):
+                (bounds,) = descriptor.floating_point_range
+                assert (bounds.from_value, bounds.to_value) == (spec.low, spec.high), name
+        assert node.describe_parameter('qos_depth').integer_range[0].to_value == 100000
+        assert node.get_parameter('max_step_mm').value == 2        # an integer is a number
+    finally:
+        node.destroy_node()
+
+
+def test_a_parameter_the_node_does_not_know_is_refused_with_the_closest_name(ros_context):
+    with pytest.raises(ValueError, match='parameter max_stepmm: not a parameter of '
+                                         r'suspension_node \(did you mean max_step_mm\?'):
+        SuspensionNode(context=ros_context,
+                       parameter_overrides=[Parameter('max_stepmm', value=1.0)])
+
+
+def test_rclpy_declares_no_parameter_of_its_own_that_the_node_would_call_unknown(ros_context):
+    # The node refuses every parameter it is given that is neither its own nor rclpy's;
+    # rclpy's are named in parameters.ROS_PARAMETERS, which this pins for the installed rclpy.
+    import rclpy
+    from linkage_ros.ros.parameters import ROS_PARAMETERS
+    bare = rclpy.create_node('bare', context=ros_context, enable_rosout=False,
+                             start_parameter_services=False)
+    try:
+        assert set(bare.list_parameters([], 0).names) <= set(ROS_PARAMETERS)
+    finally:
+        bare.destroy_node()
+
+
+def test_qos_depth_is_the_depth_of_every_topic_of_the_node(suspension_node):
+    node = suspension_node(scene='double_wishbone', travel_joint='wheel', alignment=True,
+                           qos_depth=7)
+    own = [e for e in [*node.subscriptions, *node.publishers]
+           if e.topic_name not in ('/parameter_events', '/rosout')]
+    assert sorted(e.topic_name for e in own) == [
+        '/alignment', '/camber', '/diagnostics', '/joint_states', '/steering_rack', '/toe',
+        '/wheel_carrier_pose', '/wheel_travel']
+    assert {e.qos_profile.depth for e in own} == {7}
+
+
+def test_namespaced_nodes_name_their_statuses_with_their_full_names(ros_context, executor,
+                                                                    probe):
+    # Eight namespaced nodes once all reported 'suspension_kinematics: five_link'.
+    for namespace in ('car1', 'car2'):
+        executor.add_node(SuspensionNode(context=ros_context, namespace=namespace,
+                                         parameter_overrides=[
+                                             Parameter('diagnostic_period', value=0.05)]))
+    statuses = []
+    probe.node.create_subscription(DiagnosticArray, '/diagnostics',
+                                   lambda m: statuses.extend(m.status), QOS)
+    assert spin_until(executor, lambda: {s.name for s in statuses} == {
+        '/car1/suspension_kinematics: five_link', '/car2/suspension_kinematics: five_link'})
+
+
+@pytest.mark.parametrize('params, says', [
+    ({'travel_joint': 'wheel'}, 'listening on /wheel_travel (m), /joint_states (joint wheel, m)'),
+    ({'scene': 'double_wishbone'}, 'listening on /wheel_travel (m), /steering_rack (m)'),
+    ({'vehicle': 'demo_vehicle'}, 'listening on /front_left/wheel_travel (m), '
+     '/front_left/steering_rack (m), /joint_states (joints front_left_travel, steering_rack, m)'),
+])
+def test_the_start_up_line_names_every_input_the_node_listens_to(ros_context, capfd, params,
+                                                                 says):
+    node = SuspensionNode(context=ros_context, parameter_overrides=[
+        Parameter(k, value=v) for k, v in params.items()])
+    node.destroy_node()
+    assert says in capfd.readouterr().err
+
+
+def recording_custom_data(path):
+    """
+    Return what an MCAP says of its run, read with mcap and yaml.
+
+    That is the custom_data of its rosbag2 metadata record (the parameters) and its
+    linkage_ros metadata record (the files' content), in one dict.
+    """
+    from mcap.reader import make_reader
+    with open(path, 'rb') as stream:
+        records = {m.name: m.metadata for m in make_reader(stream).iter_metadata()}
+    custom = yaml.safe_load(records['rosbag2']['serialized_metadata'])['custom_data']
+    assert not set(custom) & set(records['linkage_ros'])
+    return {**custom, **records['linkage_ros']}
+
+
+def test_a_recording_holds_the_text_of_its_scene_file(ros_context, tmp_path, monkeypatch):
+    # A user's scene is named by the path as typed: from another folder that path is gone.
+    source = Path(load_scene('macpherson').source).read_text()
+    (tmp_path / 'mine.yaml').write_text(source)
+    monkeypatch.chdir(tmp_path)
+    node = SuspensionNode(context=ros_context, parameter_overrides=[
+        Parameter('scene', value='mine.yaml'), Parameter('record_mcap', value='run.mcap')])
+    node.destroy_node()
+    custom = recording_custom_data(tmp_path / 'run.mcap')
+    assert (custom['scene'], custom['scene_yaml']) == ('mine.yaml', source)
+
+
+def test_a_vehicle_recording_holds_the_vehicle_file_and_each_corners_scene(ros_context,
+                                                                           tmp_path):
+    from linkage_ros.core.vehicle import load_vehicle
+    node = SuspensionNode(context=ros_context, parameter_overrides=[
+        Parameter('vehicle', value='demo_vehicle'),
+        Parameter('record_mcap', value=str(tmp_path / 'run.mcap'))])
+    node.destroy_node()
+    custom = recording_custom_data(tmp_path / 'run.mcap')
+    vehicle = load_vehicle('demo_vehicle')
+    assert custom['vehicle_yaml'] == Path(vehicle.source).read_text()
+    assert custom['scene_yaml/front_left'] == Path(
+        load_scene('double_wishbone').source).read_text()
+    assert custom['scene_yaml/rear_right'] == Path(load_scene('five_link').source).read_text()
+    assert 'scene_yaml' not in custom

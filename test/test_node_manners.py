@@ -7,10 +7,12 @@ value in the unit it was sent in.
 """
 
 import math
+from pathlib import Path
 import signal
 import subprocess
 
 from conftest import connect, Probe, spin_until
+from linkage_ros.core.scene import load_scene
 from linkage_ros.ros.node import PARAMETERS
 from linkage_ros.ros.testing import node_script
 import pytest
@@ -26,8 +28,9 @@ def run_node(*args, timeout=60):
 def test_help_lists_every_parameter_with_its_default_topics_and_exit_statuses():
     status, out, err = run_node('--help')
     assert status == 0 and err == ''
-    for name, (default, _) in PARAMETERS.items():
-        assert f'  {name} ' in out and repr(default) in out
+    for name, spec in PARAMETERS.items():
+        assert f'  {name} ' in out and repr(spec.default) in out
+        assert spec.low is None or f'({spec.range_text()})' in ' '.join(out.split())
     for topic in ('wheel_travel', 'wheel_carrier_pose', 'camber', 'toe', '/diagnostics'):
         assert topic in out
     assert 'example:' in out and 'exit status: 0' in out and '2 a mistake' in out
@@ -43,7 +46,21 @@ def test_help_lists_every_parameter_with_its_default_topics_and_exit_statuses():
      'record_mcap: /dev/full: cannot write (No space left on device)'),
     (['--ros-args', '-p', 'rerun_rrd:=/dev/full'],   # once a traceback from rerun-sdk
      'rerun_rrd: /dev/full: cannot write ('),
-    (['--ros-args', '-p', 'max_step_mm:=-1.0'], 'max_step_mm: must be a finite number above 0'),
+    (['--ros-args', '-p', 'max_step_mm:=-1.0'],
+     'max_step_mm: must be from 0.001 to 1000 mm, got -1.0'),
+    # Each numeric parameter has a range (issue 23): 1e-7 mm never answered, 1e300 s was an
+    # OverflowError traceback, 1e-9 s flooded /diagnostics.
+    (['--ros-args', '-p', 'max_step_mm:=1e-7'],
+     'max_step_mm: must be from 0.001 to 1000 mm, got 1e-07'),
+    (['--ros-args', '-p', 'diagnostic_period:=1e300'],
+     'diagnostic_period: must be from 0.01 to 86400 s, got 1e+300'),
+    (['--ros-args', '-p', 'diagnostic_period:=1e-9'],
+     'diagnostic_period: must be from 0.01 to 86400 s, got 1e-09'),
+    (['--ros-args', '-p', 'condition_warn:=0.5'], 'condition_warn: must be from 1 to 1e+15'),
+    (['--ros-args', '-p', 'qos_depth:=0'], 'qos_depth: must be from 1 to 100000 messages, got 0'),
+    (['--ros-args', '-p', 'qos_depth:=10.5'], 'qos_depth: expected an integer, got 10.5'),
+    (['--ros-args', '-p', 'alignment:=yes please'],
+     "alignment: expected true or false, got 'yes please'"),
     (['--ros-args', '-p', 'scene:=no_such_scene'], 'scene: no such file, and not a bundled scene'),
     (['scene:=five_link'], "unknown argument 'scene:=five_link': parameters go after --ros-args"),
     # These three were tracebacks from rclpy.init, after a line of rcl's own:
@@ -58,6 +75,45 @@ def test_a_mistake_is_one_line_and_status_2(args, says):
     assert status == 2 and out == ''
     assert err.startswith('suspension_node: ') and err.count('\n') == 1, err
     assert says in err
+
+
+@pytest.mark.parametrize('output, other, says', [
+    ('record_mcap', 'rerun_rrd', 'record_mcap: run.yaml is also rerun_rrd; give each output '
+     'its own file'),
+    ('record_mcap', 'scene', 'record_mcap: run.yaml is the scene file; give another file name'),
+    ('rerun_rrd', 'scene', 'rerun_rrd: run.yaml is the scene file; give another file name'),
+    ('rerun_rrd', 'vehicle', 'rerun_rrd: run.yaml is the vehicle file; give another file name'),
+])
+def test_an_output_that_is_an_input_or_the_other_output_is_refused_untouched(
+        tmp_path, monkeypatch, output, other, says):
+    from linkage_ros.core.vehicle import load_vehicle
+    monkeypatch.chdir(tmp_path)
+    # run.yaml: a copy of a bundled scene or vehicle file (or nothing yet, for two outputs),
+    # named once relatively and once by its absolute path: compared resolved, one file.
+    source = {'scene': load_scene('five_link').source,
+              'vehicle': load_vehicle('demo_vehicle').source}.get(other)
+    path = tmp_path / 'run.yaml'
+    if source:
+        path.write_text(Path(source).read_text())
+    status, out, err = run_node('--ros-args', '-p', f'{output}:=run.yaml', '-p',
+                                f'{other}:={path}')
+    assert (status, out, err) == (2, '', f'suspension_node: {says}\n')
+    assert (path.read_text() if source else path.exists()) == (
+        Path(source).read_text() if source else False)
+
+
+def test_rcl_problem_reads_the_problem_out_of_rcls_error_text():
+    # The one place that reads rcl's wording: pinned against the installed rcl here.
+    import rclpy
+    from linkage_ros.ros.entry import rcl_problem
+    context = rclpy.context.Context()
+    with pytest.raises(RuntimeError) as raised:
+        rclpy.init(context=context, args=['x', '--ros-args', '-p', 'scene'])
+    assert str(raised.value).startswith('failed to initialize rcl: ')
+    problem = rcl_problem(str(raised.value))
+    assert problem.startswith("Couldn't parse parameter override rule: '-p scene'")
+    assert ', at /' not in problem and '\n' not in problem
+    assert rcl_problem('another\nform') == 'another form'
 
 
 def test_a_params_file_that_is_not_yaml_is_one_line_and_status_2(tmp_path):

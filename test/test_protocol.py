@@ -180,15 +180,26 @@ def test_due_gives_each_period_end_once_and_one_report_for_a_gap():
     assert responder.due(105 * S + 2) is None and responder.due(106 * S) == 106 * S
 
 
-def test_the_answer_is_the_bytes_messages_answer_builds():
+def test_the_answer_reads_back_by_rclpy_as_the_solution_at_every_frame_id_padding():
+    # An independent reader: rclpy's deserializer, for every padding of the frame_id.
+    from geometry_msgs.msg import PoseStamped
+    from rclpy.serialization import deserialize_message
+    from std_msgs.msg import Float64
     scene = load_scene('double_wishbone')
-    for frame_id in ('', 'a', 'base_link', 'odom_1234567'):   # every padding of the pose
+    for frame_id in ('', 'a', 'base_link', 'odom_1234567'):
         responder = Responder(scene, method='fast', max_step_mm=5.0, condition_warn=1e4,
                               frame_id=frame_id, status_name=NAME, period_ns=S)
         for travel in (-40.0, 0.0, 12.5, 40.0):
             reply = responder.answer(travel, None, (1_700_000_000, 123))
-            assert [(n, data) for n, _, data in reply.outputs] == messages.answer(
-                reply.solution, (1_700_000_000, 123), frame_id)
+            (_, _, pose), (_, _, camber), (_, _, toe) = reply.outputs
+            pose = deserialize_message(pose, PoseStamped)
+            assert (pose.header.stamp.sec, pose.header.stamp.nanosec) == (1_700_000_000, 123)
+            assert pose.header.frame_id == frame_id
+            p, q = pose.pose.position, pose.pose.orientation
+            assert [p.x, p.y, p.z] == (reply.solution.wheel_center * 1e-3).tolist()   # M_PER_MM
+            assert [q.x, q.y, q.z, q.w] == reply.solution.quaternion.tolist()
+            assert deserialize_message(camber, Float64).data == reply.solution.camber
+            assert deserialize_message(toe, Float64).data == reply.solution.toe
 
 
 def test_importing_the_protocol_loads_neither_rclpy_nor_a_message_package():

@@ -1,6 +1,7 @@
 """
 The ROS 2 adapter.
 
-suspension_node, its messages, diagnostics and markers, and the pytest plugin for
-launch-free node tests.
+suspension_node (entry: the process; node: owns the corners; corner: one wheel; parameters;
+qos; sinks: recorders), its messages, diagnostics (health) and markers, and the pytest plugin
+for launch-free node tests (testing).
 """

@@ -7,8 +7,8 @@ every diagnostic period and resets the period, and publishes at once when a comm
 the level changes. ROS-free: messages.health_status turns it into a DiagnosticStatus.
 
 Level (the diagnostic_msgs values): ERROR if a fault holds (a recording that stopped, say) or
-the last command failed, WARN if the last pose is near a singular position (Jacobian
-condition number above condition_warn), OK otherwise.
+the last command failed or did not decode, WARN if the last pose is near a singular position
+(Jacobian condition number above condition_warn), OK otherwise.
 """
 
 from __future__ import annotations
@@ -32,6 +32,7 @@ class Health:
     last: Solution | None = None   # the Solution of the last command
     sent: str = ''                 # the last command as it was sent, if it failed
     fault: str = ''                # a fault outside the solver (sets ERROR while it holds)
+    refused: str = ''              # why the last command could not be read, if it could not
     commands_total: int = 0        # since start
     failures_total: int = 0
     # The period since the last report:
@@ -52,7 +53,7 @@ class Health:
         """
         self.commands += 1
         self.commands_total += 1
-        self.last, self.sent = solution, sent
+        self.last, self.sent, self.refused = solution, sent, ''
         if solution.success:
             # max() would drop a NaN; a residual or condition that is NaN must show.
             if not solution.residual <= self.residual_max:
@@ -67,6 +68,21 @@ class Health:
         level = self.level
         self.level, self.message = self._assess()
         return not solution.success or self.level != level
+
+    def refuse(self, why: str) -> bool:
+        """
+        Count one command whose bytes could not be read (why says so); return True.
+
+        It is a failure, ERROR at once, with no Solution: the last one (and the values the
+        status gives of it) stays.
+        """
+        self.commands += 1
+        self.commands_total += 1
+        self.failures += 1
+        self.failures_total += 1
+        self.refused = why
+        self.level, self.message = self._assess()
+        return True
 
     def set_fault(self, fault: str) -> bool:
         """Hold a fault (a non-empty text) or clear it (''); return True if the level changed."""
@@ -83,6 +99,8 @@ class Health:
         solution = self.last
         if self.fault:
             return ERROR, self.fault
+        if self.refused:
+            return ERROR, self.refused
         if solution is None:
             return OK, 'no command yet'
         if not solution.success:

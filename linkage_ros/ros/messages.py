@@ -5,20 +5,19 @@ The core works in mm (vehicle frame: x forward, y left, z up); ROS messages are 
 conversion happens here and only here:
 
     command_mm(Float64 CDR, m)                         -> float mm (travel + = bump, rack
-                                                          + = to the left)
+                                                          + = to the left); CdrError for
+                                                          bytes that are not a Float64
     joint_travel_mm(JointState, joint)                 -> float mm of that joint, or None
-    answer(solution, stamp, frame_id)                  -> [(output name, CDR bytes)]: what
-                                                          the node publishes for a solved
-                                                          command: PoseStamped (wheel centre,
-                                                          m; carrier rotation relative to
-                                                          design), camber and toe (Float64, rad)
+    status_name(node, corner)                          -> a corner's status name
     health_status(health, name, hardware_id, method)   -> DiagnosticStatus of a corner
     diagnostics(statuses, stamp)                       -> DiagnosticArray
     alignment_array(alignment)                         -> Float64MultiArray: ALIGNMENT_FIELDS
                                                           in SI, named by the layout's labels
 
-A failed Solution (NaN, inf or out-of-reach command) has no pose: answer refuses it, so no NaN
-can reach a pose topic; its Health says ERROR with the reason.
+The answer to a solved command (pose, camber, toe as CDR bytes) is built by
+linkage_ros.protocol.answer_outputs, which the node and linkage-replay share; a failed
+Solution has no pose and gets none, so no NaN can reach a pose topic; its Health says ERROR
+with the reason.
 """
 
 from __future__ import annotations
@@ -28,8 +27,7 @@ from typing import TYPE_CHECKING
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
 from std_msgs.msg import Float64MultiArray, MultiArrayDimension, MultiArrayLayout
 
-from .. import cdr
-from ..cdr import float64_cdr, float64_of
+from ..cdr import float64_of
 from ..core.geometry import M_PER_MM, MM_PER_M
 
 if TYPE_CHECKING:
@@ -40,11 +38,14 @@ if TYPE_CHECKING:
 
     from .health import Health
     from ..core.alignment import Alignment
-    from ..core.kinematics import Solution
 
 
 def command_mm(data: bytes) -> float:
-    """Read a Float64 command in CDR bytes (wheel travel or steering rack, m) in mm (core unit)."""
+    """
+    Read a Float64 command in CDR bytes (wheel travel or steering rack, m) in mm (core unit).
+
+    Bytes that do not hold a Float64 (too short, not CDR) raise linkage_ros.cdr.CdrError.
+    """
     return float64_of(data) * MM_PER_M
 
 
@@ -111,36 +112,14 @@ def alignment_values(msg: Float64MultiArray) -> dict[str, float]:
 # The answer to a command is sent as CDR bytes built directly (linkage_ros.cdr): rclpy's
 # message classes cost about 20 us to build a PoseStamped and 10 more to serialize it, most
 # of the node's callback.
-ANSWER_TYPES = {'wheel_carrier_pose': 'geometry_msgs/msg/PoseStamped',
-                'camber': 'std_msgs/msg/Float64', 'toe': 'std_msgs/msg/Float64'}
-
-
-def answer(solution: Solution, stamp: tuple[int, int],
-           frame_id: str) -> list[tuple[str, bytes]]:
+def status_name(node: str, corner: str) -> str:
     """
-    Return the messages answering one solved command, as CDR bytes in publishing order.
+    Return the name of a corner's DiagnosticStatus: '/suspension_kinematics: five_link'.
 
-    The pose comes first: it is what a controller waits for. Returns [(output name, bytes)]
-    for wheel_carrier_pose (geometry_msgs/PoseStamped), camber and toe (std_msgs/Float64),
-    their types in ANSWER_TYPES. stamp: (sec, nanosec) of the answer. Names are relative to
-    the corner's namespace.
+    node: the node's fully qualified name, so that namespaced nodes report apart; corner: the
+    scene's name, or the corner's in a vehicle.
     """
-    _require_pose(solution)
-    return [('wheel_carrier_pose', pose_stamped_cdr(solution, stamp, frame_id)),
-            ('camber', float64_cdr(solution.camber)), ('toe', float64_cdr(solution.toe))]
-
-
-def pose_stamped_cdr(solution: Solution, stamp: tuple[int, int], frame_id: str) -> bytes:
-    """
-    Return the geometry_msgs/PoseStamped (CDR bytes) of a solved position.
-
-    The wheel centre (m, in frame_id) and the carrier's rotation relative to its design
-    position as a unit quaternion (so the design position reads (0, 0, 0, 1)), at stamp
-    (sec, nanosec).
-    """
-    x, y, z = solution.wheel_center.tolist()
-    return cdr.pose_stamped_cdr(stamp, frame_id, (x * M_PER_MM, y * M_PER_MM, z * M_PER_MM),
-                                solution.quaternion.tolist())
+    return f'{node}: {corner}'
 
 
 def health_status(health: Health, name: str, hardware_id: str,
@@ -205,8 +184,3 @@ def _as_float(value):
         return float(value)
     except (TypeError, ValueError):
         return float('nan')
-
-
-def _require_pose(solution):
-    if not solution.success:
-        raise ValueError(f'no pose for travel {solution.travel!r} mm: {solution.message}')

@@ -167,7 +167,8 @@ class Probe:
 
     def _on_diagnostics(self, msg):
         for status in msg.status:
-            if status.name.startswith(self._node_name):
+            # '/namespace/suspension_kinematics: five_link': the node's full name first
+            if status.name.split(': ')[0].rsplit('/', 1)[-1] == self._node_name:
                 self.statuses.append(status)
                 self.status_stamps.append(stamp_ns(msg.header.stamp))
 

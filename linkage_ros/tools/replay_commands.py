@@ -19,6 +19,7 @@ import time
 
 from ..core.errors import LinkageError
 from ..core.kinematics import travel_range
+from ..record.stored import RECORD as METADATA
 
 FLOAT64 = 'std_msgs/msg/Float64'
 DEFAULT_TOPIC = '/wheel_travel'
@@ -28,7 +29,6 @@ SWEEP_HZ = 50.0
 MAX_SWEEP_COMMANDS = 1_000_000
 # ROS 2 stamps hold int32 seconds: the last time they can say is 2038-01-19 03:14:07 UTC.
 LAST_STAMP_S = 2**31 - 1
-METADATA = 'linkage_ros'   # the recording's metadata record that stores its scene
 
 
 class ReplayError(LinkageError):
@@ -171,19 +171,21 @@ def stored_scene(bag, topic):
     """
     Return the scene a recording stores for topic's corner, or None if it stores none.
 
-    The metadata record 'linkage_ros' holds the scene file's YAML text (key scene_yaml), or
-    for a vehicle the vehicle file's (vehicle_yaml), whose corner is the topic's namespace
-    (/front_left/wheel_travel: front_left). Raises SceneError naming the bag for a stored
-    file that does not load.
+    The scene file's content (record.stored), or for a vehicle the corner of the topic's
+    namespace (/front_left/wheel_travel: front_left). Raises SceneError naming the bag for
+    stored content that does not load.
     """
-    stored = bag.metadata.get(METADATA, {})
-    if stored.get('scene_yaml'):
-        from ..core.scene import parse_scene
-        return parse_scene(_safe_yaml(bag.path, 'scene_yaml', stored['scene_yaml']),
-                           source=f'{bag.path} (its scene_yaml)')
-    if stored.get('vehicle_yaml'):
-        return _vehicle_corner(bag, topic, stored['vehicle_yaml'])
-    return None
+    from ..core.scene import Scene, SceneError
+    from ..record.stored import load_stored
+    loaded = load_stored(bag.metadata, str(bag.path))
+    if loaded is None or isinstance(loaded, Scene):
+        return loaded
+    corner = topic.strip('/').rpartition('/')[0].rpartition('/')[2]
+    if corner not in loaded.corners:
+        raise SceneError(f'{bag.path} (its vehicle_yaml)', 'corners', f'no corner '
+                         f'{corner or "(none: the topic has no namespace)"} for {topic} '
+                         f'(corners: {", ".join(loaded.corners)}); choose one with --scene')
+    return loaded.corners[corner]
 
 
 def stored_text(scene, stored=None):
@@ -194,36 +196,3 @@ def stored_text(scene, stored=None):
         return {METADATA: {'scene_yaml': Path(scene.source).read_text()}}
     except (OSError, UnicodeDecodeError):   # a scene not from a file: nothing to store
         return {}
-
-
-def _vehicle_corner(bag, topic, text):
-    import tempfile
-
-    from ..core.scene import SceneError
-    from ..core.vehicle import load_vehicle
-    _safe_yaml(bag.path, 'vehicle_yaml', text)   # refused before load_vehicle reads it
-    corner = topic.strip('/').rpartition('/')[0].rpartition('/')[2]
-    with tempfile.TemporaryDirectory() as folder:   # bundled scene names resolve from here
-        path = Path(folder) / 'vehicle.yaml'
-        path.write_text(text)
-        try:
-            vehicle = load_vehicle(path)
-        except SceneError as exc:
-            raise SceneError(f'{bag.path} (its vehicle_yaml)', exc.field,
-                             exc.problem) from None
-    if corner not in vehicle.corners:
-        raise SceneError(f'{bag.path} (its vehicle_yaml)', 'corners', f'no corner '
-                         f'{corner or "(none: the topic has no namespace)"} for {topic} '
-                         f'(corners: {", ".join(vehicle.corners)}); choose one with --scene')
-    return vehicle.corners[corner]
-
-
-def _safe_yaml(path, key, text):
-    """Parse a stored YAML text with the loader's bounds; a large one or bad YAML is SceneError."""
-    from ..core.scene import SceneError
-    from ..core.yaml_file import FILE_LIMIT_BYTES, parse_yaml
-    where = f'{path} (its {key})'
-    if len(text.encode()) > FILE_LIMIT_BYTES:
-        raise SceneError(where, 'file', f'{len(text.encode()):,} bytes, over the limit of '
-                         f'{FILE_LIMIT_BYTES:,} bytes a scene file may have')
-    return parse_yaml(text, where)

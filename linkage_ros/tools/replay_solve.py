@@ -31,8 +31,9 @@ def node_defaults():
 
 def status_name(scene):
     """Return the name of the DiagnosticStatus the node (default name) gives scene's corner."""
+    from ..ros.messages import status_name as named
     from ..ros.node import NODE_NAME
-    return f'{NODE_NAME}: {scene.name}'
+    return named('/' + NODE_NAME, scene.name)
 
 
 def solve_commands(commands, scene, method, sinks, topic=DEFAULT_TOPIC, progress=None,

@@ -21,20 +21,17 @@ scene alone). Progress goes to stderr.
 
 import importlib
 import math
-from pathlib import Path
 import sys
-import tempfile
 
 from .. import cli
 from ..core.errors import LinkageError
-from ..core.scene import load_scene
+from ..core.scene import load_scene, Scene
 from ..core.vehicle import load_vehicle
+from ..record.stored import load_stored
 
 PROG = 'linkage-rerun'
 DEFAULT_SCENE = 'five_link'
 ROLES = 'wheel_travel, steering_rack, wheel_carrier_pose, camber or toe'
-METADATA = 'linkage_ros'     # the recording's metadata record holding the files' content
-SCENE_KEY, VEHICLE_KEY = 'scene_yaml', 'vehicle_yaml'
 
 
 def drawable(bag):
@@ -149,11 +146,14 @@ def drawing(args, bag):
     """
     if args.scene:
         return load_scene(args.scene), None
-    stored = bag.metadata.get(METADATA, {})
-    for key, load in ((VEHICLE_KEY, load_vehicle), (SCENE_KEY, load_scene)):
-        if stored.get(key):
-            loaded = _from_text(stored[key], load, f'{args.bag}: the {key} it stores')
-            return (loaded, None) if key == SCENE_KEY else (None, loaded.corners)
+    try:
+        loaded = load_stored(bag.metadata, str(args.bag))
+    except LinkageError as exc:
+        raise cli.Mistake(f'{exc} (choose a scene with --scene)') from None
+    if isinstance(loaded, Scene):
+        return loaded, None
+    if loaded is not None:
+        return None, loaded.corners
     vehicle, named = bag.custom_data.get('vehicle'), bag.custom_data.get('scene')
     try:
         if vehicle:
@@ -165,22 +165,6 @@ def drawing(args, bag):
         named = 'vehicle the bag names; choose a scene' if vehicle else 'scene the bag names; ' \
             'choose one'
         raise cli.Mistake(f'{exc} (the {named} with --scene)') from None
-
-
-def _from_text(text, load, what):
-    """
-    Load a scene or vehicle file's content with load: the loader's checks and bounds apply.
-
-    A mistake in it is a Mistake naming what (the bag and the metadata key).
-    """
-    with tempfile.TemporaryDirectory() as folder:
-        path = Path(folder) / 'stored.yaml'
-        path.write_text(text)
-        try:
-            return load(path)
-        except LinkageError as exc:
-            raise cli.Mistake(f'{str(exc).replace(str(path), what)} (choose a scene with '
-                              '--scene)') from None
 
 
 if __name__ == '__main__':

@@ -1,0 +1,112 @@
+"""
+The first compile of the numerical kernels: tell whether it is due, say so once, do it.
+
+numba compiles linkage_ros.core.kernel on first use (about 20 s) and keeps the machine code in
+its on-disk cache (NUMBA_CACHE_DIR, else __pycache__ beside the module); later processes load
+it in well under a second. A program calls, before its first solve:
+
+    cold() -> bool                   numba's cache lacks a kernel: the next solve compiles
+    say_if_cold(prog, file=stderr)   print 'prog: compiling the numerical kernels, once, about
+                                     20 s' once per process if cold(); returns cold()
+    compile_kernels()                solve once along every path (both methods, a rack, a
+                                     travel out of reach, a sweep, the alignment set): every
+                                     kernel compiled, hence cached
+    compile_in_child() -> bool       compile_kernels in a child process (python -m
+                                     linkage_ros.core.warmup) while this one waits: the wait
+                                     is interruptible, where a compile in this process holds
+                                     it for seconds at a time inside LLVM; the child is
+                                     killed if the wait is interrupted
+
+`python -m linkage_ros.core.warmup` compiles ahead of time (after an install, say).
+"""
+
+import os
+import subprocess
+import sys
+
+MESSAGE = 'compiling the numerical kernels, once, about 20 s'
+_said = False
+
+
+def uncached_kernels() -> list:
+    """Return the names of the kernels that numba's on-disk cache does not hold (yet)."""
+    from numba.core.dispatcher import Dispatcher
+
+    from . import kernel
+    return [name for name, value in vars(kernel).items()
+            if isinstance(value, Dispatcher) and not _in_cache(value)]
+
+
+def _in_cache(dispatcher) -> bool:
+    """
+    Tell whether numba's on-disk cache holds a compiled version of a kernel.
+
+    numba has no public call for this: its cache index (the .nbi file, read as numba reads it:
+    empty when absent, of another numba version or older than the source) is the one place.
+    Should numba's internals move, the answer is True: never say a compile is coming when it
+    is not known (test_warmup pins that this works with the installed numba).
+    """
+    try:
+        return bool(dispatcher._cache._cache_file._load_index())
+    except Exception:  # (numba's private layout changed: not known, so not cold)
+        return True
+
+
+def cold() -> bool:
+    """Tell whether the next solve compiles kernels (about 20 s) instead of loading them."""
+    return bool(uncached_kernels())
+
+
+def say_if_cold(prog: str, file=None) -> bool:
+    """If cold(), say once per process on file (stderr) that the kernels are being compiled."""
+    global _said
+    if not cold():
+        return False
+    if not _said:
+        print(f'{prog}: {MESSAGE}', file=file or sys.stderr, flush=True)
+        _said = True
+    return True
+
+
+def compile_kernels() -> None:
+    """Solve along every path the programs take, so that every kernel is compiled and cached."""
+    import numpy as np
+
+    from .alignment import alignment
+    from .kinematics import Continuation, sweep
+    from .scene import load_scene
+    steered = load_scene('double_wishbone')     # a steer: rack link: the rack paths too
+    for method in ('fast', 'paper'):
+        for scene in (load_scene('five_link'), steered):
+            cont = Continuation(scene, method=method)
+            cont.solve(10.0)
+            cont.solve(1000.0)                  # out of reach: the arclength walk
+            cont.solve(float('nan'))
+        cont.solve(10.0, 5.0)
+        solution = cont.solve(12.0)
+        alignment(steered, cont.mech, solution.wheel_center, solution.rotation, solution.rack)
+        sweep(steered, np.linspace(-20.0, 20.0, 5), method=method, rack=2.0)
+
+
+def compile_in_child() -> bool:
+    """
+    Run compile_kernels in a child process and wait for it; True if it finished well.
+
+    The child has its own session, so that a Ctrl-C in the terminal reaches only this
+    process, which then kills it: any exception in the wait (KeyboardInterrupt, a signal
+    handler's) kills the child and is raised on. False if the child failed: the compile then
+    happens in this process, at the first solve.
+    """
+    child = subprocess.Popen([sys.executable, '-m', __name__], stdin=subprocess.DEVNULL,
+                             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                             start_new_session=True, env=os.environ.copy())
+    try:
+        return child.wait() == 0
+    finally:
+        if child.poll() is None:
+            child.kill()
+            child.wait()
+
+
+if __name__ == '__main__':
+    compile_kernels()

@@ -1,0 +1,220 @@
+"""
+One wheel of suspension_node: its solver, its health, its topics, and how it answers.
+
+A Corner subscribes its inputs and creates its outputs on the node that owns it, and reports
+through an Outlet (the node): every input it receives, every message it publishes, a bad
+command for the console, a status to publish at once. It never reaches into the node
+otherwise, and the node calls it only to answer (answer, refuse) and for its status.
+
+Inputs, under the corner's prefix ('' or 'front_left/'):
+    wheel_travel   std_msgs/Float64 (m, + = bump)
+    steering_rack  std_msgs/Float64 (m, + = to the left), only if the scene steers
+    joint_states   sensor_msgs/JointState, position of joint travel_joint (m), if it is set
+All come raw (CDR bytes): a Float64 is read in place, a fraction of the cost of an rclpy
+message, and bytes that do not decode (linkage_ros.cdr.CdrError) are an ERROR status naming
+the topic and the byte count, with no pose, instead of an exception in the executor.
+"""
+
+from __future__ import annotations
+
+from typing import Callable, Protocol, TYPE_CHECKING
+
+from builtin_interfaces.msg import Time
+from geometry_msgs.msg import PoseStamped
+from sensor_msgs.msg import JointState
+from std_msgs.msg import Float64, Float64MultiArray
+from visualization_msgs.msg import MarkerArray
+
+from . import messages
+from .qos import topic_qos
+from ..cdr import CdrError, float64_of, from_cdr
+from ..protocol import Responder
+
+if TYPE_CHECKING:
+    from rclpy.node import Node
+    from rclpy.publisher import Publisher
+
+    from ..core.kinematics import Solution
+    from ..core.scene import Scene
+
+FLOAT64 = 'std_msgs/msg/Float64'
+JOINT_STATE = 'sensor_msgs/msg/JointState'
+OUTPUTS = {'wheel_carrier_pose': PoseStamped, 'camber': Float64, 'toe': Float64}
+UNDECODABLE = 'undecodable'   # the kind of a bad command whose bytes do not decode
+
+
+class Outlet(Protocol):
+    """What a Corner reports to: the node that owns it."""
+
+    def received(self, topic: str, type_name: str, data: bytes) -> tuple[int, int] | None:
+        """
+        Take an input (CDR bytes, as it came on topic), before it is even decoded.
+
+        Returns the node clock's time of receipt (sec, nanosec), or None once the node takes
+        no more commands (it is shutting down): the input is then dropped unread.
+        """
+
+    def publish(self, publisher: Publisher, msg: bytes | object) -> None:
+        """Publish msg (CDR bytes or an rclpy message) on publisher."""
+
+    def bad_command(self, sent: str, kind: object, why: str) -> None:
+        """Say on the console that a command sent as sent could not be answered, and why."""
+
+    def report(self, corners: list[Corner]) -> None:
+        """Publish the status of corners on /diagnostics now."""
+
+
+class Corner:
+    """
+    One wheel: its scene, its Continuation (independent of the other corners), its Health.
+
+    Its input subscriptions and output publishers are created on node, topics under prefix
+    ('' or 'front_left/'); it reports to outlet. params: the node's parameter values.
+    travel_joint, rack_joint: the joints of the vehicle's joint_states that command it ('' =
+    none), which the node reads and hands to answer.
+    """
+
+    def __init__(self, node: Node, outlet: Outlet, scene: Scene, params: dict, prefix: str = '',
+                 travel_joint: str = '', rack_joint: str = '') -> None:
+        self.outlet, self.scene = outlet, scene
+        self.frame_id, self.method = params['frame_id'], params['method']
+        # The node's answering protocol, shared with linkage-replay; the node's own timer
+        # sends the periodic reports, so the responder's period clock is not used here.
+        self.responder = Responder(
+            scene, method=params['method'], max_step_mm=params['max_step_mm'],
+            condition_warn=params['condition_warn'], frame_id=self.frame_id,
+            status_name=messages.status_name(node.get_fully_qualified_name(), scene.name),
+            period_ns=round(params['diagnostic_period'] * 1e9))
+        self.solver, self.health = self.responder.solver, self.responder.health
+        self.status_name = self.responder.status_name
+        self.travel_joint, self.rack_joint = travel_joint, rack_joint   # vehicle joint_states
+        qos = topic_qos(params['qos_depth'])
+        self.publishers = {name: node.create_publisher(kind, prefix + name, qos)
+                           for name, kind in OUTPUTS.items()}
+        self.listening = []     # what it takes, for the start-up line
+        travel = node.create_subscription(Float64, prefix + 'wheel_travel', self.on_travel, qos,
+                                          raw=True)
+        self.travel_topic = travel.topic_name
+        self.listening.append(f'{self.travel_topic} (m)')
+        self.joint = params['travel_joint']
+        if self.joint:   # off by default: no subscription, no discovery traffic
+            joints = node.create_subscription(JointState, prefix + 'joint_states',
+                                              self.on_joint_states, qos, raw=True)
+            self.joints_topic = joints.topic_name
+            self.listening.append(f'{self.joints_topic} (joint {self.joint}, m)')
+        if steered(scene):
+            rack = node.create_subscription(Float64, prefix + 'steering_rack', self.on_rack, qos,
+                                            raw=True)
+            self.rack_topic = rack.topic_name
+            self.listening.append(f'{self.rack_topic} (m)')
+        self.extras = []   # (publisher, function(solution, stamp) -> message)
+        if params['alignment']:
+            from ..core.alignment import alignment
+            self.extras.append((
+                node.create_publisher(Float64MultiArray, prefix + 'alignment', qos),
+                lambda solution, stamp: messages.alignment_array(alignment(
+                    scene, self.solver.mech, solution.wheel_center, solution.rotation,
+                    solution.rack))))
+        if params['markers']:
+            from .markers import marker_array
+            self.extras.append((
+                node.create_publisher(MarkerArray, prefix + 'markers', qos),
+                lambda solution, stamp: marker_array(scene, solution, Time(
+                    sec=stamp[0], nanosec=stamp[1]), self.frame_id)))
+
+    def on_travel(self, data: bytes) -> None:
+        self._float64_command(self.travel_topic, data, rack=False)
+
+    def on_rack(self, data: bytes) -> None:
+        # A new rack at the last travel: Continuation keeps the travel it was last solved at.
+        self._float64_command(self.rack_topic, data, rack=True)
+
+    def _float64_command(self, topic: str, data: bytes, rack: bool) -> None:
+        stamp = self.outlet.received(topic, FLOAT64, data)
+        if stamp is None:
+            return
+        try:
+            value_mm = messages.command_mm(data)
+        except CdrError as exc:
+            self.refuse(topic, exc)
+            return
+        self.answer(value_mm if not rack else None, value_mm if rack else None, stamp,
+                    lambda: f'{topic} {float64_of(data)!r} m')
+
+    def on_joint_states(self, data: bytes) -> None:
+        # Answered at the message's header stamp, not at the time of receipt.
+        topic = self.joints_topic
+        if self.outlet.received(topic, JOINT_STATE, data) is None:
+            return
+        try:
+            msg = from_cdr(JOINT_STATE, data)
+        except CdrError as exc:
+            self.refuse(topic, exc)
+            return
+        travel_mm = messages.joint_travel_mm(msg, self.joint)
+        if travel_mm is not None:   # other joints' messages are not commands: no answer
+            self.answer(travel_mm, None, (msg.header.stamp.sec, msg.header.stamp.nanosec),
+                        lambda: joints_sent(topic, msg, [self.joint]))
+
+    def answer(self, travel_mm: float | None, rack_mm: float | None, stamp: tuple[int, int],
+               sent: Callable[[], str]) -> Solution:
+        """
+        Solve a command, publish the answer, count it into the health; return the Solution.
+
+        travel_mm and rack_mm: the command (None = unchanged); stamp: (sec, nanosec) of the
+        answer; sent: a function that says what was sent where (e.g. '/wheel_travel 0.5 m'),
+        called for the messages about a bad command. A solved command publishes the pose,
+        camber and toe (and the extras turned on); a failed one publishes nothing and goes to
+        the console (the outlet throttles it). A failure or a change of level goes to
+        /diagnostics at once.
+        """
+        reply = self.responder.answer(travel_mm, rack_mm, stamp, sent)
+        solution = reply.solution
+        for name, _, data in reply.outputs:
+            self.outlet.publish(self.publishers[name], data)
+        if solution.success:
+            for publisher, build in self.extras:
+                self.outlet.publish(publisher, build(solution, stamp))
+        else:
+            self.outlet.bad_command(reply.sent, solution.status, solution.message)
+        if reply.report:
+            self.outlet.report([self])
+        return solution
+
+    def refuse(self, topic: str, error: CdrError) -> None:
+        """Count an input whose bytes do not decode: an ERROR status now, no pose."""
+        self.outlet.bad_command(topic, UNDECODABLE, str(error))
+        self.health.refuse(f'{topic}: {error}')
+        self.outlet.report([self])
+
+    def status(self):
+        """Return the DiagnosticStatus of this corner."""
+        return messages.health_status(self.health, self.status_name, self.scene.name,
+                                      self.method)
+
+
+def corner_topics(scene: Scene, params: dict, prefix: str = '') -> list[str]:
+    """
+    Return the relative names of a corner's topics (prefix: '' or 'front_left/').
+
+    /diagnostics and the vehicle's joint_states are not among them.
+    """
+    names = ['wheel_travel', *OUTPUTS]
+    if params['travel_joint']:
+        names.append('joint_states')
+    if steered(scene):
+        names.append('steering_rack')
+    names += [name for name in ('alignment', 'markers') if params[name]]
+    return [prefix + name for name in names]
+
+
+def steered(scene: Scene) -> bool:
+    """Tell whether the scene has a steer: rack link (then it takes steering_rack commands)."""
+    return any(c.steer == 'rack' for c in scene.constraints)
+
+
+def joints_sent(topic: str, msg: JointState, joints: list[str]) -> str:
+    """Say what a JointState sent for joints: '/joint_states front_left_travel 0.02 m'."""
+    positions = dict(zip(msg.name, msg.position))
+    return f'{topic} ' + ', '.join(f'{joint} {positions[joint]!r} m' for joint in joints
+                                   if joint in positions)
