@@ -45,7 +45,9 @@ def table(result, scene=None, with_rack=False):
         columns.append(np.full(n, result.rack))
     if scene is not None:
         columns.append(alignment_table(scene, result))
-    return np.column_stack([np.reshape(c, (n, -1)).astype(float) for c in columns])
+    # (n, width) each: -1 cannot be inferred from a table of no rows
+    return np.column_stack([np.reshape(c, (n, int(np.prod(np.shape(c)[1:]))))
+                            .astype(float) for c in columns])
 
 
 def alignment_table(scene, result):
