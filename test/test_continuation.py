@@ -86,6 +86,15 @@ def test_a_known_limit_refuses_nothing_within_it_and_each_side_is_found_on_its_o
     assert cont.limits[0.0][0] == pytest.approx(below.reachable[0])
 
 
+def test_a_known_limit_refuses_from_memory_only_beyond_how_closely_it_is_located():
+    cont = Continuation(load_scene('five_link'))
+    limit = cont.solve(500.0).reachable[1]
+    assert 'located to 0.01 mm' in cont.solve(500.0).message
+    within = cont.solve(limit + 0.005)           # not refused from memory: walked again
+    assert within.status == Status.OUT_OF_REACH and within.substeps > 0
+    assert cont.solve(limit + 0.02).substeps == 0
+
+
 def test_limits_are_kept_per_rack_and_forgotten_by_reset():
     scene = load_scene('double_wishbone')               # its tie rod is steered by the rack
     cont = Continuation(scene)

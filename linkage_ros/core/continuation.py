@@ -21,6 +21,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, replace
 import math
+import numbers
 from typing import Any, NamedTuple, TYPE_CHECKING
 
 import numpy as np
@@ -125,9 +126,9 @@ def resolved(settings: Settings, scale: float, floor: float) -> Settings:
             raise LinkageError(name, f'must be a finite number above 0 (mm), got {value!r}')
     for name in ('max_iter', 'max_substeps'):
         value = getattr(out, name)
-        if isinstance(value, bool) or not isinstance(value, int) or value < 1:
+        if isinstance(value, bool) or not isinstance(value, numbers.Integral) or value < 1:
             raise LinkageError(name, f'must be a whole number of at least 1, got {value!r}')
-    return out
+    return replace(out, max_iter=int(out.max_iter), max_substeps=int(out.max_substeps))
 
 
 class Continuation:
@@ -148,6 +149,9 @@ class Continuation:
         self.settings = cfg = resolved(settings or Settings(**overrides), self.scale,
                                        self.floor)
         self.arc_tol = max(ARC_TOL * min(1.0, self.scale), self.floor)
+        # how closely a travel limit is located (mm): only a command farther beyond a limit
+        # found is refused from it, so that no reachable travel ever is
+        self._located = LOCATED * self.scale
         self._paper = paper_method.build(scene, mech) if cfg.method == 'paper' else None
         self.setup = kernel.Setup(mech.equations, mech.spin_axis, float(scene.side_sign),
                                   float(mech.design_center[2]), cfg.tol, cfg.max_iter,
@@ -178,8 +182,8 @@ class Continuation:
         # Travel limits found, per rack (mm): [rebound, bump] (mm), -inf / inf until found.
         # Every state is on the design branch (a step never crosses a turning point), so a
         # limit found at a rack holds there for good.
-        self.limits = {0.0: [-math.inf, math.inf]}
-        self._limits_here = self.limits[0.0]   # those of the current rack
+        self.limits = {}
+        self._limits_at(0.0)
 
     def solve(self, travel: float, rack: float | None = None) -> Solution:
         """
@@ -194,8 +198,8 @@ class Continuation:
             return self._failure(travel, Status.NOT_FINITE,
                                  f'{name} {value!r} mm is not a finite number', 0)
         travel, rack = float(travel), float(rack)
-        low_limit, high_limit = self._limits_here
-        if rack == self.rack and not low_limit <= travel <= high_limit:
+        low, high = self._refused_beyond
+        if rack == self.rack and not low <= travel <= high:
             return self._beyond_known_limit(travel)
         saved, saved_rack, saved_reachable = self.state, self.rack, self.reachable
         if rack != saved_rack:
@@ -209,7 +213,7 @@ class Continuation:
             walked = self._paper_walk(travel, rack)
         if walked.outcome == kernel.REACHED:   # the usual case, first
             if rack != saved_rack:
-                self._limits_here = self.limits.setdefault(rack, [-math.inf, math.inf])
+                self._limits_at(rack)
             return self._solution(walked.iterations, walked.steps)
         steps, iterations, status, error = self._stopped(walked, travel, rack, saved)
         if not status:   # reached by arclength
@@ -356,23 +360,34 @@ class Continuation:
                 f'travel {self.travel:g} mm (the guidance equations are singular there)')
         limit = found if status == Status.OUT_OF_REACH else self.travel
         if status == Status.OUT_OF_REACH:
-            self._limits_here[target > start] = limit
+            self.limits[self.rack][target > start] = limit
+            self._limits_at(self.rack)
         return steps, 0, status, self._limit_message(start, target, limit, status)
 
     def _limit_message(self, start, target, limit, status):
         """Say that target is beyond limit (found going from start); extends reachable."""
         self._extend_reachable(limit)
         low, high = self.reachable
-        what = (f'a turning point, located to {LOCATED * self.scale:g} mm'
+        what = (f'a turning point, located to {self._located:g} mm'
                 if status == Status.OUT_OF_REACH
                 else 'the solution curve could not be followed further')
         return (f'travel {target:g} mm is out of reach: continuation from {start:g} mm ends at '
                 f'the {"bump" if target > start else "rebound"} limit {limit:.3f} mm ({what}); '
                 f'reachable range found: [{low:.3f}, {high:.3f}] mm')
 
+    def _limits_at(self, rack):
+        """
+        Take the travel limits known at rack (mm) as those of the current rack.
+
+        A command farther than self._located beyond one is refused from it (_refused_beyond):
+        the limit is located that closely, and no reachable travel may be refused.
+        """
+        low, high = self.limits.setdefault(rack, [-math.inf, math.inf])
+        self._refused_beyond = (low - self._located, high + self._located)
+
     def _beyond_known_limit(self, travel):
         """Refuse at once a travel beyond a limit already found at this rack."""
-        limit = self._limits_here[travel > self.travel]
+        limit = self.limits[self.rack][travel > self.travel]
         message = self._limit_message(self.travel, travel, limit, Status.OUT_OF_REACH)
         return self._failure(travel, Status.OUT_OF_REACH, message, 0)
 

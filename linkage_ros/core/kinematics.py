@@ -148,6 +148,8 @@ def _knots(cont, low, high):
     then walks, halving steps, and finds any limit).
     """
     cfg = cont.settings
+    if high - low > cfg.knot_step * cfg.max_substeps:   # the walk would refuse it too
+        return None
     setup = cont.setup._replace(tol=cfg.knot_tol, slack=1e3 * cfg.knot_tol)
     knots = [cont.state]
     for end in (high, low):
