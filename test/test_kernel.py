@@ -8,10 +8,13 @@ Expected: the same carrier joints to 1e-9 mm (scenes of about a metre; for the k
 stress scene, float64 round-off alone is 1.7e-9 mm, so the bound scales with the size).
 """
 
+import hashlib
 from pathlib import Path
 
+from linkage_ros.core import kernel, state
+from linkage_ros.core.geometry import camber_toe, matrix_from_quaternion
 from linkage_ros.core.kinematics import Continuation, sweep
-from linkage_ros.core.mechanism import carrier_points
+from linkage_ros.core.mechanism import carrier_points, length_errors, linearize
 from linkage_ros.core.scene import bundled_scenes, load_scene
 import numpy as np
 import pytest
@@ -64,3 +67,37 @@ def test_one_command_at_a_time_equals_the_batched_sweep_and_the_paper_method(nam
     assert np.abs(joints[::4] - paper.joints).max() <= max(
         bound, PAPER_BOUND.get(scene.name, 0.0))
     assert max(s.residual for s in one) <= settings['tol'] * 10
+
+
+def test_kernel_names_the_digest_of_the_rotations_it_compiles_in():
+    # numba's cache follows each file alone: kernel.py must change when so3.py does.
+    digest = hashlib.sha256((Path(kernel.__file__).parent / 'so3.py').read_bytes()).hexdigest()
+    assert kernel.SO3_DIGEST == digest, (
+        f"so3.py changed: set SO3_DIGEST = '{digest}' in kernel.py, so that numba recompiles "
+        'the kernels that call it')
+
+
+def test_the_state_accessors_read_what_the_kernels_write():
+    # kernel.walk fills a state (compiled code, kernel.views); state.py reads it (Python).
+    cont = Continuation(load_scene('double_wishbone'))
+    walked = kernel.walk(tuple(cont.setup), cont.state, 30.0, 4.0, 0.0, 0.0)
+    assert walked.outcome == kernel.REACHED and walked.steps == 6 and walked.high == 30.0
+    center, rotation, jac = kernel.views(walked.state)
+    assert state.travel(walked.state) == 30.0 and state.rack(walked.state) == 4.0
+    assert np.array_equal(state.center(walked.state), center)
+    assert np.array_equal(state.rotation(walked.state), rotation)
+    assert np.array_equal(state.jacobian(walked.state), jac)
+    # the report against independent computations of the same pose
+    mech = cont.mech
+    _, expected_jac = linearize(mech, center, rotation, 4.0)
+    assert np.array_equal(jac, expected_jac)
+    residual, condition, camber, toe = state.report(walked.state)
+    assert residual == pytest.approx(length_errors(mech, center, rotation, 4.0), abs=1e-15)
+    assert condition == pytest.approx(np.linalg.cond(jac[:, list(kernel.FREE)]), rel=1e-9)
+    assert (camber, toe) == pytest.approx(camber_toe(rotation @ mech.spin_axis, 1.0), abs=1e-15)
+    assert np.allclose(matrix_from_quaternion(state.quaternion(walked.state)), rotation,
+                       atol=1e-15)
+    many = np.stack([walked.state, cont.state])
+    assert np.array_equal(state.centers(many)[0], center)
+    assert np.array_equal(state.rotations(many)[1], np.eye(3))
+    assert state.travels(many).tolist() == [30.0, 0.0]

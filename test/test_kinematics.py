@@ -262,3 +262,17 @@ def test_bmw_front_keeps_its_static_camber_of_minus_2_deg():
     # refdata: chrono_bmw_e90_macpherson_front static_alignment camber_deg -2 (Chrono header).
     sol = Continuation(load_scene('chrono_bmw_e90_macpherson_front')).solve(0.0)
     assert np.degrees(sol.camber) == pytest.approx(-2.0, abs=1e-6)
+
+
+@pytest.mark.parametrize('method', METHODS)
+@pytest.mark.parametrize('travels, limit', [([400.0], 387.469),
+                                            (travel_range(-300.0, 0.0, 1.0), -274.673)])
+def test_a_sweep_whose_first_travel_is_out_of_reach_is_a_table_of_no_rows(method, travels,
+                                                                          limit):
+    # Issue 18 defect 4: the table had no rows and linkage-sweep a traceback.
+    result = sweep(load_scene('five_link'), travels, method=method)
+    assert not result.success and result.status == Status.OUT_OF_REACH
+    assert f'limit {limit:.3f} mm' in result.message
+    assert result.travel.shape == (0,) and result.wheel_center.shape == (0, 3)
+    assert result.rotation.shape == (0, 3, 3) and result.quaternion.shape == (0, 4)
+    assert result.joints.shape == (0, 5, 3) and result.residual.shape == (0,)

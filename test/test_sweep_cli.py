@@ -67,6 +67,17 @@ def test_unreachable_range_exits_1_after_writing_the_rows_it_solved(capsys):
     assert code == 1 and 'out of reach' in err and len(rows) >= 2
 
 
+@pytest.mark.parametrize('span, limit', [(('400', '400'), 'bump limit 387.469 mm'),
+                                         (('-300', '0'), 'rebound limit -274.673 mm')])
+def test_a_first_travel_out_of_reach_is_one_line_and_status_1(capsys, span, limit):
+    # Issue 18 defect 4: a traceback (cannot reshape array of size 0) where the first
+    # travel asked for is already beyond a limit.
+    code, rows, out, err = run(capsys, 'five_link', '--from', span[0], '--to', span[1])
+    assert code == 1 and rows == [] and out == LEADING + '\n'
+    assert 'Traceback' not in err and len(err.splitlines()) == 2   # the header line, the why
+    assert 'out of reach' in err and limit in err and '(0 positions written)' in err
+
+
 def test_console_script_runs_as_a_module():
     out = subprocess.run([sys.executable, '-m', 'linkage_ros.tools.sweep', 'five_link', '--step',
                           '80'], capture_output=True, text=True, check=True)

@@ -12,6 +12,7 @@ import numpy as np
 
 from . import reference
 from .report import progress
+from ..core.continuation import MIN_STEP
 from ..core.kinematics import Continuation, Settings, sweep, travel_range
 from ..core.scene import bundled_scenes, config_dir, load_scene, parse_scene
 
@@ -64,7 +65,8 @@ def stress_lines(reversals=100_000):
     lines = []
     parts = (('toggles', stress_toggles), ('jumps', stress_jumps),
              ('reversals', lambda: stress_reversals(reversals)), ('scaling', stress_scaling),
-             ('perturbed hardpoints', stress_perturbation))
+             ('perturbed hardpoints', stress_perturbation),
+             ('out of reach', stress_out_of_reach))
     for name, part in parts:
         lines += part() + ['']
         progress(f'stress: {name} done')
@@ -148,7 +150,7 @@ def stress_scaling():
         scale = scene.size / 1000.0
         for method in ('fast', 'paper'):
             scaled = {'tol': Settings().tol * scale, 'max_step': Settings().max_step * scale,
-                      'min_step': Settings().min_step * scale}
+                      'min_step': MIN_STEP * scale}
             for label, options in (('default', {}), ('scaled', scaled)):
                 max_step = options.get('max_step', Settings().max_step)
                 steps = (travels[-1] - travels[0]) / max_step
@@ -183,6 +185,39 @@ def stress_perturbation():
             f'Jacobian condition number over -80..80 mm: {min(conds):.0f} to {max(conds):.0f}. '
             'The node says WARN above its condition_warn parameter (default 1e4), reached '
             'near toggles (table above).']
+
+
+def stress_out_of_reach(rounds=5, count=200):
+    """
+    Time commands beyond a travel limit beside good ones (five_link, one at a time).
+
+    The first is walked to the limit and beyond it by arclength; the later ones at the same
+    rack are refused from the limit remembered (Continuation.limits). Medians over rounds,
+    each from a new Continuation.
+    """
+    scene = load_scene('five_link')
+    beyond = 500.0                        # mm, past the bump limit 387.469 mm
+    travels = 60.0 * np.sin(np.arange(count) * 0.0125)   # good: steps of up to 0.75 mm
+    times = {'good': [], 'first beyond the limit': [], 'later ones beyond it': []}
+    for _ in range(rounds):
+        cont = Continuation(scene)
+        for travel in travels:
+            start = time.perf_counter()
+            cont.solve(float(travel))
+            times['good'].append(time.perf_counter() - start)
+        for i in range(count):
+            start = time.perf_counter()
+            answer = cont.solve(beyond + i)
+            times['first beyond the limit' if i == 0 else 'later ones beyond it'].append(
+                time.perf_counter() - start)
+            assert not answer.success
+    good = np.median(times['good'])
+    lines = ['### Commands beyond a travel limit (five_link, bump limit 387.469 mm)', '',
+             '| commands | count | median (us) | ratio to a good command |', '|---|---|---|---|']
+    for name, values in times.items():
+        lines.append(f'| {name} | {len(values)} | {np.median(values) * 1e6:.1f} | '
+                     f'{np.median(values) / good:.2g} |')
+    return lines
 
 
 def random_walk(count, low, high, seed=0, largest=5.0):

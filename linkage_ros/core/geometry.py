@@ -1,7 +1,9 @@
 """
 Small pure functions on points, frames and rotations. Arrays in, arrays out; no state.
 
-Units are whatever the caller passes (the package uses mm); angles in radians.
+Units are whatever the caller passes (the package uses mm); angles in radians. Rotations are
+converted here and nowhere else: rotation vector -> matrix (exp_so3), matrix <-> quaternion
+(x, y, z, w), spin axis -> camber and toe; the compiled forms are so3.py's.
 """
 
 from __future__ import annotations
@@ -10,7 +12,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from . import kernel
+from . import so3
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
@@ -63,7 +65,7 @@ def exp_so3(omega: ArrayLike) -> np.ndarray:
     omega = np.asarray(omega, dtype=float)
     flat = np.ascontiguousarray(omega.reshape(-1, 3))
     out = np.empty((len(flat), 3, 3))
-    kernel.exp_so3_many(flat, out)
+    so3.exp_so3_many(flat, out)
     return out.reshape(omega.shape[:-1] + (3, 3))
 
 
@@ -72,8 +74,25 @@ def quaternion_from_matrix(rot: ArrayLike) -> np.ndarray:
     rot = np.asarray(rot, dtype=float)
     flat = np.ascontiguousarray(rot.reshape(-1, 3, 3))
     out = np.empty((len(flat), 4))
-    kernel.quaternion_many(flat, out)
+    so3.quaternion_many(flat, out)
     return out.reshape(rot.shape[:-2] + (4,))
+
+
+def matrix_from_quaternion(q: ArrayLike) -> np.ndarray:
+    """
+    Return the rotation matrices (..., 3, 3) of quaternions (..., 4) as (x, y, z, w).
+
+    The quaternions are normalised first (a recorded one holds to float64 rounding only);
+    q and -q give the same matrix. The inverse of quaternion_from_matrix.
+    """
+    q = np.asarray(q, dtype=float)
+    q = q / np.linalg.norm(q, axis=-1, keepdims=True)
+    x, y, z, w = np.moveaxis(q, -1, 0)
+    return np.stack([
+        np.stack([1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)], -1),
+        np.stack([2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)], -1),
+        np.stack([2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)], -1),
+    ], -2)
 
 
 def frame_from_points(m: np.ndarray, n: np.ndarray, p: np.ndarray) -> np.ndarray:
@@ -128,7 +147,7 @@ def camber_toe(spin_axis: ArrayLike,
     axes = np.asarray(spin_axis, dtype=float)
     flat = np.ascontiguousarray(axes.reshape(-1, 3))
     camber, toe = np.empty(len(flat)), np.empty(len(flat))
-    kernel.camber_toe_many(flat, float(side_sign), camber, toe)
+    so3.camber_toe_many(flat, float(side_sign), camber, toe)
     if axes.ndim == 1:
         return camber[0], toe[0]
     return camber.reshape(axes.shape[:-1]), toe.reshape(axes.shape[:-1])

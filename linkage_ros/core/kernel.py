@@ -1,14 +1,11 @@
 """
-Compiled kernels of the fast method.
-
-The guidance equations on the carrier pose, Newton, the tangent predictor, the branch check,
-the residual and the condition number.
+Compiled kernels of the fast method: guidance equations, Newton, tangent, branch check, walk.
 
 Every function here is numba-compiled (njit, cache=True) and works on plain float64 arrays
 and scalars, one pose at a time, without a numpy call per operation: a single command is a
 handful of these calls, and the batched sweep is the same calls in a compiled loop. They
-live in one module on purpose: numba's on-disk cache is invalidated per source file, so a
-kernel that calls a kernel of another file could keep running stale code after an edit.
+call so3.py's rotations, whose digest (SO3_DIGEST) is written here: numba's disk cache
+follows each file alone, and would keep running old rotations after an edit of so3.py.
 
 The mechanism is a table of its 5 guidance equations, one row each (mechanism.compile_scene
 builds it; lengths in mm, vehicle frame, design position):
@@ -27,10 +24,15 @@ The Jacobian (5, 6) is d/d(M, omega), omega a small rotation applied in the vehi
 """
 
 import math
+from typing import NamedTuple
 
 from numba import njit
 import numpy as np
 
+from .so3 import camber_toe, quaternion, rotate, turn
+
+# sha256 of so3.py (test_kernel checks it and says the value to set after an edit there)
+SO3_DIGEST = '63b60c6921d8498a47cf8a0a86bdda0a2f05c7473f028ff5e6d7b18de31758ea'
 SPHERE, LINE = 0.0, 1.0   # equation table columns (see above)
 KIND, POINT, BASE, LENGTH, STEER, NORMAL = 0, 1, 4, 7, 8, 9
 COLUMNS = 12
@@ -38,90 +40,47 @@ N_EQUATIONS = 5
 FREE = (0, 1, 3, 4, 5)   # Jacobian columns of the unknowns: x, y of M and omega
 # A solved position packed in one array (one kernel argument instead of many): travel and
 # rack (mm), M (3,), R (3, 3), Jacobian (5, 6), then what it reports (report()): residual
-# (mm), condition number, camber and toe (rad), quaternion (x, y, z, w) of R.
+# (mm), condition number, camber and toe (rad), quaternion (x, y, z, w) of R. Compiled code
+# reads it here (views()); Python code through state.py only.
 TRAVEL, RACK, CENTER, ROTATION, JACOBIAN = 0, 1, 2, 5, 14
 RESIDUAL, CONDITION, CAMBER, TOE, QUATERNION = 44, 45, 46, 47, 48
 STATE_SIZE = 52
+# How a walk ended (Walked.outcome)
+REACHED, STALLED, SUBSTEP_LIMIT = 0, 1, 2
+
+
+class Setup(NamedTuple):
+    """
+    What the compiled solver needs of a mechanism and its settings. Lengths in mm.
+
+    walk() takes it as tuple(setup), and names it again: numba types a plain tuple in C, a
+    named one in Python, 2 us more a call (a fifth of a command).
+    """
+
+    equations: np.ndarray    # (5, COLUMNS) the guidance equations (mechanism.compile_scene)
+    spin_axis: np.ndarray    # (3,) design outboard spin-axis unit vector
+    side_sign: float         # +1 left wheel, -1 right wheel
+    z0: float                # design wheel-centre z; travel = Z_M - z0
+    tol: float               # Newton stops when every guidance equation holds to tol
+    max_iter: int            # Newton iterations per step
+    slack: float             # branch check: what a converged pose may add to half the step
+    max_step: float          # longest substep of a walk
+    min_step: float          # a failing substep shorter than this stops the walk (stalled)
+    max_substeps: int        # substeps a walk may try, accepted or not
+
+
+class Walked(NamedTuple):
+    """What walk() returns."""
+
+    state: np.ndarray   # (STATE_SIZE,) the last state reached; reported if outcome is REACHED
+    steps: int          # substeps accepted
+    iterations: int     # Newton iterations of the last substep
+    outcome: int        # REACHED, STALLED (a substep failed below min_step), SUBSTEP_LIMIT
+    low: float          # the travel range (mm) given, extended by every travel reached
+    high: float
+
 
 jit = njit(cache=True, nogil=True, error_model='numpy')
-
-
-# --- rotations and angles ------------------------------------------------------------------
-
-@jit
-def rotate(rotation, x, y, z):
-    """Return R v for v = (x, y, z), as three floats."""
-    return (rotation[0, 0] * x + rotation[0, 1] * y + rotation[0, 2] * z,
-            rotation[1, 0] * x + rotation[1, 1] * y + rotation[1, 2] * z,
-            rotation[2, 0] * x + rotation[2, 1] * y + rotation[2, 2] * z)
-
-
-@jit
-def exp_so3(x, y, z, out):
-    """
-    Write into out (3, 3) the rotation matrix of the rotation vector (x, y, z) (Rodrigues).
-
-    R = I + a K + b (w w^T - |w|^2 I), K = [w]x, a = sin t / t, b = (1 - cos t) / t^2.
-    """
-    t2 = x * x + y * y + z * z
-    if t2 < 1e-16:
-        a, b = 1.0 - t2 / 6.0, 0.5 - t2 / 24.0
-    else:
-        t = math.sqrt(t2)
-        a, b = math.sin(t) / t, (1.0 - math.cos(t)) / t2
-    out[0, 0], out[0, 1], out[0, 2] = (
-        1.0 - b * (y * y + z * z), b * x * y - a * z, b * x * z + a * y)
-    out[1, 0], out[1, 1], out[1, 2] = (
-        b * x * y + a * z, 1.0 - b * (x * x + z * z), b * y * z - a * x)
-    out[2, 0], out[2, 1], out[2, 2] = (
-        b * x * z - a * y, b * y * z + a * x, 1.0 - b * (x * x + y * y))
-
-
-@jit
-def turn(x, y, z, rotation, out):
-    """Write exp_so3(x, y, z) @ rotation into out (3, 3); out may be rotation itself."""
-    step = np.empty((3, 3))
-    exp_so3(x, y, z, step)
-    for j in range(3):   # column by column, so that out may be rotation
-        c0, c1, c2 = rotation[0, j], rotation[1, j], rotation[2, j]
-        for i in range(3):
-            out[i, j] = step[i, 0] * c0 + step[i, 1] * c1 + step[i, 2] * c2
-
-
-@jit
-def quaternion(rotation, out):
-    """Write into out (4,) the unit quaternion of rotation as x, y, z, w; w >= 0 (Shepperd)."""
-    m = rotation
-    trace = m[0, 0] + m[1, 1] + m[2, 2]
-    if trace >= m[0, 0] and trace >= m[1, 1] and trace >= m[2, 2]:
-        s = 2.0 * math.sqrt(1.0 + trace)
-        x, y, z, w = ((m[2, 1] - m[1, 2]) / s, (m[0, 2] - m[2, 0]) / s,
-                      (m[1, 0] - m[0, 1]) / s, s / 4)
-    elif m[0, 0] >= m[1, 1] and m[0, 0] >= m[2, 2]:
-        s = 2.0 * math.sqrt(1.0 + m[0, 0] - m[1, 1] - m[2, 2])
-        x, y, z, w = (s / 4, (m[0, 1] + m[1, 0]) / s, (m[0, 2] + m[2, 0]) / s,
-                      (m[2, 1] - m[1, 2]) / s)
-    elif m[1, 1] >= m[2, 2]:
-        s = 2.0 * math.sqrt(1.0 - m[0, 0] + m[1, 1] - m[2, 2])
-        x, y, z, w = ((m[0, 1] + m[1, 0]) / s, s / 4, (m[1, 2] + m[2, 1]) / s,
-                      (m[0, 2] - m[2, 0]) / s)
-    else:
-        s = 2.0 * math.sqrt(1.0 - m[0, 0] - m[1, 1] + m[2, 2])
-        x, y, z, w = ((m[0, 2] + m[2, 0]) / s, (m[1, 2] + m[2, 1]) / s, s / 4,
-                      (m[1, 0] - m[0, 1]) / s)
-    sign = 1.0 if w >= 0.0 else -1.0
-    out[0], out[1], out[2], out[3] = sign * x, sign * y, sign * z, sign * w
-
-
-@jit
-def camber_toe(ax, ay, az, side_sign):
-    """
-    Return camber and toe (rad) of an outboard spin-axis vector a (any length).
-
-    camber = -atan2(a_z, |a_xy|): + = top of the wheel outboard (eq. 14 made side-aware);
-    toe = atan2(a_x, a_y_outboard): + = toe-in. side_sign: +1 left wheel, -1 right wheel.
-    """
-    return -math.atan2(az, math.hypot(ax, ay)), math.atan2(ax, side_sign * ay)
 
 
 # --- the guidance equations ----------------------------------------------------------------
@@ -216,24 +175,27 @@ def solve_free(jac, rhs, x):
     """
     Solve J_free x = rhs into x (5,), J_free the FREE columns of jac (5, 6).
 
-    By Gaussian elimination with partial pivoting. Returns False if J_free is singular or not
-    finite, else True.
+    By Gaussian elimination with partial pivoting. Returns the determinant of J_free (its
+    pivots' product, signed), or 0.0 if J_free is singular or anything is not finite.
     """
     a = np.empty((5, 6))
     for i in range(5):
         for j in range(5):
             a[i, j] = jac[i, FREE[j]]
         a[i, 5] = rhs[i]
+    determinant = 1.0
     for col in range(5):
         pivot = col
         for row in range(col + 1, 5):
             if abs(a[row, col]) > abs(a[pivot, col]):
                 pivot = row
         if not abs(a[pivot, col]) > 0.0:   # zero or NaN
-            return False
+            return 0.0
         if pivot != col:
+            determinant = -determinant
             for j in range(col, 6):
                 a[col, j], a[pivot, j] = a[pivot, j], a[col, j]
+        determinant *= a[col, col]
         for row in range(col + 1, 5):
             factor = a[row, col] / a[col, col]
             for j in range(col, 6):
@@ -243,7 +205,18 @@ def solve_free(jac, rhs, x):
         for j in range(i + 1, 5):
             total -= a[i, j] * x[j]
         x[i] = total / a[i, i]
-    return np.isfinite(x).all()
+    return determinant if np.isfinite(x).all() and np.isfinite(determinant) else 0.0
+
+
+@jit
+def determinant(jac):
+    """
+    Return the determinant of J_free (the FREE columns of jac (5, 6)); 0.0 if singular.
+
+    Its sign is constant along a branch between two turning points and changes at each.
+    """
+    x = np.empty(5)
+    return solve_free(jac, np.zeros(5), x)
 
 
 @jit
@@ -298,13 +271,15 @@ def correct(eqs, z0, travel, rack, center, rotation, tol, max_iter, jac):
 
     Travel and rack are in mm: Z_M = z0 + travel is imposed, x, y of M and the rotation are
     solved. Stops when every guidance equation holds to tol (mm). jac (5, 6) receives the
-    Jacobian at the last pose (the converged one: it serves the next tangent and the
-    condition number). Returns (iterations, converged).
+    Jacobian at the last pose (it serves the next tangent and the condition number). Returns
+    (iterations, converged, det J_free one Newton step before the answer, 0.0 if none was
+    taken: its sign is the answer's but within that last, smallest step of a fold).
     """
     f = np.empty(5)
     rhs = np.empty(5)
     dx = np.empty(5)
     center[2] = z0 + travel
+    last = 0.0
     for iteration in range(max_iter + 1):
         linearize(eqs, center, rotation, rack, f, jac)
         worst = 0.0
@@ -312,17 +287,18 @@ def correct(eqs, z0, travel, rack, center, rotation, tol, max_iter, jac):
             if not abs(f[i]) <= worst:
                 worst = abs(f[i])
         if worst <= tol:
-            return iteration, True
+            return iteration, True, last
         if iteration == max_iter or not np.isfinite(worst):
-            return iteration, False
+            return iteration, False, last
         for i in range(5):
             rhs[i] = -f[i]
-        if not solve_free(jac, rhs, dx):
-            return iteration, False
+        last = solve_free(jac, rhs, dx)
+        if last == 0.0:
+            return iteration, False, last
         center[0] += dx[0]
         center[1] += dx[1]
         turn(dx[2], dx[3], dx[4], rotation, rotation)
-    return max_iter, False
+    return max_iter, False, last
 
 
 @jit
@@ -332,26 +308,27 @@ def predict(eqs, center0, rotation0, jac0, rack0, h, h_rack, center, rotation):
 
     From the solved pose (center0, rotation0) with Jacobian jac0, by the implicit function
     theorem (J_free dx = -J_travel h - J_rack h_rack). Writes center (3,) and rotation (3, 3);
-    returns False if the Jacobian is singular, else True.
+    returns the determinant of J_free at the solved pose, 0.0 if it is singular (no guess).
     """
     column = np.empty(5)
     slope = np.empty(5)
     for i in range(5):
         column[i] = -jac0[i, 2]
-    if not solve_free(jac0, column, slope):
-        return False
+    determinant0 = solve_free(jac0, column, slope)
+    if determinant0 == 0.0:
+        return 0.0
     d = slope * h
     center[0], center[1], center[2] = center0[0] + d[0], center0[1] + d[1], center0[2] + h
     if h_rack != 0.0:
         rack_column(eqs, center0, rotation0, rack0, column)
         for i in range(5):
             column[i] = -column[i]
-        if not solve_free(jac0, column, slope):
-            return False
+        if solve_free(jac0, column, slope) == 0.0:
+            return 0.0
         d += slope * h_rack
         center[0], center[1] = center0[0] + d[0], center0[1] + d[1]
     turn(d[2], d[3], d[4], rotation0, rotation)
-    return True
+    return determinant0
 
 
 @jit
@@ -362,39 +339,50 @@ def views(state):
 
 
 @jit
-def step(eqs, z0, tol, max_iter, slack, state0, travel, rack, state):
+def step(setup, state0, travel, rack, state):
     """
     Take one continuation step from the solved state0 to (travel, rack) (mm).
 
-    Tangent prediction, Newton correction to tol, branch check (on_branch, with slack mm).
-    Writes the new position into state (not its report). Returns (iterations, accepted).
+    Tangent prediction, Newton correction to setup.tol, branch check (on_branch). Writes the
+    new position into state (not its report). Returns (iterations, accepted).
     """
+    eqs = setup.equations
     center0, rotation0, jac0 = views(state0)
     center, rotation, jac = views(state)
     guess_center, guess_rotation = np.empty(3), np.empty((3, 3))
     h, h_rack = travel - state0[TRAVEL], rack - state0[RACK]
     state[TRAVEL], state[RACK] = travel, rack
-    if not predict(eqs, center0, rotation0, jac0, state0[RACK], h, h_rack, guess_center,
-                   guess_rotation):
+    determinant0 = predict(eqs, center0, rotation0, jac0, state0[RACK], h, h_rack,
+                           guess_center, guess_rotation)
+    if determinant0 == 0.0:
         return 0, False
     center[:] = guess_center
     rotation[:, :] = guess_rotation
-    iterations, converged = correct(eqs, z0, travel, rack, center, rotation, tol, max_iter, jac)
-    return iterations, converged and on_branch(eqs, guess_center, guess_rotation, center,
-                                               rotation, max(abs(h), abs(h_rack)), slack)
+    iterations, converged, determinant1 = correct(eqs, setup.z0, travel, rack, center,
+                                                  rotation, setup.tol, setup.max_iter, jac)
+    if not converged:
+        return iterations, False
+    if determinant1 == 0.0:   # the guess held: no Newton step factored a Jacobian
+        determinant1 = determinant(jac)
+    return iterations, on_branch(eqs, guess_center, guess_rotation, center, rotation,
+                                 max(abs(h), abs(h_rack)), setup.slack,
+                                 determinant0 * determinant1)
 
 
 @jit
-def on_branch(eqs, guess_center, guess_rotation, center, rotation, step_length, slack):
+def on_branch(eqs, guess_center, guess_rotation, center, rotation, step_length, slack,
+              orientation):
     """
     Tell whether the converged pose is where continuation along the branch predicts it.
 
     A tangent prediction misses by O(step^2); a jump to another assembly branch moves the
     carrier by a link-length scale. Half the step (mm, plus a slack for the tolerance the
-    poses hold to) separates the two.
+    poses hold to) separates the two. Near a turning point, where the prediction is poor and
+    the other branch close, orientation tells them apart: det J_free before times after the
+    step, > 0 on the same side of every fold, < 0 across one, 0 at one.
     """
     shift = carrier_shift(eqs, guess_center, guess_rotation, center, rotation)
-    return shift <= 0.5 * abs(step_length) + slack
+    return orientation > 0.0 and shift <= 0.5 * abs(step_length) + slack
 
 
 @jit
@@ -421,52 +409,57 @@ def after_step(accepted, length, done, step_length, fraction, max_step):
 
 
 @jit
-def walk(eqs, spin_axis, side_sign, z0, tol, max_iter, slack, max_step, min_step, state0,
-         target, rack, low, high):
+def walk(setup, state0, target, rack, low, high):
     """
     Continue from the solved state0 to (target travel, rack) (mm) along a straight line.
 
-    The steps are at most max_step long, halved on failure and doubled on success.
-
-    Returns (state, steps, iterations of the last step, stalled, low, high): the last state
-    reached (reported if the walk got to the target), the steps accepted, True if a step fell
-    below min_step (the walk stopped there), and the travel range low..high (mm) extended by
-    every travel reached.
+    setup: a Setup or the plain tuple of its fields. The substeps are at most max_step long,
+    halved on failure and doubled on success; a walk tries at most max_substeps of them (a
+    walk that needs more at max_step is not started). Returns a Walked: the last state
+    reached (reported if it is the target), the substeps accepted, the iterations of the
+    last, the outcome, and the travel range low..high (mm) extended by every travel reached.
     """
+    setup = Setup(*setup)
     start, start_rack = state0[TRAVEL], state0[RACK]
     length = max(abs(target - start), abs(rack - start_rack))
-    done, step_length = 0.0, min(max_step, length)
+    done, step_length = 0.0, min(setup.max_step, length)
     state, steps, iterations = state0.copy(), 0, 0   # a copy: state0 may be read-only
-    while done < length:
+    if length > setup.max_step * setup.max_substeps:   # more substeps than allowed
+        return Walked(state, 0, 0, SUBSTEP_LIMIT, low, high)
+    for _ in range(setup.max_substeps):
+        if done >= length:
+            break
         step_length, fraction = next_step(length, done, step_length)
         new = np.empty(STATE_SIZE)
-        iterations, accepted = step(eqs, z0, tol, max_iter, slack, state,
-                                    start + fraction * (target - start),
+        iterations, accepted = step(setup, state, start + fraction * (target - start),
                                     start_rack + fraction * (rack - start_rack), new)
         if accepted:
             state, steps = new, steps + 1
             low, high = min(low, new[TRAVEL]), max(high, new[TRAVEL])
             if fraction == 1.0:
-                report(eqs, spin_axis, side_sign, state)
-        done, step_length = after_step(accepted, length, done, step_length, fraction, max_step)
-        if not accepted and step_length < min_step:
-            return state, steps, iterations, True, low, high
-    return state, steps, iterations, False, low, high
+                report(setup, state)
+        done, step_length = after_step(accepted, length, done, step_length, fraction,
+                                       setup.max_step)
+        if not accepted and step_length < setup.min_step:
+            return Walked(state, steps, iterations, STALLED, low, high)
+    outcome = REACHED if done >= length else SUBSTEP_LIMIT
+    return Walked(state, steps, iterations, outcome, low, high)
 
 
 @jit
-def report(eqs, spin_axis, side_sign, state):
+def report(setup, state):
     """
     Fill in what a solved state reports.
 
     That is the residual (mm), the condition number of the Jacobian, camber and toe (rad) of
-    the spin axis (spin_axis (3,) at design, side_sign +1 left, -1 right), and the carrier
-    orientation as a quaternion (x, y, z, w).
+    the spin axis (setup.spin_axis at design, setup.side_sign +1 left, -1 right), and the
+    carrier orientation as a quaternion (x, y, z, w).
     """
     center, rotation, jac = views(state)
-    ax, ay, az = rotate(rotation, spin_axis[0], spin_axis[1], spin_axis[2])
-    state[CAMBER], state[TOE] = camber_toe(ax, ay, az, side_sign)
-    state[RESIDUAL] = residual(eqs, center, rotation, state[RACK])
+    axis = setup.spin_axis
+    ax, ay, az = rotate(rotation, axis[0], axis[1], axis[2])
+    state[CAMBER], state[TOE] = camber_toe(ax, ay, az, setup.side_sign)
+    state[RESIDUAL] = residual(setup.equations, center, rotation, state[RACK])
     state[CONDITION] = condition(jac)
     quaternion(rotation, state[QUATERNION:QUATERNION + 4])
 
@@ -510,29 +503,7 @@ def slope_many(jac, out):
 
 
 @jit
-def exp_so3_many(omegas, out):
-    """Write the rotation matrices of n rotation vectors omegas (n, 3) into out (n, 3, 3)."""
-    for n in range(omegas.shape[0]):
-        exp_so3(omegas[n, 0], omegas[n, 1], omegas[n, 2], out[n])
-
-
-@jit
-def quaternion_many(rotations, out):
-    """Write the quaternions (x, y, z, w) of rotations (n, 3, 3) into out (n, 4)."""
-    for n in range(rotations.shape[0]):
-        quaternion(rotations[n], out[n])
-
-
-@jit
-def camber_toe_many(axes, side_sign, camber, toe):
-    """Write camber and toe (rad) of n spin-axis vectors axes (n, 3) into camber, toe (n,)."""
-    for n in range(axes.shape[0]):
-        camber[n], toe[n] = camber_toe(axes[n, 0], axes[n, 1], axes[n, 2], side_sign)
-
-
-@jit
-def step_many(eqs, z0, tol, max_iter, slack, start, start_states, travels, rack, states,
-              iterations, accepted):
+def step_many(setup, start, start_states, travels, rack, states, iterations, accepted):
     """
     Take step() to each of n travels (n,) at one rack (mm).
 
@@ -540,5 +511,5 @@ def step_many(eqs, z0, tol, max_iter, slack, start, start_states, travels, rack,
     receive the results, without report; iterations and accepted (n,) what step() returns.
     """
     for n in range(travels.shape[0]):
-        iterations[n], accepted[n] = step(eqs, z0, tol, max_iter, slack, start_states[start[n]],
-                                          travels[n], rack, states[n])
+        iterations[n], accepted[n] = step(setup, start_states[start[n]], travels[n], rack,
+                                          states[n])

@@ -27,6 +27,11 @@ if TYPE_CHECKING:
 
     from .scene import Scene
 
+# Beyond this scaled condition number (scaled_condition) a position counts as singular: the
+# Jacobian then holds about 4 significant digits of 16, and its null direction (the motion
+# it does not determine) is as good as exact; a duplicated link gives 1e16 and more.
+SINGULAR_CONDITION = 1e12
+
 
 @dataclass(frozen=True)
 class Mechanism:
@@ -154,3 +159,43 @@ def rack_derivative(mech: Mechanism, center: ArrayLike, rotation: ArrayLike,
     out = np.empty((len(centers), kernel.N_EQUATIONS))
     kernel.rack_column_many(mech.equations, centers, rotations, racks, out)
     return out.reshape(shape + (kernel.N_EQUATIONS,))
+
+
+def scaled_condition(mech: Mechanism, jacobian: ArrayLike) -> float:
+    """
+    Return the 2-norm condition number of J_free with its rotation columns made lengths.
+
+    jacobian (5, 6) at a pose; the rotation columns are divided by the mechanism's lever
+    (mm/rad -> mm/mm), so that the number is dimensionless and the same for a scene at any
+    scale (five_link about 5 at design, however it is scaled). inf (or beyond
+    SINGULAR_CONDITION) when rank-deficient; NaN if the Jacobian is not finite.
+    """
+    scaled = np.array(jacobian, dtype=float)
+    scaled[:, 3:] /= mech.lever
+    return float(kernel.condition(scaled))
+
+
+def is_singular(matrix: ArrayLike) -> np.ndarray | bool:
+    """
+    Tell whether square matrices (..., k, k) are singular, as a numerical answer needs it.
+
+    Singular: the condition number with every column scaled to unit length (so that it does
+    not depend on the columns' units) is beyond SINGULAR_CONDITION, or not finite. LAPACK's
+    solve alone answers a rank-deficient system that happens to be consistent.
+    """
+    a = np.asarray(matrix, dtype=float)
+    with np.errstate(divide='ignore', invalid='ignore'):   # a zero column: singular
+        scaled = a / np.linalg.norm(a, axis=-2, keepdims=True)
+        return ~(np.linalg.cond(np.nan_to_num(scaled, posinf=0.0, neginf=0.0))
+                 <= SINGULAR_CONDITION)
+
+
+def design_condition(scene: Scene) -> float:
+    """
+    Return the scaled condition number (scaled_condition) at a scene's design position.
+
+    Beyond SINGULAR_CONDITION the design position is singular: the links do not determine
+    the carrier's motion there (two alike, say), and no travel but 0 can be solved.
+    """
+    mech = compile_scene(scene)
+    return scaled_condition(mech, linearize(mech, mech.design_center, np.eye(3))[1])

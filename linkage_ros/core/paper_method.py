@@ -108,7 +108,7 @@ def system(model: PaperModel, x: np.ndarray, z_m: float,
     Return F (8,) and the Jacobian (8, 8) of eqs. 1-4 at x.
 
     rack (mm) moves the base points of steer: rack links along +y. Returns (None, None) if a
-    joint cannot be placed.
+    joint cannot be placed, or cannot be differentiated (its arms to M, N, P coplanar).
     """
     m, n, p = unpack(x, z_m)
     joints = joints_of(model, m, n, p)
@@ -136,7 +136,10 @@ def system(model: PaperModel, x: np.ndarray, z_m: float,
             f[row] = to_top @ normal
             grads = {c: -(to_top + normal), e: to_top}
         for j, grad in grads.items():
-            jac[row] += _chain(joints[j], m, n, p, grad)
+            chained = _chain(joints[j], m, n, p, grad)
+            if chained is None:
+                return None, None
+            jac[row] += chained
     return f, np.delete(jac, 2, axis=1)
 
 
@@ -146,20 +149,28 @@ def _chain(joint, m, n, p, grad):
 
     Differentiating |B - Q_i|^2 = r_i^2 (eq. 5) gives G dB = [(B - Q_i) . dQ_i] with rows
     G_i = (B - Q_i); so dF = sum_i lambda_i (B - Q_i) . dQ_i where G^T lambda = grad.
+    None if G is singular (the joint in the plane of M, N, P).
     """
     arms = joint - np.array([m, n, p])
-    lam = np.linalg.solve(arms.T, grad)
+    try:
+        lam = np.linalg.solve(arms.T, grad)
+    except np.linalg.LinAlgError:
+        return None
     return (lam[:, None] * arms).ravel()
 
 
-def gauss_jordan(a: ArrayLike, b: ArrayLike) -> np.ndarray:
-    """Solve a x = b by Gauss-Jordan elimination with partial pivoting (reduced row echelon)."""
+def gauss_jordan(a: ArrayLike, b: ArrayLike) -> np.ndarray | None:
+    """
+    Solve a x = b by Gauss-Jordan elimination with partial pivoting (reduced row echelon).
+
+    Returns None if a is singular (a zero pivot) or not finite.
+    """
     aug = np.column_stack((np.array(a, dtype=float), np.array(b, dtype=float)))
     size = len(aug)
     for col in range(size):
         pivot = col + int(np.argmax(np.abs(aug[col:, col])))
-        if aug[pivot, col] == 0.0:
-            raise np.linalg.LinAlgError('singular matrix')
+        if not abs(aug[pivot, col]) > 0.0:   # zero or NaN
+            return None
         aug[[col, pivot]] = aug[[pivot, col]]
         aug[col] /= aug[col, col]
         others = np.arange(size) != col
@@ -183,9 +194,8 @@ def correct(model: PaperModel, travel: float, center: np.ndarray, rotation: np.n
         f, jac = system(model, x, z_m, rack)
         if f is None:
             return center, rotation, iteration, False, None
-        try:
-            dx = gauss_jordan(jac, -f)
-        except np.linalg.LinAlgError:
+        dx = gauss_jordan(jac, -f)
+        if dx is None:
             return center, rotation, iteration, False, None
         x = x + dx
         step = np.max(np.abs(dx))        # eqs. 11-12

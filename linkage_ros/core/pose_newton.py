@@ -17,7 +17,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from . import kernel
-from .mechanism import linearize
+from .mechanism import is_singular, linearize
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
@@ -40,9 +40,9 @@ def correct(mech: Mechanism, travel: float, center: ArrayLike, rotation: ArrayLi
     center = np.array(center, dtype=float)
     rotation = np.array(rotation, dtype=float)
     jac = np.empty((kernel.N_EQUATIONS, 6))
-    iterations, converged = kernel.correct(mech.equations, mech.design_center[2], float(travel),
-                                           float(rack), center, rotation, float(tol),
-                                           int(max_iter), jac)
+    iterations, converged, _ = kernel.correct(mech.equations, mech.design_center[2],
+                                              float(travel), float(rack), center, rotation,
+                                              float(tol), int(max_iter), jac)
     return center, rotation, iterations, converged, jac if converged else None
 
 
@@ -62,14 +62,29 @@ def predict(mech: Mechanism, center: np.ndarray, rotation: np.ndarray, jac: np.n
     return guess_center, guess_rotation
 
 
+def solve_free(jac: np.ndarray, rhs: np.ndarray) -> np.ndarray:
+    """
+    Solve J_free x = rhs for a batch: jac (..., 5, 6), rhs (..., 5) -> x (..., 5).
+
+    NaN where J_free is singular (mechanism.is_singular): numerics never raise, and a singular
+    position has no slope.
+    """
+    a, b = np.asarray(jac, dtype=float)[..., FREE], np.asarray(rhs, dtype=float)
+    a, b = np.broadcast_arrays(a, b[..., None])
+    singular = is_singular(a)
+    x = np.linalg.solve(np.where(singular[..., None, None], np.eye(5), a), b)[..., 0]
+    x[singular] = np.nan
+    return x
+
+
 def slope_of(jac: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """
     Return d(center)/d(travel) (..., 3) and d(omega)/d(travel) (..., 3) at a solution.
 
     From the Jacobian there, by the implicit function theorem: J_free dx = -J_travel.
-    Batched.
+    Batched; NaN at a singular position.
     """
-    dx = np.linalg.solve(jac[..., FREE], -jac[..., 2:3])[..., 0]
+    dx = solve_free(jac, -jac[..., 2])
     d_center = np.concatenate((dx[..., :2], np.ones(dx.shape[:-1] + (1,))), axis=-1)
     return d_center, dx[..., 2:]
 
@@ -84,8 +99,9 @@ def rack_slope_of(jac: np.ndarray, rack_column: np.ndarray) -> tuple[np.ndarray,
     """
     Return d(center)/d(rack) (..., 3) and d(omega)/d(rack) (..., 3) at fixed travel.
 
-    From the Jacobian and the rack column (mechanism.rack_derivative) at a solution.
+    From the Jacobian and the rack column (mechanism.rack_derivative) at a solution. NaN at
+    a singular position.
     """
-    dx = np.linalg.solve(jac[..., FREE], -rack_column[..., None])[..., 0]
+    dx = solve_free(jac, -rack_column)
     d_center = np.concatenate((dx[..., :2], np.zeros(dx.shape[:-1] + (1,))), axis=-1)
     return d_center, dx[..., 2:]

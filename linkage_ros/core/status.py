@@ -16,6 +16,7 @@ class Status(IntEnum):
     OUT_OF_REACH = 2   # beyond a travel limit (a turning point) of the assembly branch
     CURVE_LOST = 3     # continuation could not follow the solution curve any further
     SINGULAR = 4       # the Jacobian is singular where the command needs it
+    SUBSTEP_LIMIT = 5  # the walk needs more substeps than max_substeps allows
 
     @property
     def phrase(self) -> str:

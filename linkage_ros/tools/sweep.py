@@ -53,7 +53,9 @@ def table(result, scene=None, with_rack=False, elements=None):
         from ..core.elements import element_table, element_values
         columns.append(element_table(elements, element_values(
             elements, result.wheel_center, result.rotation, result.rack)))
-    return np.column_stack([np.reshape(c, (n, -1)).astype(float) for c in columns])
+    # (n, width) each: -1 cannot be inferred from a table of no rows
+    return np.column_stack([np.reshape(c, (n, int(np.prod(np.shape(c)[1:]))))
+                            .astype(float) for c in columns])
 
 
 def alignment_table(scene, result):
