@@ -7,13 +7,16 @@ but the design one is then out of reach with Status.SINGULAR, through Continuati
 and sweep(), by both methods; the design position itself is singular by design_condition.
 """
 
+import os
 from pathlib import Path
+import subprocess
+import sys
 
 from linkage_ros.core import arclength, paper_method, pose_newton
 from linkage_ros.core.kinematics import Continuation, METHODS, sweep, travel_range
-from linkage_ros.core.mechanism import (compile_scene, design_condition, linearize,
-                                        SINGULAR_CONDITION)
-from linkage_ros.core.scene import load_scene
+from linkage_ros.core.mechanism import (compile_scene, design_condition, design_jacobian,
+                                        linearize, SINGULAR_CONDITION)
+from linkage_ros.core.scene import bundled_scenes, load_scene
 from linkage_ros.core.status import Status
 import numpy as np
 import pytest
@@ -99,3 +102,44 @@ def test_the_arclength_path_answers_singular_where_the_curve_has_no_tangent(scen
 def test_gauss_jordan_says_none_for_a_singular_matrix():
     a = np.array([[1.0, 2.0], [2.0, 4.0]])
     assert paper_method.gauss_jordan(a, [1.0, 2.0]) is None
+
+
+def all_scene_files():
+    """Return every bundled scene name and every stress scene path, and the singular scene."""
+    stress = sorted((Path(__file__).resolve().parent.parent / 'config' / 'stress').glob('*.yaml'))
+    return list(bundled_scenes()) + stress + [SINGULAR]
+
+
+@pytest.mark.parametrize('name', all_scene_files(), ids=str)
+def test_the_numpy_design_jacobian_is_the_kernel_s_at_the_design_position(name):
+    # design_jacobian is kernel.linearize written out at R = I, rack 0 for numpy: the two
+    # formulations agree to rounding, strut lines (macpherson) and steered links included.
+    mech = compile_scene(load_scene(name))
+    _, kernel_jac = linearize(mech, mech.design_center, np.eye(3))
+    scale = np.abs(kernel_jac).max()
+    assert np.abs(design_jacobian(mech) - kernel_jac).max() <= 1e-12 * scale
+
+
+def test_the_singular_scene_loads_with_one_warning_that_names_its_file(scene):
+    assert len(scene.warnings) == 1
+    assert scene.warnings[0].startswith(f'{SINGULAR}: the design position is singular (scaled '
+                                        'condition number ')
+    assert 'only travel 0 can be solved' in scene.warnings[0]
+
+
+@pytest.mark.parametrize('name', all_scene_files()[:-1], ids=str)
+def test_no_bundled_or_stress_scene_is_warned_of_as_singular(name):
+    assert not [w for w in load_scene(name).warnings if 'singular' in w]
+
+
+def test_a_scene_load_compiles_no_kernel_on_a_cold_cache(tmp_path):
+    # The warning is computed at every load, before the node compiles the kernels in a child
+    # process (interruptibly): the load itself must not compile one (5 s, uninterruptible).
+    script = ('from linkage_ros.core.scene import load_scene; import sys; '
+              'print(len(load_scene(sys.argv[1]).warnings))')
+    env = {**os.environ, 'NUMBA_CACHE_DIR': str(tmp_path / 'cache')}
+    done = subprocess.run([sys.executable, '-c', script, str(SINGULAR)], env=env,
+                          capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout == '1\n'
+    assert not [p for p in (tmp_path / 'cache').rglob('*') if p.is_file()]

@@ -15,6 +15,7 @@ them to one pose or to a batch (leading axes of center (..., 3) and rotation (..
 from __future__ import annotations
 
 from dataclasses import dataclass
+import math
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -195,7 +196,32 @@ def design_condition(scene: Scene) -> float:
     Return the scaled condition number (scaled_condition) at a scene's design position.
 
     Beyond SINGULAR_CONDITION the design position is singular: the links do not determine
-    the carrier's motion there (two alike, say), and no travel but 0 can be solved.
+    the carrier's motion there (two alike, say), and no travel but 0 can be solved. numpy
+    only (design_jacobian, LAPACK's SVD): every scene load asks it (scene.py warns), and must
+    neither compile a kernel on a cold cache (5 s) nor load one (0.7 s).
     """
     mech = compile_scene(scene)
-    return scaled_condition(mech, linearize(mech, mech.design_center, np.eye(3))[1])
+    jac = design_jacobian(mech)
+    scaled = np.column_stack((jac[:, :2], jac[:, 3:] / mech.lever))   # kernel.FREE columns
+    with np.errstate(divide='ignore', invalid='ignore'):
+        return float(np.linalg.cond(scaled)) if np.isfinite(scaled).all() else math.nan
+
+
+def design_jacobian(mech: Mechanism) -> np.ndarray:
+    """
+    Return the Jacobian d/d(M, omega) (5, 6) at the design position (R = I, rack 0), by numpy.
+
+    kernel.linearize at that pose, where a carrier point's offset r is its design offset:
+    sphere row d / l and r x d / l with d = B - A; line row -n and n x (T - C) - r x n.
+    test_singular checks it against the kernel on every bundled scene.
+    """
+    eqs = mech.equations
+    r = eqs[:, kernel.POINT:kernel.POINT + 3]
+    base = eqs[:, kernel.BASE:kernel.BASE + 3]
+    normal = eqs[:, kernel.NORMAL:kernel.NORMAL + 3]
+    sphere = (eqs[:, kernel.KIND] == kernel.SPHERE)[:, None]
+    length = np.where(sphere, eqs[:, kernel.LENGTH:kernel.LENGTH + 1], 1.0)   # lines: none
+    d = (r + mech.design_center - base) / length
+    to_top = base - mech.design_center - r
+    return np.where(sphere, np.hstack((d, np.cross(r, d))),
+                    np.hstack((-normal, np.cross(normal, to_top) - np.cross(r, normal))))

@@ -26,6 +26,7 @@ from .fields import Fields, FREE_KEYS
 from .geometry import perpendicular, unit
 # LENGTH_LIMIT_MM, SceneError and within_length_limit are also read from here, where they were.
 from .limits import LENGTH_LIMIT_MM, positions_needed, within_length_limit  # noqa: F401
+from .mechanism import design_condition, SINGULAR_CONDITION
 from .yaml_file import read_yaml, SceneError  # noqa: F401 (SceneError: kept here)
 
 if TYPE_CHECKING:
@@ -246,12 +247,19 @@ def scene_warnings(scene: Scene) -> tuple[str, ...]:
 
 def singular_design_warnings(scene: Scene) -> tuple[str, ...]:
     """
-    Return a warning if the design position itself is singular (none yet).
+    Return a warning if the design position itself is singular, else ().
 
-    Issue 23 item 2: the integrator wires here the core's condition number of the design
-    position, and warns when it is beyond the scene's tolerance.
+    Singular: the scaled condition number of the guidance equations there
+    (mechanism.design_condition, numpy only: no kernel is compiled or loaded) is beyond
+    mechanism.SINGULAR_CONDITION, or not finite. Such a scene loads, and every travel but 0
+    is then out of reach with Status.SINGULAR.
     """
-    return ()
+    condition = design_condition(scene)
+    if condition <= SINGULAR_CONDITION:   # False for NaN
+        return ()
+    return (f'{scene.source}: the design position is singular (scaled condition number '
+            f'{condition:.3g}, beyond {SINGULAR_CONDITION:g}): the links do not determine the '
+            "carrier's motion (two links alike?); only travel 0 can be solved",)
 
 
 def _spin_axis_point(check, carrier, wheel_center, side, constraints):
