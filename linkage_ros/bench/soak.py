@@ -28,6 +28,7 @@ from rclpy.parameter import Parameter
 from ..cdr import float64_cdr, pose_of
 from ..cli import EXIT_STATUS, Parser, program
 from ..core.errors import LinkageError
+from ..core.finite import all_finite
 from ..core.scene import load_scene
 from ..ros.messages import status_values
 from ..ros.node import QOS, SuspensionNode
@@ -81,7 +82,7 @@ class Counter:
     def on_pose(self, data):
         self.poses += 1
         position, orientation = pose_of(data)
-        if not all(math.isfinite(v) for v in (*position, *orientation)):
+        if not all_finite((*position, *orientation)):
             self.not_finite += 1
 
     def on_diagnostics(self, msg):

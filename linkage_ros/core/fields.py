@@ -15,7 +15,8 @@ from typing import Any, TYPE_CHECKING
 
 import numpy as np
 
-from .limits import finite, LENGTH_LIMIT_MM, within_length_limit
+from .finite import is_finite_number
+from .limits import LENGTH_LIMIT_MM, within_length_limit
 from .yaml_file import SceneError
 
 if TYPE_CHECKING:
@@ -111,7 +112,7 @@ class Fields:
         value = data[key]
         if isinstance(value, bool) or not isinstance(value, (int, float)):
             self.fail(where, f'expected a number, got {value!r}')
-        if not finite(value):
+        if not is_finite_number(value):
             self.fail(where, f'must be finite, got {value!r}')
         if minimum is not None and value < minimum:
             self.fail(where, f'must be at least {minimum:g}, got {value!r}')
@@ -132,7 +133,7 @@ class Fields:
         for v in value:
             if isinstance(v, bool) or not isinstance(v, (int, float)):
                 self.fail(where, f'coordinate {v!r} is not a number')
-            if not finite(v):
+            if not is_finite_number(v):
                 self.fail(where, f'coordinate {v!r} is not finite')
             self.length(v, where, 'coordinate')
         return np.array(value, dtype=float)

@@ -10,6 +10,7 @@ from __future__ import annotations
 import math
 
 from .errors import LinkageError
+from .finite import is_finite_number
 
 # Lengths beyond this (1e6 km) are typos: their squares, which the solver forms, lose every
 # digit of a suspension's millimetres, and near 1e154 mm they overflow.
@@ -38,7 +39,7 @@ def positions_needed(start: float, stop: float, step: float, where: str = 'trave
     finite, step is not above 0, or the count is beyond MAX_POSITIONS; the message says the
     positions and the memory the request would need.
     """
-    if not all(finite(v) for v in (start, stop, step)) or not step > 0:
+    if not all(is_finite_number(v) for v in (start, stop, step)) or not step > 0:
         raise LinkageError(where, f'from, to and step must be finite and step > 0 (got '
                            f'{start!r}, {stop!r}, {step!r})')
     steps = abs(stop - start) / step   # inf for a step near the smallest float
@@ -67,11 +68,3 @@ def _bytes(size: float) -> str:
         if size >= scale:
             return f'{size / scale:.3g} {unit}'
     return f'{size:.0f} B'
-
-
-def finite(value: float) -> bool:
-    """Tell whether a number is finite; an integer beyond the float range is not."""
-    try:
-        return math.isfinite(value)
-    except OverflowError:
-        return False

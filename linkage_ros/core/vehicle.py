@@ -27,6 +27,7 @@ from typing import TYPE_CHECKING
 
 from .bundled import is_bare_name, resolve, vehicle_dir  # noqa: F401 (vehicle_dir: kept here)
 from .fields import Fields
+from .finite import is_finite_number
 from .limits import LENGTH_LIMIT_MM, within_length_limit
 from .scene import load_scene, mirror, resolve_scene_path, SceneError, translate, UNITS_TO_MM
 from .yaml_file import read_yaml
@@ -123,8 +124,8 @@ def _corner(path, corner, spec, scale):
                          f"expected true or false, got {spec['mirror']!r}")
     offset = spec.get('offset', [0.0, 0.0, 0.0])
     if (not isinstance(offset, list) or len(offset) != 3
-            or not all(isinstance(v, (int, float)) and not isinstance(v, bool)
-                       and within_length_limit(v, scale) for v in offset)):
+            or not all(is_finite_number(v) and within_length_limit(v, scale)
+                       for v in offset)):
         raise SceneError(path, f'{where}.offset', 'expected [x, y, z], numbers within '
                          f'{LENGTH_LIMIT_MM:g} mm, got {offset!r}')
     return replace(translate(scene, [v * scale for v in offset]), name=corner)

@@ -8,7 +8,6 @@ relative to the body and to the ground, the anti-dive, anti-lift or anti-squat t
 and with a rack the steer angles and Ackermann (definitions and sources: doc/axle.md).
 """
 
-import math
 import sys
 import time
 
@@ -17,6 +16,7 @@ import numpy as np
 from ..cli import EXIT_STATUS, fail, Parser, program, writable_file
 from ..core.axle import solve_axle, wheel_travels
 from ..core.errors import LinkageError
+from ..core.finite import all_finite, is_finite_number
 from ..core.kinematics import sweep, travel_range
 from ..core.scene import SceneError
 from ..core.vehicle import load_vehicle
@@ -82,9 +82,9 @@ def values(option, text):
         parts = [float(v) for v in text.split(':')]
     except ValueError:
         parts = []
-    if len(parts) == 1 and math.isfinite(parts[0]):
+    if len(parts) == 1 and is_finite_number(parts[0]):
         return np.array(parts)
-    if len(parts) != 3 or not (np.isfinite(parts).all() and parts[2] > 0):
+    if len(parts) != 3 or not (all_finite(parts) and parts[2] > 0):
         raise LinkageError(option, f'expected FROM or FROM:TO:STEP, finite numbers and STEP > '
                            f'0, got {text!r}')
     return travel_range(*parts)
@@ -106,7 +106,7 @@ def positions(args, axle):
         rack = values('--rack-grid', args.rack_grid)
     else:
         rack = np.array([0.0 if args.rack is None else args.rack])
-        if not np.isfinite(rack).all():
+        if not all_finite(rack):
             raise LinkageError('--rack', f'must be finite, got {args.rack}')
     grid = np.meshgrid(rack, heave, roll, indexing='ij')
     return grid[1].ravel(), grid[2].ravel(), grid[0].ravel()

@@ -23,6 +23,7 @@ from .map_files import FORMATS, UNREACHED, write_map, write_unreached
 from .map_grid import axle_grid_map, AXLE_QUANTITIES, corner_map, Grid, GridMap, quantities
 from ..cli import EXIT_STATUS, fail, Parser, program
 from ..core.errors import LinkageError
+from ..core.finite import all_finite
 from ..core.scene import load_scene
 from ..core.vehicle import load_vehicle, vehicle_dir
 from ..core.vehicle_axles import axle_of
@@ -98,7 +99,7 @@ def grid_option(text, option):
         start, stop, step = (float(v) for v in text.split(':'))
     except ValueError:
         raise LinkageError(option, f'expected FROM:TO:STEP in mm, got {text!r}') from None
-    if not (step > 0 and np.isfinite([start, stop, step]).all()):
+    if not (step > 0 and all_finite((start, stop, step))):
         raise LinkageError(option, f'FROM, TO, STEP must be finite and STEP > 0, got {text!r}')
     return Grid(start, stop, step)
 

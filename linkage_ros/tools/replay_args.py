@@ -11,13 +11,13 @@ spelling: '--rate needs --publish').
 """
 
 import argparse
-import math
 import shlex
 import sys
 import textwrap
 
 from .replay_commands import DEFAULT_TOPIC, SWEEP_HZ
 from .. import cli
+from ..core.finite import is_finite_number
 from ..core.kinematics import METHODS
 
 PROG = 'linkage-replay'
@@ -82,7 +82,7 @@ def _number(minimum, strict):
             value = float(text)
         except ValueError:
             raise argparse.ArgumentTypeError(f'expected a number, got {text!r}') from None
-        if not math.isfinite(value) or value < minimum or (strict and value == minimum):
+        if not is_finite_number(value) or value < minimum or (strict and value == minimum):
             relation = 'above' if strict else 'at least'
             raise argparse.ArgumentTypeError(f'must be a finite number {relation} '
                                              f'{minimum:g}, got {text}')
@@ -96,7 +96,7 @@ def _finite(text):
         value = float(text)
     except ValueError:
         raise argparse.ArgumentTypeError(f'expected a number, got {text!r}') from None
-    if not math.isfinite(value):
+    if not is_finite_number(value):
         raise argparse.ArgumentTypeError(f'must be a finite number, got {text}')
     return value
 

@@ -18,6 +18,7 @@ from pathlib import Path
 import time
 
 from ..core.errors import LinkageError
+from ..core.finite import is_finite_number
 from ..core.kinematics import travel_range
 from ..record.stored import RECORD as METADATA
 
@@ -144,8 +145,7 @@ def sweep_commands(scene, start=None, stop=None, step=None, hz=SWEEP_HZ, t0=None
     start = low if start is None else start
     stop = high if stop is None else stop
     step = default_step if step is None else step
-    if not (step > 0 and hz > 0 and math.isfinite(start) and math.isfinite(stop)
-            and math.isfinite(step) and math.isfinite(hz)):
+    if not (step > 0 and hz > 0 and all(is_finite_number(v) for v in (start, stop, step, hz))):
         raise ReplayError('--from, --to, --step, --hz', f'must be finite, --step and --hz > 0 '
                           f'(got {start:g}, {stop:g}, {step:g}, {hz:g})')
     count = abs(stop - start) / step + 1      # float: may be far beyond any integer in use

@@ -12,6 +12,7 @@ import numpy as np
 
 from ..cli import counted, EXIT_STATUS, fail, millimetres, Parser, program, warn, writable_file
 from ..core.errors import LinkageError
+from ..core.finite import all_finite, is_finite_number
 from ..core.kinematics import Continuation, METHODS, sweep, travel_range
 from ..core.limits import check_position_count, positions_needed
 from ..core.scene import load_scene, SceneError
@@ -254,14 +255,14 @@ def rack_values(args):
     """Rack positions (mm) to solve: --grid FROM:TO:STEP, --rack MM, or 0."""
     if args.grid is None:
         rack = 0.0 if args.rack is None else args.rack
-        if not np.isfinite(rack):
+        if not is_finite_number(rack):
             raise LinkageError('--rack', f'must be finite, got {rack}')
         return [rack]
     try:
         start, stop, step = (float(v) for v in args.grid.split(':'))
     except ValueError:
         raise LinkageError('--grid', f'expected FROM:TO:STEP in mm, got {args.grid!r}') from None
-    if not (step > 0 and np.isfinite([start, stop, step]).all()):
+    if not (step > 0 and all_finite((start, stop, step))):
         raise LinkageError('--grid', f'FROM, TO, STEP must be finite and STEP > 0, got '
                            f'{args.grid!r}')
     positions_needed(start, stop, step, '--grid')
