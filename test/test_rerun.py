@@ -12,10 +12,10 @@ from pathlib import Path
 import subprocess
 import sys
 
-from linkage_ros.core.geometry import carrier_points
+from linkage_ros.core.geometry import carrier_points, matrix_from_quaternion
 from linkage_ros.core.kinematics import sweep, travel_range
 from linkage_ros.core.scene import link_polylines, load_scene
-from linkage_ros.record.rerun_draw import link_points, rotation_from_quaternion, wheel_circle
+from linkage_ros.record.rerun_draw import link_points, wheel_circle
 from linkage_ros.record.rerun_view import RerunRecorder
 from linkage_ros.tools.rerun_convert import main
 import numpy as np
@@ -63,7 +63,7 @@ def column(path, entity, name):
 def test_carrier_points_from_the_pose_alone_are_the_solved_joints(name):
     scene = load_scene(name)
     result = sweep(scene, travel_range(-40, 40, 5))
-    rotation = rotation_from_quaternion(result.quaternion)
+    rotation = matrix_from_quaternion(result.quaternion)
     assert np.allclose(rotation, result.rotation, atol=1e-12)
     assert np.allclose(carrier_points(scene.carrier_offsets, result.wheel_center, rotation),
                        result.joints,

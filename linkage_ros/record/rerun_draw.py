@@ -35,7 +35,7 @@ from rerun.components import LineStrip3DBatch
 from rerun.encodings import Vec3DBatch
 
 from .label_layout import place_labels
-from ..core.geometry import carrier_points, perpendicular, unit
+from ..core.geometry import carrier_points, matrix_from_quaternion, perpendicular, unit
 from ..core.kinematics import sweep, travel_range
 from ..core.scene import link_polylines
 
@@ -67,18 +67,6 @@ EYE_DISTANCE = 1.7      # times the size of the scene's bounding box
 
 
 # --- geometry (pure) -----------------------------------------------------------------------
-
-def rotation_from_quaternion(q: ArrayLike) -> np.ndarray:
-    """Return the rotation matrices (..., 3, 3) of unit quaternions (..., 4) as (x, y, z, w)."""
-    q = np.asarray(q, dtype=float)
-    q = q / np.linalg.norm(q, axis=-1, keepdims=True)
-    x, y, z, w = np.moveaxis(q, -1, 0)
-    return np.stack([
-        np.stack([1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)], -1),
-        np.stack([2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)], -1),
-        np.stack([2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)], -1),
-    ], -2)
-
 
 def link_points(scene: Scene, joints: ArrayLike) -> np.ndarray:
     """
@@ -338,7 +326,7 @@ def send_poses(rec: rr.RecordingStream, scene: Scene, times_ns: Sequence[int],
                      columns=rr.Transform3D.columns(translation=centers,
                                                     quaternion=quaternions))
     joints = carrier_points(scene.carrier_offsets, np.asarray(centers),
-                            rotation_from_quaternion(quaternions))
+                            matrix_from_quaternion(quaternions))
     points = link_points(scene, joints)
     if racks is not None:
         points[:, rack_points(scene), 1] += np.asarray(racks, dtype=float)[:, None]
