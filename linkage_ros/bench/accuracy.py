@@ -39,6 +39,7 @@ from .stress import stress_lines
 from ..cli import EXIT_STATUS, fail, Parser, program, writable_file
 from ..core.kinematics import travel_range
 from ..core.scene import bundled_scenes, load_scene, SceneError
+from ..core.warmup import compile_if_cold
 
 TOLS = (1e-3, 1e-6, 1e-8, 1e-9, 1e-10, 1e-12)     # mm
 STEPS = (0.1, 1.0, 5.0, 20.0)                           # mm
@@ -215,6 +216,7 @@ def main(argv: list[str] | None = None) -> int:
         out.mkdir(parents=True, exist_ok=True)
     except OSError as exc:
         return fail('linkage-bench', f'--out: cannot make {out}: {exc.strerror or exc}')
+    compile_if_cold('linkage-bench')
     started = time.perf_counter()
     progress(f'{len(scenes)} scenes x {len(args.steps)} steps x {len(args.tols)} tolerances, '
              f'{len(chosen)} entries, {args.repeats} repeats -> {out}/')

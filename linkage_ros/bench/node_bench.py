@@ -49,6 +49,7 @@ from ..cdr import float64_cdr, joint_state_cdr
 from ..cli import EXIT_STATUS, Parser, program, writable_file
 from ..core.errors import LinkageError
 from ..core.scene import config_dir, load_scene
+from ..core.warmup import compile_if_cold
 from ..ros.node import QOS, run
 
 SECTIONS = ('core', 'sweep', 'start', 'latency', 'vehicle', 'callback')
@@ -602,6 +603,7 @@ def main(argv: list[str] | None = None) -> int:
     args.domain_id = first
     progress(f'{os.cpu_count()} CPUs, load average {os.getloadavg()[0]:.2f}; sections '
              f'{",".join(args.only)}, scale {args.scale}')
+    compile_if_cold('linkage-node-bench')   # not within a timed section
     with tempfile.TemporaryDirectory(prefix='linkage-node-bench-') as log_dir:
         if 'core' in args.only:
             bench_core(args)

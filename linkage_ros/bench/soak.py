@@ -30,6 +30,7 @@ from ..cli import EXIT_STATUS, Parser, program
 from ..core.errors import LinkageError
 from ..core.finite import all_finite
 from ..core.scene import load_scene
+from ..core.warmup import compile_if_cold
 from ..ros.messages import status_values
 from ..ros.node import QOS, SuspensionNode
 
@@ -98,6 +99,7 @@ def run(args):
     from geometry_msgs.msg import PoseStamped
     from std_msgs.msg import Float64
     scene = load_scene(args.scene)
+    compile_if_cold('linkage-soak')   # here, not at the first command: its answer is awaited
     context = rclpy.context.Context()
     rclpy.init(context=context, domain_id=args.domain_id)
     executor = EventsExecutor(context=context)

@@ -1,16 +1,20 @@
 """
 The first compile of the numerical kernels: tell whether it is due, say so once, do it.
 
-numba compiles linkage_ros.core.kernel on first use (about 20 s) and keeps the machine code in
-its on-disk cache (NUMBA_CACHE_DIR, else __pycache__ beside the module); later processes load
-it in well under a second. A program calls, before its first solve:
+numba compiles the kernels (KERNEL_MODULES: linkage_ros.core.kernel, so3, element_kernel) on
+first use (about 20 s) and keeps the machine code in its on-disk cache (NUMBA_CACHE_DIR, else
+__pycache__ beside each module); later processes load it in well under a second. A program
+calls, before its first solve:
 
     cold() -> bool                   numba's cache lacks a kernel: the next solve compiles
     say_if_cold(prog, file=stderr)   print 'prog: compiling the numerical kernels, once, about
                                      20 s' once per process if cold(); returns cold()
+    compile_if_cold(prog)            say_if_cold, then compile_in_child: what a program
+                                     calls (the next process is warm, whatever it solves)
     compile_kernels()                solve once along every path (both methods, a rack, a
-                                     travel out of reach, a sweep, the alignment set): every
-                                     kernel compiled, hence cached
+                                     travel out of reach, a sweep, the alignment set, the
+                                     elements, the carrier's motion, an axle): every kernel
+                                     compiled, hence cached
     compile_in_child() -> bool       compile_kernels in a child process (python -m
                                      linkage_ros.core.warmup) while this one waits: the wait
                                      is interruptible, where a compile in this process holds
@@ -20,20 +24,24 @@ it in well under a second. A program calls, before its first solve:
 `python -m linkage_ros.core.warmup` compiles ahead of time (after an install, say).
 """
 
+import importlib
 import os
 import subprocess
 import sys
 
+# The modules of numba-compiled functions (each one's own cache files).
+KERNEL_MODULES = ('linkage_ros.core.so3', 'linkage_ros.core.kernel',
+                  'linkage_ros.core.element_kernel')
 MESSAGE = 'compiling the numerical kernels, once, about 20 s'
 _said = False
 
 
 def uncached_kernels() -> list:
-    """Return the names of the kernels that numba's on-disk cache does not hold (yet)."""
+    """Return the names (module.function) of kernels numba's on-disk cache lacks (yet)."""
     from numba.core.dispatcher import Dispatcher
 
-    from . import kernel
-    return [name for name, value in vars(kernel).items()
+    return [f'{module.rsplit(".", 1)[1]}.{name}' for module in KERNEL_MODULES
+            for name, value in vars(importlib.import_module(module)).items()
             if isinstance(value, Dispatcher) and not _in_cache(value)]
 
 
@@ -68,6 +76,19 @@ def say_if_cold(prog: str, file=None) -> bool:
     return True
 
 
+def compile_if_cold(prog: str) -> bool:
+    """
+    If cold(), say so once (say_if_cold) and compile every kernel in a child process.
+
+    Every kernel, not only those this program needs: else the next program would be cold
+    again, and say so again. The wait is interruptible (compile_in_child). Returns cold().
+    """
+    if not say_if_cold(prog):
+        return False
+    compile_in_child()
+    return True
+
+
 def compile_kernels() -> None:
     """Solve along every path the programs take, so that every kernel is compiled and cached."""
     import numpy as np
@@ -86,6 +107,34 @@ def compile_kernels() -> None:
         solution = cont.solve(12.0)
         alignment(steered, cont.mech, solution.wheel_center, solution.rotation, solution.rack)
         sweep(steered, np.linspace(-20.0, 20.0, 5), method=method, rack=2.0)
+    _compile_elements_and_axles(load_scene('five_link'))
+
+
+def _compile_elements_and_axles(scene) -> None:
+    """Solve the elements of a scene that has some, its carrier's motion, and an axle."""
+    import numpy as np
+
+    from .axle import solve_axle
+    from .elements import element_values, prepare, values_at
+    from .kinematics import Continuation, sweep
+    from .mechanism import compile_scene
+    from .motion import carrier_motion, guidance_rows, pose_batch
+    from .mounts import Mount, mount_motion, mount_table
+    from .vehicle import load_vehicle
+    from .vehicle_axles import axle_of
+    result = sweep(scene, np.linspace(-20.0, 20.0, 5))
+    element_values(scene, result.wheel_center, result.rotation)
+    cont = Continuation(scene)
+    solution = cont.solve(5.0)
+    values_at(prepare(scene), solution.wheel_center, solution.rotation, solution.rack,
+              cont.jacobian)
+    mech = compile_scene(scene)
+    rows, poses = guidance_rows(scene, mech), pose_batch(mech, result.wheel_center,
+                                                         result.rotation)
+    carrier_motion(rows, poses)
+    mount_motion(rows, mount_table(scene, [Mount('carrier', scene.constraints[0].carrier)]),
+                 poses)
+    solve_axle(axle_of(load_vehicle('demo_vehicle'), 'front'), [-10.0, 0.0, 10.0])
 
 
 def compile_in_child() -> bool:

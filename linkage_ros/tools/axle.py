@@ -20,6 +20,7 @@ from ..core.finite import all_finite, is_finite_number
 from ..core.kinematics import sweep, travel_range
 from ..core.scene import SceneError
 from ..core.vehicle import load_vehicle
+from ..core.warmup import compile_if_cold
 
 PROG = 'linkage-axle'
 MAX_ROLL_DEG = 45.0   # |roll| beyond this is a typo: tan(phi) runs away near 90 deg
@@ -202,6 +203,7 @@ def main(argv: list[str] | None = None) -> int:
     problem = args.csv and writable_file(args.csv)
     if problem:
         return fail(PROG, f'--csv: {problem}')
+    compile_if_cold(PROG)
     if args.benchmark:
         benchmark(axle, heave, roll, rack, args.benchmark)
         return 0

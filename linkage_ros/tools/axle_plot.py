@@ -19,6 +19,7 @@ from ..core.axle import solve_axle
 from ..core.scene import link_polylines, SceneError
 from ..core.vehicle import load_vehicle
 from ..core.vehicle_axles import axle_of
+from ..core.warmup import compile_if_cold
 
 PROG = 'linkage-plot'
 ROLL_DEG = 4.0       # the roll sweep, +-
@@ -136,6 +137,7 @@ def main(paths):
         import matplotlib  # noqa: F401 (imported to name it if it is missing)
     except ImportError as exc:
         return fail(PROG, missing_package(exc, 'plotting'))
+    compile_if_cold(PROG)
     plot_roll_centre(axle, f'linkage_ros: {vehicle.name}, {axle_name} axle '
                      f'({axle.left.name} / {axle.right.name}): roll centre', out)
     print(f'{PROG}: wrote {out}', file=sys.stderr)

@@ -27,6 +27,7 @@ from ..core.finite import all_finite
 from ..core.scene import load_scene
 from ..core.vehicle import load_vehicle, vehicle_dir
 from ..core.vehicle_axles import axle_of
+from ..core.warmup import compile_if_cold
 
 PROG = 'linkage-map'
 GRID_OPTIONS = ('--travel', '--rack')
@@ -244,6 +245,7 @@ def main(argv: list[str] | None = None) -> int:
         jobs = [axle_job(vehicle, args)] if args.axle is not None else corner_jobs(corners, args)
         if args.benchmark:
             from .map_bench import benchmark
+            compile_if_cold(PROG)
             benchmark(corners, args.benchmark)
             return 0
         points, need = memory_needed(jobs)
@@ -256,6 +258,7 @@ def main(argv: list[str] | None = None) -> int:
         folder = output_folder(args.out)
     except LinkageError as exc:
         return fail(PROG, exc)
+    compile_if_cold(PROG)
     maps = []
     for job in jobs:
         started = time.perf_counter()

@@ -22,6 +22,7 @@ from ..cli import EXIT_STATUS, fail, missing_package, Parser, program, warn, wri
 from ..core.bundled import scene_dir
 from ..core.kinematics import sweep, travel_range
 from ..core.scene import load_scene, SceneError
+from ..core.warmup import compile_if_cold
 
 
 def save_figure(fig, path, dpi):
@@ -252,10 +253,12 @@ def main(argv: list[str] | None = None) -> int:
         return fail(prog, missing_package(exc, 'plotting'))
     if args.what == 'latency':
         plot_latency(ladder, out)
-    elif args.what == 'alignment':
-        plot_alignment(scenes, out)
     else:
-        plot_camber_toe(scenes, out)
+        compile_if_cold(prog)
+        if args.what == 'alignment':
+            plot_alignment(scenes, out)
+        else:
+            plot_camber_toe(scenes, out)
     print(f'{prog}: wrote {out}', file=sys.stderr)
     return 0
 

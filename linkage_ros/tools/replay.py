@@ -33,6 +33,7 @@ from .replay_commands import (METADATA, read_commands, stored_scene, stored_text
 from .. import cli
 from ..cli import counted
 from ..core.errors import LinkageError
+from ..core.warmup import compile_if_cold
 
 PROGRESS_PERIOD = 1.0   # s between progress lines
 
@@ -145,6 +146,7 @@ def run(args):
     source = bag_path or 'sweep'
     if args.command == 'publish':
         return _publish(args, commands, source, status)
+    compile_if_cold(PROG)
     if args.command == 'bench':
         if not commands:
             print(f'{PROG}: nothing to time: no commands', file=sys.stderr)

@@ -27,6 +27,7 @@ from .. import cli
 from ..core.errors import LinkageError
 from ..core.scene import load_scene, Scene
 from ..core.vehicle import load_vehicle
+from ..core.warmup import compile_if_cold
 from ..record.stored import load_stored
 
 PROG = 'linkage-rerun'
@@ -129,6 +130,7 @@ def run(args):
     for line in bag.losses():
         print(f'{PROG}: warning: {args.bag}: {line}', file=sys.stderr)
     name = scene.name if scene is not None else 'vehicle'
+    compile_if_cold(PROG)   # the plots are framed on a sweep of each scene
     print(f'{PROG}: {name}: converting {len(messages)} messages of {args.bag}',
           file=sys.stderr)
     counts = convert(messages, output, scene, corners)

@@ -16,6 +16,7 @@ from ..core.finite import all_finite, is_finite_number
 from ..core.kinematics import Continuation, METHODS, sweep, travel_range
 from ..core.limits import check_position_count, positions_needed
 from ..core.scene import load_scene, SceneError
+from ..core.warmup import compile_if_cold
 
 PROG = 'linkage-sweep'
 COLUMNS = ['travel_mm', 'camber_deg', 'toe_deg', 'wheel_center_x_mm', 'wheel_center_y_mm',
@@ -214,6 +215,7 @@ def main(argv: list[str] | None = None) -> int:
                           'moves nothing')
     if args.elements and not scene.elements:
         return fail(PROG, f'--elements: {scene.name} lists no elements (doc/elements.md)')
+    compile_if_cold(PROG)
     if args.benchmark:
         benchmark(scene, travels, args.benchmark)
         return 0
