@@ -205,3 +205,12 @@ def test_benchmark_prints_with_and_without_elements_at_three_sizes(capsys):
         without, extra, total, ratio = map(float, row[3:])
         assert total == pytest.approx(without + extra, abs=0.02)
         assert ratio == pytest.approx(total / without, abs=0.01)
+
+
+def test_a_scene_s_warnings_are_printed_once_before_the_map(tmp_path, capsys):
+    singular = Path(__file__).resolve().parent / 'data' / 'five_link_singular.yaml'
+    status = main([str(singular), '--travel', '0:2:1', '--out', str(tmp_path)])
+    err = capsys.readouterr().err
+    warning = f'linkage-map: warning: {load_scene(singular).warnings[0]}\n'
+    assert status == 1 and err.count(warning) == 1     # 1: travels 1 and 2 are out of reach
+    assert err.startswith(warning)

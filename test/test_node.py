@@ -480,6 +480,24 @@ def test_the_start_up_line_names_every_input_the_node_listens_to(ros_context, ca
     assert says in capfd.readouterr().err
 
 
+def test_a_scene_s_warnings_are_logged_once_at_start_as_warnings(ros_context, capfd):
+    # five_link_singular: two links alike, a singular design position (Scene.warnings).
+    singular = Path(__file__).resolve().parent / 'data' / 'five_link_singular.yaml'
+    scene = load_scene(singular)
+    assert len(scene.warnings) == 1
+    node = SuspensionNode(context=ros_context, parameter_overrides=[
+        Parameter('scene', value=str(singular))])
+    node.destroy_node()
+    warned = [line for line in capfd.readouterr().err.splitlines() if '[WARN]' in line]
+    assert len(warned) == 1
+    assert warned[0].endswith(f'[suspension_kinematics]: {scene.warnings[0]}')
+
+
+def test_a_sound_scene_logs_no_warning(ros_context, capfd):
+    SuspensionNode(context=ros_context).destroy_node()
+    assert '[WARN]' not in capfd.readouterr().err
+
+
 def recording_custom_data(path):
     """
     Return what an MCAP says of its run, read with mcap and yaml.

@@ -12,6 +12,7 @@ from pathlib import Path
 import shutil
 import struct
 
+from linkage_ros.core.scene import load_scene
 from linkage_ros.tools.replay import main
 from mcap.reader import make_reader
 from mcap.writer import Writer
@@ -266,3 +267,15 @@ def test_the_default_sweep_file_is_named_from_the_scene_name_made_safe(
     assert main(['sweep', '--scene', str(scene), '--from', '0', '--to', '2']) == 0
     assert sorted(p for p in tmp_path.rglob('*')) == sorted(before + [work / expected])
     assert not Path('/tmp/absolute_sweep.mcap').exists()
+
+
+def test_a_scene_s_warnings_are_printed_once_before_its_commands_are_solved(tmp_path, capsys):
+    # five_link_singular loads with a warning (a singular design position); every travel but
+    # 0 is then out of reach, which the diagnostics of the new bag say.
+    singular = ROOT / 'test' / 'data' / 'five_link_singular.yaml'
+    status = main(['sweep', '--scene', str(singular), '--from', '0', '--to', '2', '--step', '1',
+                   '-o', str(tmp_path / 'singular.mcap')])
+    err = capsys.readouterr().err
+    warning = f'linkage-replay: warning: {load_scene(singular).warnings[0]}\n'
+    assert status == 0 and err.count(warning) == 1
+    assert err.index(warning) < err.index('solving 3 commands')

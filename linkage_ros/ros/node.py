@@ -161,6 +161,8 @@ class SuspensionNode(Node):
                 f'scene {corner.scene.name} ({corner.scene.source}), method '
                 f'{corner.method}, frame {self.frame_id}; listening on '
                 f'{", ".join(self._listening(corner))}')
+        for line in dict.fromkeys(w for c in self.corners.values() for w in c.scene.warnings):
+            self.get_logger().warning(line)   # the scenes' (Scene.warnings), each once
 
     def _listening(self, corner):
         joints = [joint for joint in (corner.travel_joint, corner.rack_joint) if joint]

@@ -13,7 +13,7 @@ import time
 
 import numpy as np
 
-from ..cli import EXIT_STATUS, fail, Parser, program, writable_file
+from ..cli import EXIT_STATUS, fail, Parser, program, warn, writable_file
 from ..core.axle import solve_axle, wheel_travels
 from ..core.errors import LinkageError
 from ..core.finite import all_finite, is_finite_number
@@ -196,6 +196,7 @@ def main(argv: list[str] | None = None) -> int:
         heave, roll, rack = positions(args, axle)
     except (SceneError, LinkageError) as exc:
         return fail(PROG, exc)
+    warn(PROG, vehicle.warnings)
     with_rack = args.rack is not None or args.rack_grid is not None
     if with_rack and not axle.steered:
         return fail(PROG, f'{vehicle.name} {axle.name} axle: no corner has a steer: rack '

@@ -14,7 +14,7 @@ import sys
 
 import numpy as np
 
-from ..cli import fail, missing_package, writable_file
+from ..cli import fail, missing_package, warn, writable_file
 from ..core.axle import solve_axle
 from ..core.scene import link_polylines, SceneError
 from ..core.vehicle import load_vehicle
@@ -127,6 +127,7 @@ def main(paths):
         axle = axle_of(vehicle, axle_name)
     except SceneError as exc:
         return fail(PROG, exc)
+    warn(PROG, vehicle.warnings)
     if not axle.has_patches:
         return fail(PROG, f'{vehicle.name} {axle_name} axle: roll-centre needs wheel_radius in '
                           'both scenes (the contact patches)')

@@ -21,7 +21,7 @@ import yaml
 
 from .map_files import FORMATS, UNREACHED, write_map, write_unreached
 from .map_grid import axle_grid_map, AXLE_QUANTITIES, corner_map, Grid, GridMap, quantities
-from ..cli import EXIT_STATUS, fail, Parser, program
+from ..cli import EXIT_STATUS, fail, Parser, program, warn
 from ..core.errors import LinkageError
 from ..core.finite import all_finite
 from ..core.scene import load_scene
@@ -242,6 +242,7 @@ def main(argv: list[str] | None = None) -> int:
     args = parse_args(argv)
     try:
         vehicle, corners = load_target(args.target)
+        warn(PROG, [w for scene in corners.values() for w in scene.warnings])
         jobs = [axle_job(vehicle, args)] if args.axle is not None else corner_jobs(corners, args)
         if args.benchmark:
             from .map_bench import benchmark

@@ -138,7 +138,9 @@ def run(args):
             else:
                 from ..core.scene import load_scene
                 scene = load_scene('five_link')
-    else:
+    if scene is not None:
+        cli.warn(PROG, scene.warnings)
+    if not bag_path:
         from .replay_commands import sweep_commands
         commands = sweep_commands(scene, args.start, args.stop, args.step,
                                   SWEEP_HZ if args.hz is None else args.hz)

@@ -116,6 +116,7 @@ def run(args):
     cli.check_output(output, '-o' if args.output else 'output', inputs=[args.bag])
     bag = read_bag(args.bag)
     scene, corners = drawing(args, bag)
+    cli.warn(PROG, [w for s in ([scene] if scene else corners.values()) for w in s.warnings])
     messages, foreign = drawable(bag)
     if bag.complete and not messages:
         wrong = ''.join(f'; {topic} is {kind}' for topic, kind in foreign.items())
