@@ -290,3 +290,14 @@ def test_the_rack_is_plotted_in_mm_and_moves_the_steered_link(tmp_path):
             body_end = np.array(pose[j][0])
             shift = [0.0, rack_mm, 0.0] if j in steered else [0.0, 0.0, 0.0]
             assert body_end == pytest.approx(c.base[0] + shift, abs=1e-3)   # float32
+
+
+def test_a_singular_scene_is_drawn_with_its_warning_and_no_traceback(tmp_path, capsys):
+    # five_link_singular solves nothing but its design position: the plots' frames, taken
+    # from a sweep of the scene, once failed on that empty sweep (min() of nothing).
+    singular = ROOT / 'test' / 'data' / 'five_link_singular.yaml'
+    out = tmp_path / 'singular.rrd'
+    assert rerun_convert.main([str(EXAMPLE), '--scene', str(singular), '-o', str(out)]) == 0
+    warning = f'linkage-rerun: warning: {load_scene(singular).warnings[0]}\n'
+    assert capsys.readouterr().err.count(warning) == 1
+    assert rows(out)[('/suspension/carrier', False)] == 161     # every recorded pose

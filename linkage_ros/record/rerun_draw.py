@@ -35,7 +35,8 @@ from rerun.components import LineStrip3DBatch
 from rerun.encodings import Vec3DBatch
 
 from .label_layout import place_labels
-from ..core.geometry import carrier_points, matrix_from_quaternion, perpendicular, unit
+from ..core.geometry import (camber_toe, carrier_points, matrix_from_quaternion, perpendicular,
+                             unit)
 from ..core.kinematics import sweep, travel_range
 from ..core.scene import link_polylines
 
@@ -193,16 +194,18 @@ def plot_ranges(scenes: list[Scene]) -> dict[str, tuple[float, float]]:
     """
     Frame each plot on the scenes' travel blocks.
 
-    {series name: (low, high)}: the travel block (mm) and the camber and toe (deg) over it,
-    framed so that the plots open on the whole motion with readable ticks.
+    {series name: (low, high)}: the travel block (mm) and the camber and toe (deg) over it
+    and at design, framed so that the plots open on the whole motion with readable ticks. A
+    sweep that ends early (a singular scene solves nothing) frames what it solved.
     """
     travel, camber, toe = [], [], []
     for scene in scenes:
         low, high, step = scene.travel
         result = sweep(scene, travel_range(low, high, max(step, (high - low) / 64)))
+        design = camber_toe(unit(scene.wheel_center - scene.spin_axis_point), scene.side_sign)
         travel += [low, high]
-        camber += list(np.degrees(result.camber))
-        toe += list(np.degrees(result.toe))
+        camber += [math.degrees(design[0]), *np.degrees(result.camber)]
+        toe += [math.degrees(design[1]), *np.degrees(result.toe)]
     return {'travel_mm': framed(travel), 'camber_deg': framed(camber), 'toe_deg': framed(toe)}
 
 
