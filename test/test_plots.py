@@ -72,3 +72,24 @@ def test_a_scene_s_warnings_are_printed_before_the_picture(tmp_path, capsys):
     err = capsys.readouterr().err.splitlines()
     assert err[0].startswith(f'linkage-plot: warning: {stress}: wheel_radius 0.033 mm')
     assert err[1:] == [f'linkage-plot: wrote {tmp_path / "small.png"}']
+
+
+def test_a_scene_not_solved_whole_is_drawn_in_part_said_in_one_line_and_status_1(
+        tmp_path, capsys):
+    # five_link_singular solves nothing but its design position: linkage-plot once wrote an
+    # empty picture of it and exited 0. five_link beside it is drawn whole.
+    singular = ROOT / 'test' / 'data' / 'five_link_singular.yaml'
+    out = tmp_path / 'both.png'
+    assert main(['camber-toe', str(out), 'five_link', str(singular)]) == 1
+    err = capsys.readouterr().err.splitlines()
+    assert out.stat().st_size > 0 and err[-2] == f'linkage-plot: wrote {out}'
+    assert err[-1].startswith('linkage-plot: five_link_singular: travel -80 mm is out of '
+                              'reach: the guidance equations are singular')
+    assert err[-1].endswith('(drawn: 0 positions)')
+    assert not any('five_link:' in line for line in err)
+
+
+def test_the_alignment_picture_says_the_same(tmp_path, capsys):
+    singular = ROOT / 'test' / 'data' / 'five_link_singular.yaml'
+    assert main(['alignment', str(tmp_path / 'a.png'), str(singular)]) == 1
+    assert 'five_link_singular: travel -80 mm is out of reach' in capsys.readouterr().err

@@ -7,7 +7,8 @@ Left: the axle at design seen from the front (links, wheels, ground), the lines 
 contact patches square to their velocities meeting at the roll centre. Right: the roll
 centre's height above the ground against heave and roll, its lateral position against roll
 (in heave a symmetric axle keeps it on the centreline), and its path relative to the body.
-Needs matplotlib (the plot extra).
+Needs matplotlib (the plot extra). A heave or roll that takes a wheel out of reach ends that
+curve there: the picture is written, the line says where (status 1).
 """
 
 import sys
@@ -69,7 +70,11 @@ def draw_wheel(ax, scene):
 
 
 def plot_roll_centre(axle, title, path):
-    """Write the roll-centre picture of an axle (see the module docstring) to path."""
+    """
+    Write the roll-centre picture of an axle (see the module docstring) to path.
+
+    Returns the messages of the solves that ended early (AxleResult.message), [] if none.
+    """
     import matplotlib
     matplotlib.use('Agg')
     import matplotlib.pyplot as plt
@@ -90,7 +95,8 @@ def plot_roll_centre(axle, title, path):
                     'their\nvelocities under travel, meet at the roll centre\n\n', fontsize=10)
     body = fig.add_subplot(grid[1, 1])
     body.plot(heave.roll_centre[:, 0], heave.roll_centre[:, 1], '.-', color='C0', ms=3,
-              label=f'heave {heave.heave[0]:g} to {heave.heave[-1]:+g} mm')
+              label=f'heave {HEAVE_SHARE * axle.left.travel[0]:g} to '
+                    f'{HEAVE_SHARE * axle.left.travel[1]:+g} mm')
     body.plot(roll.roll_centre[:, 0], roll.roll_centre[:, 1], '.-', color='C1', ms=3,
               label=f'roll -{ROLL_DEG:g} to +{ROLL_DEG:g} deg')
     body.plot(*design.roll_centre[0], 'o', color='C3', ms=7)
@@ -115,10 +121,11 @@ def plot_roll_centre(axle, title, path):
     fig.tight_layout()
     save_figure(fig, path, dpi=100)
     plt.close(fig)
+    return [r.message for r in (design, heave, roll) if not r.success]
 
 
 def main(paths):
-    """Write the picture of `linkage-plot roll-centre OUT.png [VEHICLE [AXLE]]`: 0 or 2."""
+    """Write the picture of `linkage-plot roll-centre OUT.png [VEHICLE [AXLE]]`: 0, 1 or 2."""
     if not 1 <= len(paths) <= 3:
         return fail(PROG, 'roll-centre: expected OUT.png [VEHICLE [AXLE]]')
     out, vehicle_name, axle_name = (list(paths) + ['demo_vehicle', 'front'])[:3]
@@ -139,7 +146,9 @@ def main(paths):
     except ImportError as exc:
         return fail(PROG, missing_package(exc, 'plotting'))
     compile_if_cold(PROG)
-    plot_roll_centre(axle, f'linkage_ros: {vehicle.name}, {axle_name} axle '
-                     f'({axle.left.name} / {axle.right.name}): roll centre', out)
+    failed = plot_roll_centre(axle, f'linkage_ros: {vehicle.name}, {axle_name} axle '
+                              f'({axle.left.name} / {axle.right.name}): roll centre', out)
     print(f'{PROG}: wrote {out}', file=sys.stderr)
-    return 0
+    for message in failed:
+        print(f'{PROG}: {message}', file=sys.stderr)
+    return 1 if failed else 0

@@ -8,6 +8,9 @@ linkage-plot: the pictures of the README, as PNG files (needs matplotlib: the pl
     linkage-plot roll-centre OUT.png [VEHICLE [AXLE]]   an axle's roll centre in heave and roll
                                                    (default demo_vehicle front; axle_plot.py)
 Default scenes: five_link, double_wishbone, macpherson, in that order (one colour each).
+A scene whose travel block is not solved whole (a travel out of reach, a singular scene) is
+drawn as far as it was solved, and named on stderr in one line with where it stopped: the
+picture is written, and the status is 1.
 """
 
 import argparse
@@ -18,7 +21,8 @@ import sys
 
 import numpy as np
 
-from ..cli import EXIT_STATUS, fail, missing_package, Parser, program, warn, writable_file
+from ..cli import (counted, EXIT_STATUS, fail, missing_package, Parser, program, warn,
+                   writable_file)
 from ..core.bundled import scene_dir
 from ..core.kinematics import sweep, travel_range
 from ..core.scene import load_scene, SceneError
@@ -41,20 +45,26 @@ def save_figure(fig, path, dpi):
         raise OSError(exc.errno, exc.strerror, str(path)) from None
 
 
-def plot_camber_toe(scenes, path):
+def swept(scenes):
+    """Return the Sweep of each scene over its travel block: what the pictures draw."""
+    return [sweep(scene, travel_range(*scene.travel)) for scene in scenes]
+
+
+def plot_camber_toe(scenes, path, results=None):
     """Write a two-panel PNG (camber, toe in deg against travel in mm) of the given scenes."""
     import matplotlib.pyplot as plt
-    fig = camber_toe_figure(scenes)
+    fig = camber_toe_figure(scenes, results)
     save_figure(fig, path, dpi=110)
     plt.close(fig)
 
 
-def camber_toe_figure(scenes):
+def camber_toe_figure(scenes, results=None):
     """
     Return the figure of plot_camber_toe: camber and toe (deg) against travel (mm).
 
-    The scenes' reference tables are drawn as dots, with a legend entry if any has one; the
-    title names the scenes unless they are all bundled.
+    results: the scenes' Sweeps (swept(scenes), which is the default). The scenes'
+    reference tables are drawn as dots, with a legend entry if any has one; the title names
+    the scenes unless they are all bundled.
     """
     import matplotlib
     matplotlib.use('Agg')
@@ -62,9 +72,7 @@ def camber_toe_figure(scenes):
 
     fig, (ax_camber, ax_toe) = plt.subplots(1, 2, figsize=(10, 4), sharex=True)
     references = 0
-    for scene in scenes:
-        low, high, step = scene.travel
-        result = sweep(scene, travel_range(low, high, step))
+    for scene, result in zip(scenes, results or swept(scenes)):
         ax_camber.plot(result.travel, np.degrees(result.camber), label=scene.name)
         ax_toe.plot(result.travel, np.degrees(result.toe), label=scene.name)
         rows = reference_rows(scene)
@@ -121,8 +129,8 @@ ALIGNMENT_PANELS = [
     ('lateral_shift', 'wheel-centre lateral shift, mm', False)]
 
 
-def plot_alignment(scenes, path):
-    """Write a PNG of the alignment set against travel (mm) for the given scenes."""
+def plot_alignment(scenes, path, results=None):
+    """Write a PNG of the alignment set against travel (mm) of scenes (their Sweeps: results)."""
     import matplotlib
     matplotlib.use('Agg')
     import matplotlib.pyplot as plt
@@ -131,9 +139,7 @@ def plot_alignment(scenes, path):
     from ..core.mechanism import compile_scene
 
     fig, axes = plt.subplots(2, 4, figsize=(16, 7), sharex=True)
-    for scene in scenes:
-        low, high, step = scene.travel
-        result = sweep(scene, travel_range(low, high, step))
+    for scene, result in zip(scenes, results or swept(scenes)):
         values = alignment(scene, compile_scene(scene), result.wheel_center, result.rotation)
         for ax, (field, label, degrees) in zip(axes.flat, ALIGNMENT_PANELS):
             data = getattr(values, field)
@@ -209,7 +215,8 @@ def parse_args(argv: list[str] | None) -> argparse.Namespace:
     parser = Parser('linkage-plot', __doc__, 'examples:\n'
                     '  linkage-plot camber-toe bags/plots/camber_toe.png\n'
                     '  linkage-plot latency doc/bench/node_bench.csv bags/plots/node_latency.png'
-                    f'\n\nexit status: 0 written; {EXIT_STATUS}')
+                    '\n\nexit status: 0 written; 1 written, but a scene is drawn only as far '
+                    'as its travel block was solved (said on stderr); ' + EXIT_STATUS)
     parser.add_argument('what', choices=('camber-toe', 'alignment', 'latency', 'roll-centre'),
                         help='which picture')
     parser.add_argument('paths', nargs='+', metavar='PATH',
@@ -220,9 +227,10 @@ def parse_args(argv: list[str] | None) -> argparse.Namespace:
 
 @program('linkage-plot')
 def main(argv: list[str] | None = None) -> int:
-    """Write the picture named on the command line: 0 when written, 2 for a mistake."""
+    """Write the picture named on the command line: 0 written, 1 drawn in part, 2 a mistake."""
     args = parse_args(argv)
     prog = 'linkage-plot'
+    scenes = []
     if args.what == 'roll-centre':
         from .axle_plot import main as roll_centre
         return roll_centre(args.paths)
@@ -251,16 +259,19 @@ def main(argv: list[str] | None = None) -> int:
         import matplotlib  # noqa: F401 (imported to name it if it is missing)
     except ImportError as exc:
         return fail(prog, missing_package(exc, 'plotting'))
+    results = []
     if args.what == 'latency':
         plot_latency(ladder, out)
     else:
         compile_if_cold(prog)
-        if args.what == 'alignment':
-            plot_alignment(scenes, out)
-        else:
-            plot_camber_toe(scenes, out)
+        results = swept(scenes)
+        (plot_alignment if args.what == 'alignment' else plot_camber_toe)(scenes, out, results)
     print(f'{prog}: wrote {out}', file=sys.stderr)
-    return 0
+    failed = [(s, r) for s, r in zip(scenes, results) if not r.success]
+    for scene, result in failed:
+        print(f'{prog}: {scene.name}: {result.message} (drawn: '
+              f'{counted(len(result.travel), "position")})', file=sys.stderr)
+    return 1 if failed else 0
 
 
 if __name__ == '__main__':
