@@ -214,3 +214,12 @@ def test_a_scene_s_warnings_are_printed_once_before_the_map(tmp_path, capsys):
     warning = f'linkage-map: warning: {load_scene(singular).warnings[0]}\n'
     assert status == 1 and err.count(warning) == 1     # 1: travels 1 and 2 are out of reach
     assert err.startswith(warning)
+
+
+def test_a_benchmark_of_a_scene_out_of_reach_times_nothing_and_says_why(capsys):
+    # It once ended in a numba TypingError: the elements of an answer that has no pose.
+    singular = Path(__file__).resolve().parent / 'data' / 'five_link_singular.yaml'
+    assert main([str(singular), '--benchmark', '1']) == 1
+    out, err = capsys.readouterr()
+    assert out == '' and err.splitlines()[-1].startswith(
+        'linkage-map: nothing to time: five_link_singular: travel -80 mm is out of reach')

@@ -247,8 +247,7 @@ def main(argv: list[str] | None = None) -> int:
         if args.benchmark:
             from .map_bench import benchmark
             compile_if_cold(PROG)
-            benchmark(corners, args.benchmark)
-            return 0
+            return benchmark(corners, args.benchmark)
         points, need = memory_needed(jobs)
         available = memory_available()
         if available is not None and need > available:

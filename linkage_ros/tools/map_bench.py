@@ -51,9 +51,17 @@ def batch(scene, travels):
 
 
 def benchmark(corners, rounds):
-    """Print the median µs per answer without and with elements, and their ratio."""
+    """
+    Print the median µs per answer without and with elements, and their ratio; return 0.
+
+    1, with the line, if the scene's travel block is out of reach in part: nothing is timed.
+    """
     scene = next((s for s in corners.values() if s.elements), next(iter(corners.values())))
     low, high, _ = scene.travel
+    solved = sweep(scene, np.linspace(low, high, SIZES[0]))
+    if not solved.success:
+        print(f'linkage-map: nothing to time: {scene.name}: {solved.message}', file=sys.stderr)
+        return 1
     runs = {(path, n): [] for path in ('one command', 'sweep') for n in SIZES}
     for r in range(rounds):
         for (path, n), times in runs.items():
@@ -69,3 +77,4 @@ def benchmark(corners, rounds):
         without, extra = np.median(times, axis=0)
         print(f'{path:<14}{n // SIZES[0]:>5}x{n:>10}{without:>12.2f}{extra:>13.2f}'
               f'{without + extra:>10.2f}{(without + extra) / without:>7.2f}')
+    return 0

@@ -156,8 +156,14 @@ def benchmark(scene, travels, rounds):
     Return the median time per solved position (us) of each way of solving.
 
     Timed side by side: paper and fast sweeps, and the fast method one command at a time (the
-    node's path).
+    node's path). Returns the exit status: 1, with the line, if a travel is out of reach
+    (nothing is timed: a sweep that stops early is no measure of one that does not).
     """
+    solved = sweep(scene, travels)
+    if not solved.success:
+        print(f'linkage-sweep: nothing to time: {solved.message}', file=sys.stderr)
+        return 1
+
     def one_by_one():
         cont = Continuation(scene)
         for travel in travels:
@@ -184,6 +190,7 @@ def benchmark(scene, travels, rounds):
     for name, values in times.items():
         print(f'{name:<30}{np.median(values):>24.1f}{np.percentile(values, 95):>10.1f}'
               f'{np.median(values) / fast:>15.1f}')
+    return 0
 
 
 @program(PROG)
@@ -217,8 +224,7 @@ def main(argv: list[str] | None = None) -> int:
         return fail(PROG, f'--elements: {scene.name} lists no elements (doc/elements.md)')
     compile_if_cold(PROG)
     if args.benchmark:
-        benchmark(scene, travels, args.benchmark)
-        return 0
+        return benchmark(scene, travels, args.benchmark)
     print(f'linkage-sweep: {scene.name}: {counted(len(travels), "position")} from {start:g} to '
           f'{stop:g} mm, method {args.method}', file=sys.stderr)
     results = []
