@@ -29,7 +29,7 @@ from typing import Callable, NamedTuple, TYPE_CHECKING
 from .cdr import float64_cdr, pose_stamped_cdr
 from .core.geometry import M_PER_MM
 from .core.kinematics import Continuation
-from .ros.health import Health
+from .health import Health
 
 if TYPE_CHECKING:
     from .core.kinematics import Solution

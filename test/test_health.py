@@ -1,5 +1,5 @@
 """
-linkage_ros.ros.health: what /diagnostics says about a corner, without ROS.
+linkage_ros.health: what /diagnostics says about a corner, without ROS.
 
 Expected behaviour is the diagnostic_updater convention the node follows: a report every
 period summarising it, and a report at once for a failed command or a change of level.
@@ -9,7 +9,7 @@ import math
 
 from linkage_ros.core.kinematics import Continuation
 from linkage_ros.core.scene import load_scene
-from linkage_ros.ros.health import ERROR, Health, OK, WARN
+from linkage_ros.health import ERROR, Health, OK, WARN
 import pytest
 
 

@@ -9,9 +9,9 @@ from linkage_ros import cdr
 from linkage_ros.cdr import CdrError, float64_of, from_cdr, pose_of, to_cdr
 from linkage_ros.core.kinematics import Continuation
 from linkage_ros.core.scene import load_scene
+from linkage_ros.health import Health
 from linkage_ros.protocol import answer_outputs
 from linkage_ros.ros import messages
-from linkage_ros.ros.health import Health
 import numpy as np
 import pytest
 from rclpy.serialization import deserialize_message, serialize_message

@@ -209,3 +209,14 @@ def test_importing_the_protocol_loads_neither_rclpy_nor_a_message_package():
     result = subprocess.run([sys.executable, '-c', code], capture_output=True, text=True,
                             timeout=120, check=True)
     assert result.stdout == '[]\n'
+
+
+def test_the_protocol_and_health_import_nothing_of_the_ros_adapter():
+    # health.py was in ros/ while ROS-free, and the protocol imported it from there: the
+    # layers import downwards only (ros uses the protocol, never the other way).
+    code = ('import sys, linkage_ros.protocol, linkage_ros.health; print(sorted(m for m in '
+            'sys.modules if m.startswith(("linkage_ros.ros", "linkage_ros.record", '
+            '"linkage_ros.tools"))))')
+    result = subprocess.run([sys.executable, '-c', code], capture_output=True, text=True,
+                            timeout=120, check=True)
+    assert result.stdout == '[]\n'

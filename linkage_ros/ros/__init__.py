@@ -2,6 +2,6 @@
 The ROS 2 adapter.
 
 suspension_node (entry: the process; node: owns the corners; corner: one wheel; parameters;
-qos; sinks: recorders), its messages, diagnostics (health) and markers, and the pytest plugin
-for launch-free node tests (testing).
+qos; sinks: recorders), its messages and diagnostics (messages; their ROS-free state is
+linkage_ros.health) and markers, and the pytest plugin for launch-free node tests (testing).
 """

@@ -36,8 +36,8 @@ if TYPE_CHECKING:
     from builtin_interfaces.msg import Time
     from sensor_msgs.msg import JointState
 
-    from .health import Health
     from ..core.alignment import Alignment
+    from ..health import Health
 
 
 def command_mm(data: bytes) -> float:
