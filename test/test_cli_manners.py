@@ -174,8 +174,11 @@ def replay_mistakes(tmp_path, foreign_bag):
         (['sweep', '--step', '-1'], 'argument --step: must be a finite number above 0, '
          'got -1'),
         (['sweep', '--from', 'inf'], 'argument --from: must be a finite number, got inf'),
-        (['sweep', '--to', 'x'], "argument --to: expected a number, got 'x'"),
-        (['sweep', '--from', '-80mm'], "argument --from: expected a number, got '-80mm'"),
+        (['sweep', '--to', 'x'], "argument --to: expected a number of millimetres, got 'x'"),
+        (['sweep', '--from', '-80mm'], "argument --from: '-80mm': give millimetres as a plain "
+         'number, without a unit (e.g. -80)'),
+        (['bench', '--step', '0.5 mm'], "argument --step: '0.5 mm': give millimetres as a "
+         'plain number, without a unit (e.g. 0.5)'),
         (['solve', bag, '--rate', '2'], 'error: --rate is not an option of linkage-replay solve '
          '(it is one of: publish) (see linkage-replay solve --help)'),
         (['sweep', '--clock'], 'error: --clock is not an option of linkage-replay sweep (it is '

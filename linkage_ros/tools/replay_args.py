@@ -75,30 +75,30 @@ class Parser(cli.Parser):
         sys.exit(cli.fail(PROG, f'error: {message} (see {self.prog} --help)'))
 
 
-def _number(minimum, strict):
-    """Return an argparse type: a finite number above (strict) or at least minimum."""
+def _number(minimum=None, strict=False, millimetres=False):
+    """
+    Return an argparse type: a finite number above (strict) or at least minimum (None: any).
+
+    millimetres: read as linkage-sweep reads a length (cli.millimetres), so that a unit after
+    the number (--from -80mm) is refused saying how to give it.
+    """
     def parse(text):
-        try:
-            value = float(text)
-        except ValueError:
-            raise argparse.ArgumentTypeError(f'expected a number, got {text!r}') from None
-        if not is_finite_number(value) or value < minimum or (strict and value == minimum):
+        if millimetres:
+            value = cli.millimetres(text)
+        else:
+            try:
+                value = float(text)
+            except ValueError:
+                raise argparse.ArgumentTypeError(f'expected a number, got {text!r}') from None
+        if minimum is None:
+            if not is_finite_number(value):
+                raise argparse.ArgumentTypeError(f'must be a finite number, got {text}')
+        elif not is_finite_number(value) or value < minimum or (strict and value == minimum):
             relation = 'above' if strict else 'at least'
             raise argparse.ArgumentTypeError(f'must be a finite number {relation} '
                                              f'{minimum:g}, got {text}')
         return value
     return parse
-
-
-def _finite(text):
-    """Parse a finite number (an argparse type)."""
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f'expected a number, got {text!r}') from None
-    if not is_finite_number(value):
-        raise argparse.ArgumentTypeError(f'must be a finite number, got {text}')
-    return value
 
 
 def _options(parser, command):
@@ -141,11 +141,11 @@ def _options(parser, command):
                help='s to wait for a subscriber, >= 0 (default 10)')
     if command in ('sweep', 'publish', 'bench'):
         which = 'sweep: ' if source else ''
-        option('--from', dest='start', type=_finite,
+        option('--from', dest='start', type=_number(millimetres=True),
                help=f"{which}first travel, mm (default: the scene's travel min)")
-        option('--to', dest='stop', type=_finite,
+        option('--to', dest='stop', type=_number(millimetres=True),
                help=f"{which}last travel, mm (default: the scene's travel max)")
-        option('--step', type=_number(0.0, True),
+        option('--step', type=_number(0.0, True, millimetres=True),
                help=f"{which}travel step, mm, > 0 (default: the scene's step)")
         option('--hz', type=_number(0.0, True),
                help=f'{which}command rate, Hz, > 0 (default {SWEEP_HZ:g})')
