@@ -38,6 +38,17 @@ def pytest_configure(config):
 
 def pytest_report_header(config):
     """Say where the cross-process tests run: a private network, or the user's domain."""
+    return where_ros_runs(config)
+
+
+def pytest_terminal_summary(terminalreporter, config):
+    """Say it at the end under -q too, which leaves the header out."""
+    if config.get_verbosity() < 0:
+        terminalreporter.write_line(where_ros_runs(config))
+
+
+def where_ros_runs(config):
+    """Return one line: where the cross-process tests of this run talk, and on which domain."""
     network, domain = config.stash[NETWORK], environment_domain_id()
     if network.entered:
         return (f'ROS: cross-process tests in {network.text}, on domain {domain}; '
