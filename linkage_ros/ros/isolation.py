@@ -121,13 +121,20 @@ def enter_private_network():
             os.close(fd)
         needs = ' (needs root)' if exc.errno == errno.EPERM else ''
         return PrivateNetwork(False, f'no network namespace: {exc.strerror}{needs}')
-    # From here this process is in the new namespaces; a failure is not recoverable.
+    # From here this process is in the new namespaces: there is no way back but start_outside.
     _OUTSIDE = outside
-    # Mounts in the new namespace must not propagate back to the old one.
-    _libc_call(libc, 'mount', None, b'/', None, MS_REC | MS_PRIVATE, None)
-    _libc_call(libc, 'mount', b'tmpfs', b'/dev/shm', b'tmpfs', MS_NOSUID | MS_NODEV,
-               b'mode=1777')
     _bring_up_loopback()
+    try:
+        # Mounts in the new namespace must not propagate back to the old one.
+        _libc_call(libc, 'mount', None, b'/', None, MS_REC | MS_PRIVATE, None)
+        _libc_call(libc, 'mount', b'tmpfs', b'/dev/shm', b'tmpfs', MS_NOSUID | MS_NODEV,
+                   b'mode=1777')
+    except OSError as exc:
+        # Measured with Fast DDS 2.14: even with shared memory as its only transport, a
+        # participant in a network namespace does not reach one outside it through a shared
+        # /dev/shm. A /dev/shm of its own makes that independent of the version.
+        return PrivateNetwork(True, 'a private network namespace (only lo), /dev/shm shared '
+                                    f'({exc.strerror})')
     return PrivateNetwork(True, 'a private network namespace (only lo) with a /dev/shm of its '
                                 'own')
 
