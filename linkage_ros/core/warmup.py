@@ -72,6 +72,7 @@ def compile_kernels() -> None:
     """Solve along every path the programs take, so that every kernel is compiled and cached."""
     import numpy as np
 
+    from . import kernel
     from .alignment import alignment
     from .kinematics import Continuation, sweep
     from .scene import load_scene
@@ -86,6 +87,8 @@ def compile_kernels() -> None:
         solution = cont.solve(12.0)
         alignment(steered, cont.mech, solution.wheel_center, solution.rotation, solution.rack)
         sweep(steered, np.linspace(-20.0, 20.0, 5), method=method, rack=2.0)
+    # the axle quantities' batched slopes (core.axle), on the Jacobian of a solved position
+    kernel.slope_many(np.ascontiguousarray(cont.jacobian[None]), np.empty((1, 5)))
 
 
 def compile_in_child() -> bool:
