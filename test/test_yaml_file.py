@@ -10,7 +10,6 @@ run as a user runs them, with os.wait4's rusage of that one process.
 
 import os
 from pathlib import Path
-import resource
 import subprocess
 import sys
 
@@ -44,6 +43,17 @@ def refusal(loader, path):
     return str(raised.value)
 
 
+# Run by a small launcher process: a child forked from pytest itself starts with pytest's
+# resident memory (hundreds of MB, counted in its ru_maxrss before it execs the program).
+LAUNCHER = """
+import os, resource, subprocess, sys
+resource.setrlimit(resource.RLIMIT_AS, (2 * 2**30, 2 * 2**30))
+process = subprocess.Popen(sys.argv[1:], stdout=subprocess.DEVNULL)
+_, status, usage = os.wait4(process.pid, 0)
+print(os.waitstatus_to_exitcode(status), usage.ru_maxrss / 1024)
+"""
+
+
 def run_measured(argv, cwd):
     """
     Run a program to its end; return (status, stderr, peak memory in MB of that process).
@@ -51,16 +61,12 @@ def run_measured(argv, cwd):
     Its address space is capped at 2 GB, so that a program that would expand a file without
     bound fails here (with a MemoryError) instead of taking the machine's memory.
     """
-    def cap():
-        resource.setrlimit(resource.RLIMIT_AS, (2 * 2**30, 2 * 2**30))
     env = {**os.environ, 'ROS_AUTOMATIC_DISCOVERY_RANGE': os.environ.get(
         'ROS_AUTOMATIC_DISCOVERY_RANGE', 'LOCALHOST')}   # the node starts ROS, on this machine
-    process = subprocess.Popen(argv, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
-                               cwd=cwd, env=env, preexec_fn=cap)
-    _, status, usage = os.wait4(process.pid, 0)
-    err = process.stderr.read().decode()
-    process.stderr.close()
-    return os.waitstatus_to_exitcode(status), err, usage.ru_maxrss / 1024
+    result = subprocess.run([sys.executable, '-c', LAUNCHER, *argv], capture_output=True,
+                            text=True, cwd=cwd, env=env, timeout=600)
+    status, memory = result.stdout.split()
+    return int(status), result.stderr, float(memory)
 
 
 def test_a_syntax_error_is_one_line_with_file_line_column_and_problem(tmp_path):

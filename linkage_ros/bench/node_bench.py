@@ -21,8 +21,12 @@ Sections (all by default; --only picks some), sizes multiplied by --scale (run 1
             alignment or markers outputs, recording to MCAP, mirroring to Rerun, both
 
 Tables go to stdout as CSV (the first cell of each header row names the section), progress
-to stderr; --plot writes latency against command rate (node and echo) as a PNG. Discovery
-stays on this machine (ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST for every process started).
+to stderr; --plot writes latency against command rate (node and echo) as a PNG. Every
+process runs on the user's ROS domain (ROS_DOMAIN_ID, 0 if unset; --domain-id) and discovery
+range (LOCALHOST if ROS_AUTOMATIC_DISCOVERY_RANGE is unset), each node process and its driver
+under a namespace of their own (/linkage_node_bench_<pid>/<node>, /diagnostics included), so
+that they neither answer nor disturb other nodes on that domain; the callback section's node
+is private to its process (discovery OFF).
 Absolute times on shared machines are noisy: read the ratios, measured in the same run.
 """
 
@@ -50,6 +54,7 @@ from ..cli import EXIT_STATUS, Parser, program, writable_file
 from ..core.errors import LinkageError
 from ..core.scene import config_dir, load_scene
 from ..core.warmup import compile_if_cold
+from ..ros.isolation import environment_domain_id, init_context
 from ..ros.node import QOS, run
 
 SECTIONS = ('core', 'sweep', 'start', 'latency', 'vehicle', 'callback')
@@ -236,14 +241,18 @@ class Driver:
 
 
 class Target:
-    """A node process under test on its own ROS domain, and the Driver that talks to it."""
+    """A node process under test in a namespace of its own, and the Driver that talks to it."""
 
     def __init__(self, name, command, domain_id, log_dir, prefixes=('',), env=None):
         self.name = name
+        namespace = f'/linkage_node_bench_{os.getpid()}/{name}'
+        remaps = ['-r', f'__ns:={namespace}', '-r', f'/diagnostics:={namespace}/diagnostics']
         self.started = time.perf_counter()
-        self.process = start_process(command, domain_id, log_dir, env)
+        ros_args = remaps if '--ros-args' in command else ['--ros-args', *remaps]
+        self.process = start_process([*command, *ros_args], domain_id, log_dir, env)
         self.context = rclpy.context.Context()
-        rclpy.init(context=self.context, domain_id=domain_id)
+        rclpy.init(args=['bench_driver', '--ros-args', *remaps], context=self.context,
+                   domain_id=domain_id)
         self.driver = Driver(self.context, prefixes)
 
     def close(self):
@@ -258,8 +267,7 @@ def joint_state_layout(names):
 
 
 def start_process(command, domain_id, log_dir, env=None):
-    env = dict(os.environ, **(env or {}), ROS_DOMAIN_ID=str(domain_id), ROS_LOG_DIR=log_dir,
-               ROS_AUTOMATIC_DISCOVERY_RANGE='LOCALHOST')
+    env = dict(os.environ, **(env or {}), ROS_DOMAIN_ID=str(domain_id), ROS_LOG_DIR=log_dir)
     return subprocess.Popen(command, env=env, stdout=subprocess.DEVNULL,
                             stderr=subprocess.PIPE, text=True)
 
@@ -407,12 +415,12 @@ def start_once(what, scene, domain_id):
     return 0
 
 
-def bench_latency(args, log_dir, first_domain):
+def bench_latency(args, log_dir, domain_id):
     """suspension_node and the echo node, measured alternately; then the rate ladder."""
     targets = [Target('node', [node_script(), '--ros-args', '-p', f'scene:={args.scene}'],
-                      first_domain, log_dir),
+                      domain_id, log_dir),
                Target('echo', [sys.executable, '-m', 'linkage_ros.bench.node_bench', '--echo'],
-                      first_domain + 1, log_dir)]
+                      domain_id, log_dir)]
     ladder = []
     try:
         for target in targets:
@@ -458,13 +466,13 @@ def bench_latency(args, log_dir, first_domain):
     return ladder
 
 
-def bench_vehicle(args, log_dir, first_domain):
+def bench_vehicle(args, log_dir, domain_id):
     """Four corners at args.hz each: Float64 per corner, then one JointState per step."""
     prefixes = tuple(f'{c}/' for c in CORNERS)
     targets = [Target('node', [node_script(), '--ros-args', '-p', f'vehicle:={VEHICLE}'],
-                      first_domain, log_dir, prefixes),
+                      domain_id, log_dir, prefixes),
                Target('echo', [sys.executable, '-m', 'linkage_ros.bench.node_bench',
-                               '--echo-vehicle'], first_domain + 1, log_dir, prefixes)]
+                               '--echo-vehicle'], domain_id, log_dir, prefixes)]
     rows, medians = [], {}
     try:
         steps = int(args.hz * args.seconds * args.scale)
@@ -496,8 +504,7 @@ def bench_callback(args):
     modes = {'plain': {}, 'alignment': {'alignment': True}, 'markers': {'markers': True},
              'record_mcap': {'record_mcap': 'run.mcap'}, 'rerun_rrd': {'rerun_rrd': 'run.rrd'},
              'record_mcap+rerun_rrd': {'record_mcap': 'run.mcap', 'rerun_rrd': 'run.rrd'}}
-    context = rclpy.context.Context()
-    rclpy.init(context=context, domain_id=args.domain_id)
+    context = init_context(args.domain_id, 'OFF')      # no subscriber, and none outside
     travels = sine(args.count * args.scale, 0.05, 0.02)
     rows, base = [], None
     try:
@@ -561,7 +568,7 @@ def parse_args(argv):
     parser.add_argument('--quick', action='store_true',
                         help='a smoke run: every size cut to a tenth or less, low rates')
     parser.add_argument('--domain-id', type=int, default=None,
-                        help='first of the ROS domain ids to use (default from the pid)')
+                        help='ROS domain of every process (default: ROS_DOMAIN_ID, else 0)')
     parser.add_argument('--echo', action='store_true', help=argparse.SUPPRESS)
     parser.add_argument('--echo-vehicle', action='store_true', help=argparse.SUPPRESS)
     parser.add_argument('--start-once', choices=('core', 'suspension_node'),
@@ -595,14 +602,17 @@ def parse_args(argv):
 def main(argv: list[str] | None = None) -> int:
     """Run linkage-node-bench, or one of the processes it starts (--echo, --start-once)."""
     args, ros_args = parse_args(sys.argv[1:] if argv is None else argv)
+    os.environ.setdefault('ROS_AUTOMATIC_DISCOVERY_RANGE', 'LOCALHOST')   # for its children too
+    if args.domain_id is None:
+        args.domain_id = environment_domain_id()
     if args.echo or args.echo_vehicle:      # an echo node process started by the bench
         return echo_main(args.echo_vehicle, ['echo', *ros_args])
     if args.start_once:                     # one launch timed by the start section
         return start_once(args.start_once, args.scene, args.domain_id)
-    first = args.domain_id if args.domain_id is not None else 1 + os.getpid() % 90
-    args.domain_id = first
     progress(f'{os.cpu_count()} CPUs, load average {os.getloadavg()[0]:.2f}; sections '
-             f'{",".join(args.only)}, scale {args.scale}')
+             f'{",".join(args.only)}, scale {args.scale}; ROS domain {args.domain_id}, '
+             f'discovery {os.environ["ROS_AUTOMATIC_DISCOVERY_RANGE"]}, topics under '
+             f'/linkage_node_bench_{os.getpid()}')
     compile_if_cold('linkage-node-bench')   # not within a timed section
     with tempfile.TemporaryDirectory(prefix='linkage-node-bench-') as log_dir:
         if 'core' in args.only:
@@ -610,16 +620,16 @@ def main(argv: list[str] | None = None) -> int:
         if 'sweep' in args.only:
             bench_sweep(args)
         if 'start' in args.only:
-            bench_start(args, log_dir, first + 1)
+            bench_start(args, log_dir, args.domain_id)
         if 'latency' in args.only:
-            ladder = bench_latency(args, log_dir, first + 2)
+            ladder = bench_latency(args, log_dir, args.domain_id)
             if args.plot:
                 from ..tools.plot import plot_latency
                 plot_latency({name: [(r[1], r[7], r[8]) for r in ladder if r[0] == name and r[3]]
                               for name in ('node', 'echo')}, args.plot)
                 progress(f'wrote {args.plot}')
         if 'vehicle' in args.only:
-            bench_vehicle(args, log_dir, first + 4)
+            bench_vehicle(args, log_dir, args.domain_id)
         if 'callback' in args.only:
             bench_callback(args)
     return 0

@@ -4,7 +4,8 @@ linkage-soak: a long run of suspension_node in process, to show that it lasts.
     linkage-soak [--commands 1000000] [--scene five_link] [--batch 200] [--seed 0]
 
 One million commands (by default) go through a SuspensionNode over real DDS in one process
-(a private context, discovery off): a random walk over the scene's travel range in steps of
+(a private context, discovery off, on the user's ROS domain: ROS_DOMAIN_ID, 0 if unset; no
+other process sees or reaches it): a random walk over the scene's travel range in steps of
 about 0.5 mm, a jump across the range every 5000 commands, and a bad value every 1000 (NaN,
 inf, -inf, 1e308 m, a travel beyond the bump limit). A probe node publishes them in batches
 and reads every answer as it comes (poses and /diagnostics, as CDR). Printed at the end, in
@@ -16,7 +17,6 @@ the counts of poses, ERROR statuses and non-finite poses (which must be 0). Prog
 
 import argparse
 import math
-import os
 import sys
 import time
 
@@ -31,6 +31,7 @@ from ..core.errors import LinkageError
 from ..core.finite import all_finite
 from ..core.scene import load_scene
 from ..core.warmup import compile_if_cold
+from ..ros.isolation import init_context
 from ..ros.messages import status_values
 from ..ros.node import QOS, SuspensionNode
 
@@ -100,8 +101,7 @@ def run(args):
     from std_msgs.msg import Float64
     scene = load_scene(args.scene)
     compile_if_cold('linkage-soak')   # here, not at the first command: its answer is awaited
-    context = rclpy.context.Context()
-    rclpy.init(context=context, domain_id=args.domain_id)
+    context = init_context(args.domain_id, 'OFF')
     executor = EventsExecutor(context=context)
     node = SuspensionNode(context=context, parameter_overrides=[
         Parameter('scene', value=args.scene), Parameter('diagnostic_period', value=0.5)])
@@ -175,7 +175,8 @@ def parse_args(argv):
     parser.add_argument('--progress', type=int, default=50_000,
                         help='a progress line (and a memory reading) every this many')
     parser.add_argument('--seed', type=int, default=0, help='of the random walk')
-    parser.add_argument('--domain-id', type=int, default=1 + os.getpid() % 90)
+    parser.add_argument('--domain-id', type=int, default=None,
+                        help='ROS domain (default: ROS_DOMAIN_ID, else 0)')
     parser.add_argument('--period-wait', type=float, default=1.0, help=argparse.SUPPRESS)
     args = parser.parse_args(argv)
     if args.commands < args.warmup + args.batch or args.batch < 1:

@@ -8,8 +8,9 @@ one (no autouse fixtures, no hooks). Without pytest the module still imports: th
 only wrap them.
 
 Fixtures:
-    ros_context          private rclpy Context on its own domain id, automatic discovery OFF
-                         (nodes of this Context talk; nothing outside the process joins)
+    ros_context          private rclpy Context on domain_id, automatic discovery OFF (nodes
+                         of this Context talk; nothing outside the process sees or reaches
+                         them, whatever else runs on that domain)
     executor             EventsExecutor of ros_context; its nodes are destroyed at teardown
     suspension_node      factory: suspension_node(scene='five_link', sinks=(), **params)
                          starts a SuspensionNode in ros_context and executor
@@ -20,8 +21,10 @@ Fixtures:
     localhost_context, localhost_executor, node_process
                          the same across processes: a Context that discovers this machine
                          (ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST) and the console script
-                         started on the test's domain id
-    domain_id            the test's ROS domain id (1..101)
+                         started on domain_id: they share it with the machine's other ROS
+                         processes unless the run is in a private network
+                         (isolation.enter_private_network, as the project's conftest does)
+    domain_id            the user's ROS domain id: ROS_DOMAIN_ID, or 0 (ROS's default)
     ros_environment      session: rcl log files in a temporary folder, discovery range
                          LOCALHOST unless set; every fixture above that starts ROS uses it
 
@@ -30,7 +33,6 @@ and the node are imported when a fixture or helper first needs them, so that the
 a pytest run that does not use it no import time.
 """
 
-import itertools
 import math
 import os
 from pathlib import Path
@@ -40,13 +42,14 @@ import sys
 import time
 from typing import Any, NamedTuple
 
+from .isolation import environment_domain_id, init_context  # noqa: F401 (init_context: API)
+
 try:
     import pytest
 except ImportError:   # the helpers work without pytest; only the fixtures need it
     pytest = None
 
 WAIT = 10.0       # s: same-Context matching is immediate; cross-process discovery ~0.04 or ~3 s
-_DOMAIN_COUNTER = itertools.count()
 
 
 def _fixture(*args, **kwargs):
@@ -54,32 +57,6 @@ def _fixture(*args, **kwargs):
     if pytest is not None:
         return pytest.fixture(*args, **kwargs)
     return args[0] if args and callable(args[0]) else (lambda function: function)
-
-
-def free_domain_id():
-    """
-    Return a ROS domain id in 1..101, different for each call of this process for 101 calls.
-
-    The ids are spread by the pid so that test runs started side by side rarely share one (0
-    is left to whatever runs on the machine by default).
-    """
-    return 1 + (os.getpid() * 37 + next(_DOMAIN_COUNTER)) % 101
-
-
-def init_context(domain_id, discovery_range='OFF'):
-    """Return a new rclpy Context initialised on domain_id; rcl reads the discovery range then."""
-    import rclpy
-    previous = os.environ.get('ROS_AUTOMATIC_DISCOVERY_RANGE')
-    os.environ['ROS_AUTOMATIC_DISCOVERY_RANGE'] = discovery_range
-    try:
-        context = rclpy.context.Context()
-        rclpy.init(context=context, domain_id=domain_id)
-    finally:
-        if previous is None:
-            del os.environ['ROS_AUTOMATIC_DISCOVERY_RANGE']
-        else:
-            os.environ['ROS_AUTOMATIC_DISCOVERY_RANGE'] = previous
-    return context
 
 
 def rclpy_try_shutdown(context):
@@ -340,8 +317,15 @@ def ros_environment(tmp_path_factory):
 
 @_fixture
 def domain_id():
-    """Give the test its own ROS domain id (1..101)."""
-    return free_domain_id()
+    """
+    Give the ROS domain id of the run: the user's ROS_DOMAIN_ID, or 0 (ROS's default) if unset.
+
+    Never one picked by pid or at random, which can be someone else's. In-process contexts
+    (ros_context) use it with discovery OFF, so they stay private on any domain; the
+    cross-process fixtures meet the machine's other ROS processes on it, unless the run is
+    in a private network (linkage_ros.ros.isolation.enter_private_network).
+    """
+    return environment_domain_id()
 
 
 @_fixture
