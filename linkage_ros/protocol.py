@@ -13,7 +13,7 @@ One command: solved by continuation from the last good pose (Continuation); a so
 is answered by wheel_carrier_pose (geometry_msgs/PoseStamped: wheel centre in m, carrier
 rotation relative to design), camber and toe (std_msgs/Float64, rad), stamped with stamp; a
 command that cannot be solved (NaN, infinite, out of reach) gets no answer and keeps the last
-good pose. Every command is counted into the corner's Health (linkage_ros.ros.health), whose
+good pose. Every command is counted into the corner's Health (linkage_ros.health), whose
 status goes to /diagnostics at once for a failure or a change of level, and every diagnostic
 period (period_ns) of the clock the caller gives: the node's timer, or a recording's timeline.
 

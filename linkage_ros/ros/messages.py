@@ -125,7 +125,7 @@ def status_name(node: str, corner: str) -> str:
 def health_status(health: Health, name: str, hardware_id: str,
                   method: str) -> DiagnosticStatus:
     """
-    Return a corner's Health (linkage_ros.ros.health) as a DiagnosticStatus.
+    Return a corner's Health (linkage_ros.health) as a DiagnosticStatus.
 
     Values are in SI and the keys name their units.
 
