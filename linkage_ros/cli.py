@@ -11,6 +11,7 @@ import argparse
 import contextlib
 import errno
 import functools
+import io
 import os
 from pathlib import Path
 import re
@@ -142,6 +143,23 @@ def millimetres(text: str) -> float:
                 from None
         raise argparse.ArgumentTypeError(f'expected a number of millimetres, got {text!r}') \
             from None
+
+
+def save_figure(fig, path, dpi):
+    """
+    Write fig to path (its format by the suffix; PNG without one), or raise OSError.
+
+    matplotlib's savefig(path) says nothing when the disk is full; a file written by this
+    function is whole, or an error names it (a matplotlib Figure: the caller imports
+    matplotlib, this module does not).
+    """
+    buffer = io.BytesIO()
+    fig.savefig(buffer, format=Path(path).suffix[1:] or None, dpi=dpi)
+    try:
+        with open(path, 'wb') as stream:
+            stream.write(buffer.getvalue())
+    except OSError as exc:
+        raise OSError(exc.errno, exc.strerror, str(path)) from None
 
 
 def counted(count: int, noun: str) -> str:

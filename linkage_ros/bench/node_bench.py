@@ -54,8 +54,9 @@ from ..cli import EXIT_STATUS, Parser, program, writable_file
 from ..core.errors import LinkageError
 from ..core.scene import config_dir, load_scene
 from ..core.warmup import compile_if_cold
+from ..ros.entry import run
 from ..ros.isolation import environment_domain_id, init_context
-from ..ros.node import QOS, run
+from ..ros.node import QOS
 
 SECTIONS = ('core', 'sweep', 'start', 'latency', 'vehicle', 'callback')
 DEFAULT_RATES = (250, 500, 1000, 2000, 4000)

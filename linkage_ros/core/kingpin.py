@@ -28,7 +28,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .scene import SceneError
+from .yaml_file import SceneError
 
 if TYPE_CHECKING:
     from .scene import Constraint, Scene

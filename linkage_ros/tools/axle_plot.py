@@ -15,7 +15,7 @@ import sys
 
 import numpy as np
 
-from ..cli import fail, missing_package, warn, writable_file
+from ..cli import fail, missing_package, save_figure, warn, writable_file
 from ..core.axle import solve_axle
 from ..core.scene import link_polylines, SceneError
 from ..core.vehicle import load_vehicle
@@ -78,8 +78,6 @@ def plot_roll_centre(axle, title, path):
     import matplotlib
     matplotlib.use('Agg')
     import matplotlib.pyplot as plt
-
-    from .plot import save_figure
 
     heave, roll = migration(axle)
     design = solve_axle(axle, 0.0)

@@ -15,34 +15,17 @@ picture is written, and the status is 1.
 
 import argparse
 import csv
-import io
 from pathlib import Path
 import sys
 
 import numpy as np
 
-from ..cli import (counted, EXIT_STATUS, fail, missing_package, Parser, program, warn,
-                   writable_file)
+from ..cli import (counted, EXIT_STATUS, fail, missing_package, Parser, program, save_figure,
+                   warn, writable_file)
 from ..core.bundled import scene_dir
 from ..core.kinematics import sweep, travel_range
 from ..core.scene import load_scene, SceneError
 from ..core.warmup import compile_if_cold
-
-
-def save_figure(fig, path, dpi):
-    """
-    Write fig to path (its format by the suffix; PNG without one), or raise OSError.
-
-    matplotlib's savefig(path) says nothing when the disk is full; a file written by this
-    module is whole or an error names it.
-    """
-    buffer = io.BytesIO()
-    fig.savefig(buffer, format=Path(path).suffix[1:] or None, dpi=dpi)
-    try:
-        with open(path, 'wb') as stream:
-            stream.write(buffer.getvalue())
-    except OSError as exc:
-        raise OSError(exc.errno, exc.strerror, str(path)) from None
 
 
 def swept(scenes):
