@@ -11,7 +11,7 @@ stress scene, float64 round-off alone is 1.7e-9 mm, so the bound scales with the
 import hashlib
 from pathlib import Path
 
-from linkage_ros.core import kernel, state
+from linkage_ros.core import element_kernel, kernel, state
 from linkage_ros.core.geometry import camber_toe, matrix_from_quaternion
 from linkage_ros.core.kinematics import Continuation, sweep
 from linkage_ros.core.mechanism import carrier_points, length_errors, linearize
@@ -69,11 +69,14 @@ def test_one_command_at_a_time_equals_the_batched_sweep_and_the_paper_method(nam
     assert max(s.residual for s in one) <= settings['tol'] * 10
 
 
-def test_kernel_names_the_digest_of_the_rotations_it_compiles_in():
-    # numba's cache follows each file alone: kernel.py must change when so3.py does.
+@pytest.mark.parametrize('module', [kernel, element_kernel], ids=lambda m: m.__name__)
+def test_a_kernel_module_names_the_digest_of_the_rotations_it_compiles_in(module):
+    # numba's cache follows each file alone: a module that compiles so3.py's functions in
+    # must change when so3.py does.
     digest = hashlib.sha256((Path(kernel.__file__).parent / 'so3.py').read_bytes()).hexdigest()
-    assert kernel.SO3_DIGEST == digest, (
-        f"so3.py changed: set SO3_DIGEST = '{digest}' in kernel.py, so that numba recompiles "
+    name = Path(module.__file__).name
+    assert module.SO3_DIGEST == digest, (
+        f"so3.py changed: set SO3_DIGEST = '{digest}' in {name}, so that numba recompiles "
         'the kernels that call it')
 
 

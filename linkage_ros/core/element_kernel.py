@@ -1,8 +1,10 @@
 """
 Compiled kernels of the elements: the carrier's motion to second order, mount points, lengths.
 
-numba-compiled (njit, cache=True) like kernel.py, and self-contained for the same reason
-(numba's on-disk cache is per source file). The formulas are those of motion.py (the
+numba-compiled (njit, cache=True) like kernel.py, and like it calling so3.py's rotate, whose
+digest (SO3_DIGEST) is written here: numba's disk cache follows each file alone, and would
+keep running an old rotate after an edit of so3.py (test_kernel says the value to set). The
+formulas are those of motion.py (the
 carrier's velocity and acceleration per travel by the implicit function theorem), mounts.py
 (points on the carrier, an arm, a link, a strut) and elements.py (length, ratio, ratio rate,
 force, wheel rate). mm, rad, N; vehicle frame.
@@ -19,6 +21,10 @@ from typing import NamedTuple
 from numba import njit
 import numpy as np
 
+from .so3 import rotate
+
+# sha256 of so3.py (test_kernel checks it, as kernel.SO3_DIGEST)
+SO3_DIGEST = '63b60c6921d8498a47cf8a0a86bdda0a2f05c7473f028ff5e6d7b18de31758ea'
 CARRIER, ARM, LINK, ALONG = 0, 1, 2, 3      # MountTable.kind
 FREE = (0, 1, 3, 4, 5)   # Jacobian columns of the unknowns (kernel.FREE); 2 is the travel
 # pack_rows columns: one row per guidance equation
@@ -97,14 +103,6 @@ def pack_elements(mounts: MountTable, springs: SpringTable | None = None) -> np.
 def cross(ax, ay, az, bx, by, bz):
     """Return a x b as three floats."""
     return ay * bz - az * by, az * bx - ax * bz, ax * by - ay * bx
-
-
-@jit
-def rotate(rotation, x, y, z):
-    """Return R v for v = (x, y, z), as three floats."""
-    return (rotation[0, 0] * x + rotation[0, 1] * y + rotation[0, 2] * z,
-            rotation[1, 0] * x + rotation[1, 1] * y + rotation[1, 2] * z,
-            rotation[2, 0] * x + rotation[2, 1] * y + rotation[2, 2] * z)
 
 
 @jit
