@@ -22,6 +22,8 @@ Quantities at every position, from the exact velocities of the implicit function
                   contact patch (outboard brakes) or the wheel centre (inboard brakes,
                   drive), sign + front, - rear; the mean of the two wheels
   Ackermann (%)   100 (d_i - d_o) / (d_i - d_o*), d_o* = atan(L / (L / tan(d_i) + t))
+  anti-roll bar   its twist, ratios and roll stiffness, for an axle that has one
+                  (anti_roll_bar.py, imported only then)
 Units: mm, rad, vehicle frame (x forward, y left, z up). Arrays (n,) or (n, 2) with column 0
 the left wheel and 1 the right.
 """
@@ -64,6 +66,7 @@ class Axle:
     brake_share: float = 0.0      # of the vehicle's braking force
     drive_share: float = 0.0      # of the vehicle's driving force
     brakes: str = 'outboard'      # outboard | inboard
+    anti_roll_bar: Any = None     # anti_roll_bar.AntiRollBar, or None
 
     @property
     def scenes(self) -> tuple[Scene, Scene]:
@@ -151,6 +154,7 @@ class AxleResult:
     status: Status = Status.OK
     message: str = 'ok'
     notes: tuple[str, ...] = field(default=())   # what could not be computed, and why
+    bar: Any = None              # anti_roll_bar.BarValues of an axle with a bar, else None
 
 
 def solve_axle(axle: Axle, heave: ArrayLike, roll: ArrayLike = 0.0, rack: ArrayLike = 0.0,
@@ -214,11 +218,12 @@ def axle_quantities(axle: Axle, heave: np.ndarray, roll: np.ndarray, rack: np.nd
     patch, v_patch = np.full(shape3, np.nan), np.full(shape3, np.nan)
     v_center, omega = np.empty(shape3), np.empty(shape3)
     rolled = np.any(roll != 0.0)
+    jacobians = []
     for k, (scene, mech) in enumerate(zip(axle.scenes, axle.mechanisms)):
         wheel_center = np.ascontiguousarray(center[:, k])   # copied once, not per use
         wheel_rotation = np.ascontiguousarray(rotation[:, k])
-        v_center[:, k], omega[:, k] = slopes(linearize(mech, wheel_center, wheel_rotation,
-                                                       rack)[1])
+        jacobians.append(linearize(mech, wheel_center, wheel_rotation, rack)[1])
+        v_center[:, k], omega[:, k] = slopes(jacobians[-1])
         axis = wheel_rotation @ mech.spin_axis
         camber[:, k], toe[:, k] = camber_toe(axis, scene.side_sign)
         if rolled:
@@ -232,6 +237,12 @@ def axle_quantities(axle: Axle, heave: np.ndarray, roll: np.ndarray, rack: np.nd
     track = patch[:, 0, 1] - patch[:, 1, 1]
     centre = roll_centre(patch, v_patch)
     steer = -np.array([s.side_sign for s in axle.scenes]) * toe   # yaw, + = to the left
+    bar, notes = None, missing_radius_notes(axle)
+    if axle.anti_roll_bar is not None:
+        from .anti_roll_bar import bar_notes, bar_values
+        bar = bar_values(axle, axle.anti_roll_bar, roll, rack, center, rotation,
+                         tuple(jacobians))
+        notes += bar_notes(axle, bar)
     return {
         'camber': camber, 'toe': toe, 'camber_ground': camber_ground, 'toe_ground': toe_ground,
         'contact_patch': patch, 'patch_velocity': v_patch, 'center_velocity': v_center,
@@ -242,7 +253,7 @@ def axle_quantities(axle: Axle, heave: np.ndarray, roll: np.ndarray, rack: np.nd
                  for name, point, share in axle.anti_quantities()},
         'steer': steer, 'mean_steer': steer.mean(axis=1),
         'ackermann': ackermann(steer, axle.wheelbase, track),
-        'notes': missing_radius_notes(axle)}
+        'notes': notes, 'bar': bar}
 
 
 def slopes(jac: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
