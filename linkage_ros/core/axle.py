@@ -292,6 +292,25 @@ def roll_centre(patch: np.ndarray, velocity: np.ndarray) -> np.ndarray:
                                 (vy[:, 0] * rhs[:, 1] - vy[:, 1] * rhs[:, 0]) / det))
 
 
+def roll_centre_of_poses(radius: np.ndarray, spin_axis: np.ndarray, center: np.ndarray,
+                         rotation: np.ndarray, jac: np.ndarray) -> np.ndarray:
+    """
+    Return the roll centre (3,) mm of one pose of each wheel: suspension_node's, per answer.
+
+    x midway between the two contact patches, (y, z) as roll_centre gives them (NaN for
+    parallel lines); the patches' velocities from the Jacobians as axle_quantities has them.
+    radius (2,) mm; spin_axis (2, 3): the design unit spin axes (Mechanism.spin_axis); center
+    (2, 3) mm, rotation (2, 3, 3), jac (2, 5, 6): the wheels' poses and Jacobians
+    (Continuation.jacobian), left then right.
+    """
+    axis = np.einsum('kij,kj->ki', rotation, spin_axis)
+    patch = contact_patch(center, axis, np.asarray(radius, dtype=float)[:, None])
+    v_center, omega = slopes(jac)
+    velocity = v_center + cross(omega, patch - center)
+    y, z = roll_centre(patch[None], velocity[None])[0]
+    return np.array([patch[:, 0].mean(), y, z])
+
+
 def height_above_ground(point: np.ndarray, patch: np.ndarray) -> np.ndarray:
     """
     Return the heights (n,) mm of front-view points (n, 2) (y, z) above the ground.

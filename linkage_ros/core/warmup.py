@@ -1,16 +1,17 @@
 """
 The first compile of the numerical kernels: tell whether it is due, say so once, do it.
 
-numba compiles linkage_ros.core.kernel on first use (about 20 s) and keeps the machine code in
-its on-disk cache (NUMBA_CACHE_DIR, else __pycache__ beside the module); later processes load
-it in well under a second. A program calls, before its first solve:
+numba compiles linkage_ros.core.kernel and element_kernel on first use (about 20 s) and keeps
+the machine code in its on-disk cache (NUMBA_CACHE_DIR, else __pycache__ beside the module);
+later processes load it in well under a second. A program calls, before its first solve:
 
     cold() -> bool                   numba's cache lacks a kernel: the next solve compiles
     say_if_cold(prog, file=stderr)   print 'prog: compiling the numerical kernels, once, about
                                      20 s' once per process if cold(); returns cold()
     compile_kernels()                solve once along every path (both methods, a rack, a
-                                     travel out of reach, a sweep, the alignment set): every
-                                     kernel compiled, hence cached
+                                     travel out of reach, a sweep, the alignment set, the
+                                     elements and the velocities one answer and a batch at a
+                                     time): every kernel compiled, hence cached
     compile_in_child() -> bool       compile_kernels in a child process (python -m
                                      linkage_ros.core.warmup) while this one waits: the wait
                                      is interruptible, where a compile in this process holds
@@ -32,8 +33,8 @@ def uncached_kernels() -> list:
     """Return the names of the kernels that numba's on-disk cache does not hold (yet)."""
     from numba.core.dispatcher import Dispatcher
 
-    from . import kernel
-    return [name for name, value in vars(kernel).items()
+    from . import element_kernel, kernel
+    return [name for module in (kernel, element_kernel) for name, value in vars(module).items()
             if isinstance(value, Dispatcher) and not _in_cache(value)]
 
 
@@ -86,6 +87,26 @@ def compile_kernels() -> None:
         solution = cont.solve(12.0)
         alignment(steered, cont.mech, solution.wheel_center, solution.rotation, solution.rack)
         sweep(steered, np.linspace(-20.0, 20.0, 5), method=method, rack=2.0)
+    compile_elements(steered, cont, solution)
+
+
+def compile_elements(scene, cont, solution) -> None:
+    """Compute a scene's elements and velocities as the node does (one answer) and in batches."""
+    import numpy as np
+
+    from .axle import slopes
+    from .elements import element_values, prepare, values_at
+    from .motion import carrier_motion, guidance_rows, pose_batch
+    from .mounts import mount_motion, mount_table
+    model = prepare(scene, cont.mech)
+    values_at(model, solution.wheel_center, solution.rotation, solution.rack, cont.jacobian)
+    center, rotation = np.array(solution.wheel_center), np.array(solution.rotation)
+    element_values(scene, center[None], rotation[None], solution.rack, model=model)
+    poses = pose_batch(cont.mech, center[None], rotation[None], solution.rack)
+    rows = guidance_rows(scene, cont.mech)
+    mount_motion(rows, mount_table(scene, [e.mount for e in scene.elements]), poses)
+    carrier_motion(rows, poses)
+    slopes(np.array(cont.jacobian)[None])   # axles' and the node's roll centres
 
 
 def compile_in_child() -> bool:
