@@ -12,8 +12,9 @@ import sys
 
 from geometry_msgs.msg import PointStamped
 from linkage_ros.cdr import point_stamped_cdr
-from linkage_ros.core.axle import axle_quantities
+from linkage_ros.core.axle import axle_quantities, roll_centre_of_poses, solve_axle
 from linkage_ros.core.kinematics import Continuation
+from linkage_ros.core.mechanism import linearize
 from linkage_ros.core.vehicle import load_vehicle
 from linkage_ros.core.vehicle_axles import axle_of
 from linkage_ros.ros.node import QOS
@@ -170,6 +171,25 @@ def test_a_step_that_names_no_corner_of_an_axle_publishes_none_for_it(vehicle, e
     settle(executor)
     assert received['rear'] == []
     assert received['front'][0].point.y == pytest.approx(0.0, abs=1e-12)   # symmetric heave
+
+
+@pytest.mark.parametrize('axle_name', list(AXLES))
+def test_the_nodes_roll_centre_of_two_poses_is_the_axles_over_heave_roll_and_rack(axle_name):
+    axle = axle_of(load_vehicle('demo_vehicle'), axle_name)
+    grid = np.meshgrid(np.linspace(-60, 60, 7), np.radians([-4.0, 0.0, 2.5]), indexing='ij')
+    heave, roll = (a.ravel() for a in grid)
+    rack = 10.0 if axle.steered else 0.0
+    result = solve_axle(axle, heave, roll, rack)
+    assert result.success
+    mechs = axle.mechanisms
+    for i in range(len(heave)):
+        jac = np.array([linearize(m, result.wheel_center[i, k][None], result.rotation[i, k][None],
+                                  np.array([rack]))[1][0] for k, m in enumerate(mechs)])
+        point = roll_centre_of_poses([s.wheel_radius for s in axle.scenes],
+                                     [m.spin_axis for m in mechs], result.wheel_center[i],
+                                     result.rotation[i], jac)
+        assert point[1:] == pytest.approx(result.roll_centre[i], abs=1e-9)     # mm
+        assert point[0] == pytest.approx(result.contact_patch[i, :, 0].mean(), abs=1e-9)
 
 
 def test_point_stamped_cdr_is_what_rclpy_reads_and_writes():

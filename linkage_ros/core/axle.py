@@ -298,17 +298,35 @@ def roll_centre_of_poses(radius: np.ndarray, spin_axis: np.ndarray, center: np.n
     Return the roll centre (3,) mm of one pose of each wheel: suspension_node's, per answer.
 
     x midway between the two contact patches, (y, z) as roll_centre gives them (NaN for
-    parallel lines); the patches' velocities from the Jacobians as axle_quantities has them.
-    radius (2,) mm; spin_axis (2, 3): the design unit spin axes (Mechanism.spin_axis); center
-    (2, 3) mm, rotation (2, 3, 3), jac (2, 5, 6): the wheels' poses and Jacobians
-    (Continuation.jacobian), left then right.
+    parallel lines); the patches' velocities from the Jacobians (kernel.slope_many), as
+    axle_quantities has them. radius (2,) mm; spin_axis (2, 3): the design unit spin axes
+    (Mechanism.spin_axis); center (2, 3) mm, rotation (2, 3, 3) (or each a pair of arrays),
+    jac (2, 5, 6) C-contiguous: the wheels' poses and Jacobians (Continuation.jacobian), left
+    then right. In scalars: a node's answer cannot afford numpy's cost per call on arrays of
+    two (about 20 calls of several microseconds each).
     """
-    axis = np.einsum('kij,kj->ki', rotation, spin_axis)
-    patch = contact_patch(center, axis, np.asarray(radius, dtype=float)[:, None])
-    v_center, omega = slopes(jac)
-    velocity = v_center + cross(omega, patch - center)
-    y, z = roll_centre(patch[None], velocity[None])[0]
-    return np.array([patch[:, 0].mean(), y, z])
+    free = np.empty((2, 5))
+    kernel.slope_many(jac, free)
+    x, lines = 0.0, []
+    for k in range(2):
+        cx, cy, cz = center[k].tolist()
+        (r0, r1, r2), s = rotation[k].tolist(), spin_axis[k].tolist()
+        az = r2[0] * s[0] + r2[1] * s[1] + r2[2] * s[2]
+        ux = -az * (r0[0] * s[0] + r0[1] * s[1] + r0[2] * s[2])   # up, square to the axis
+        uy = -az * (r1[0] * s[0] + r1[1] * s[1] + r1[2] * s[2])
+        uz = 1.0 - az * az
+        scale = radius[k] / math.sqrt(ux * ux + uy * uy + uz * uz)
+        dx, dy, dz = -scale * ux, -scale * uy, -scale * uz        # patch - centre
+        vx, vy, wx, wy, wz = free[k].tolist()                     # v_z = 1
+        velocity_y, velocity_z = vy + wz * dx - wx * dz, 1.0 + wx * dy - wy * dx
+        patch_y, patch_z = cy + dy, cz + dz
+        x += 0.5 * (cx + dx)
+        lines.append((velocity_y, velocity_z, velocity_y * patch_y + velocity_z * patch_z))
+    (ay, az_, ar), (by, bz, br) = lines
+    det = ay * bz - by * az_
+    if det == 0.0:
+        return np.array([x, math.nan, math.nan])
+    return np.array([x, (ar * bz - br * az_) / det, (ay * br - by * ar) / det])
 
 
 def height_above_ground(point: np.ndarray, patch: np.ndarray) -> np.ndarray:

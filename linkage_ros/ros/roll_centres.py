@@ -61,17 +61,17 @@ class AxleRollCentre:
     def __init__(self, name: str, left: Corner, right: Corner, publisher) -> None:
         self.name, self.corners, self.publisher = name, (left, right), publisher
         self.posed: set[int] = set()     # 0 left, 1 right: answered with a pose
-        radius = [c.scene.wheel_radius for c in self.corners]
-        axis = [c.solver.mech.spin_axis for c in self.corners]
-        self.radius, self.spin_axis = np.array(radius), np.array(axis)
+        self.radius = [c.scene.wheel_radius for c in self.corners]
+        self.spin_axis = [c.solver.mech.spin_axis for c in self.corners]
+        self.solvers = [c.solver for c in self.corners]
+        self.jacobians = np.empty((2, 5, 6))   # copied into: a new array costs more
 
     def point_mm(self) -> np.ndarray:
         """Return the roll centre (3,) mm of the corners' last poses (NaN if at infinity)."""
-        solvers = [corner.solver for corner in self.corners]
-        return roll_centre_of_poses(self.radius, self.spin_axis,
-                                    np.array([s.center for s in solvers]),
-                                    np.array([s.rotation for s in solvers]),
-                                    np.array([s.jacobian for s in solvers]))
+        left, right = self.solvers
+        self.jacobians[0], self.jacobians[1] = left.jacobian, right.jacobian
+        return roll_centre_of_poses(self.radius, self.spin_axis, (left.center, right.center),
+                                    (left.rotation, right.rotation), self.jacobians)
 
 
 class RollCentres:
