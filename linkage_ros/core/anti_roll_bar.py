@@ -52,6 +52,7 @@ from typing import NamedTuple, TYPE_CHECKING
 import numpy as np
 
 from .fields import Fields
+from .geometry import cross
 from .motion import guidance_rows, pose_batch
 from .mounts import Mount, mount_motion, mount_table, parse_mount
 
@@ -271,8 +272,8 @@ def arm_angle(bar: AntiRollBar, side: BarSide, point: np.ndarray, velocity: np.n
     cos, sin = np.cos(theta)[:, None], np.sin(theta)[:, None]
     end = a0 + along * u + r * (cos * e1 + sin * e2)              # E(theta)
     w = end - point
-    t = np.cross(u, end - a0)
-    n = np.cross(u, t)
+    t = cross(u, end - a0)
+    n = cross(u, t)
     wt = np.einsum('ij,ij->i', w, t)
     rate = np.einsum('ij,ij->i', w, velocity) / wt
     w1 = t * rate[:, None] - velocity
