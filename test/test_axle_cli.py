@@ -21,6 +21,9 @@ FRONT = ('heave_mm,roll_deg,rack_mm,left_travel_mm,right_travel_mm,roll_centre_y
          'right_toe_deg,left_camber_ground_deg,right_camber_ground_deg,left_toe_ground_deg,'
          'right_toe_ground_deg,anti_dive_pct')
 STEER = ',left_steer_deg,right_steer_deg,mean_steer_deg,ackermann_pct'
+BAR = (',arb_left_angle_deg,arb_right_angle_deg,arb_twist_deg,arb_ratio_deg_per_deg_roll,'
+       'arb_ratio_left_deg_per_mm,arb_ratio_right_deg_per_mm,arb_torque_Nm,arb_roll_moment_Nm,'
+       'arb_roll_stiffness_Nm_per_deg')   # demo_vehicle's front axle has an anti-roll bar
 
 
 def run(capsys, *argv):
@@ -41,7 +44,7 @@ def vehicle_file(tmp_path, axles, extra='cg_height: 550\n', scene='double_wishbo
 
 def test_the_default_is_the_demo_front_axle_over_the_travel_block_in_mm_and_deg(capsys):
     code, rows, out, err = run(capsys)
-    assert code == 0 and out.splitlines()[0] == FRONT
+    assert code == 0 and out.splitlines()[0] == FRONT + BAR
     assert len(rows) == 161 and float(rows[0]['heave_mm']) == -80.0
     design = rows[80]
     assert float(design['track_mm']) == pytest.approx(1520.0)   # double_wishbone y = +-760
@@ -64,7 +67,7 @@ def test_the_table_holds_what_solve_axle_returns(capsys):
 
 def test_a_rack_adds_steer_and_ackermann_and_a_grid_walks_every_rack(capsys):
     code, rows, out, _ = run(capsys, '--rack-grid=-20:20:20', '--heave', '0')
-    assert code == 0 and out.splitlines()[0] == FRONT + STEER
+    assert code == 0 and out.splitlines()[0] == FRONT + STEER + BAR
     assert [float(r['rack_mm']) for r in rows] == [-20.0, 0.0, 20.0]
     assert rows[1]['ackermann_pct'] == 'nan'   # straight ahead
     assert float(rows[0]['mean_steer_deg']) == pytest.approx(-float(rows[2]['mean_steer_deg']))

@@ -263,6 +263,7 @@ def test_every_command_and_published_message_reaches_each_sink(suspension_node, 
     expected = [('/wheel_travel', 'std_msgs/msg/Float64'),
                 ('/wheel_carrier_pose', 'geometry_msgs/msg/PoseStamped'),
                 ('/camber', 'std_msgs/msg/Float64'), ('/toe', 'std_msgs/msg/Float64'),
+                ('/elements', 'sensor_msgs/msg/JointState'),   # five_link has elements
                 ('/wheel_travel', 'std_msgs/msg/Float64'),
                 ('/diagnostics', 'diagnostic_msgs/msg/DiagnosticArray')]
     for sink in sinks:
@@ -401,7 +402,7 @@ def test_node_bench_quick_run_prints_every_section_with_nothing_lost(domain_id):
     assert [(r[0], r[1], r[4]) for r in tables['vehicle'][1:]] == [
         ('node', 'float64_per_corner', '0'), ('echo', 'float64_per_corner', '0'),
         ('node', 'joint_states', '0'), ('echo', 'joint_states', '0')]
-    assert [r[0] for r in tables['callback'][1:]][:2] == ['plain', 'alignment']
+    assert [r[0] for r in tables['callback'][1:]][:3] == ['plain', 'elements', 'alignment']
 
 
 # --- parameters, names, QoS ----------------------------------------------------------------
@@ -448,8 +449,8 @@ def test_qos_depth_is_the_depth_of_every_topic_of_the_node(suspension_node):
     own = [e for e in [*node.subscriptions, *node.publishers]
            if e.topic_name not in ('/parameter_events', '/rosout')]
     assert sorted(e.topic_name for e in own) == [
-        '/alignment', '/camber', '/diagnostics', '/joint_states', '/steering_rack', '/toe',
-        '/wheel_carrier_pose', '/wheel_travel']
+        '/alignment', '/camber', '/diagnostics', '/elements', '/joint_states', '/steering_rack',
+        '/toe', '/wheel_carrier_pose', '/wheel_travel']
     assert {e.qos_profile.depth for e in own} == {7}
 
 

@@ -41,6 +41,8 @@ TYPES = {'/wheel_travel': 'std_msgs/msg/Float64',
          '/wheel_carrier_pose': 'geometry_msgs/msg/PoseStamped',
          '/camber': 'std_msgs/msg/Float64', '/toe': 'std_msgs/msg/Float64',
          '/diagnostics': 'diagnostic_msgs/msg/DiagnosticArray'}
+# suspension_node's on five_link, whose spring and damper it publishes with every answer
+NODE_TYPES = {**TYPES, '/elements': 'sensor_msgs/msg/JointState'}
 
 
 def pose(i):
@@ -381,16 +383,16 @@ def test_node_run_stopped_by_a_signal_leaves_complete_files_with_every_message(
     commands = [r for r in rows if r[0] == '/wheel_travel']
     n = len(commands)                                     # pings + the 11 travels
     assert n >= len(travels) + 1
-    answers = {t: n for t in TYPES if t != '/diagnostics'}   # /diagnostics: once a second
+    answers = {t: n for t in NODE_TYPES if t != '/diagnostics'}   # /diagnostics: once a second
     assert {t: sum(1 for r in rows if r[0] == t) for t in answers} == answers, err
-    assert {(r[0], r[1]) for r in rows} <= set(TYPES.items())
+    assert {(r[0], r[1]) for r in rows} <= set(NODE_TYPES.items())
     assert [r[3].data for r in commands[-len(travels):]] == travels
     for topic, values in (('/camber', expected.camber), ('/toe', expected.toe)):
         got = [r[3].data for r in rows if r[0] == topic][-len(travels):]
         assert got == pytest.approx(list(values), abs=1e-12)
-    # Order: every command is followed by its pose, camber and toe.
+    # Order: every command is followed by its pose, camber, toe and elements.
     assert [r[0] for r in rows if r[0] != '/diagnostics'] == [
-        '/wheel_travel', '/wheel_carrier_pose', '/camber', '/toe'] * n
+        '/wheel_travel', '/wheel_carrier_pose', '/camber', '/toe', '/elements'] * n
     assert all(a[2] <= b[2] for a, b in zip(rows, rows[1:]))
     with AnyReader([mcap_path]) as bag:
         assert {c.topic: c.msgcount for c in bag.connections

@@ -83,8 +83,9 @@ def test_with_use_sim_time_sinks_receive_simulated_times(suspension_node, execut
     send_travel(0.01)
     set_clock(executor, clock, node, 5000 * S)
     send_travel(0.02)
-    # Per command: the command, pose, camber and toe, all at the clock's time.
-    assert sink.times == [(100 * S, 100 * S)] * 4 + [(5000 * S, 5000 * S)] * 4
+    # Per command: the command, pose, camber, toe and elements (five_link has a spring and a
+    # damper), all at the clock's time.
+    assert sink.times == [(100 * S, 100 * S)] * 5 + [(5000 * S, 5000 * S)] * 5
 
 
 def test_each_command_is_stamped_with_the_clock_time_received_before_it(

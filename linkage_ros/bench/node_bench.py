@@ -17,8 +17,9 @@ Sections (all by default; --only picks some), sizes multiplied by --scale (run 1
   vehicle   vehicle:=demo_vehicle against a four-corner echo node, four corners at --hz each
             for --seconds: one Float64 per corner per step, then one JointState per step; the
             step latency is from sending a step to the last of its four poses
-  callback  the node's travel callback called in process (no subscribers): plain, with the
-            alignment or markers outputs, recording to MCAP, mirroring to Rerun, both
+  callback  the node's travel callback called in process (no subscribers): plain (the scene
+            without its elements), with its elements (the elements topic), with the alignment
+            or markers outputs, recording to MCAP, mirroring to Rerun, both
 
 Tables go to stdout as CSV (the first cell of each header row names the section), progress
 to stderr; --plot writes latency against command rate (node and echo) as a PNG. Every
@@ -498,22 +499,37 @@ def bench_vehicle(args, log_dir, domain_id):
 
 
 def bench_callback(args):
-    """Time the travel callback in process, with each optional output or sink."""
+    """
+    Time the travel callback in process, with each optional output or sink.
+
+    Every mode but elements runs the scene without its elements (a copy of its file without
+    the key), so that plain is the answer alone and elements is what they add to it.
+    """
+    import yaml
     from rclpy.parameter import Parameter
 
     from ..ros.node import SuspensionNode
-    modes = {'plain': {}, 'alignment': {'alignment': True}, 'markers': {'markers': True},
-             'record_mcap': {'record_mcap': 'run.mcap'}, 'rerun_rrd': {'rerun_rrd': 'run.rrd'},
+    scene = load_scene(args.scene)
+    modes = {'plain': {}, 'elements': {'scene': scene.source}, 'alignment': {'alignment': True},
+             'markers': {'markers': True}, 'record_mcap': {'record_mcap': 'run.mcap'},
+             'rerun_rrd': {'rerun_rrd': 'run.rrd'},
              'record_mcap+rerun_rrd': {'record_mcap': 'run.mcap', 'rerun_rrd': 'run.rrd'}}
+    if not scene.elements:
+        del modes['elements']
     context = init_context(args.domain_id, 'OFF')      # no subscriber, and none outside
     travels = sine(args.count * args.scale, 0.05, 0.02)
     rows, base = [], None
     try:
         for mode, params in modes.items():
             with tempfile.TemporaryDirectory() as folder:
-                overrides = [Parameter('scene', value=args.scene)] + [
-                    Parameter(k, value=str(Path(folder) / v) if isinstance(v, str) else v)
-                    for k, v in params.items()]
+                bare = Path(folder) / 'scene.yaml'     # the scene without its elements
+                data = yaml.safe_load(Path(scene.source).read_text())
+                data.pop('elements', None)
+                bare.write_text(yaml.safe_dump(data))
+                params = {'scene': str(bare), **params}
+                overrides = [Parameter(k, value=str(Path(folder) / v)
+                                       if isinstance(v, str) and k != 'scene' else v)
+                             for k, v in params.items()]
                 node = SuspensionNode(context=context, parameter_overrides=overrides)
                 corner = next(iter(node.corners.values()))
                 times = []

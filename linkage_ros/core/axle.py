@@ -22,6 +22,8 @@ Quantities at every position, from the exact velocities of the implicit function
                   contact patch (outboard brakes) or the wheel centre (inboard brakes,
                   drive), sign + front, - rear; the mean of the two wheels
   Ackermann (%)   100 (d_i - d_o) / (d_i - d_o*), d_o* = atan(L / (L / tan(d_i) + t))
+  anti-roll bar   its twist, ratios and roll stiffness, for an axle that has one
+                  (anti_roll_bar.py, imported only then)
 Units: mm, rad, vehicle frame (x forward, y left, z up). Arrays (n,) or (n, 2) with column 0
 the left wheel and 1 the right.
 """
@@ -64,6 +66,7 @@ class Axle:
     brake_share: float = 0.0      # of the vehicle's braking force
     drive_share: float = 0.0      # of the vehicle's driving force
     brakes: str = 'outboard'      # outboard | inboard
+    anti_roll_bar: Any = None     # anti_roll_bar.AntiRollBar, or None
 
     @property
     def scenes(self) -> tuple[Scene, Scene]:
@@ -151,6 +154,7 @@ class AxleResult:
     status: Status = Status.OK
     message: str = 'ok'
     notes: tuple[str, ...] = field(default=())   # what could not be computed, and why
+    bar: Any = None              # anti_roll_bar.BarValues of an axle with a bar, else None
 
 
 def solve_axle(axle: Axle, heave: ArrayLike, roll: ArrayLike = 0.0, rack: ArrayLike = 0.0,
@@ -214,11 +218,12 @@ def axle_quantities(axle: Axle, heave: np.ndarray, roll: np.ndarray, rack: np.nd
     patch, v_patch = np.full(shape3, np.nan), np.full(shape3, np.nan)
     v_center, omega = np.empty(shape3), np.empty(shape3)
     rolled = np.any(roll != 0.0)
+    jacobians = []
     for k, (scene, mech) in enumerate(zip(axle.scenes, axle.mechanisms)):
         wheel_center = np.ascontiguousarray(center[:, k])   # copied once, not per use
         wheel_rotation = np.ascontiguousarray(rotation[:, k])
-        v_center[:, k], omega[:, k] = slopes(linearize(mech, wheel_center, wheel_rotation,
-                                                       rack)[1])
+        jacobians.append(linearize(mech, wheel_center, wheel_rotation, rack)[1])
+        v_center[:, k], omega[:, k] = slopes(jacobians[-1])
         axis = wheel_rotation @ mech.spin_axis
         camber[:, k], toe[:, k] = camber_toe(axis, scene.side_sign)
         if rolled:
@@ -232,6 +237,12 @@ def axle_quantities(axle: Axle, heave: np.ndarray, roll: np.ndarray, rack: np.nd
     track = patch[:, 0, 1] - patch[:, 1, 1]
     centre = roll_centre(patch, v_patch)
     steer = -np.array([s.side_sign for s in axle.scenes]) * toe   # yaw, + = to the left
+    bar, notes = None, missing_radius_notes(axle)
+    if axle.anti_roll_bar is not None:
+        from .anti_roll_bar import bar_notes, bar_values
+        bar = bar_values(axle, axle.anti_roll_bar, roll, rack, center, rotation,
+                         tuple(jacobians))
+        notes += bar_notes(axle, bar)
     return {
         'camber': camber, 'toe': toe, 'camber_ground': camber_ground, 'toe_ground': toe_ground,
         'contact_patch': patch, 'patch_velocity': v_patch, 'center_velocity': v_center,
@@ -242,7 +253,7 @@ def axle_quantities(axle: Axle, heave: np.ndarray, roll: np.ndarray, rack: np.nd
                  for name, point, share in axle.anti_quantities()},
         'steer': steer, 'mean_steer': steer.mean(axis=1),
         'ackermann': ackermann(steer, axle.wheelbase, track),
-        'notes': missing_radius_notes(axle)}
+        'notes': notes, 'bar': bar}
 
 
 def slopes(jac: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -279,6 +290,43 @@ def roll_centre(patch: np.ndarray, velocity: np.ndarray) -> np.ndarray:
     with np.errstate(divide='ignore', invalid='ignore'):
         return np.column_stack(((rhs[:, 0] * vz[:, 1] - rhs[:, 1] * vz[:, 0]) / det,
                                 (vy[:, 0] * rhs[:, 1] - vy[:, 1] * rhs[:, 0]) / det))
+
+
+def roll_centre_of_poses(radius: np.ndarray, spin_axis: np.ndarray, center: np.ndarray,
+                         rotation: np.ndarray, jac: np.ndarray) -> np.ndarray:
+    """
+    Return the roll centre (3,) mm of one pose of each wheel: suspension_node's, per answer.
+
+    x midway between the two contact patches, (y, z) as roll_centre gives them (NaN for
+    parallel lines); the patches' velocities from the Jacobians (kernel.slope_many), as
+    axle_quantities has them. radius (2,) mm; spin_axis (2, 3): the design unit spin axes
+    (Mechanism.spin_axis); center (2, 3) mm, rotation (2, 3, 3) (or each a pair of arrays),
+    jac (2, 5, 6) C-contiguous: the wheels' poses and Jacobians (Continuation.jacobian), left
+    then right. In scalars: a node's answer cannot afford numpy's cost per call on arrays of
+    two (about 20 calls of several microseconds each).
+    """
+    free = np.empty((2, 5))
+    kernel.slope_many(jac, free)
+    x, lines = 0.0, []
+    for k in range(2):
+        cx, cy, cz = center[k].tolist()
+        (r0, r1, r2), s = rotation[k].tolist(), spin_axis[k].tolist()
+        az = r2[0] * s[0] + r2[1] * s[1] + r2[2] * s[2]
+        ux = -az * (r0[0] * s[0] + r0[1] * s[1] + r0[2] * s[2])   # up, square to the axis
+        uy = -az * (r1[0] * s[0] + r1[1] * s[1] + r1[2] * s[2])
+        uz = 1.0 - az * az
+        scale = radius[k] / math.sqrt(ux * ux + uy * uy + uz * uz)
+        dx, dy, dz = -scale * ux, -scale * uy, -scale * uz        # patch - centre
+        vx, vy, wx, wy, wz = free[k].tolist()                     # v_z = 1
+        velocity_y, velocity_z = vy + wz * dx - wx * dz, 1.0 + wx * dy - wy * dx
+        patch_y, patch_z = cy + dy, cz + dz
+        x += 0.5 * (cx + dx)
+        lines.append((velocity_y, velocity_z, velocity_y * patch_y + velocity_z * patch_z))
+    (ay, az_, ar), (by, bz, br) = lines
+    det = ay * bz - by * az_
+    if det == 0.0:
+        return np.array([x, math.nan, math.nan])
+    return np.array([x, (ar * bz - br * az_) / det, (ay * br - by * ar) / det])
 
 
 def height_above_ground(point: np.ndarray, patch: np.ndarray) -> np.ndarray:

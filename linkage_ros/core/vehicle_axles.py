@@ -9,6 +9,9 @@ The axles of a vehicle file, and the vehicle-level data that axle quantities nee
       rear:  {left: rear_left, right: rear_right, brake_share: 0.4, drive_share: 1.0,
               brakes: outboard}
 
+An axle may also have an anti_roll_bar (core/anti_roll_bar.py, doc/anti_roll_bar.md), whose
+module is imported only for a file that has one.
+
 An axle is front or rear, and names the vehicle's left and right corners. brake_share and
 drive_share (0 to 1, default 0) are the axle's shares of the braking and the driving force; an
 axle with a share asks for its anti-dive (front) or anti-lift (rear) under braking, and its
@@ -28,13 +31,14 @@ import numpy as np
 from .scene import LENGTH_LIMIT_MM, SceneError, within_length_limit
 
 if TYPE_CHECKING:
+    from .anti_roll_bar import AntiRollBar
     from .axle import Axle
     from .scene import Scene
     from .vehicle import Vehicle
 
 AXLE_NAMES = ('front', 'rear')
 BRAKES = ('outboard', 'inboard')
-AXLE_KEYS = ('left', 'right', 'brake_share', 'drive_share', 'brakes')
+AXLE_KEYS = ('left', 'right', 'brake_share', 'drive_share', 'brakes', 'anti_roll_bar')
 
 
 @dataclass(frozen=True)
@@ -47,6 +51,7 @@ class AxleSpec:
     brake_share: float = 0.0   # 0..1 of the vehicle's braking force
     drive_share: float = 0.0   # 0..1 of the vehicle's driving force
     brakes: str = 'outboard'   # outboard (torque into the carrier) | inboard (into the body)
+    anti_roll_bar: AntiRollBar | None = None
 
 
 @dataclass(frozen=True)
@@ -72,7 +77,7 @@ def parse_axles(path: object, data: dict, corners: dict[str, Scene],
         raise SceneError(path, 'axles', 'expected a mapping of front and/or rear to {left, '
                          'right, brake_share, drive_share, brakes}')
     for name, spec in block.items():
-        axles[name] = _axle(path, name, spec, corners)
+        axles[name] = _axle(path, name, spec, corners, scale)
     wheelbase = _length(path, data, 'wheelbase', scale)
     if math.isnan(wheelbase) and len(axles) == 2:
         wheelbase = float(np.mean([corners[c].wheel_center[0] for c in
@@ -94,7 +99,7 @@ def parse_axles(path: object, data: dict, corners: dict[str, Scene],
                         axles=axles)
 
 
-def _axle(path, name, spec, corners):
+def _axle(path, name, spec, corners, scale):
     where = f'axles.{name}'
     if name not in AXLE_NAMES:
         raise SceneError(path, where, f'unknown axle (expected one of: {", ".join(AXLE_NAMES)})')
@@ -122,7 +127,12 @@ def _axle(path, name, spec, corners):
     if brakes not in BRAKES:
         raise SceneError(path, f'{where}.brakes', f'unknown value {brakes!r} (expected one '
                          f'of: {", ".join(BRAKES)})')
-    return AxleSpec(name, *sides, *shares, brakes)
+    bar = None
+    if spec.get('anti_roll_bar') is not None:
+        from .anti_roll_bar import parse_bar
+        bar = parse_bar(str(path), f'{where}.anti_roll_bar', spec['anti_roll_bar'],
+                        (corners[sides[0]], corners[sides[1]]), scale)
+    return AxleSpec(name, *sides, *shares, brakes, bar)
 
 
 def _share(path, where, value):
@@ -154,4 +164,5 @@ def axle_of(vehicle: Vehicle, name: str) -> Axle:
     return Axle(left=vehicle.corners[spec.left], right=vehicle.corners[spec.right],
                 name=name, front=name == 'front', wheelbase=data.wheelbase,
                 cg_height=data.cg_height, brake_share=spec.brake_share,
-                drive_share=spec.drive_share, brakes=spec.brakes)
+                drive_share=spec.drive_share, brakes=spec.brakes,
+                anti_roll_bar=spec.anti_roll_bar)

@@ -13,7 +13,8 @@ calls, before its first solve:
                                      calls (the next process is warm, whatever it solves)
     compile_kernels()                solve once along every path (both methods, a rack, a
                                      travel out of reach, a sweep, the alignment set, the
-                                     elements, the carrier's motion, an axle): every kernel
+                                     elements (one answer and a batch), the carrier's
+                                     motion, an axle, roll-centre slopes): every kernel
                                      compiled, hence cached
     compile_in_child() -> bool       compile_kernels in a child process (python -m
                                      linkage_ros.core.warmup) while this one waits: the wait
@@ -114,7 +115,7 @@ def _compile_elements_and_axles(scene) -> None:
     """Solve the elements of a scene that has some, its carrier's motion, and an axle."""
     import numpy as np
 
-    from .axle import solve_axle
+    from .axle import slopes, solve_axle
     from .elements import element_values, prepare, values_at
     from .kinematics import Continuation, sweep
     from .mechanism import compile_scene
@@ -126,8 +127,11 @@ def _compile_elements_and_axles(scene) -> None:
     element_values(scene, result.wheel_center, result.rotation)
     cont = Continuation(scene)
     solution = cont.solve(5.0)
-    values_at(prepare(scene), solution.wheel_center, solution.rotation, solution.rack,
-              cont.jacobian)
+    model = prepare(scene, cont.mech)
+    values_at(model, solution.wheel_center, solution.rotation, solution.rack, cont.jacobian)
+    center, rotation = np.array(solution.wheel_center), np.array(solution.rotation)
+    element_values(scene, center[None], rotation[None], solution.rack, model=model)  # one answer
+    slopes(np.array(cont.jacobian)[None])   # the node's roll centres
     mech = compile_scene(scene)
     rows, poses = guidance_rows(scene, mech), pose_batch(mech, result.wheel_center,
                                                          result.rotation)

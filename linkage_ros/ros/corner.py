@@ -108,6 +108,9 @@ class Corner:
             self.rack_topic = rack.topic_name
             self.listening.append(f'{self.rack_topic} (m)')
         self.extras = []   # (publisher, function(solution, stamp) -> message)
+        # function(corner, solution, stamp) called after every answer, solved or not (the
+        # vehicle's axles: ros/roll_centres.py)
+        self.listeners = []
         if params['alignment']:
             from ..core.alignment import alignment
             self.extras.append((
@@ -121,6 +124,10 @@ class Corner:
                 node.create_publisher(MarkerArray, prefix + 'markers', qos),
                 lambda solution, stamp: marker_array(scene, solution, Time(
                     sec=stamp[0], nanosec=stamp[1]), self.frame_id)))
+        if scene.elements:   # lengths and motion ratios (ros/element_outputs.py)
+            from .element_outputs import elements_output
+            self.extras.append(elements_output(node, prefix, qos, scene, self.solver,
+                                               self.frame_id))
 
     def on_travel(self, data: bytes) -> None:
         self._float64_command(self.travel_topic, data, rack=False)
@@ -177,6 +184,8 @@ class Corner:
                 self.outlet.publish(publisher, build(solution, stamp))
         else:
             self.outlet.bad_command(reply.sent, solution.status, solution.message)
+        for listener in self.listeners:
+            listener(self, solution, stamp)
         if reply.report:
             self.outlet.report([self])
         return solution
@@ -205,6 +214,8 @@ def corner_topics(scene: Scene, params: dict, prefix: str = '') -> list[str]:
     if steered(scene):
         names.append('steering_rack')
     names += [name for name in ('alignment', 'markers') if params[name]]
+    if scene.elements:
+        names.append('elements')
     return [prefix + name for name in names]
 
 

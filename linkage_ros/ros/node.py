@@ -29,6 +29,13 @@ Topics (names relative to the node's namespace, /diagnostics absolute):
                                                         parameter alignment is true
     pub markers             visualization_msgs/MarkerArray  links and joints (m, frame_id); only
                                                         if parameter markers is true
+    pub elements            sensor_msgs/JointState      the scene's elements: position = length
+                                                        (m), velocity = motion ratio (m/m); only
+                                                        for a scene with elements
+                                                        (ros/element_outputs.py)
+    pub <axle>/roll_centre  geometry_msgs/PointStamped  a vehicle axle's roll centre (m,
+                                                        frame_id); only for a vehicle file with
+                                                        axles (ros/roll_centres.py)
     sub /clock              rosgraph_msgs/Clock         only with use_sim_time: the node clock,
                                                         each message taken in turn, in order
                                                         with the commands (depth qos_depth)
@@ -48,6 +55,7 @@ publishes their statuses. Parameters: ros/parameters.py; process entry: ros/entr
 
 from __future__ import annotations
 
+import contextlib
 import math
 import time
 from typing import Callable, NamedTuple
@@ -78,6 +86,7 @@ class Corners(NamedTuple):
     scenes: dict     # topic prefix ('' or 'front_left/') -> (Scene, travel joint, rack joint)
     files: dict      # recording custom_data key ('scene_yaml', ...) -> path of the file
     inputs: dict     # what ('scene file', ...) -> path, for the outputs to stay clear of
+    axles: object = None   # the vehicle file's VehicleAxles, if it has axles
 
 
 def load_corners(params: dict) -> Corners:
@@ -100,7 +109,8 @@ def load_corners(params: dict) -> Corners:
     inputs = {'vehicle file': vehicle.source,
               **{f'scene file of {name}': scene.source
                  for name, scene in vehicle.corners.items()}}
-    return Corners(scenes, files, inputs)
+    axles = vehicle.axles if vehicle.axles is not None and vehicle.axles.axles else None
+    return Corners(scenes, files, inputs, axles)
 
 
 class SuspensionNode(Node):
@@ -135,7 +145,7 @@ class SuspensionNode(Node):
             scenes = {prefix: scene for prefix, (scene, _, _) in corners.scenes.items()}
             self.qos = topic_qos(params['qos_depth'])
             self.sinks.active = open_sinks(
-                params, scenes, self._offered_qos(corners.scenes, params),
+                params, scenes, self._offered_qos(corners, params),
                 recording_metadata(params, corners.files)) + list(sinks)
             if before_solving is not None:
                 before_solving()
@@ -145,6 +155,12 @@ class SuspensionNode(Node):
             self.corners = {prefix.rstrip('/'): Corner(self, self, scene, params, prefix,
                                                        *joints)
                             for prefix, (scene, *joints) in corners.scenes.items()}
+            self.roll_centres = None
+            if corners.axles is not None:   # a vehicle without axles imports none of it
+                from .roll_centres import RollCentres
+                self.roll_centres = RollCentres(self, self, corners.axles, self.corners,
+                                                self.qos, self.frame_id,
+                                                self.get_logger().warning)
         except BaseException:
             self.sinks.close()
             super().destroy_node()
@@ -256,13 +272,15 @@ class SuspensionNode(Node):
                 corner.refuse(topic, exc)
             return
         stamp = msg.header.stamp.sec, msg.header.stamp.nanosec
-        for corner in self.joint_corners:
-            travel_mm = messages.joint_travel_mm(msg, corner.travel_joint)
-            rack_mm = messages.joint_travel_mm(msg, corner.rack_joint) if corner.rack_joint \
-                else None
-            if travel_mm is not None or rack_mm is not None:
-                corner.answer(travel_mm, rack_mm, stamp, lambda corner=corner: joints_sent(
-                    topic, msg, [corner.travel_joint, corner.rack_joint]))
+        # The axles' roll centres once per step, after all of its corners' answers.
+        with self.roll_centres.step() if self.roll_centres else contextlib.nullcontext():
+            for corner in self.joint_corners:
+                travel_mm = messages.joint_travel_mm(msg, corner.travel_joint)
+                rack_mm = messages.joint_travel_mm(msg, corner.rack_joint) \
+                    if corner.rack_joint else None
+                if travel_mm is not None or rack_mm is not None:
+                    corner.answer(travel_mm, rack_mm, stamp, lambda corner=corner: joints_sent(
+                        topic, msg, [corner.travel_joint, corner.rack_joint]))
 
     def on_diagnostic_period(self):
         self.sinks.check()     # a recorder writing in the background may have failed
@@ -311,10 +329,14 @@ class SuspensionNode(Node):
         corners as load_corners gives them.
         """
         names = ['/diagnostics']
-        for prefix, (scene, *joints) in corners.items():
+        for prefix, (scene, *joints) in corners.scenes.items():
             names += corner_topics(scene, params, prefix)
             if any(joints):
                 names.append('joint_states')
+        if corners.axles is not None:
+            from .roll_centres import roll_centre_topics
+            names += roll_centre_topics(corners.axles, {
+                prefix.rstrip('/'): scene for prefix, (scene, *_) in corners.scenes.items()})
         return {self.resolve_topic_name(name): self.qos for name in dict.fromkeys(names)}
 
 

@@ -32,10 +32,15 @@ EPILOG = """columns: heave_mm, roll_deg (+ = right side down), rack_mm (+ = rack
   (+ = toe-in) relative to the body, the same relative to the ground (*_ground_deg); then
   anti_dive_pct, anti_lift_pct or anti_squat_pct as the axle's brake_share and drive_share
   ask; with --rack or --rack-grid: left_/right_steer_deg (yaw, + = to the left),
-  mean_steer_deg and ackermann_pct. A corner without wheel_radius has no contact patch: the
-  patch columns are left out, and stderr says so. Roll-centre, track and Ackermann columns
-  need wheel_radius in both scenes, Ackermann also the wheelbase; anti quantities need
-  cg_height (and the wheelbase) in the vehicle file.
+  mean_steer_deg and ackermann_pct; with an anti_roll_bar: arb_left_angle_deg,
+  arb_right_angle_deg (each arm about the bar's axis, directed to the left), arb_twist_deg
+  (left minus right), arb_ratio_deg_per_deg_roll, arb_ratio_left_deg_per_mm and
+  arb_ratio_right_deg_per_mm (twist per mm of one wheel's travel, the other held), and with
+  its rate arb_torque_Nm, arb_roll_moment_Nm and arb_roll_stiffness_Nm_per_deg. A corner
+  without wheel_radius has no contact patch: the patch columns are left out, and stderr says
+  so. Roll-centre, track and Ackermann columns need wheel_radius in both scenes, Ackermann
+  also the wheelbase; anti quantities need cg_height (and the wheelbase) in the vehicle
+  file.
 
 examples:
   linkage-axle demo_vehicle --axle front --heave=-40:40:10
@@ -45,7 +50,8 @@ examples:
 A negative FROM needs the = (--roll=-4:4:1), or it reads as an option.
 
 exit status: 0 every position solved; 1 a position is out of reach of a wheel (the rows
-solved before it are written, the message names the limit); """ + EXIT_STATUS
+solved before it are written, the message names the limit) or of the anti-roll bar's drop
+links (its columns are NaN there); """ + EXIT_STATUS
 
 
 def parse_args(argv):
@@ -139,9 +145,26 @@ def table(axle, result, with_rack):
                     ('mean_steer_deg', deg(result.mean_steer))]
         if axle.has_patches and axle.wheelbase > 0:
             columns.append(('ackermann_pct', result.ackermann))
+    if result.bar is not None:
+        columns += bar_columns(axle.anti_roll_bar, result.bar)
     header = [name for name, _ in columns]
     rows = np.column_stack([np.asarray(c, dtype=float) for _, c in columns])
     return header, rows.reshape(len(result.heave), len(header))
+
+
+def bar_columns(bar, values):
+    """Return the anti-roll bar's (name, values) columns, deg and N m (anti_roll_bar.py)."""
+    deg = np.degrees
+    columns = [('arb_left_angle_deg', deg(values.angle[:, 0])),
+               ('arb_right_angle_deg', deg(values.angle[:, 1])),
+               ('arb_twist_deg', deg(values.twist)),
+               ('arb_ratio_deg_per_deg_roll', values.ratio_roll),
+               ('arb_ratio_left_deg_per_mm', deg(values.ratio_travel[:, 0])),
+               ('arb_ratio_right_deg_per_mm', deg(values.ratio_travel[:, 1]))]
+    if bar.has_rate:
+        columns += [('arb_torque_Nm', values.torque), ('arb_roll_moment_Nm', values.roll_moment),
+                    ('arb_roll_stiffness_Nm_per_deg', values.roll_stiffness)]
+    return columns
 
 
 def write_csv(header, rows, stream):
@@ -232,6 +255,8 @@ def main(argv: list[str] | None = None) -> int:
     if not result.success:
         print(f'{PROG}: {result.message} ({len(rows)} positions written)', file=sys.stderr)
         return 1
+    if result.bar is not None and np.isnan(result.bar.twist).any():
+        return 1      # the note above said where
     print(f'{PROG}: done', file=sys.stderr)
     return 0
 
