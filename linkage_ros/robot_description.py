@@ -133,13 +133,15 @@ def rpy(rotation: np.ndarray) -> tuple[float, float, float]:
     """
     Return URDF's roll, pitch, yaw (rad) of a rotation matrix: R = Rz(yaw) Ry(pitch) Rx(roll).
 
-    At pitch +-90 deg (gimbal lock) roll is taken as 0.
+    Yaw and pitch from R's first column (atan2 both: exact to rounding at any pitch), then
+    roll from what is left, Ry(pitch)^T Rz(yaw)^T R = Rx(roll): at pitch +-90 deg (gimbal
+    lock), where yaw and roll trade off, the roll taken is the one that goes with the yaw.
     """
     r = np.asarray(rotation, dtype=float)
-    pitch = math.asin(max(-1.0, min(1.0, -r[2, 0])))
-    if abs(r[2, 0]) < 1.0 - 1e-12:
-        return math.atan2(r[2, 1], r[2, 2]), pitch, math.atan2(r[1, 0], r[0, 0])
-    return 0.0, pitch, math.atan2(-r[0, 1], r[1, 1])
+    yaw = math.atan2(r[1, 0], r[0, 0])
+    pitch = math.atan2(-r[2, 0], math.hypot(r[0, 0], r[1, 0]))
+    rest = rotation_of_rpy(0.0, pitch, yaw).T @ r
+    return math.atan2(rest[2, 1], rest[1, 1]), pitch, yaw
 
 
 def rotation_of_rpy(roll: float, pitch: float, yaw: float) -> np.ndarray:
