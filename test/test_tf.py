@@ -48,8 +48,7 @@ def test_the_carrier_frame_is_the_answered_pose_bit_for_bit(scene_name):
     cont, frames = Continuation(scene), CornerFrames(scene, 'base_link')
     for travel in TRAVELS_MM:
         solution = cont.solve(travel)
-        pose = dict((name, data) for name, _, data in answer_outputs(solution, (7, 9),
-                                                                    'base_link'))
+        pose = {name: data for name, _, data in answer_outputs(solution, (7, 9), 'base_link')}
         (stamp, parent, child, translation, quaternion) = transforms_of(
             frames.tf_cdr(solution, (7, 9)))[0]
         assert (stamp, parent, child) == ((7, 9), 'base_link', 'wheel_carrier')

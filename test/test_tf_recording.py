@@ -89,7 +89,7 @@ def test_a_replayed_sweep_carries_tf_per_answer_and_the_urdf(tmp_path):
 
 
 def test_a_node_recording_carries_tf_per_answer_and_the_urdf(suspension_node, executor, probe,
-                                                              tmp_path):
+                                                             tmp_path):
     path = tmp_path / 'run.mcap'
     node = suspension_node(scene='double_wishbone', record_mcap=str(path))
     travels = [0.02, -0.03, 0.05, 1.0]          # the last out of reach: no pose, no /tf
@@ -109,7 +109,7 @@ def test_a_node_recording_carries_tf_per_answer_and_the_urdf(suspension_node, ex
 
 
 def test_a_vehicle_recording_holds_every_corners_frames_under_its_name(ros_context, executor,
-                                                                        tmp_path):
+                                                                       tmp_path):
     from linkage_ros.ros.testing import start_suspension_node
     path = tmp_path / 'vehicle.mcap'
     node = start_suspension_node(ros_context, executor, vehicle='demo_vehicle',
@@ -125,8 +125,8 @@ def test_a_vehicle_recording_holds_every_corners_frames_under_its_name(ros_conte
     assert 'rear_right/tie_rod' in {link.get('name') for link in robot.iter('link')}
 
 
-def test_with_tf_off_the_recording_has_no_tf_and_the_node_imports_none_of_it(domain_id,
-                                                                           tmp_path):
+def test_with_tf_off_the_recording_holds_no_tf_and_the_node_imports_none_of_it(domain_id,
+                                                                             tmp_path):
     path = tmp_path / 'off.mcap'
     code = f"""
 import sys

@@ -70,7 +70,7 @@ def test_a_link_per_body_each_floating_from_the_root_and_the_wheel_fixed(scene_n
 @pytest.mark.parametrize('scene_name,travel,rack', [
     ('five_link', 55.0, None), ('double_wishbone', -40.0, 15.0), ('macpherson', 30.0, -10.0)])
 def test_the_bodies_placed_by_tf_at_a_pose_end_on_the_solved_hardpoints(scene_name, travel,
-                                                                       rack):
+                                                                        rack):
     # Each link, arm and the carrier's arms are cylinders between joints: placed by the
     # frames of a solved pose, their ends must be the solved carrier joints, the body points
     # (the tie rod's moved by the rack) or the wheel centre, to 1e-9 m. A strut (a tube that

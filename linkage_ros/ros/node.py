@@ -267,6 +267,7 @@ class SuspensionNode(Node):
         """Send /tf_static and robot_description again (after a change of scene)."""
         if self.tf_outputs is not None:
             self.tf_outputs.attach()
+            self.tf_outputs.robot_name = self.robot_name
             self.tf_outputs.describe(divmod(self.clock.now().nanoseconds, S))
 
     def set_diagnostic_period(self, period):

@@ -94,7 +94,7 @@ FIXED = {
     'record_mcap': 'a recording is one file from start to stop',
     'rerun_rrd': 'a Rerun mirror is one file from start to stop',
     'travel_joint': "the corner's joint_states subscription is made at start",
-    'vehicle': "the corners and their topics are made at start from the vehicle file",
+    'vehicle': 'the corners and their topics are made at start from the vehicle file',
     'qos_depth': 'every topic is made at start with its QoS',
     'use_sim_time': "the node's clock and its /clock subscription are set up at start",
 }

@@ -28,7 +28,7 @@ from typing import TYPE_CHECKING
 
 from rcl_interfaces.msg import ParameterEvent, SetParametersResult
 
-from .parameters import checked, FIXED, PARAMETERS, RUNTIME
+from .parameters import checked, FIXED, PARAMETERS
 from ..cdr import to_cdr
 from ..core.errors import LinkageError
 
@@ -81,6 +81,8 @@ class RuntimeParameters:
 
     def apply(self, parameters: list[Parameter]) -> None:
         """Apply the request check() accepted; record the ParameterEvent."""
+        if all(p.name.startswith('qos_overrides.') for p in parameters):
+            return      # rclpy declaring the QoS parameters of a topic made now
         pending, self._pending = self._pending, {}
         scene = pending.pop('_scene', None)
         changed = {k: v for k, v in pending.items() if v != self.values.get(k)}
@@ -92,6 +94,7 @@ class RuntimeParameters:
         if scene is not None:
             for corner in node.corners.values():
                 corner.set_scene(scene, values)
+            node.robot_name = scene.name
             node.get_logger().info(f'scene {scene.name} ({scene.source}): continuation '
                                    'restarts from its design position')
         elif any(name in changed for name in SOLVER):

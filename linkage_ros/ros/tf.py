@@ -70,10 +70,10 @@ def tf2_msgs_missing() -> str:
     """Return why tf2_msgs/msg/TFMessage cannot be published here, or '' if it can."""
     try:
         importlib.import_module('tf2_msgs.msg').TFMessage
-    except (ImportError, AttributeError) as exc:
-        return (f'tf2_msgs cannot be imported ({exc}; it has no wheel on the package index): '
-                '/tf and /tf_static are recorded but not published; `linkage-tf2-msgs` builds '
-                'it into this environment (needs a C/C++ compiler and the Python headers)')
+    except (ImportError, AttributeError):
+        return ('tf2_msgs cannot be imported (it has no wheel on the package index): /tf and '
+                '/tf_static are recorded but not published; `linkage-tf2-msgs` builds it into '
+                'this environment (needs a C/C++ compiler and the Python headers)')
     return ''
 
 

@@ -22,8 +22,8 @@ from typing import TYPE_CHECKING
 from std_msgs.msg import String
 
 from .qos import latched_qos, publisher, topic_qos
-from .tf import CornerFrames, static_cdr, TF_STATIC_TOPIC, TF_TOPIC, TF_TYPE, \
-    tf2_msgs_missing, tf_message_class
+from .tf import CornerFrames, static_cdr, tf2_msgs_missing, tf_message_class, \
+    TF_STATIC_TOPIC, TF_TOPIC, TF_TYPE
 from ..cdr import string_cdr
 from ..robot_description import robot_description
 

@@ -134,7 +134,7 @@ def main(argv=None) -> int:
         return cli.DONE
     missing = missing_tools()
     if missing:
-        print(f'{PROG}: cannot build tf2_msgs here: no {" and no ".join(missing)}; '
+        print(f'{PROG}: cannot build tf2_msgs here: it needs {" and ".join(missing)}; '
               'suspension_node records /tf but publishes it only where tf2_msgs is installed',
               file=sys.stderr)
         return failed
