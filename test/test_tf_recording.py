@@ -126,7 +126,7 @@ def test_a_vehicle_recording_holds_every_corners_frames_under_its_name(ros_conte
 
 
 def test_with_tf_off_the_recording_holds_no_tf_and_the_node_imports_none_of_it(domain_id,
-                                                                             tmp_path):
+                                                                               tmp_path):
     path = tmp_path / 'off.mcap'
     code = f"""
 import sys

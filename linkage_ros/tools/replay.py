@@ -16,9 +16,9 @@ own protocol (linkage_ros.protocol), in the command topic's namespace: wheel_car
 with its receive time, /tf_static and /robot_description (the URDF) once, and /diagnostics
 (diagnostic_msgs/DiagnosticArray) as the node sends it: a report every second of recorded
 time, at once for a command that cannot be solved (ERROR, with the reason) or a change of
-level, and one after the last command. The new bag keeps the recorded timeline. A bag cut short (hard kill) or damaged gives a warning
-naming what was found (where the file is cut, which chunk fails its CRC, ...) and every
-readable message is used; copy writes those into a complete file. Progress goes to stderr.
+level, and one after the last command. The new bag keeps the recorded timeline. A bag cut
+short (hard kill) or damaged gives a warning naming what was found (where the file is cut,
+which chunk fails its CRC, ...) and every readable message is used; copy writes those into a complete file. Progress goes to stderr.
 
 The spellings of earlier versions still work, with a note on stderr: BAG alone (solve),
 --sweep, --copy, --publish, --benchmark.
