@@ -18,7 +18,8 @@ with its receive time, /tf_static and /robot_description (the URDF) once, and /d
 time, at once for a command that cannot be solved (ERROR, with the reason) or a change of
 level, and one after the last command. The new bag keeps the recorded timeline. A bag cut
 short (hard kill) or damaged gives a warning naming what was found (where the file is cut,
-which chunk fails its CRC, ...) and every readable message is used; copy writes those into a complete file. Progress goes to stderr.
+which chunk fails its CRC, ...) and every readable message is used; copy writes those into
+a complete file. Progress goes to stderr.
 
 The spellings of earlier versions still work, with a note on stderr: BAG alone (solve),
 --sweep, --copy, --publish, --benchmark.
