@@ -152,3 +152,27 @@ print(loaded)
     assert '/wheel_carrier_pose' in topics
     assert not set(TF_TOPICS) & set(topics)
     assert math.isfinite(topics['/wheel_carrier_pose'][0].pose.position.z)
+
+
+def test_the_bundled_bag_carries_tf_and_linkage_rerun_draws_it_from_urdf_and_tf(tmp_path):
+    # bags/five_link_sweep.mcap is made by `linkage-replay sweep -o bags/five_link_sweep.mcap`
+    bag = Path(__file__).resolve().parent.parent / 'bags' / 'five_link_sweep.mcap'
+    assert check_recording(bag) == 161
+    out = tmp_path / 'five_link_tf.rrd'
+    bindir = Path(sys.executable).parent
+    done = subprocess.run([str(bindir / 'linkage-rerun'), str(bag), '--tf', '-o', str(out)],
+                          capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stderr
+    # 6 moving frames (carrier, 5 links) per answer, and the wheel's on /tf_static
+    assert done.stderr == (f'linkage-rerun: wrote {out} (URDF and TF): 7 frames, '
+                           '966 transforms, 483 plotted values\n')
+    import rerun as rr
+    columns = set()
+    for chunk in rr.chunk.RrdReader(out).stream():
+        batch = chunk.to_record_batch()
+        if batch.num_rows:
+            columns |= {(str(chunk.entity_path), name) for name in batch.schema.names}
+    assert ('/tf/wheel_carrier', 'Transform3D:translation') in columns
+    # the URDF's geometry, by Rerun's URDF loader, in the frame of its link
+    assert ('/robot/five_link/visual_geometries/tie_rod/visual_0',
+            'Cylinders3D:lengths') in columns
