@@ -13,7 +13,8 @@ setup(
     data_files=[
         ('share/ament_index/resource_index/packages', ['resource/' + package_name]),
         ('share/' + package_name, ['package.xml']),
-        ('share/' + package_name + '/config', glob('config/*.yaml') + glob('config/*.xml')),
+        ('share/' + package_name + '/config',
+         glob('config/*.yaml') + glob('config/*.xml') + glob('config/*.json')),
         ('share/' + package_name + '/config/scenes', glob('config/scenes/*.yaml')),
         ('share/' + package_name + '/config/vehicles', glob('config/vehicles/*.yaml')),
         ('share/' + package_name + '/config/stress', glob('config/stress/*.yaml')),

@@ -405,7 +405,7 @@ def test_node_bench_quick_run_prints_every_section_with_nothing_lost(domain_id):
     assert [(r[0], r[1], r[4]) for r in tables['vehicle'][1:]] == [
         ('node', 'float64_per_corner', '0'), ('echo', 'float64_per_corner', '0'),
         ('node', 'joint_states', '0'), ('echo', 'joint_states', '0')]
-    assert [r[0] for r in tables['callback'][1:]][:2] == ['plain', 'alignment']
+    assert [r[0] for r in tables['callback'][1:]][:2] == ['plain', 'tf']
 
 
 # --- parameters, names, QoS ----------------------------------------------------------------

@@ -176,3 +176,28 @@ def test_the_bundled_bag_carries_tf_and_linkage_rerun_draws_it_from_urdf_and_tf(
     # the URDF's geometry, by Rerun's URDF loader, in the frame of its link
     assert ('/robot/five_link/visual_geometries/tie_rod/visual_0',
             'Cylinders3D:lengths') in columns
+
+
+def test_the_foxglove_layout_draws_the_urdf_by_tf_and_plots_what_the_bag_holds():
+    import json
+    root = Path(__file__).resolve().parent.parent
+    layout = json.loads((root / 'config' / 'foxglove_layout.json').read_text())
+    panels = layout['configById']
+    (three_d,) = [v for k, v in panels.items() if k.startswith('3D!')]
+    (urdf,) = [v for v in three_d['layers'].values() if v['layerId'] == 'foxglove.Urdf']
+    assert (urdf['sourceType'], urdf['topic']) == ('topic', '/robot_description')
+    assert three_d['followTf'] == 'base_link'
+    plotted = [p['value'] for k, v in panels.items() if k.startswith('Plot!')
+               for p in v['paths']]
+    assert plotted == ['/wheel_travel.data', '/camber.data.@degrees', '/toe.data.@degrees']
+    # every panel is placed, and every topic it reads is in the bundled bag
+    placed, stack = [], [layout['layout']]
+    while stack:
+        node = stack.pop()
+        if isinstance(node, str):
+            placed.append(node)
+        else:
+            stack += [node['first'], node['second']]
+    assert sorted(placed) == sorted(panels)
+    topics = set(read_mcap_ros2(root / 'bags' / 'five_link_sweep.mcap'))
+    assert {urdf['topic']} | {p.split('.')[0] for p in plotted} <= topics

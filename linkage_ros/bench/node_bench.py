@@ -17,8 +17,9 @@ Sections (all by default; --only picks some), sizes multiplied by --scale (run 1
   vehicle   vehicle:=demo_vehicle against a four-corner echo node, four corners at --hz each
             for --seconds: one Float64 per corner per step, then one JointState per step; the
             step latency is from sending a step to the last of its four poses
-  callback  the node's travel callback called in process (no subscribers): plain, with the
-            alignment or markers outputs, recording to MCAP, mirroring to Rerun, both
+  callback  the node's travel callback called in process (no subscribers): plain (tf off),
+            with TF on (/tf per answer: the node's default), with the alignment or markers
+            outputs, recording to MCAP, mirroring to Rerun, both (the others with tf off)
 
 Tables go to stdout as CSV (the first cell of each header row names the section), progress
 to stderr; --plot writes latency against command rate (node and echo) as a PNG. Discovery
@@ -492,8 +493,9 @@ def bench_callback(args):
     from rclpy.parameter import Parameter
 
     from ..ros.node import SuspensionNode
-    modes = {'plain': {}, 'alignment': {'alignment': True}, 'markers': {'markers': True},
-             'record_mcap': {'record_mcap': 'run.mcap'}, 'rerun_rrd': {'rerun_rrd': 'run.rrd'},
+    modes = {'plain': {}, 'tf': {'tf': True}, 'alignment': {'alignment': True},
+             'markers': {'markers': True}, 'record_mcap': {'record_mcap': 'run.mcap'},
+             'rerun_rrd': {'rerun_rrd': 'run.rrd'},
              'record_mcap+rerun_rrd': {'record_mcap': 'run.mcap', 'rerun_rrd': 'run.rrd'}}
     context = rclpy.context.Context()
     rclpy.init(context=context, domain_id=args.domain_id)
@@ -504,7 +506,7 @@ def bench_callback(args):
             with tempfile.TemporaryDirectory() as folder:
                 overrides = [Parameter('scene', value=args.scene)] + [
                     Parameter(k, value=str(Path(folder) / v) if isinstance(v, str) else v)
-                    for k, v in params.items()]
+                    for k, v in {'tf': False, **params}.items()]
                 node = SuspensionNode(context=context, parameter_overrides=overrides)
                 corner = next(iter(node.corners.values()))
                 times = []

@@ -109,7 +109,7 @@ def _read(bag):
 
 
 def _blueprint(dynamic, plots):
-    """The 3D view of the robot, looked at from the front left, beside the plots."""
+    """Return the 3D view of the robot, looked at from the front left, beside the plots."""
     points = np.array([r[2] for rows in dynamic.values() for r in rows])
     low, high = points.min(axis=0), points.max(axis=0)
     target = (low + high) / 2
