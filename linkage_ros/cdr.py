@@ -7,6 +7,10 @@ Pure functions, usable without DDS: the recorders, the replay and the node share
     pose_stamped_cdr(stamp, frame_id, position, q)     -> geometry_msgs/PoseStamped, no rclpy
     point_stamped_cdr(stamp, frame_id, point)          -> geometry_msgs/PointStamped, no rclpy
     joint_state_cdr(stamp, frame_id, names, position)  -> sensor_msgs/JointState, no rclpy
+    tf_message_cdr(stamp, parents, children, translations, quaternions)
+                                                       -> tf2_msgs/TFMessage, no tf2_msgs
+    transforms_of(CDR)                                 -> the TransformStampeds of a TFMessage
+    string_cdr(text), string_of(CDR)                   -> std_msgs/String, no rclpy
     CdrError                                           bytes that do not hold the message
     from_cdr(type_name, data), to_cdr(msg)             -> rclpy message <-> CDR bytes
     message_class(type_name), type_name(message)       -> 'pkg/msg/Type' <-> rclpy class
@@ -129,6 +133,107 @@ def _joint_state_layout(frame_id, names, positions, velocities, efforts):
             pad = -offset % 8
             fmt, offset = fmt + f'{pad}x{count}d', offset + pad + 8 * count
     return struct.Struct(fmt), bytes(strings)
+
+
+def tf_message_cdr(stamp: tuple[int, int], parents: Sequence[str], children: Sequence[str],
+                   translations: Sequence[Sequence[float]],
+                   quaternions: Sequence[Sequence[float]] | None = None) -> bytes:
+    """
+    Return a tf2_msgs/TFMessage (CDR bytes, little-endian) of one TransformStamped per child.
+
+    stamp: (sec, nanosec) of every transform; parents, children: frame names (header.frame_id,
+    child_frame_id); translations (k, 3) in m and quaternions (k, 4) (x, y, z, w), or, with
+    quaternions None, translations (k, 7): each row the translation then the quaternion.
+    Built without tf2_msgs (which has no wheel on the package index), from a struct layout
+    cached per frame names: a few us for a corner's frames.
+    """
+    layout, names = _tf_layout(tuple(parents), tuple(children))
+    args = [CDR_LE, len(names)]
+    sec, nanosec = stamp
+    rows = translations if quaternions is None else (
+        (*t, *q) for t, q in zip(translations, quaternions))
+    for strings, row in zip(names, rows):
+        args += (sec, nanosec, strings)
+        args += row
+    return layout.pack(*args)
+
+
+@functools.lru_cache(maxsize=64)
+def _tf_layout(parents, children):
+    # TFMessage: sequence<TransformStamped> (uint32 count); each: header (stamp: int32 sec,
+    # uint32 nanosec; frame_id: uint32 length with the NUL, bytes, NUL), child_frame_id (the
+    # same, aligned to 4), transform (translation 3 float64, rotation 4 float64, aligned to 8).
+    # The two strings of a transform, with the padding between them, are packed once here.
+    if len(parents) != len(children):
+        raise ValueError(f'{len(parents)} parents for {len(children)} children')
+    fmt, offset, names = '<4sI', 4, []
+    for parent, child in zip(parents, children):
+        offset += 8                     # the stamp (every element starts 4-aligned: no pad)
+        strings = bytearray()
+        for name in (parent, child):
+            raw = name.encode() + b'\0'
+            strings += bytes(-(offset + len(strings)) % 4) + struct.pack('<I', len(raw)) + raw
+        pad = -(offset + len(strings)) % 8
+        fmt += f'iI{len(strings)}s{pad}x7d'
+        offset += len(strings) + pad + 56
+        names.append(bytes(strings))
+    return struct.Struct(fmt), tuple(names)
+
+
+def transforms_of(data: bytes) -> list[tuple[tuple[int, int], str, str, tuple, tuple]]:
+    """
+    Read the transforms of a tf2_msgs/TFMessage in CDR bytes (either byte order).
+
+    Returns [(stamp (sec, nanosec), parent, child, translation (3,) m, rotation (x, y, z, w))];
+    CdrError if the bytes are too short for what they declare.
+    """
+    what = 'tf2_msgs/TFMessage'
+    order = _order(what, data, 8)
+    reader = _Reader(what, data, order)
+    transforms = []
+    for _ in range(reader.unpack('I', 4)[0]):
+        stamp = reader.unpack('iI', 4)
+        parent, child = reader.string(), reader.string()
+        values = reader.unpack('7d', 8)
+        transforms.append((stamp, parent, child, values[:3], values[3:]))
+    return transforms
+
+
+def string_cdr(text: str) -> bytes:
+    """Return a std_msgs/String (CDR bytes, little-endian) holding text."""
+    raw = text.encode() + b'\0'
+    return CDR_LE + struct.pack('<I', len(raw)) + raw
+
+
+def string_of(data: bytes) -> str:
+    """Read the text of a std_msgs/String in CDR bytes (either byte order); else CdrError."""
+    return _Reader('std_msgs/String', data, _order('std_msgs/String', data, 8)).string()
+
+
+class _Reader:
+    """Read CDR fields in turn, each aligned to its size counted from the header's end."""
+
+    def __init__(self, what, data, order):
+        self.what, self.data, self.order, self.at = what, data, order, 4
+
+    def unpack(self, fmt, align):
+        self.at += -(self.at - 4) % align
+        layout = struct.Struct(self.order + fmt)
+        end = self.at + layout.size
+        if end > len(self.data):
+            raise CdrError(self.what, self.data, f'too short: it needs at least {end} bytes')
+        values = layout.unpack_from(self.data, self.at)
+        self.at = end
+        return values
+
+    def string(self):
+        length = self.unpack('I', 4)[0]
+        if length == 0 or self.at + length > len(self.data):
+            raise CdrError(self.what, self.data, f'a string of {length} bytes at byte '
+                           f'{self.at} does not fit')
+        raw = bytes(self.data[self.at:self.at + length - 1])
+        self.at += length
+        return raw.decode('utf-8', errors='replace')
 
 
 def pose_of(data: bytes) -> tuple[tuple[float, ...], tuple[float, ...]]:

@@ -260,19 +260,24 @@ def test_every_command_and_published_message_reaches_each_sink(suspension_node, 
     suspension_node(sinks=sinks, diagnostic_period=HOUR)
     probe.send(0.02, math.nan)
     assert spin_until(executor, lambda: len(probe.statuses) == 1)
-    expected = [('/wheel_travel', 'std_msgs/msg/Float64'),
+    # At start the design-fixed frames and the URDF (TF is on by default), then per answer
+    # the pose, camber, toe and the frames of the bodies.
+    expected = [('/tf_static', 'tf2_msgs/msg/TFMessage'),
+                ('/robot_description', 'std_msgs/msg/String'),
+                ('/wheel_travel', 'std_msgs/msg/Float64'),
                 ('/wheel_carrier_pose', 'geometry_msgs/msg/PoseStamped'),
                 ('/camber', 'std_msgs/msg/Float64'), ('/toe', 'std_msgs/msg/Float64'),
                 ('/elements', 'sensor_msgs/msg/JointState'),   # five_link has elements
+                ('/tf', 'tf2_msgs/msg/TFMessage'),
                 ('/wheel_travel', 'std_msgs/msg/Float64'),
                 ('/diagnostics', 'diagnostic_msgs/msg/DiagnosticArray')]
     for sink in sinks:
         assert [(topic, type_name) for topic, type_name, *_ in sink.records] == expected
     # Sinks get CDR bytes; rclpy's own deserializer reads them back.
-    command = sinks[0].records[0][:2] + (deserialize_message(sinks[0].records[0][2], Float64),
-                                         *sinks[0].records[0][3:])
-    pose = sinks[0].records[1][:2] + (deserialize_message(sinks[0].records[1][2], PoseStamped),
-                                      *sinks[0].records[1][3:])
+    command = sinks[0].records[2][:2] + (deserialize_message(sinks[0].records[2][2], Float64),
+                                         *sinks[0].records[2][3:])
+    pose = sinks[0].records[3][:2] + (deserialize_message(sinks[0].records[3][2], PoseStamped),
+                                      *sinks[0].records[3][3:])
     assert command[2].data == 0.02
     assert pose[2].pose.position == probe.poses[0].pose.position
     stamp = pose[2].header.stamp
@@ -402,18 +407,24 @@ def test_node_bench_quick_run_prints_every_section_with_nothing_lost(domain_id):
     assert [(r[0], r[1], r[4]) for r in tables['vehicle'][1:]] == [
         ('node', 'float64_per_corner', '0'), ('echo', 'float64_per_corner', '0'),
         ('node', 'joint_states', '0'), ('echo', 'joint_states', '0')]
-    assert [r[0] for r in tables['callback'][1:]][:3] == ['plain', 'elements', 'alignment']
+    assert [r[0] for r in tables['callback'][1:]][:4] == ['plain', 'elements', 'tf',
+                                                          'alignment']
 
 
 # --- parameters, names, QoS ----------------------------------------------------------------
 
-def test_every_parameter_is_read_only_and_a_number_carries_its_range(ros_context):
+def test_every_parameter_says_if_it_is_fixed_and_a_number_carries_its_range(ros_context):
+    # Not read_only: a change of a fixed one is refused by the node, saying why
+    # (test_params_runtime.py); its description says it is fixed.
+    from linkage_ros.ros.parameters import RUNTIME
     node = SuspensionNode(context=ros_context, parameter_overrides=[
         Parameter('max_step_mm', value=2), Parameter('scene', value='double_wishbone')])
     try:
         for name, spec in PARAMETERS.items():     # given (max_step_mm, scene) or not
             descriptor = node.describe_parameter(name)
-            assert descriptor.read_only, name
+            assert not descriptor.read_only, name
+            assert descriptor.description.endswith('(fixed while the node runs)') == (
+                name not in RUNTIME), name
             if isinstance(spec.default, float):
                 (bounds,) = descriptor.floating_point_range
                 assert (bounds.from_value, bounds.to_value) == (spec.low, spec.high), name
@@ -449,9 +460,12 @@ def test_qos_depth_is_the_depth_of_every_topic_of_the_node(suspension_node):
     own = [e for e in [*node.subscriptions, *node.publishers]
            if e.topic_name not in ('/parameter_events', '/rosout')]
     assert sorted(e.topic_name for e in own) == [
-        '/alignment', '/camber', '/diagnostics', '/elements', '/joint_states', '/steering_rack',
-        '/toe', '/wheel_carrier_pose', '/wheel_travel']
-    assert {e.qos_profile.depth for e in own} == {7}
+        '/alignment', '/camber', '/diagnostics', '/elements', '/joint_states',
+        '/robot_description', '/steering_rack', '/tf', '/tf_static', '/toe',
+        '/wheel_carrier_pose', '/wheel_travel']
+    latched = ('/robot_description', '/tf_static')     # transient local, the last one only
+    assert {e.qos_profile.depth for e in own if e.topic_name not in latched} == {7}
+    assert {e.qos_profile.depth for e in own if e.topic_name in latched} == {1}
 
 
 def test_namespaced_nodes_name_their_statuses_with_their_full_names(ros_context, executor,

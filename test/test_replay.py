@@ -18,6 +18,7 @@ from linkage_ros.ros.messages import status_values
 from linkage_ros.tools.replay import main
 from mcap.reader import make_reader
 from mcap_ros2.decoder import DecoderFactory
+import numpy as np
 import pytest
 from rosbags.highlevel import AnyReader
 import yaml
@@ -34,6 +35,10 @@ def decoded(path):
         reader = make_reader(stream, decoder_factories=[DecoderFactory()])
         return [(c.topic, m.log_time, d) for _, c, m, d in reader.iter_decoded_messages(
             log_time_order=False)]
+
+
+# What a replay also writes, as the node does with TF on: tested in test_tf_recording.py.
+TF_TOPICS = ('/tf', '/tf_static', '/robot_description')
 
 
 def by_topic(messages, topic):
@@ -93,6 +98,18 @@ def test_replaying_the_example_bag_reproduces_its_outputs(tmp_path):
         elif topic == '/diagnostics':
             assert [(s.level, s.name, s.message) for s in b.status] == [
                 (s.level, s.name, s.message) for s in a.status]
+        elif topic in ('/tf', '/tf_static'):       # the frames of the bodies
+            def frames(message):
+                return [(t.header.frame_id, t.child_frame_id) for t in message.transforms]
+
+            def values(message):
+                return [[v.x, v.y, v.z] + [w.x, w.y, w.z, w.w] for v, w in (
+                    (t.transform.translation, t.transform.rotation) for t in message.transforms)]
+
+            assert frames(b) == frames(a)
+            assert np.array(values(b)) == pytest.approx(np.array(values(a)), abs=1e-12)
+        elif topic == '/robot_description':
+            assert b.data == a.data
         else:
             assert b.data == pytest.approx(a.data, abs=1e-12)
 
@@ -103,7 +120,7 @@ def test_each_command_is_followed_by_pose_camber_toe_at_its_receive_time(tmp_pat
                  str(out)]) == 0
     with AnyReader([out]) as reader:
         rows = [(c.topic, t, reader.deserialize(raw, c.msgtype))
-                for c, t, raw in reader.messages()]
+                for c, t, raw in reader.messages() if c.topic not in TF_TOPICS]
     # 0.4 s of good commands: no change of level, no full period; one report at the end.
     assert [r[0] for r in rows] == ['/wheel_travel', *OUTPUTS[:3]] * 5 + ['/diagnostics']
     for i in range(5):
@@ -129,7 +146,7 @@ def test_a_command_out_of_reach_gives_an_error_diagnostic_and_no_pose(tmp_path):
     bag, out = tmp_path / 'in.mcap', tmp_path / 'out.mcap'
     write_commands(bag, [0.01, 0.5, 0.02])                 # 500 mm: beyond the bump stop
     assert main(['solve', str(bag), '-o', str(out)]) == 0
-    messages = decoded(out)
+    messages = [m for m in decoded(out) if m[0] not in TF_TOPICS]
     # At once: the ERROR of the failed command, the OK of the next (a change of level); then
     # the report after the last command.
     assert [t for t, _, _ in messages] == ['/wheel_travel', *OUTPUTS[:3], '/wheel_travel',
@@ -159,7 +176,7 @@ def test_another_topic_name_is_solved_and_answered_in_its_namespace(tmp_path):
     bag, out = tmp_path / 'in.mcap', tmp_path / 'out.mcap'
     write_commands(bag, [0.0, 0.01], topic='/car/front_left/bump')
     assert main(['solve', str(bag), '--topic', '/car/front_left/bump', '-o', str(out)]) == 0
-    topics = [t for t, _, _ in decoded(out)]
+    topics = [t for t, _, _ in decoded(out) if t not in TF_TOPICS]
     assert topics == ['/car/front_left/bump', '/car/front_left/wheel_carrier_pose',
                       '/car/front_left/camber', '/car/front_left/toe'] * 2 + ['/diagnostics']
 

@@ -18,8 +18,9 @@ Sections (all by default; --only picks some), sizes multiplied by --scale (run 1
             for --seconds: one Float64 per corner per step, then one JointState per step; the
             step latency is from sending a step to the last of its four poses
   callback  the node's travel callback called in process (no subscribers): plain (the scene
-            without its elements), with its elements (the elements topic), with the alignment
-            or markers outputs, recording to MCAP, mirroring to Rerun, both
+            without its elements, tf off), with its elements (the elements topic), with TF on
+            (/tf per answer: the node's default), with the alignment or markers outputs,
+            recording to MCAP, mirroring to Rerun, both (all but tf with tf off)
 
 Tables go to stdout as CSV (the first cell of each header row names the section), progress
 to stderr; --plot writes latency against command rate (node and echo) as a PNG. Every
@@ -510,7 +511,8 @@ def bench_callback(args):
 
     from ..ros.node import SuspensionNode
     scene = load_scene(args.scene)
-    modes = {'plain': {}, 'elements': {'scene': scene.source}, 'alignment': {'alignment': True},
+    modes = {'plain': {}, 'elements': {'scene': scene.source}, 'tf': {'tf': True},
+             'alignment': {'alignment': True},
              'markers': {'markers': True}, 'record_mcap': {'record_mcap': 'run.mcap'},
              'rerun_rrd': {'rerun_rrd': 'run.rrd'},
              'record_mcap+rerun_rrd': {'record_mcap': 'run.mcap', 'rerun_rrd': 'run.rrd'}}
@@ -526,7 +528,7 @@ def bench_callback(args):
                 data = yaml.safe_load(Path(scene.source).read_text())
                 data.pop('elements', None)
                 bare.write_text(yaml.safe_dump(data))
-                params = {'scene': str(bare), **params}
+                params = {'scene': str(bare), 'tf': False, **params}
                 overrides = [Parameter(k, value=str(Path(folder) / v)
                                        if isinstance(v, str) and k != 'scene' else v)
                              for k, v in params.items()]

@@ -12,7 +12,9 @@ ROS 2 interfaces as rosbag2 stores them in an MCAP file: schemas, type hashes, Q
     qualified(topic)                            -> '/topic'
 
 The .msg and .json files are found under share/ of AMENT_PREFIX_PATH and sys.prefix, where
-the ROS 2 wheels install them. No mcap import: the writer and the reader share this module.
+the ROS 2 wheels install them, and last in the package's config/interfaces, which holds
+tf2_msgs/msg/TFMessage (tf2_msgs has no wheel: /tf is recorded with this definition and type
+hash, those of ROS 2's tf2_msgs). No mcap import: the writer and the reader share this module.
 """
 
 import json
@@ -43,11 +45,17 @@ _TYPE_NAME = re.compile(r'^([a-zA-Z][a-zA-Z0-9_]*)/(?:msg/)?([a-zA-Z][a-zA-Z0-9_
 
 
 def share_dirs():
-    """Folders searched for <pkg>/msg/<Type>.msg: AMENT_PREFIX_PATH entries, then sys.prefix."""
+    """
+    Folders searched for <pkg>/msg/<Type>.msg.
+
+    AMENT_PREFIX_PATH entries, then sys.prefix, then the package's config/interfaces (the
+    definitions it ships for packages that may not be installed: tf2_msgs).
+    """
+    from ..core.bundled import config_dir
     prefixes = [p for p in os.environ.get('AMENT_PREFIX_PATH', '').split(os.pathsep) if p]
     dirs = []
-    for prefix in prefixes + [sys.prefix]:
-        share = Path(prefix) / 'share'
+    for share in [Path(prefix) / 'share' for prefix in prefixes + [sys.prefix]] + [
+            config_dir() / 'interfaces']:
         if share not in dirs:
             dirs.append(share)
     return dirs

@@ -13,6 +13,13 @@ Inputs, under the corner's prefix ('' or 'front_left/'):
 All come raw (CDR bytes): a Float64 is read in place, a fraction of the cost of an rclpy
 message, and bytes that do not decode (linkage_ros.cdr.CdrError) are an ERROR status naming
 the topic and the byte count, with no pose, instead of an exception in the executor.
+
+While the node runs, its parameters may change (ros/runtime.py): the corner then takes new
+solver settings at the pose it holds (configure), a new scene from that scene's design
+position (set_scene), or turns its alignment and markers on or off (set_outputs); its topics
+stay, and its elements topic follows the scene (a scene with elements has one). With TF on,
+the node gives it frames (ros/tf.CornerFrames): every answer then also sends the frames of its
+bodies to the outlet's transforms().
 """
 
 from __future__ import annotations
@@ -26,7 +33,7 @@ from std_msgs.msg import Float64, Float64MultiArray
 from visualization_msgs.msg import MarkerArray
 
 from . import messages
-from .qos import topic_qos
+from .qos import publisher, subscription, topic_qos
 from ..cdr import CdrError, float64_of, from_cdr
 from ..protocol import Responder
 
@@ -63,6 +70,9 @@ class Outlet(Protocol):
     def report(self, corners: list[Corner]) -> None:
         """Publish the status of corners on /diagnostics now."""
 
+    def transforms(self, data: bytes) -> None:
+        """Send a corner's TF (tf2_msgs/TFMessage CDR bytes) on /tf, or record it only."""
+
 
 class Corner:
     """
@@ -76,58 +86,119 @@ class Corner:
 
     def __init__(self, node: Node, outlet: Outlet, scene: Scene, params: dict, prefix: str = '',
                  travel_joint: str = '', rack_joint: str = '') -> None:
-        self.outlet, self.scene = outlet, scene
+        self.node, self.outlet, self.scene, self.prefix = node, outlet, scene, prefix
         self.frame_id, self.method = params['frame_id'], params['method']
-        # The node's answering protocol, shared with linkage-replay; the node's own timer
-        # sends the periodic reports, so the responder's period clock is not used here.
-        self.responder = Responder(
-            scene, method=params['method'], max_step_mm=params['max_step_mm'],
-            condition_warn=params['condition_warn'], frame_id=self.frame_id,
-            status_name=messages.status_name(node.get_fully_qualified_name(), scene.name),
-            period_ns=round(params['diagnostic_period'] * 1e9))
-        self.solver, self.health = self.responder.solver, self.responder.health
-        self.status_name = self.responder.status_name
+        self.responder = self._responder(scene, params)
         self.travel_joint, self.rack_joint = travel_joint, rack_joint   # vehicle joint_states
-        qos = topic_qos(params['qos_depth'])
-        self.publishers = {name: node.create_publisher(kind, prefix + name, qos)
+        self.qos = topic_qos(params['qos_depth'])
+        self.publishers = {name: publisher(node, kind, prefix + name, self.qos)
                            for name, kind in OUTPUTS.items()}
         self.listening = []     # what it takes, for the start-up line
-        travel = node.create_subscription(Float64, prefix + 'wheel_travel', self.on_travel, qos,
-                                          raw=True)
+        travel = subscription(node, Float64, prefix + 'wheel_travel', self.on_travel, self.qos,
+                              raw=True)
         self.travel_topic = travel.topic_name
         self.listening.append(f'{self.travel_topic} (m)')
         self.joint = params['travel_joint']
         if self.joint:   # off by default: no subscription, no discovery traffic
-            joints = node.create_subscription(JointState, prefix + 'joint_states',
-                                              self.on_joint_states, qos, raw=True)
+            joints = subscription(node, JointState, prefix + 'joint_states',
+                                  self.on_joint_states, self.qos, raw=True)
             self.joints_topic = joints.topic_name
             self.listening.append(f'{self.joints_topic} (joint {self.joint}, m)')
-        if steered(scene):
-            rack = node.create_subscription(Float64, prefix + 'steering_rack', self.on_rack, qos,
-                                            raw=True)
-            self.rack_topic = rack.topic_name
-            self.listening.append(f'{self.rack_topic} (m)')
-        self.extras = []   # (publisher, function(solution, stamp) -> message)
+        self.rack_topic = None
+        self._listen_to_rack()
+        self.extras = {}   # output name -> (publisher, function(solution, stamp) -> message)
+        self.frames = None  # ros/tf.CornerFrames while TF is on (the node sets it)
         # function(corner, solution, stamp) called after every answer, solved or not (the
         # vehicle's axles: ros/roll_centres.py)
         self.listeners = []
-        if params['alignment']:
-            from ..core.alignment import alignment
-            self.extras.append((
-                node.create_publisher(Float64MultiArray, prefix + 'alignment', qos),
-                lambda solution, stamp: messages.alignment_array(alignment(
-                    scene, self.solver.mech, solution.wheel_center, solution.rotation,
-                    solution.rack))))
-        if params['markers']:
-            from .markers import marker_array
-            self.extras.append((
-                node.create_publisher(MarkerArray, prefix + 'markers', qos),
-                lambda solution, stamp: marker_array(scene, solution, Time(
-                    sec=stamp[0], nanosec=stamp[1]), self.frame_id)))
-        if scene.elements:   # lengths and motion ratios (ros/element_outputs.py)
-            from .element_outputs import elements_output
-            self.extras.append(elements_output(node, prefix, qos, scene, self.solver,
-                                               self.frame_id))
+        self.set_outputs(params)
+        self._set_elements()
+
+    def _responder(self, scene: Scene, params: dict) -> Responder:
+        # The node's answering protocol, shared with linkage-replay; the node's own timer
+        # sends the periodic reports, so the responder's period clock is not used here.
+        responder = Responder(
+            scene, method=params['method'], max_step_mm=params['max_step_mm'],
+            condition_warn=params['condition_warn'], frame_id=self.frame_id,
+            status_name=messages.status_name(self.node.get_fully_qualified_name(), scene.name),
+            period_ns=round(params['diagnostic_period'] * 1e9))
+        self.solver, self.health = responder.solver, responder.health
+        self.status_name = responder.status_name
+        return responder
+
+    def _listen_to_rack(self) -> None:
+        """Subscribe steering_rack if the scene steers and it is not subscribed yet."""
+        if steered(self.scene) and self.rack_topic is None:
+            rack = subscription(self.node, Float64, self.prefix + 'steering_rack', self.on_rack,
+                                self.qos, raw=True)
+            self.rack_topic = rack.topic_name
+            self.listening.append(f'{self.rack_topic} (m)')
+
+    def configure(self, params: dict) -> None:
+        """
+        Take new solver settings (method, max_step_mm, condition_warn) at the present pose.
+
+        The new solver walks from design to the last solved travel and rack (the branch the
+        node keeps); the health goes on counting.
+        """
+        old = self.responder
+        self.responder = self._responder(self.scene, params)
+        self.responder.health = self.health = old.health
+        self.health.condition_warn = params['condition_warn']
+        self.method = params['method']
+        if (old.solver.travel, old.solver.rack) != (0.0, 0.0):
+            self.solver.solve(old.solver.travel, old.solver.rack)
+
+    def set_scene(self, scene: Scene, params: dict) -> None:
+        """
+        Serve a new scene from its design position, its topics kept; the health says so.
+
+        steering_rack is subscribed if the new scene steers (and stays, if the old one did).
+        """
+        health = self.health
+        self.scene = scene
+        self.responder = self._responder(scene, params)
+        self.responder.health = self.health = health
+        health.last, health.sent, health.refused = None, '', ''
+        health.set_fault(health.fault)           # the level and message of no command yet
+        if not health.fault:
+            health.message = (f'scene changed to {scene.name} ({scene.source}): continuation '
+                              'restarts from its design position')
+        self._listen_to_rack()
+        self._set_elements()
+
+    def _set_elements(self) -> None:
+        """Publish the scene's elements (ros/element_outputs.py) if it has some, else not."""
+        if 'elements' in self.extras:
+            self.node.destroy_publisher(self.extras.pop('elements')[0])
+        if self.scene.elements:
+            from .element_outputs import TOPIC, elements_builder
+            self.extras['elements'] = (
+                publisher(self.node, JointState, self.prefix + TOPIC, self.qos),
+                elements_builder(self.scene, self.solver.mech, self.frame_id,
+                                 lambda: self.solver.jacobian))
+
+    def set_outputs(self, params: dict) -> None:
+        """Turn the alignment and markers outputs on or off, as params say."""
+        builders = {'alignment': (Float64MultiArray, self._alignment),
+                    'markers': (MarkerArray, self._markers)}
+        for name, (kind, build) in builders.items():
+            if params[name] and name not in self.extras:
+                self.extras[name] = (publisher(self.node, kind, self.prefix + name, self.qos),
+                                     build)
+            elif not params[name] and name in self.extras:
+                self.node.destroy_publisher(self.extras.pop(name)[0])
+
+    def _alignment(self, solution: Solution, stamp: tuple[int, int]):
+        from ..core.alignment import alignment
+        return messages.alignment_array(alignment(self.scene, self.solver.mech,
+                                                  solution.wheel_center, solution.rotation,
+                                                  solution.rack))
+
+    def _markers(self, solution: Solution, stamp: tuple[int, int]):
+        from .markers import marker_array
+        return marker_array(self.scene, solution, Time(sec=stamp[0], nanosec=stamp[1]),
+                            self.frame_id)
 
     def on_travel(self, data: bytes) -> None:
         self._float64_command(self.travel_topic, data, rack=False)
@@ -171,7 +242,8 @@ class Corner:
         travel_mm and rack_mm: the command (None = unchanged); stamp: (sec, nanosec) of the
         answer; sent: a function that says what was sent where (e.g. '/wheel_travel 0.5 m'),
         called for the messages about a bad command. A solved command publishes the pose,
-        camber and toe (and the extras turned on); a failed one publishes nothing and goes to
+        camber and toe (then the extras turned on and the frames, with TF on); a failed one
+        publishes nothing and goes to
         the console (the outlet throttles it). A failure or a change of level goes to
         /diagnostics at once.
         """
@@ -180,8 +252,10 @@ class Corner:
         for name, _, data in reply.outputs:
             self.outlet.publish(self.publishers[name], data)
         if solution.success:
-            for publisher, build in self.extras:
-                self.outlet.publish(publisher, build(solution, stamp))
+            for out, build in self.extras.values():
+                self.outlet.publish(out, build(solution, stamp))
+            if self.frames is not None:
+                self.outlet.transforms(self.frames.tf_cdr(solution, stamp))
         else:
             self.outlet.bad_command(reply.sent, solution.status, solution.message)
         for listener in self.listeners:
@@ -217,6 +291,13 @@ def corner_topics(scene: Scene, params: dict, prefix: str = '') -> list[str]:
     if scene.elements:
         names.append('elements')
     return [prefix + name for name in names]
+
+
+def corner_outputs(scene: Scene, params: dict, prefix: str = '') -> dict[str, str]:
+    """Return {relative name: 'publisher' or 'subscription'} of a corner's topics."""
+    inputs = ('wheel_travel', 'joint_states', 'steering_rack')
+    return {name: 'subscription' if name.rsplit('/', 1)[-1] in inputs else 'publisher'
+            for name in corner_topics(scene, params, prefix)}
 
 
 def steered(scene: Scene) -> bool:

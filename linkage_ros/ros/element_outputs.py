@@ -20,39 +20,37 @@ from __future__ import annotations
 
 from typing import Callable, TYPE_CHECKING
 
-from sensor_msgs.msg import JointState
-
 from ..cdr import joint_state_cdr
 from ..core.elements import prepare, values_at
 from ..core.geometry import M_PER_MM
 
 if TYPE_CHECKING:
-    from rclpy.node import Node
-    from rclpy.publisher import Publisher
-    from rclpy.qos import QoSProfile
+    import numpy as np
 
-    from ..core.kinematics import Continuation, Solution
+    from ..core.kinematics import Solution
+    from ..core.mechanism import Mechanism
     from ..core.scene import Scene
 
 TOPIC = 'elements'
 
 
-def elements_output(node: Node, prefix: str, qos: QoSProfile, scene: Scene,
-                    solver: Continuation, frame_id: str
-                    ) -> tuple[Publisher, Callable[[Solution, tuple[int, int]], bytes]]:
+def elements_builder(scene: Scene, mech: Mechanism, frame_id: str,
+                     jacobian: Callable[[], np.ndarray]
+                     ) -> Callable[[Solution, tuple[int, int]], bytes]:
     """
-    Return (publisher, build) of a corner's elements topic: a Corner extra.
+    Return build(solution, stamp): the JointState (CDR bytes) of a corner's elements topic.
 
-    build(solution, stamp) returns the JointState (CDR bytes) of a solution that solver has
-    just solved (its Jacobian is the solver's last); stamp (sec, nanosec).
+    solution is what the corner's solver has just solved, and jacobian() that solver's last
+    Jacobian (Continuation.jacobian, (5, 6)); stamp (sec, nanosec). A Corner extra: the corner
+    owns the publisher (its QoS overrides) and asks for a new build when its scene changes.
     """
-    model = prepare(scene, solver.mech)
+    model = prepare(scene, mech)
     names = tuple(e.name for e in scene.elements)
 
     def build(solution: Solution, stamp: tuple[int, int]) -> bytes:
         values = values_at(model, solution.wheel_center, solution.rotation, solution.rack,
-                           solver.jacobian)
+                           jacobian())
         return joint_state_cdr(stamp, frame_id, names, (values[0] * M_PER_MM).tolist(),
                                values[1].tolist())
 
-    return node.create_publisher(JointState, prefix + TOPIC, qos), build
+    return build

@@ -36,10 +36,18 @@ Topics (names relative to the node's namespace, /diagnostics absolute):
     pub <axle>/roll_centre  geometry_msgs/PointStamped  a vehicle axle's roll centre (m,
                                                         frame_id); only for a vehicle file with
                                                         axles (ros/roll_centres.py)
+    pub /tf                 tf2_msgs/TFMessage          per answer, the frames of the corner's
+                                                        carrier, links, arms and struts; with
+                                                        parameter tf (true by default)
+    pub /tf_static          tf2_msgs/TFMessage          every wheel frame (fixed to its carrier)
+    pub robot_description   std_msgs/String             the URDF of the scene or vehicle
     sub /clock              rosgraph_msgs/Clock         only with use_sim_time: the node clock,
                                                         each message taken in turn, in order
                                                         with the commands (depth qos_depth)
-All of the node's own topics are reliable, keep-last qos_depth (ros/qos.py).
+All of the node's own topics are reliable, keep-last qos_depth (ros/qos.py), /tf_static and
+robot_description transient local, depth 1; each takes qos_overrides.<topic>... parameters.
+TF (ros/tf_outputs.py) is imported only while parameter tf is true; /tf and /tf_static are
+published where tf2_msgs imports, and recorded everywhere.
 
 With parameter vehicle (a vehicle file, linkage_ros.core.vehicle) the node serves every corner:
 each Corner (ros/corner.py) has its own Continuation and the topics above under its name
@@ -50,7 +58,8 @@ named corner of a message in one callback, at the message's header stamp.
 
 The node owns its corners and is their Outlet: it records what they receive and publish into
 the sinks (ros/sinks.py), stamps their answers, throttles their bad commands on the console and
-publishes their statuses. Parameters: ros/parameters.py; process entry: ros/entry.py.
+publishes their statuses. Parameters: ros/parameters.py, their changes while the node runs
+ros/runtime.py; process entry: ros/entry.py.
 """
 
 from __future__ import annotations
@@ -66,11 +75,14 @@ from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import JointState
 
 from . import messages, parameters
-from .corner import Corner, corner_topics, JOINT_STATE, joints_sent
+from .corner import Corner, corner_outputs, JOINT_STATE, joints_sent
 from .parameters import PARAMETERS
-from .qos import clock_qos, QOS, QOS_DEPTH, topic_qos
+from .qos import clock_qos, latched_qos, offered, publisher, QOS, QOS_DEPTH, subscription, \
+    topic_qos, unknown_overrides
+from .runtime import RuntimeParameters
 from .sinks import check_outputs, open_sinks, recording_metadata, Sinks
 from ..cdr import CdrError, from_cdr, to_cdr, type_name
+from ..core.errors import LinkageError
 from ..core.scene import load_scene
 
 __all__ = ['NODE_NAME', 'PARAMETERS', 'QOS', 'QOS_DEPTH', 'SuspensionNode', 'main', 'run']
@@ -86,6 +98,7 @@ class Corners(NamedTuple):
     scenes: dict     # topic prefix ('' or 'front_left/') -> (Scene, travel joint, rack joint)
     files: dict      # recording custom_data key ('scene_yaml', ...) -> path of the file
     inputs: dict     # what ('scene file', ...) -> path, for the outputs to stay clear of
+    name: str = ''   # the scene's or the vehicle's name (the robot description's)
     axles: object = None   # the vehicle file's VehicleAxles, if it has axles
 
 
@@ -99,7 +112,7 @@ def load_corners(params: dict) -> Corners:
     if not params['vehicle']:
         scene = load_scene(params['scene'])
         return Corners({'': (scene, '', '')}, {'scene_yaml': scene.source},
-                       {'scene file': scene.source})
+                       {'scene file': scene.source}, scene.name)
     from ..core.vehicle import load_vehicle
     vehicle = load_vehicle(params['vehicle'])
     scenes = {f'{name}/': (scene, *vehicle.joints.get(name, ('', '')))
@@ -110,7 +123,7 @@ def load_corners(params: dict) -> Corners:
               **{f'scene file of {name}': scene.source
                  for name, scene in vehicle.corners.items()}}
     axles = vehicle.axles if vehicle.axles is not None and vehicle.axles.axles else None
-    return Corners(scenes, files, inputs, axles)
+    return Corners(scenes, files, inputs, vehicle.name, axles)
 
 
 class SuspensionNode(Node):
@@ -150,8 +163,7 @@ class SuspensionNode(Node):
             if before_solving is not None:
                 before_solving()
             self.frame_id = params['frame_id']
-            self.diagnostics_pub = self.create_publisher(DiagnosticArray, '/diagnostics',
-                                                         self.qos)
+            self.diagnostics_pub = publisher(self, DiagnosticArray, '/diagnostics', self.qos)
             self.corners = {prefix.rstrip('/'): Corner(self, self, scene, params, prefix,
                                                        *joints)
                             for prefix, (scene, *joints) in corners.scenes.items()}
@@ -161,17 +173,21 @@ class SuspensionNode(Node):
                 self.roll_centres = RollCentres(self, self, corners.axles, self.corners,
                                                 self.qos, self.frame_id,
                                                 self.get_logger().warning)
+            self.robot_name, self.tf_outputs = corners.name, None
+            self.joint_corners = [c for c in self.corners.values()
+                                  if c.travel_joint or c.rack_joint]
+            if self.joint_corners:
+                joint_states = subscription(self, JointState, 'joint_states',
+                                            self.on_vehicle_joint_states, self.qos, raw=True)
+                self.joint_states_topic = joint_states.topic_name
+            self._check_overrides(corners, params)
+            self.set_tf(params['tf'])
         except BaseException:
             self.sinks.close()
             super().destroy_node()
             raise
-        self.joint_corners = [c for c in self.corners.values()
-                              if c.travel_joint or c.rack_joint]
-        if self.joint_corners:
-            subscription = self.create_subscription(
-                JointState, 'joint_states', self.on_vehicle_joint_states, self.qos, raw=True)
-            self.joint_states_topic = subscription.topic_name
-        self.create_timer(params['diagnostic_period'], self.on_diagnostic_period)
+        self.timer = self.create_timer(params['diagnostic_period'], self.on_diagnostic_period)
+        self.runtime = RuntimeParameters(self, params)
         for corner in self.corners.values():
             self.get_logger().info(
                 f'scene {corner.scene.name} ({corner.scene.source}), method '
@@ -233,6 +249,49 @@ class SuspensionNode(Node):
         """Publish the status of each of corners on /diagnostics, stamped now."""
         self.publish(self.diagnostics_pub, messages.diagnostics(
             [corner.status() for corner in corners], self.clock.now().to_msg()))
+
+    def record(self, topic, type_name, data):
+        """Hand a message the node sends but cannot publish (no tf2_msgs) to the sinks."""
+        if self.sinks:
+            now = self.clock.now().nanoseconds
+            self.sinks.record(topic, type_name, data, now, now)
+
+    def transforms(self, data):
+        """Send a corner's frames (TFMessage CDR bytes) on /tf (ros/tf_outputs.py)."""
+        self.tf_outputs.send(data)
+
+    # --- TF and the parameters that change while the node runs ------------------------------
+
+    def set_tf(self, on):
+        """
+        Turn /tf, /tf_static and robot_description on (sent at once) or off.
+
+        Off, nothing of it is imported or computed. Where tf2_msgs is missing the frames are
+        recorded and not published, which the log says once.
+        """
+        if on and self.tf_outputs is None:
+            from .tf_outputs import TfOutputs
+            self.tf_outputs = TfOutputs(self, self, self.corners, self.frame_id,
+                                        self.robot_name, self.qos.depth)
+            if self.tf_outputs.missing and not getattr(self, '_said_tf', False):
+                self.get_logger().warning(self.tf_outputs.missing)
+                self._said_tf = True
+            self.describe()
+        elif not on and self.tf_outputs is not None:
+            self.tf_outputs.close()
+            self.tf_outputs = None
+
+    def describe(self):
+        """Send /tf_static and robot_description again (after a change of scene)."""
+        if self.tf_outputs is not None:
+            self.tf_outputs.attach()
+            self.tf_outputs.robot_name = self.robot_name
+            self.tf_outputs.describe(divmod(self.clock.now().nanoseconds, S))
+
+    def set_diagnostic_period(self, period):
+        """Report every period s from now on."""
+        self.destroy_timer(self.timer)
+        self.timer = self.create_timer(period, self.on_diagnostic_period)
 
     # --- the node's own inputs and timer ---------------------------------------------------
 
@@ -322,22 +381,47 @@ class SuspensionNode(Node):
         self.close_sinks()
         super().destroy_node()
 
-    def _offered_qos(self, corners, params):
+    def _topics(self, corners, params, every=False):
         """
-        Return {resolved topic: QoS} of every topic, for the recording's metadata.
+        Return {resolved topic: (entity, default QoS)} of the node's topics.
 
-        corners as load_corners gives them.
+        corners as load_corners gives them; every: also those the node may make while it runs
+        (alignment, markers, TF, steering_rack), whatever the parameters say now.
         """
-        names = ['/diagnostics']
+        if every:
+            params = {**params, 'alignment': True, 'markers': True}
+        names = {'/diagnostics': 'publisher'}
         for prefix, (scene, *joints) in corners.scenes.items():
-            names += corner_topics(scene, params, prefix)
+            names.update(corner_outputs(scene, params, prefix))
+            if every:
+                names[prefix + 'steering_rack'] = 'subscription'
             if any(joints):
-                names.append('joint_states')
+                names['joint_states'] = 'subscription'
         if corners.axles is not None:
             from .roll_centres import roll_centre_topics
-            names += roll_centre_topics(corners.axles, {
-                prefix.rstrip('/'): scene for prefix, (scene, *_) in corners.scenes.items()})
-        return {self.resolve_topic_name(name): self.qos for name in dict.fromkeys(names)}
+            names.update(dict.fromkeys(roll_centre_topics(corners.axles, {
+                prefix.rstrip('/'): scene for prefix, (scene, *_) in corners.scenes.items()}),
+                'publisher'))
+        topics = {self.resolve_topic_name(name): (entity, self.qos)
+                  for name, entity in names.items()}
+        if params['tf'] or every:
+            topics.update({'/tf': ('publisher', self.qos),
+                           '/tf_static': ('publisher', latched_qos()),
+                           self.resolve_topic_name('robot_description'):
+                               ('publisher', latched_qos())})
+        return topics
+
+    def _offered_qos(self, corners, params):
+        """Return {resolved topic: QoS, its overrides applied} for the recording's metadata."""
+        return {topic: offered(self, topic, entity, profile)
+                for topic, (entity, profile) in self._topics(corners, params).items()}
+
+    def _check_overrides(self, corners, params):
+        """Refuse a qos_overrides parameter that names no topic of the node (LinkageError)."""
+        known = {(topic, entity) for topic, (entity, _) in
+                 self._topics(corners, params, every=True).items()}
+        for name, problem in unknown_overrides(self, known).items():
+            raise LinkageError(f'parameter {name}', problem)
 
 
 def main(args: list[str] | None = None) -> int:

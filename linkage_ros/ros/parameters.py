@@ -1,10 +1,15 @@
 """
 The parameters of suspension_node: their table, their declaration and their checks.
 
-Every parameter is read-only and declared with its description and, for numbers, its range
+Every parameter is declared with its description and, for numbers, its range
 (rcl_interfaces FloatingPointRange / IntegerRange), so that `ros2 param describe` shows it;
 values are checked here first, so that a bad one is one line naming the parameter, the range
 and the value. A number parameter takes integers too (a YAML 5 means 5.0).
+
+RUNTIME parameters can be changed while the node runs (rcl_interfaces SetParameters, `ros2
+param set`; ros/runtime.py applies them); the others are FIXED, and a change is refused with
+the reason (their descriptors are not read_only, so that the refusal can say why: rclpy's
+own refusal of a read-only parameter does not).
 
 The node is built with automatically_declare_parameters_from_overrides: every parameter given
 to it (-p, a params file, parameter_overrides) is then declared by rclpy, and one that is
@@ -22,8 +27,9 @@ from typing import Any, NamedTuple, TYPE_CHECKING
 from rcl_interfaces.msg import FloatingPointRange, IntegerRange, ParameterDescriptor
 from rclpy.parameter import Parameter
 
-from .qos import QOS_DEPTH
+from .qos import check_overrides, MAX_DEPTH, QOS_DEPTH
 from ..core.errors import LinkageError
+from ..core.kinematics import METHODS
 
 if TYPE_CHECKING:
     from rclpy.node import Node
@@ -65,6 +71,9 @@ PARAMETERS = {
                          'subscribed'),
     'alignment': Spec(False, 'publish the alignment set (std_msgs/Float64MultiArray) per '
                       'answer'),
+    'tf': Spec(True, 'publish the frames of the carrier, wheel, links and arms on /tf per '
+               'answer and /tf_static, and the URDF on robot_description; false: none of '
+               'them, no cost'),
     'markers': Spec(False, 'publish links and joints (visualization_msgs/MarkerArray) per '
                     'answer'),
     'vehicle': Spec('', 'vehicle file (bundled name or path): one corner per wheel, topics '
@@ -72,8 +81,22 @@ PARAMETERS = {
     # Each subscription holds at most this many samples: memory up to depth times the largest
     # message (1000 JointStates of 10^5 joints: 2.8 GB), so lower it for large messages.
     'qos_depth': Spec(QOS_DEPTH, 'keep-last depth of every topic: a burst this long is not '
-                      'lost; each input holds at most this many messages', 1, 100000,
+                      'lost; each input holds at most this many messages', 1, MAX_DEPTH,
                       'messages'),
+}
+
+# The parameters a SetParameters request may change while the node runs (ros/runtime.py).
+RUNTIME = ('scene', 'method', 'max_step_mm', 'condition_warn', 'diagnostic_period',
+           'alignment', 'markers', 'tf')
+# Why each other parameter is fixed once the node runs (the reason a change is refused with).
+FIXED = {
+    'frame_id': 'every published pose and frame names it from the start',
+    'record_mcap': 'a recording is one file from start to stop',
+    'rerun_rrd': 'a Rerun mirror is one file from start to stop',
+    'travel_joint': "the corner's joint_states subscription is made at start",
+    'vehicle': 'the corners and their topics are made at start from the vehicle file',
+    'qos_depth': 'every topic is made at start with its QoS',
+    'use_sim_time': "the node's clock and its /clock subscription are set up at start",
 }
 
 # The parameters rclpy declares on every node (test_node pins that there are no others), and
@@ -98,9 +121,10 @@ def declare(node: Node) -> dict[str, Any]:
     sim_time = node.get_parameter('use_sim_time').value
     if not isinstance(sim_time, bool):
         raise LinkageError('use_sim_time', f'expected true or false, got {sim_time!r}')
+    check_overrides({name: node.get_parameter(name).value for name in given})
     values = {}
     for name, spec in PARAMETERS.items():
-        if node.has_parameter(name):     # given: check it, then make it read-only
+        if node.has_parameter(name):     # given: check it, then describe it
             values[name] = checked(name, node.get_parameter(name).value)
             node.set_descriptor(name, descriptor(name))
         else:
@@ -121,15 +145,24 @@ def checked(name: str, value: Any) -> Any:
         raise LinkageError(name, f'expected {expected}, got {value!r}')
     if spec.low is not None and not (spec.low <= value <= spec.high):   # NaN is refused too
         raise LinkageError(name, f'must be from {spec.range_text()}, got {value!r}')
+    if name == 'method' and value not in METHODS:
+        raise LinkageError(name, f'unknown value {value!r} (expected one of: '
+                           f'{", ".join(METHODS)})')
     return value
 
 
 def descriptor(name: str) -> ParameterDescriptor:
-    """Return the read-only ParameterDescriptor of a parameter, with its range."""
+    """
+    Return the ParameterDescriptor of a parameter, with its range and whether it is fixed.
+
+    Not read_only even where fixed: the node refuses a change of a FIXED parameter itself,
+    saying why (ros/runtime.py); the description ends with '(fixed while the node runs)'.
+    """
     spec = PARAMETERS[name]
     text = spec.text + (f', {spec.range_text()}' if spec.low is not None else '')
+    text += '' if name in RUNTIME else ' (fixed while the node runs)'
     numeric = isinstance(spec.default, float)
-    desc = ParameterDescriptor(description=text, read_only=True, dynamic_typing=numeric)
+    desc = ParameterDescriptor(description=text, read_only=False, dynamic_typing=numeric)
     if not numeric:   # rclpy's declare_parameter sets the type; set_descriptor needs it given
         desc.type = Parameter.Type.from_parameter_value(spec.default).value
     if isinstance(spec.default, float):

@@ -29,6 +29,7 @@ from typing import Callable, Iterator, TYPE_CHECKING
 from geometry_msgs.msg import PointStamped
 import numpy as np
 
+from .qos import publisher
 from ..cdr import point_stamped_cdr
 from ..core.axle import roll_centre_of_poses
 from ..core.geometry import M_PER_MM
@@ -95,8 +96,8 @@ class RollCentres:
                 say(f'{name} axle: no roll centre: {spec.left} or {spec.right} has no '
                     'wheel_radius (no contact patch)')
                 continue
-            axle = AxleRollCentre(name, left, right, node.create_publisher(
-                PointStamped, f'{name}/{TOPIC}', qos))
+            axle = AxleRollCentre(name, left, right, publisher(
+                node, PointStamped, f'{name}/{TOPIC}', qos))
             self.axles.append(axle)
             for k, corner in enumerate(axle.corners):
                 corner.listeners.append(

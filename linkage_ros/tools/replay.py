@@ -11,13 +11,15 @@ BAG is an MCAP file with the ROS 2 profile (ours, rosbag2's, Foxglove's) or a ro
 folder holding one. The commands are std_msgs/msg/Float64 wheel travel in m on --topic
 (default /wheel_travel). Outputs are what suspension_node publishes, answered by the node's
 own protocol (linkage_ros.protocol), in the command topic's namespace: wheel_carrier_pose
-(geometry_msgs/PoseStamped, m), camber and toe (std_msgs/Float64, rad) for a solved command,
-stamped with its receive time, and /diagnostics (diagnostic_msgs/DiagnosticArray) as the node
-sends it: a report every second of recorded time, at once for a command that cannot be
-solved (ERROR, with the reason) or a change of level, and one after the last command. The new
-bag keeps the recorded timeline. A bag cut short (hard kill) or damaged gives a warning
-naming what was found (where the file is cut, which chunk fails its CRC, ...) and every
-readable message is used; copy writes those into a complete file. Progress goes to stderr.
+(geometry_msgs/PoseStamped, m), camber and toe (std_msgs/Float64, rad) and /tf
+(tf2_msgs/TFMessage: the frames of the carrier, links and arms) for a solved command, stamped
+with its receive time, /tf_static and /robot_description (the URDF) once, and /diagnostics
+(diagnostic_msgs/DiagnosticArray) as the node sends it: a report every second of recorded
+time, at once for a command that cannot be solved (ERROR, with the reason) or a change of
+level, and one after the last command. The new bag keeps the recorded timeline. A bag cut
+short (hard kill) or damaged gives a warning naming what was found (where the file is cut,
+which chunk fails its CRC, ...) and every readable message is used; copy writes those into
+a complete file. Progress goes to stderr.
 
 The spellings of earlier versions still work, with a note on stderr: BAG alone (solve),
 --sweep, --copy, --publish, --benchmark.
@@ -221,11 +223,11 @@ def _copy(args, output):
 def _solve(args, commands, scene, source, output, stored, status):
     from ..record.interfaces import qualified
     from ..record.mcap_writer import McapRecorder
-    from .replay_solve import solve_commands
+    from .replay_solve import latched_topics, solve_commands
     print(f'{PROG}: {scene.name}: solving {counted(len(commands), "command")} from {source} on '
           f'{qualified(args.topic)}, method {args.method}', file=sys.stderr)
     custom = {'scene': scene.name, 'method': args.method, 'source': Path(source).name}
-    with McapRecorder(output, custom_data=custom,
+    with McapRecorder(output, custom_data=custom, qos=latched_topics(),
                       metadata=stored_text(scene, stored)) as recorder:
         failures = solve_commands(commands, scene, args.method, [recorder], args.topic,
                                   Progress(len(commands), 'commands solved'), args.frame_id)

@@ -6,7 +6,9 @@ Solve a stream of wheel-travel commands as suspension_node answers them, into si
 
 The answering is the node's own (linkage_ros.protocol.Responder, with the node's parameter
 defaults); time is the recording's: each command at its receive time, a diagnostics report
-every period of it.
+every period of it. As the node with TF on (its default), the recording also carries
+/tf_static and /robot_description once, at the first command's time, and /tf per solved
+command (linkage_ros.ros.tf, built without tf2_msgs).
 """
 
 import math
@@ -20,6 +22,15 @@ from ..protocol import Responder
 
 DIAGNOSTIC_ARRAY = 'diagnostic_msgs/msg/DiagnosticArray'
 DIAGNOSTICS_TOPIC = '/diagnostics'
+DESCRIPTION_TOPIC = '/robot_description'
+
+
+def latched_topics():
+    """Return {topic: QoS in rosbag2's form} of the latched topics a replay writes."""
+    from ..record.interfaces import DEFAULT_QOS
+    from ..ros.tf import TF_STATIC_TOPIC
+    latched = {**DEFAULT_QOS, 'depth': 1, 'durability': 'transient_local'}
+    return {TF_STATIC_TOPIC: latched, DESCRIPTION_TOPIC: dict(latched)}
 
 
 def node_defaults():
@@ -48,18 +59,25 @@ def solve_commands(commands, scene, method, sinks, topic=DEFAULT_TOPIC, progress
     last one after the last command (a gap in the commands gives one report, not one per
     period). Outputs are in the command topic's namespace; frame_id defaults to the node's.
 
+    Frames: those of the node's corner in the command topic's namespace ('' for /wheel_travel,
+    'front_left/' for /front_left/wheel_travel), in frame_id.
+
     Returns the number of commands that could not be solved.
     """
-    from ..cdr import float64_cdr, to_cdr
+    from ..cdr import float64_cdr, string_cdr, to_cdr
     from ..record.interfaces import qualified
+    from ..robot_description import robot_description
     from ..ros import messages
+    from ..ros.tf import CornerFrames, static_cdr, TF_STATIC_TOPIC, TF_TOPIC, TF_TYPE
     defaults = node_defaults()
     topic = qualified(topic)
     namespace = topic.rsplit('/', 1)[0]
     period_s = defaults['diagnostic_period'] if period_s is None else period_s
+    frame_id = frame_id or defaults['frame_id']
+    prefix = namespace.strip('/') + '/' if namespace.strip('/') else ''
+    frames = CornerFrames(scene, frame_id, prefix)
     responder = Responder(scene, method=method, max_step_mm=defaults['max_step_mm'],
-                          condition_warn=defaults['condition_warn'],
-                          frame_id=frame_id or defaults['frame_id'],
+                          condition_warn=defaults['condition_warn'], frame_id=frame_id,
                           status_name=status_name(scene),
                           period_ns=int(round(period_s * 1e9)))
 
@@ -75,6 +93,11 @@ def solve_commands(commands, scene, method, sinks, topic=DEFAULT_TOPIC, progress
              to_cdr(messages.diagnostics([status], stamp_of(time_ns))), time_ns)
 
     failures, t = 0, 0
+    if commands:     # what the node sends at start, latched
+        start = commands[0].log_time
+        emit(TF_STATIC_TOPIC, TF_TYPE, static_cdr([frames], divmod(start, 10**9)), start)
+        emit(DESCRIPTION_TOPIC, 'std_msgs/msg/String', string_cdr(robot_description(
+            {prefix: scene}, frame_id, scene.name)), start)
     for i, command in enumerate(commands):
         t = command.log_time
         due = responder.due(t)
@@ -86,6 +109,8 @@ def solve_commands(commands, scene, method, sinks, topic=DEFAULT_TOPIC, progress
                                  lambda: f'{topic} {command.travel!r} m')
         for name, type_name, data in reply.outputs:
             emit(f'{namespace}/{name}', type_name, data, t)
+        if reply.solution.success:
+            emit(TF_TOPIC, TF_TYPE, frames.tf_cdr(reply.solution, divmod(t, 10**9)), t)
         failures += not reply.solution.success
         if reply.report:
             report(t)
@@ -111,11 +136,11 @@ def benchmark(commands, scene, method, repeat=3, stream=None):
         raise LinkageError('bench', 'no commands to time')
     stream = stream or sys.stdout
     modes = {'no recording': lambda d: [],
-             'McapRecorder': lambda d: [McapRecorder(d / 'bench.mcap')],
+             'McapRecorder': lambda d: [McapRecorder(d / 'bench.mcap', qos=latched_topics())],
              'RerunRecorder': lambda d: [RerunRecorder(d / 'bench.rrd', scene)],
-             'both': lambda d: [McapRecorder(d / 'bench.mcap'),
+             'both': lambda d: [McapRecorder(d / 'bench.mcap', qos=latched_topics()),
                                 RerunRecorder(d / 'bench.rrd', scene)]}
-    messages = 4 * len(commands)   # the command, pose, camber, toe (diagnostics: a few)
+    messages = 5 * len(commands)   # the command, pose, camber, toe, tf (diagnostics: a few)
     print('mode,commands,us_per_command,ratio,extra_us_per_message', file=stream)
     base = None
     for mode, make in modes.items():

@@ -17,6 +17,10 @@ content, in its 'linkage_ros' metadata), else the one it names (custom data 'veh
 and its readable messages are converted; a message whose bytes do not decode is left out and
 named. Either ends with status 1, even when nothing could be drawn (the .rrd then holds the
 scene alone). Progress goes to stderr.
+
+--tf draws instead what any ROS viewer draws, from the bag alone: the URDF of
+/robot_description through Rerun's URDF loader, placed by /tf and /tf_static
+(record.rerun_tf), beside travel, camber and toe; no scene file is read.
 """
 
 import importlib
@@ -89,6 +93,9 @@ def parse_args(argv):
     parser.add_argument('--scene', help='bundled scene name or scene YAML path (default: the '
                         'scene or vehicle the recording stores or names, else '
                         f'{DEFAULT_SCENE})')
+    parser.add_argument('--tf', action='store_true',
+                        help="draw the recording's URDF (/robot_description) placed by its "
+                        '/tf and /tf_static, as a ROS viewer does, instead of the scene')
     return parser.parse_args(argv)
 
 
@@ -115,6 +122,8 @@ def run(args):
     output = args.output or cli.default_output(args.bag, '.rrd')
     cli.check_output(output, '-o' if args.output else 'output', inputs=[args.bag])
     bag = read_bag(args.bag)
+    if args.tf:
+        return _run_tf(args, bag, output)
     scene, corners = drawing(args, bag)
     cli.warn(PROG, [w for s in ([scene] if scene else corners.values()) for w in s.warnings])
     messages, foreign = drawable(bag)
@@ -137,6 +146,18 @@ def run(args):
     counts = convert(messages, output, scene, corners)
     summary = ', '.join(f'{n} {role}' for role, n in counts.items()) or 'nothing but the scene'
     print(f'{PROG}: wrote {output}: {summary}', file=sys.stderr)
+    return cli.DONE if bag.complete else cli.DAMAGED
+
+
+def _run_tf(args, bag, output):
+    """Write the view of the bag's URDF and TF (record.rerun_tf); return the exit status."""
+    from ..record.rerun_tf import convert_tf
+    if bag.truncated:
+        print(f'{PROG}: warning: {args.bag}: {bag.describe()}; converting those',
+              file=sys.stderr)
+    counts = convert_tf(bag, output)
+    summary = ', '.join(f'{n} {what}' for what, n in counts.items())
+    print(f'{PROG}: wrote {output} (URDF and TF): {summary}', file=sys.stderr)
     return cli.DONE if bag.complete else cli.DAMAGED
 
 

@@ -1,0 +1,82 @@
+"""
+TF of a solved corner: /tf per answer, /tf_static of the design-fixed frames, as CDR bytes.
+
+    frames = CornerFrames(scene, frame_id='base_link', prefix='')
+    frames.tf_cdr(solution, stamp)        tf2_msgs/TFMessage: every moving body's frame
+    static_cdr([frames, ...], stamp)      tf2_msgs/TFMessage: every corner's wheel frame
+    tf2_msgs_missing()                    why live /tf cannot be published here ('' if it can)
+
+Frames (linkage_ros.core.bodies): per corner the carrier '<prefix>wheel_carrier' (the
+wheel_carrier_pose the node answers: its transform from frame_id is that pose, bit for bit),
+one frame per link, arm and strut '<prefix><constraint name>', all children of frame_id, and
+the wheel '<prefix>wheel', fixed to the carrier, on /tf_static. prefix: '' for a node of one
+scene, 'front_left/' for a vehicle's corner.
+
+The messages are built by linkage_ros.cdr without tf2_msgs (which has no wheel on the package
+index), so that every recording carries /tf; live publishing needs tf2_msgs installed (any
+full ROS 2 install, or linkage-tf2-msgs). ROS-free: the node and linkage-replay share it; it
+is imported only when TF is on.
+"""
+
+from __future__ import annotations
+
+import importlib
+from typing import TYPE_CHECKING
+
+from ..cdr import tf_message_cdr
+from ..core.bodies import body_poses, corner_bodies
+from ..core.geometry import M_PER_MM, quaternion_from_matrix
+
+if TYPE_CHECKING:
+    from ..core.kinematics import Solution
+    from ..core.scene import Scene
+
+TF_TYPE = 'tf2_msgs/msg/TFMessage'
+TF_TOPIC, TF_STATIC_TOPIC = '/tf', '/tf_static'
+
+
+class CornerFrames:
+    """The TF frames of one corner: their names, and their transforms at a solved pose."""
+
+    def __init__(self, scene: Scene, frame_id: str = 'base_link', prefix: str = '') -> None:
+        self.frame_id = frame_id
+        self.bodies = corner_bodies(scene, prefix, taken=(frame_id,))
+        self.names = self.bodies.names
+        self._parents = (frame_id,) * len(self.names)
+
+    def tf_cdr(self, solution: Solution, stamp: tuple[int, int]) -> bytes:
+        """Return the TFMessage of every moving frame at a solved pose, stamped (sec, nanosec)."""
+        return tf_message_cdr(stamp, self._parents, self.names,
+                              body_poses(self.bodies, solution, M_PER_MM).tolist())
+
+    def static_transforms(self) -> list[tuple[str, str, tuple, tuple]]:
+        """Return the design-fixed transforms [(parent, child, translation m, quaternion)]."""
+        q = quaternion_from_matrix(self.bodies.wheel_rotation)
+        return [(self.bodies.carrier, self.bodies.wheel, (0.0, 0.0, 0.0), tuple(q.tolist()))]
+
+
+def static_cdr(corners: list[CornerFrames], stamp: tuple[int, int]) -> bytes:
+    """
+    Return one TFMessage of every corner's design-fixed transforms (for /tf_static).
+
+    One message for all: /tf_static keeps the last message only (transient local, depth 1).
+    """
+    transforms = [t for corner in corners for t in corner.static_transforms()]
+    return tf_message_cdr(stamp, [t[0] for t in transforms], [t[1] for t in transforms],
+                          [t[2] for t in transforms], [t[3] for t in transforms])
+
+
+def tf2_msgs_missing() -> str:
+    """Return why tf2_msgs/msg/TFMessage cannot be published here, or '' if it can."""
+    try:
+        importlib.import_module('tf2_msgs.msg').TFMessage
+    except (ImportError, AttributeError):
+        return ('tf2_msgs cannot be imported (it has no wheel on the package index): /tf and '
+                '/tf_static are recorded but not published; `linkage-tf2-msgs` builds it into '
+                'this environment (needs a C/C++ compiler and the Python headers)')
+    return ''
+
+
+def tf_message_class():
+    """Return tf2_msgs.msg.TFMessage (call only where tf2_msgs_missing() is '')."""
+    return importlib.import_module('tf2_msgs.msg').TFMessage

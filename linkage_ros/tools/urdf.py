@@ -1,0 +1,69 @@
+"""
+linkage-urdf: write the robot description (URDF) of a scene or a vehicle.
+
+The same text suspension_node publishes on robot_description (linkage_ros.robot_description):
+a link per body (carrier, wheel, each link, arm and strut of every corner) named as its TF
+frame, every one hung from the root frame by a floating joint (the wheel fixed to its
+carrier), so that RViz, Foxglove or Rerun place each body by the node's /tf.
+"""
+
+import sys
+
+from .. import cli
+from ..core.errors import LinkageError
+
+PROG = 'linkage-urdf'
+EPILOG = """frames and links: <corner>/wheel_carrier, <corner>/wheel, <corner>/<constraint
+name> for a vehicle's corners; wheel_carrier, wheel, <constraint name> for a scene.
+
+example:
+  linkage-urdf five_link -o five_link.urdf
+  linkage-urdf demo_vehicle -o demo_vehicle.urdf --frame-id base_link
+
+exit status:
+  0  written
+""" + '  ' + cli.EXIT_STATUS
+
+
+def main(argv=None):
+    """Run linkage-urdf; returns the exit status."""
+    return _main(argv)
+
+
+@cli.program(PROG)
+def _main(argv):
+    parser = cli.Parser(PROG, __doc__.strip().splitlines()[0].split(': ', 1)[1], EPILOG)
+    parser.add_argument('target', metavar='SCENE_OR_VEHICLE',
+                        help='bundled scene or vehicle name, or the path of either file')
+    parser.add_argument('-o', '--output', metavar='FILE', required=True,
+                        help="the URDF file to write ('-': stdout)")
+    parser.add_argument('--frame-id', default='base_link',
+                        help="the root link: the node's frame_id (default: base_link)")
+    args = parser.parse_args(argv)
+    try:
+        from .kinematic_map import load_target
+        vehicle, corners = load_target(args.target)
+        if vehicle is None:
+            (scene,) = corners.values()
+            scenes, name = {'': scene}, scene.name
+        else:
+            scenes, name = {f'{corner}/': s for corner, s in corners.items()}, vehicle.name
+        cli.warn(PROG, vehicle.warnings if vehicle is not None else scene.warnings)
+        if args.output != '-':
+            inputs = [getattr(vehicle, 'source', '')] + [s.source for s in scenes.values()]
+            cli.check_output(args.output, '-o', inputs=tuple(p for p in inputs if p))
+        from ..robot_description import robot_description
+        text = robot_description(scenes, args.frame_id, name)
+    except (cli.Mistake, LinkageError) as exc:
+        return cli.fail(PROG, exc)
+    if args.output == '-':
+        sys.stdout.write(text)
+    else:
+        with open(args.output, 'w', encoding='utf-8') as out:
+            out.write(text)
+        print(f'{PROG}: {name}: {text.count("<link ")} links -> {args.output}', file=sys.stderr)
+    return cli.DONE
+
+
+if __name__ == '__main__':
+    sys.exit(main())
