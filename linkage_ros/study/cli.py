@@ -1,6 +1,8 @@
 """
-linkage-study: design studies of a suspension corner (exact sensitivities, tolerance
-stack-up, fitting hardpoints to target curves), on this machine or on a Dask cluster.
+linkage-study: design studies of a suspension corner, on this machine or a Dask cluster.
+
+Exact sensitivities to the hardpoints, tolerance stack-up (first order and Monte Carlo),
+and fitting hardpoints to target curves.
 """
 
 from __future__ import annotations
@@ -49,7 +51,7 @@ def parser() -> Parser:
     one.add_argument('--rack', type=millimetres, default=0.0,
                      help='steering rack travel, mm (default 0)')
     one.add_argument('--quantity', nargs='+', metavar='Q',
-                     help="quantities (default: every one the scene has)")
+                     help='quantities (default: every one the scene has)')
     two.add_argument('--sigma', type=float, required=True, metavar='MM',
                      help='standard deviation of every hardpoint coordinate, mm (> 0)')
     two.add_argument('--samples', type=int, required=True, metavar='N',

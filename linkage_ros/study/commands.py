@@ -58,9 +58,10 @@ def run_tolerance(args, say) -> int:
     # without --workers, a pool of local processes only for work that repays their start
     with executor(args.scheduler, args.workers or None,
                   pool_from=2 if args.workers else POOL_FROM) as run:
-        say(f'{design.scene.name}: {args.samples} variants x {counted(len(prob.travels), "travel")}'
-            f' in {count} batch{"es" if count != 1 else ""}' + (f' on {args.scheduler}' if args.scheduler
-                                                  else ''))
+        where = f' on {args.scheduler}' if args.scheduler else ''
+        say(f'{design.scene.name}: {args.samples} variants x '
+            f'{counted(len(prob.travels), "travel")} in {count} '
+            f'batch{"es" if count != 1 else ""}{where}')
         result = tolerance(prob, run, Progress(PROG, count, 'batches'))
     write_table(args.out, TOLERANCE_COLUMNS, rows(result), sys.stdout)
     if args.plot:
@@ -108,8 +109,10 @@ def report(targets, result, say) -> int:
             f'{np.sqrt(np.mean(before ** 2)):.6g} -> {np.sqrt(np.mean(after ** 2)):.6g}{judged}')
     moved = ', '.join(f'{name} {offset:+.4g}' for name, offset in
                       zip(targets.names(), result.offsets / _scale(targets)))
+    backed = (f', {counted(result.unassembled, "step")} backed off from designs that do not '
+              'assemble' if result.unassembled else '')
     say(f'moved (scene units): {moved}; {result.evaluations} evaluations, {result.jacobians} '
-        f'Jacobians; {result.message}')
+        f'Jacobians{backed}; {result.message}')
     if unmet:
         say(f'{counted(unmet, "target")} cannot be met within the bounds (the best design '
             'found is written)')

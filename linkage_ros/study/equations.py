@@ -21,8 +21,8 @@ from typing import NamedTuple, TYPE_CHECKING
 import numpy as np
 
 from . import jets as jt
-from ..core import kernel
 from .hardpoints import point_names
+from ..core import kernel
 
 if TYPE_CHECKING:
     from ..core.scene import Scene
@@ -138,7 +138,7 @@ def _link_vectors(layout, geom, center, r, rack):
 
 
 def residuals(layout: Layout, geom: Geometry, center, rotation, rack=0.0):
-    """Return the 5 residuals (..., 5), mm, at poses (center (..., 3), rotation (..., 3, 3))."""
+    """Return the 5 rows' values, (..., 5) mm, at poses: center (..., 3), rotation (..., 3, 3)."""
     r = arms(geom, rotation)
     d = _link_vectors(layout, geom, center, r, rack)
     sphere = (jt.dot(d, d) - geom.length * geom.length) / (2.0 * geom.length)
@@ -173,5 +173,5 @@ def _split(v):
 
 
 def free(jac):
-    """Return the unknowns' columns J_free (..., 5, 5) of a Jacobian (..., 5, 6)."""
+    """Return the Jacobians' columns of the unknowns (kernel.FREE): (..., 5, 6) -> (..., 5, 5)."""
     return jac[..., FREE]

@@ -54,7 +54,7 @@ class Progress:
 
 def missing_dask(exc: ImportError) -> str:
     """Say that --scheduler needs Dask, and how to install it."""
-    return ("--scheduler needs the Python package dask[distributed], which is not installed: "
+    return ('--scheduler needs the Python package dask[distributed], which is not installed: '
             f"pip install -e '.[study]' (in a linkage_ros checkout) ({exc})")
 
 
@@ -71,8 +71,9 @@ def executor(scheduler: str | None = None, workers: int | None = None,
     not answer within timeout s.
     """
     if scheduler is None:
-        yield lambda function, items, progress=None: _local(function, items, progress, workers,
-                                                             pool_from)
+        def run(function, items, progress=None):
+            return _local(function, items, progress, workers, pool_from)
+        yield run
         return
     try:
         from distributed import Client
@@ -113,7 +114,7 @@ def _dask(client, function, items: Sequence, progress):
     """Run the items as tasks of a Dask cluster; gather the results in order."""
     from distributed import as_completed as completed
     futures = client.map(function, items, pure=False)
-    for done, _ in enumerate(completed(futures), 1):
+    for done, _ in enumerate(completed(futures, loop=client.loop), 1):
         if progress:
             progress.update(done)
     return client.gather(futures)

@@ -54,6 +54,7 @@ class Fit(NamedTuple):
     jacobians: int                # Jacobian evaluations (njev), every start
     start: int                    # the start that gave the best fit
     message: str                  # least_squares' message of that start
+    unassembled: int              # evaluations whose design did not assemble (backed off)
 
 
 def hardpoints_of(targets: Targets, offsets: np.ndarray) -> np.ndarray:
@@ -104,24 +105,26 @@ def fit_start(item: tuple[Targets, int, int]) -> dict:
     if start:
         rng = np.random.default_rng(np.random.SeedSequence(seed, spawn_key=(start,)))
         x0 = rng.uniform(lower, upper)
-    cache = {}
+    cache, failed = {}, []
 
     def evaluated(x):
         key = x.tobytes()
         if key not in cache:
             cache.clear()
             cache[key] = evaluate(targets, x)
+            if not cache[key].assembled:
+                failed.append(x)
         return cache[key]
 
     first = evaluated(x0)
     if not first.assembled:
-        return {'start': start, 'x': x0, 'cost': np.inf, 'nfev': 1, 'njev': 0,
+        return {'start': start, 'x': x0, 'cost': np.inf, 'nfev': 1, 'njev': 0, 'failed': 1,
                 'message': f'the start does not assemble: {first.message}'}
     answer = least_squares(lambda x: evaluated(x).residual, x0,
                            jac=lambda x: evaluated(x).jacobian,
                            bounds=(lower, upper), method='trf', x_scale='jac')
     return {'start': start, 'x': answer.x, 'cost': float(answer.cost), 'nfev': answer.nfev,
-            'njev': answer.njev or 0, 'message': answer.message}
+            'njev': answer.njev or 0, 'failed': len(failed), 'message': answer.message}
 
 
 def fit(targets: Targets, starts: int = 1, seed: int = 0, run=None, progress=None) -> Fit:
@@ -151,4 +154,4 @@ def fit(targets: Targets, starts: int = 1, seed: int = 0, run=None, progress=Non
         after = before
     return Fit(best['x'], hardpoints_of(targets, best['x']), before, after,
                sum(o['nfev'] for o in outcomes), sum(o['njev'] for o in outcomes),
-               best['start'], best['message'])
+               best['start'], best['message'], sum(o['failed'] for o in outcomes))

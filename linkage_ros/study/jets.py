@@ -104,7 +104,7 @@ def sqrt(x):
 
 
 def atan2(y, x):
-    """Return atan2(y, x) (rad)."""
+    """Return the angle (rad) of the point (x, y) from the x axis, as np.arctan2."""
     if not isinstance(y, Jet) and not isinstance(x, Jet):
         return np.arctan2(y, x)
     yv, xv = value(y), value(x)

@@ -87,7 +87,8 @@ def angle_rates(axis, axis_rate, side: float):
     dx, dy, dz = jt.components(axis_rate)
     h = jt.hypot(ax, ay)
     dh = (ax * dx + ay * dy) / h
-    return -(h * dz - az * dh) / (h * h + az * az), side * (ay * dx - ax * dy) / (ax * ax + ay * ay)
+    camber_rate = -(h * dz - az * dh) / (h * h + az * az)
+    return camber_rate, side * (ay * dx - ax * dy) / (ax * ax + ay * ay)
 
 
 def screw(center, velocity, omega):
@@ -114,7 +115,7 @@ def alignment(scene, layout, geom, points, center, rotation, rack, jac, motion, 
     v, w = motion
     gain, steer = angle_rates(axis, jt.cross(w, axis), side)
     screw_axis, _, pitch = screw(center, v, w)
-    nan, nan3 = np.full(n, np.nan), np.full((n, 3), np.nan)
+    nan3 = np.full((n, 3), np.nan)
     steer_axis, steer_point = nan3, nan3
     if layout.steer.any():
         rack_v, rack_w = _slopes(jac, -rack_column(layout, geom, center, rotation, rack), 0.0)

@@ -28,8 +28,7 @@ from .hardpoints import hardpoint_values, point_names
 from .quantities import element_names, quantities, SWEEP_COLUMNS
 from ..core.errors import LinkageError
 from ..core.kinematics import sweep
-from ..core.mechanism import is_singular, linearize
-from ..core.mechanism import compile_scene
+from ..core.mechanism import compile_scene, is_singular, linearize
 from ..core.status import Status
 from ..tools.sweep import ALIGNMENT_COLUMNS
 
