@@ -149,3 +149,18 @@ def test_a_mistake_in_a_tolerance_command_is_one_line_with_status_2(args, says, 
     assert status == 2 and out == '', (out, err)
     assert err.count('\n') == 1 and err.startswith('linkage-study: ') and says in err, err
     assert 'Traceback' not in err
+
+
+def test_a_scheduler_without_dask_installed_names_the_extra_in_one_line(tmp_path):
+    # distributed made unimportable in a fresh interpreter (None in sys.modules fails it)
+    code = ("import runpy, sys; sys.modules['distributed'] = None; sys.argv = ['linkage-study', "
+            "'tolerance', 'five_link', '--sigma', '0.1', '--samples', '10', '--travel', '0', "
+            "'--scheduler', 'tcp://127.0.0.1:8786']; "
+            "runpy.run_module('linkage_ros.study.cli', run_name='__main__')")
+    done = subprocess.run([sys.executable, '-c', code], capture_output=True, text=True,
+                          timeout=300, cwd=tmp_path)
+    assert done.returncode == 2 and done.stdout == '', done
+    assert done.stderr.count('\n') == 1, done.stderr
+    assert ("linkage-study: --scheduler: needs the Python package "
+            "dask[distributed], which is not installed: pip install -e '.[study]'"
+            in done.stderr)

@@ -53,8 +53,8 @@ class Progress:
 
 
 def missing_dask(exc: ImportError) -> str:
-    """Say that --scheduler needs Dask, and how to install it."""
-    return ('--scheduler needs the Python package dask[distributed], which is not installed: '
+    """Say that --scheduler needs Dask, and how to install it (after '--scheduler: ')."""
+    return ('needs the Python package dask[distributed], which is not installed: '
             f"pip install -e '.[study]' (in a linkage_ros checkout) ({exc})")
 
 
