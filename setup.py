@@ -17,6 +17,7 @@ setup(
         ('share/' + package_name + '/config/scenes', glob('config/scenes/*.yaml')),
         ('share/' + package_name + '/config/vehicles', glob('config/vehicles/*.yaml')),
         ('share/' + package_name + '/config/stress', glob('config/stress/*.yaml')),
+        ('share/' + package_name + '/config/study', glob('config/study/*.yaml')),
     ],
     python_requires='>=3.10',
     install_requires=['setuptools', 'numpy', 'scipy', 'PyYAML', 'numba'],

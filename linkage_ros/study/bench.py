@@ -71,18 +71,18 @@ def bench_sensitivity(repeats):
     scene = load_design('five_link').scene
     cont = Continuation(scene)
 
-    def one_solve():
-        cont.reset()
+    def two_solves():   # design -> 25 mm -> design: two walks of 25 mm
         cont.solve(25.0)
+        cont.solve(0.0)
 
-    solve = cpu(lambda: [one_solve() for _ in range(100)], repeats) / 100
+    solve = cpu(lambda: [two_solves() for _ in range(100)], repeats) / 200
     table = sweep(scene, [25.0])
     points = load_design('five_link').values
     pose = cpu(lambda: pose_derivative(scene, points, table.wheel_center, table.rotation),
                20 * repeats)
     sweep_only = cpu(lambda: sensitivities(scene, [25.0], wanted=SWEEP_COLUMNS), 10 * repeats)
     everything = cpu(lambda: sensitivities(scene, [25.0]), 10 * repeats)
-    print(f'one solve of five_link at 25 mm from design (Continuation reset, solve): '
+    print(f'one solve of five_link, a walk of 25 mm (Continuation.solve): '
           f'{solve * 1e6:.1f} us')
     for name, seconds in (('pose derivative, 36 coordinates', pose),
                           ('sensitivities of the 5 sweep columns (solve included)', sweep_only),

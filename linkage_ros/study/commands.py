@@ -38,8 +38,9 @@ def run_sensitivity(args, say) -> int:
     if not result.success:
         say(f'{result.message} ({counted(count, "position")} written)')
         return 1
-    say(f'{scene.name}: {len(result.quantities)} quantities x {len(result.points)} points x 3 '
-        f'axes at {counted(count, "travel")}')
+    many = len(result.quantities)
+    say(f'{scene.name}: {many} quantit{"y" if many == 1 else "ies"} x {len(result.points)} '
+        f'points x 3 axes at {counted(count, "travel")}')
     return 0
 
 
