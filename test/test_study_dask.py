@@ -52,8 +52,8 @@ def test_a_tolerance_study_on_the_cluster_writes_the_local_runs_bytes(scheduler,
     assert np.array_equal(table['std'], [float(r[4]) for r in rows])
 
 
-def test_a_fit_with_several_starts_on_the_cluster_writes_the_local_runs_scene(scheduler,
-                                                                             tmp_path):
+def test_a_fit_with_several_starts_on_the_cluster_writes_the_local_runs_scene(
+        scheduler, tmp_path):
     (tmp_path / 'targets.yaml').write_text("""scene: double_wishbone
 free:
   tie_rod.base: {x: [-30, 30], y: [-30, 30], z: [-30, 30]}

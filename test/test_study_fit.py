@@ -1,21 +1,18 @@
-"""
-linkage-study fit: hardpoints fitted to target curves, checked by sweeping the written scene.
-"""
+"""linkage-study fit: hardpoints fitted to target curves, checked by sweeping the written scene."""
 
 from pathlib import Path
 import subprocess
 import sys
 import time
 
-import numpy as np
-import pytest
-import yaml
-
 from linkage_ros.core.kinematics import sweep
 from linkage_ros.core.scene import load_scene
 from linkage_ros.study.fit import fit
 from linkage_ros.study.hardpoints import hardpoint_values, point_names
 from linkage_ros.study.targets import load_targets
+import numpy as np
+import pytest
+import yaml
 
 PROG = str(Path(sys.executable).parent / 'linkage-study')
 BUMP_STEER = """scene: double_wishbone

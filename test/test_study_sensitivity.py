@@ -7,9 +7,6 @@ again (hardpoints.scene_with: the loader, compile_scene, the batched sweep). Not
 study's equations or jets is on that path.
 """
 
-import numpy as np
-import pytest
-
 from linkage_ros.core.bundled import bundled_scenes
 from linkage_ros.core.kinematics import sweep
 from linkage_ros.core.mechanism import compile_scene
@@ -20,6 +17,8 @@ from linkage_ros.study.hardpoints import hardpoint_values, load_design, scene_wi
 from linkage_ros.study.quantities import quantities
 from linkage_ros.study.sensitivity import sensitivities
 from linkage_ros.tools.sweep import header, table as sweep_table
+import numpy as np
+import pytest
 
 SCENES = sorted(bundled_scenes())
 TRAVELS = np.array([-40.0, 0.0, 35.0])

@@ -1,15 +1,13 @@
 """
-Tolerance stack-up (linkage_ros.study.tolerance): Monte Carlo against first order, seeds,
-variants out of reach, and linkage-study tolerance's table, bar and picture.
+Tolerance stack-up (linkage_ros.study.tolerance): Monte Carlo against first order.
+
+Also seeds, variants out of reach, and linkage-study tolerance's table, bar and picture.
 """
 
 import math
 from pathlib import Path
 import subprocess
 import sys
-
-import numpy as np
-import pytest
 
 from linkage_ros.core.continuation import Continuation
 from linkage_ros.core.kinematics import sweep
@@ -18,6 +16,8 @@ from linkage_ros.study.hardpoints import load_design, scene_with
 from linkage_ros.study.tables import TOLERANCE_COLUMNS
 from linkage_ros.study.tolerance import (BATCH, perturbed, problem, sigmas, solve_batch,
                                          tolerance)
+import numpy as np
+import pytest
 
 TRAVELS = np.linspace(-50.0, 50.0, 11)
 PROG = str(Path(sys.executable).parent / 'linkage-study')
@@ -161,6 +161,6 @@ def test_a_scheduler_without_dask_installed_names_the_extra_in_one_line(tmp_path
                           timeout=300, cwd=tmp_path)
     assert done.returncode == 2 and done.stdout == '', done
     assert done.stderr.count('\n') == 1, done.stderr
-    assert ("linkage-study: --scheduler: needs the Python package "
+    assert ('linkage-study: --scheduler: needs the Python package '
             "dask[distributed], which is not installed: pip install -e '.[study]'"
             in done.stderr)
