@@ -8,14 +8,15 @@ study's equations or jets is on that path.
 """
 
 from linkage_ros.core.bundled import bundled_scenes
+from linkage_ros.core.continuation import Continuation
 from linkage_ros.core.kinematics import sweep
 from linkage_ros.core.mechanism import compile_scene
 from linkage_ros.core.scene import load_scene
 from linkage_ros.study import jets
 from linkage_ros.study.equations import geometry, layout_of, table
 from linkage_ros.study.hardpoints import hardpoint_values, load_design, scene_with
-from linkage_ros.study.quantities import quantities
-from linkage_ros.study.sensitivity import sensitivities
+from linkage_ros.study.quantities import quantities, SWEEP_COLUMNS
+from linkage_ros.study.sensitivity import sensitivities, sweep_column_rates
 from linkage_ros.tools.sweep import header, table as sweep_table
 import numpy as np
 import pytest
@@ -138,3 +139,20 @@ def test_a_jet_carries_the_derivative_of_a_linear_solve():
         fd = (np.linalg.solve(plus[:16].reshape(4, 4), plus[16:])
               - np.linalg.solve(minus[:16].reshape(4, 4), minus[16:])) / (2 * h)
         np.testing.assert_allclose(x.g[:, i], fd, rtol=1e-7, atol=1e-9)
+
+
+@pytest.mark.parametrize('name', SCENES)
+def test_the_compiled_closed_forms_equal_the_jets_for_the_sweep_columns(name):
+    # Two formulations of one derivative: jets carried through the equations (checked above
+    # against central differences) and the closed forms of pose_kernel.py written out per
+    # row. They differ only by rounding (1e-15 of derivatives of order 1 on every scene).
+    scene = load_scene(name)
+    jets_way = sensitivities(scene, TRAVELS, wanted=SWEEP_COLUMNS)
+    assert jets_way.success, jets_way.message
+    walk = Continuation(scene)
+    poses = [walk.solve(float(t)) for t in TRAVELS]
+    compiled = sweep_column_rates(scene, np.array([p.wheel_center for p in poses]),
+                                  np.array([p.rotation for p in poses]))
+    assert compiled.shape == jets_way.derivative.shape
+    scale = np.abs(jets_way.derivative).max()
+    np.testing.assert_allclose(compiled, jets_way.derivative, rtol=0, atol=1e-12 * scale)

@@ -17,10 +17,11 @@ import time
 
 import numpy as np
 
+from . import pose_kernel
 from .fit import fit
 from .hardpoints import load_design
 from .quantities import SWEEP_COLUMNS
-from .sensitivity import pose_derivative, sensitivities
+from .sensitivity import pose_derivative, sensitivities, sweep_column_rates
 from .targets import load_targets
 from .tolerance import batches, problem, sigmas, solve_batch
 from ..core.continuation import Continuation
@@ -81,13 +82,32 @@ def bench_sensitivity(repeats):
     pose = cpu(lambda: pose_derivative(scene, points, table.wheel_center, table.rotation),
                20 * repeats)
     sweep_only = cpu(lambda: sensitivities(scene, [25.0], wanted=SWEEP_COLUMNS), 10 * repeats)
+    compiled = cpu(lambda: [sweep_column_rates(scene, table.wheel_center, table.rotation)
+                            for _ in range(100)], repeats) / 100
+    kernel_only = _kernel_only(scene, table, repeats)
     everything = cpu(lambda: sensitivities(scene, [25.0]), 10 * repeats)
     print(f'one solve of five_link, a walk of 25 mm (Continuation.solve): '
           f'{solve * 1e6:.1f} us')
-    for name, seconds in (('pose derivative, 36 coordinates', pose),
+    for name, seconds in (('5 sweep columns, compiled closed forms (kernel call)', kernel_only),
+                          ('5 sweep columns, compiled (with its Python wrapper)', compiled),
+                          ('pose derivative by jets, 36 coordinates', pose),
                           ('sensitivities of the 5 sweep columns (solve included)', sweep_only),
                           ('sensitivities of all 35 quantities (solve included)', everything)):
-        print(f'{name:<58}{seconds * 1e3:>9.2f} ms{seconds / solve:>10.1f} x one solve')
+        print(f'{name:<58}{seconds * 1e6:>9.1f} us{seconds / solve:>10.2f} x one solve')
+
+
+def _kernel_only(scene, table, repeats):
+    """Return the CPU time of pose_kernel.sweep_rates_many at one pose, inputs prepared."""
+    from .equations import layout_of
+    from ..core.mechanism import compile_scene, linearize
+    mech, layout = compile_scene(scene), layout_of(scene)
+    center, rotation = table.wheel_center, table.rotation
+    jac = np.ascontiguousarray(linearize(mech, center, rotation)[1])
+    out = np.empty((1, 5, 36))
+    args = (mech.equations, layout.carrier, layout.base, np.array([layout.center, layout.spin]),
+            mech.design_center, mech.spin_axis, 100.0, 1.0, center, rotation, jac, 0.0, out)
+    return cpu(lambda: [pose_kernel.sweep_rates_many(*args) for _ in range(1000)],
+               repeats) / 1000
 
 
 def bench_fit(tmp):

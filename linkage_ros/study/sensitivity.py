@@ -124,6 +124,31 @@ def sensitivities(scene: Scene, travels: ArrayLike, rack: float = 0.0,
                        table.success, table.message, table.status)
 
 
+def sweep_column_rates(scene: Scene, center: np.ndarray, rotation: np.ndarray,
+                       rack: float = 0.0) -> np.ndarray:
+    """
+    Return d(SWEEP_COLUMNS)/dH (n, 5, k, 3) at n solved poses, compiled (pose_kernel.py).
+
+    The same derivatives as sensitivities() for those five columns (deg or mm per mm), by
+    closed forms instead of jets: about a solve's cost per position.
+    """
+    from . import pose_kernel
+    mech = compile_scene(scene)
+    layout = layout_of(scene)
+    center = np.ascontiguousarray(np.reshape(center, (-1, 3)), dtype=float)
+    rotation = np.ascontiguousarray(np.reshape(rotation, (-1, 3, 3)), dtype=float)
+    jac = np.ascontiguousarray(linearize(mech, center, rotation, rack)[1])
+    points = hardpoint_values(scene)
+    out = np.empty((len(center), 5, points.size))
+    pose_kernel.sweep_rates_many(
+        mech.equations, layout.carrier, layout.base, np.array([layout.center, layout.spin]),
+        mech.design_center, mech.spin_axis,
+        float(np.linalg.norm(scene.wheel_center - scene.spin_axis_point)),
+        float(scene.side_sign), center, rotation, jac, float(rack), out)
+    out[:, :2] = np.degrees(out[:, :2])
+    return out.reshape(len(center), 5, len(points), 3)
+
+
 def rows(result: Sensitivity):
     """Yield (travel_mm, quantity, point, axis, derivative): the long table of a Sensitivity."""
     for i, travel in enumerate(result.travel):

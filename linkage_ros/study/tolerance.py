@@ -5,7 +5,7 @@ Each hardpoint coordinate is an independent normal variable about its design val
 standard deviation sigma (mm; per point and axis, sigmas()). Two answers per travel and
 quantity (SWEEP_COLUMNS):
   first order: rss_std = sqrt(sum over coordinates of (dq/dp sigma_p)^2), from the exact
-               sensitivities (sensitivity.py);
+               sensitivities (sensitivity.sweep_column_rates, compiled);
   Monte Carlo: samples variants, each solved from its own design position to every travel
                by a compiled kernel batched over variants (variant_kernel.py); mean, std,
                1st and 99th percentiles of the variants solved, and how many were out of
@@ -26,7 +26,7 @@ from . import variant_kernel
 from .equations import geometry, layout_of, table
 from .hardpoints import AXES, Design, scene_with
 from .quantities import SWEEP_COLUMNS
-from .sensitivity import sensitivities
+from .sensitivity import sweep_column_rates
 from ..core.continuation import Continuation
 from ..core.errors import LinkageError
 from ..core.kinematics import sweep
@@ -166,8 +166,10 @@ def tolerance(prob: Problem, run=None, progress=None) -> Tolerance:
     if not nominal.success or len(nominal.travel) != len(prob.travels):
         raise LinkageError('--travel', f'the design does not reach every travel: '
                            f'{nominal.message}')
-    exact = sensitivities(scene, prob.travels, wanted=SWEEP_COLUMNS)
-    rss = np.sqrt(np.sum((exact.derivative * prob.sigma) ** 2, axis=(2, 3)))
+    rates = sweep_column_rates(scene, nominal.wheel_center, nominal.rotation)
+    rss = np.sqrt(np.sum((rates * prob.sigma) ** 2, axis=(2, 3)))
+    table = np.column_stack([np.degrees(nominal.camber), np.degrees(nominal.toe),
+                             nominal.wheel_center])
     items = batches(prob)
     if run is None:
         results = []
@@ -187,7 +189,7 @@ def tolerance(prob: Problem, run=None, progress=None) -> Tolerance:
     low, high = (np.full(rss.shape, np.nan) for _ in range(2))
     if count.size and count.min() > 0:
         low, high = np.nanpercentile(values, [1, 99], axis=0)
-    return Tolerance(prob.travels, SWEEP_COLUMNS, exact.nominal, mean, std, rss, low, high,
+    return Tolerance(prob.travels, SWEEP_COLUMNS, table, mean, std, rss, low, high,
                      len(values) - count, values)
 
 
