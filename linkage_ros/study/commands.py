@@ -1,0 +1,131 @@
+"""
+The three commands of linkage-study, each taking the parsed arguments and a say(line).
+
+They return the exit status (0 done, 1 done but something out of reach or unmet) and raise
+LinkageError (SceneError) for a mistake, which the program turns into one line, status 2.
+"""
+
+from __future__ import annotations
+
+import sys
+
+import numpy as np
+
+from .executor import executor, Progress
+from .hardpoints import load_design
+from .tables import SENSITIVITY_COLUMNS, TOLERANCE_COLUMNS, write_table
+from ..cli import counted
+from ..core.errors import LinkageError
+from ..core.yaml_file import read_yaml
+
+PROG = 'linkage-study'
+POOL_FROM = 16   # batches (of 4096 variants, about 0.3 s each) that repay starting processes
+
+
+def run_sensitivity(args, say) -> int:
+    """linkage-study sensitivity: the long table travel_mm, quantity, point, axis, derivative."""
+    from .sensitivity import rows, sensitivities
+    design = load_design(args.scene)
+    scene = design.scene
+    say('', scene.warnings)
+    _finite(args.travel + [args.rack], '--travel')
+    if args.rack and not any(c.steer == 'rack' for c in scene.constraints):
+        raise LinkageError('--rack', f'{scene.name}: no constraint is marked steer: rack')
+    result = sensitivities(scene, args.travel, rack=args.rack,
+                           wanted=tuple(args.quantity) if args.quantity else None)
+    write_table(args.out, SENSITIVITY_COLUMNS, rows(result), sys.stdout)
+    count = len(result.travel)
+    if not result.success:
+        say(f'{result.message} ({counted(count, "position")} written)')
+        return 1
+    many = len(result.quantities)
+    say(f'{scene.name}: {many} quantit{"y" if many == 1 else "ies"} x {len(result.points)} '
+        f'points x 3 axes at {counted(count, "travel")}')
+    return 0
+
+
+def run_tolerance(args, say) -> int:
+    """linkage-study tolerance: the stack-up table, a progress bar, and the picture."""
+    from .tolerance import batches, problem, rows, sigmas, tolerance
+    design = load_design(args.scene)
+    say('', design.scene.warnings)
+    _finite(args.travel, '--travel')
+    overrides = read_yaml(args.tolerances, 'tolerances') if args.tolerances else None
+    if overrides is not None and not isinstance(overrides, dict):
+        raise LinkageError(args.tolerances, 'expected a mapping POINT: SD or POINT: {x, y, z}')
+    prob = problem(design, sigmas(design, args.sigma, overrides), args.samples, args.travel,
+                   args.seed)
+    count = len(batches(prob))
+    # without --workers, a pool of local processes only for work that repays their start
+    with executor(args.scheduler, args.workers or None,
+                  pool_from=2 if args.workers else POOL_FROM) as run:
+        where = f' on {args.scheduler}' if args.scheduler else ''
+        say(f'{design.scene.name}: {args.samples} variants x '
+            f'{counted(len(prob.travels), "travel")} in {count} '
+            f'batch{"es" if count != 1 else ""}{where}')
+        result = tolerance(prob, run, Progress(PROG, count, 'batches'))
+    write_table(args.out, TOLERANCE_COLUMNS, rows(result), sys.stdout)
+    if args.plot:
+        from .plots import plot_tolerance
+        plot_tolerance(result, args.plot, f'{design.scene.name}: {args.samples} variants, '
+                       f'sigma {args.sigma:g} mm')
+    lost = int(result.out_of_reach.max(initial=0))
+    if lost:
+        say(f'{lost} of {args.samples} variants out of reach at some travel (counted in '
+            'out_of_reach, left out of the statistics)')
+        return 1
+    return 0
+
+
+def run_fit(args, say) -> int:
+    """linkage-study fit: fit, write the scene, say before/after per target, the picture."""
+    from .fit import fit
+    from .fitted_scene import write_fitted
+    from .targets import load_targets
+    targets = load_targets(args.targets)
+    say('', targets.design.scene.warnings)
+    with executor(args.scheduler, args.workers or None) as run:
+        result = fit(targets, args.starts, args.seed,
+                     run if args.starts > 1 or args.scheduler else None)
+    write_fitted(args.output, targets, result)
+    unmet = report(targets, result, say)
+    if args.plot:
+        from .plots import plot_fit
+        plot_fit(targets, result, args.plot)
+    return 1 if unmet else 0
+
+
+def report(targets, result, say) -> int:
+    """Say the residuals per target before and after; return how many tolerances are unmet."""
+    unmet = 0
+    for t, before, after in zip(targets.targets, result.before.errors, result.after.errors):
+        worst = float(np.max(np.abs(after)))
+        judged = ''
+        if np.isfinite(t.tolerance):
+            met = worst <= t.tolerance
+            unmet += not met
+            judged = f'; tolerance {t.tolerance:g}: {"met" if met else "NOT met"}'
+        say(f'{t.quantity} at {counted(len(t.travel), "travel")}: largest error '
+            f'{np.max(np.abs(before)):.6g} -> {worst:.6g}, rms '
+            f'{np.sqrt(np.mean(before ** 2)):.6g} -> {np.sqrt(np.mean(after ** 2)):.6g}{judged}')
+    moved = ', '.join(f'{name} {offset:+.4g}' for name, offset in
+                      zip(targets.names(), result.offsets / _scale(targets)))
+    backed = (f', {counted(result.unassembled, "step")} backed off from designs that do not '
+              'assemble' if result.unassembled else '')
+    say(f'moved (scene units): {moved}; {result.evaluations} evaluations, {result.jacobians} '
+        f'Jacobians{backed}; {result.message}')
+    if unmet:
+        say(f'{counted(unmet, "target")} cannot be met within the bounds (the best design '
+            'found is written)')
+    return unmet
+
+
+def _scale(targets):
+    from ..core.scene import UNITS_TO_MM
+    return UNITS_TO_MM[targets.design.scene.units]
+
+
+def _finite(values, option):
+    for value in values:
+        if not np.isfinite(value):
+            raise LinkageError(option, f'must be finite, got {value}')

@@ -1,0 +1,158 @@
+"""
+Exact sensitivities of a suspension's quantities to its hardpoints (implicit function theorem).
+
+At a solved position the guidance equations F(x, H) = 0 hold, x = (M_x, M_y, omega) the
+unknowns and H the hardpoints (k, 3) mm. Travel is measured from the design wheel centre,
+M_z = M0_z(H) + travel, so moving a hardpoint moves the solution by
+
+    J_free dx/dH = -(dF/dH + J_z dM0_z/dH)
+
+with dF/dH taken at the fixed pose (M, R) (equations.py's rows on jets.Jet), J the Jacobian
+of the solve, omega applied as R <- exp(omega) R. The pose then carries its derivative into
+every quantity (quantities.py), which also depends on H directly: the spin axis
+unit(M0 - N0), the carrier points relative to M0, the body points, the design contact patch.
+Exact to rounding (the only error is the pose's residual, 1e-10 mm): no finite differences.
+
+    sensitivities(scene, travels) -> Sensitivity: derivative (n, q, k, 3), unit per mm
+"""
+
+from __future__ import annotations
+
+from typing import NamedTuple, TYPE_CHECKING
+
+import numpy as np
+
+from . import jets as jt
+from .equations import free, geometry, layout_of, residuals
+from .hardpoints import hardpoint_values, point_names
+from .quantities import element_names, quantities, SWEEP_COLUMNS
+from ..core.errors import LinkageError
+from ..core.kinematics import sweep
+from ..core.mechanism import compile_scene, is_singular, linearize
+from ..core.status import Status
+from ..tools.sweep import ALIGNMENT_COLUMNS
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
+
+    from ..core.scene import Scene
+
+
+class Sensitivity(NamedTuple):
+    """d(quantity)/d(hardpoint coordinate) at n positions; quantity unit per mm."""
+
+    travel: np.ndarray            # (n,) mm
+    quantities: tuple[str, ...]   # (q,) names, as linkage-sweep's columns
+    points: tuple[str, ...]       # (k,) hardpoint names
+    derivative: np.ndarray        # (n, q, k, 3): axes x, y, z
+    nominal: np.ndarray           # (n, q) the quantities themselves
+    success: bool = True
+    message: str = 'ok'
+    status: Status = Status.OK
+
+
+def available(scene: Scene) -> tuple[str, ...]:
+    """Return the quantities a scene has: NaN columns (no steer axis, no radius) left out."""
+    names = SWEEP_COLUMNS + tuple(ALIGNMENT_COLUMNS) + tuple(element_names(scene))
+    values = quantities(scene, hardpoint_values(scene), compile_scene(scene).design_center[None],
+                        np.eye(3)[None])
+    return tuple(n for n in names if np.isfinite(np.asarray(jt.value(values[n]))).all())
+
+
+def check_quantities(scene: Scene, wanted) -> tuple[str, ...]:
+    """Return the quantities asked for (None: all available); LinkageError for one it lacks."""
+    have = available(scene)
+    if wanted is None:
+        return have
+    for name in wanted:
+        if name not in have:
+            raise LinkageError(name, f'not a quantity of the scene {scene.name} (its '
+                               f'quantities: {", ".join(have)})')
+    return tuple(wanted)
+
+
+def pose_derivative(scene: Scene, points: np.ndarray, center: np.ndarray,
+                    rotation: np.ndarray, rack: float = 0.0) -> tuple[jt.Jet, jt.Jet]:
+    """
+    Return the solved poses as Jets of the hardpoints: M (n, 3) and R (n, 3, 3).
+
+    center (n, 3), rotation (n, 3, 3): the poses solved for the design whose hardpoints are
+    points (k, 3) mm. NaN derivatives where the Jacobian is singular.
+    """
+    layout = layout_of(scene)
+    params = jt.seed(points)
+    size = params.g.shape[-1]
+    moved = residuals(layout, geometry(layout, params), center, rotation, rack)   # dF/dH
+    jac = linearize(compile_scene(scene), center, rotation, rack)[1]
+    lift = np.zeros(size)   # dM0_z / dH: travel is counted from the design wheel centre
+    lift[3 * layout.center + 2] = 1.0
+    rhs = -(moved.g + jac[..., 2, None] * lift)
+    a = free(jac)
+    singular = is_singular(a)
+    dx = np.linalg.solve(np.where(singular[..., None, None], np.eye(5), a), rhs)
+    dx[singular] = np.nan
+    d_center = np.stack([dx[:, 0], dx[:, 1], np.broadcast_to(lift, dx[:, 0].shape)], axis=1)
+    omega = dx[:, 2:]                                      # (n, 3, P)
+    d_rotation = np.cross(omega[:, :, None, :], rotation[:, :, :, None], axis=1)
+    return jt.Jet(center, d_center), jt.Jet(rotation, d_rotation)
+
+
+def sensitivities(scene: Scene, travels: ArrayLike, rack: float = 0.0,
+                  wanted: tuple[str, ...] | None = None, **settings) -> Sensitivity:
+    """
+    Return the exact sensitivities of the quantities (wanted: None = all) at the travels.
+
+    The travels (mm) are solved by kinematics.sweep (settings go to it); a sweep that ends
+    early gives the positions solved before it, success False and its message.
+    """
+    names = check_quantities(scene, wanted)
+    travels = np.asarray(travels, dtype=float).ravel()
+    table = sweep(scene, travels, rack=rack, **settings)
+    points = hardpoint_values(scene)
+    n = len(table.travel)
+    derivative = np.empty((n, len(names), len(points), 3))
+    nominal = np.empty((n, len(names)))
+    if n:
+        center, rotation = pose_derivative(scene, points, table.wheel_center, table.rotation,
+                                           rack)
+        values = quantities(scene, jt.seed(points), center, rotation, rack, names)
+        for j, name in enumerate(names):
+            value = values[name]
+            derivative[:, j] = value.g.reshape(n, len(points), 3)
+            nominal[:, j] = value.v
+    return Sensitivity(table.travel, names, point_names(scene), derivative, nominal,
+                       table.success, table.message, table.status)
+
+
+def sweep_column_rates(scene: Scene, center: np.ndarray, rotation: np.ndarray,
+                       rack: float = 0.0) -> np.ndarray:
+    """
+    Return d(SWEEP_COLUMNS)/dH (n, 5, k, 3) at n solved poses, compiled (pose_kernel.py).
+
+    The same derivatives as sensitivities() for those five columns (deg or mm per mm), by
+    closed forms instead of jets: about a solve's cost per position.
+    """
+    from . import pose_kernel
+    mech = compile_scene(scene)
+    layout = layout_of(scene)
+    center = np.ascontiguousarray(np.reshape(center, (-1, 3)), dtype=float)
+    rotation = np.ascontiguousarray(np.reshape(rotation, (-1, 3, 3)), dtype=float)
+    jac = np.ascontiguousarray(linearize(mech, center, rotation, rack)[1])
+    points = hardpoint_values(scene)
+    out = np.empty((len(center), 5, points.size))
+    pose_kernel.sweep_rates_many(
+        mech.equations, layout.carrier, layout.base, np.array([layout.center, layout.spin]),
+        mech.design_center, mech.spin_axis,
+        float(np.linalg.norm(scene.wheel_center - scene.spin_axis_point)),
+        float(scene.side_sign), center, rotation, jac, float(rack), out)
+    out[:, :2] = np.degrees(out[:, :2])
+    return out.reshape(len(center), 5, len(points), 3)
+
+
+def rows(result: Sensitivity):
+    """Yield (travel_mm, quantity, point, axis, derivative): the long table of a Sensitivity."""
+    for i, travel in enumerate(result.travel):
+        for j, quantity in enumerate(result.quantities):
+            for k, point in enumerate(result.points):
+                for a, axis in enumerate('xyz'):
+                    yield travel, quantity, point, axis, result.derivative[i, j, k, a]
