@@ -69,15 +69,19 @@ def test_one_command_at_a_time_equals_the_batched_sweep_and_the_paper_method(nam
     assert max(s.residual for s in one) <= settings['tol'] * 10
 
 
-@pytest.mark.parametrize('module', [kernel, element_kernel], ids=lambda m: m.__name__)
-def test_a_kernel_module_names_the_digest_of_the_rotations_it_compiles_in(module):
-    # numba's cache follows each file alone: a module that compiles so3.py's functions in
-    # must change when so3.py does.
-    digest = hashlib.sha256((Path(kernel.__file__).parent / 'so3.py').read_bytes()).hexdigest()
+@pytest.mark.parametrize('module, compiled_in, attribute', [
+    (kernel, 'so3.py', 'SO3_DIGEST'), (element_kernel, 'so3.py', 'SO3_DIGEST'),
+    (kernel, 'jacobian_kernel.py', 'JACOBIAN_KERNEL_DIGEST')],
+    ids=lambda v: getattr(v, '__name__', v))
+def test_a_kernel_module_names_the_digest_of_each_file_it_compiles_in(module, compiled_in,
+                                                                      attribute):
+    # numba's cache follows each file alone: a module that compiles another file's functions
+    # in (so3.py's rotations, jacobian_kernel.py's linear algebra) must change when it does.
+    digest = hashlib.sha256((Path(kernel.__file__).parent / compiled_in).read_bytes()).hexdigest()
     name = Path(module.__file__).name
-    assert module.SO3_DIGEST == digest, (
-        f"so3.py changed: set SO3_DIGEST = '{digest}' in {name}, so that numba recompiles "
-        'the kernels that call it')
+    assert getattr(module, attribute) == digest, (
+        f"{compiled_in} changed: set {attribute} = '{digest}' in {name}, so that numba "
+        'recompiles the kernels that call it')
 
 
 def test_the_state_accessors_read_what_the_kernels_write():

@@ -10,7 +10,7 @@ left) moves every steer: rack link of both corners. Each corner is solved by con
 (kinematics.sweep), each run of positions at one rack in one sweep per corner.
 
 Quantities at every position, from the exact velocities of the implicit function theorem
-(pose_newton.slope_of, compiled for a batch: kernel.slope_many), no finite differences:
+(pose_newton.slope_of, compiled for a batch: jacobian_kernel.slope_many), no finite differences:
   roll centre     the front-view intersection of the two lines through the contact patches
                   square to the patches' velocities under their own wheel's travel (the
                   patch taken as a point of the carrier); its vehicle-frame y and its height
@@ -37,7 +37,7 @@ from typing import Any, TYPE_CHECKING
 
 import numpy as np
 
-from . import kernel
+from . import jacobian_kernel
 from .alignment import contact_patch
 from .geometry import camber_toe, cross
 from .kinematics import sweep
@@ -260,11 +260,11 @@ def slopes(jac: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """
     Return d(center)/d(travel) and d(omega)/d(travel), (n, 3) each, at n solutions.
 
-    pose_newton.slope_of's answer from its compiled batch (kernel.slope_many): numpy's
+    pose_newton.slope_of's answer from its compiled batch (jacobian_kernel.slope_many): numpy's
     batched solve costs about a microsecond per 5 x 5 system, as much as a solve of the pose.
     """
     free = np.empty((len(jac), 5))
-    kernel.slope_many(np.ascontiguousarray(jac), free)
+    jacobian_kernel.slope_many(np.ascontiguousarray(jac), free)
     return np.column_stack((free[:, :2], np.ones(len(jac)))), free[:, 2:]
 
 
@@ -298,7 +298,7 @@ def roll_centre_of_poses(radius: np.ndarray, spin_axis: np.ndarray, center: np.n
     Return the roll centre (3,) mm of one pose of each wheel: suspension_node's, per answer.
 
     x midway between the two contact patches, (y, z) as roll_centre gives them (NaN for
-    parallel lines); the patches' velocities from the Jacobians (kernel.slope_many), as
+    parallel lines); the patches' velocities from the Jacobians (jacobian_kernel.slope_many), as
     axle_quantities has them. radius (2,) mm; spin_axis (2, 3): the design unit spin axes
     (Mechanism.spin_axis); center (2, 3) mm, rotation (2, 3, 3) (or each a pair of arrays),
     jac (2, 5, 6) C-contiguous: the wheels' poses and Jacobians (Continuation.jacobian), left
@@ -306,7 +306,7 @@ def roll_centre_of_poses(radius: np.ndarray, spin_axis: np.ndarray, center: np.n
     two (about 20 calls of several microseconds each).
     """
     free = np.empty((2, 5))
-    kernel.slope_many(jac, free)
+    jacobian_kernel.slope_many(jac, free)
     x, lines = 0.0, []
     for k in range(2):
         cx, cy, cz = center[k].tolist()

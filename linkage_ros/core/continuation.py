@@ -26,7 +26,7 @@ from typing import Any, NamedTuple, TYPE_CHECKING
 
 import numpy as np
 
-from . import arclength, kernel, paper_method, pose_newton, state
+from . import arclength, jacobian_kernel, kernel, paper_method, pose_newton, state
 from .errors import LinkageError
 from .finite import is_finite_number
 from .mechanism import (carrier_points, compile_scene, linearize, scaled_condition,
@@ -329,7 +329,8 @@ class Continuation:
 
     def _orientation(self, jacobian):
         """Return det J_free at the state times at jacobian: > 0 on the same side of folds."""
-        return kernel.determinant(self.jacobian) * kernel.determinant(jacobian)
+        return (jacobian_kernel.determinant(self.jacobian)
+                * jacobian_kernel.determinant(jacobian))
 
     def _walk_arclength(self, start, target, steps):
         """

@@ -4,8 +4,10 @@ Compiled kernels of the fast method: guidance equations, Newton, tangent, branch
 Every function here is numba-compiled (njit, cache=True) and works on plain float64 arrays
 and scalars, one pose at a time, without a numpy call per operation: a single command is a
 handful of these calls, and the batched sweep is the same calls in a compiled loop. They
-call so3.py's rotations, whose digest (SO3_DIGEST) is written here: numba's disk cache
-follows each file alone, and would keep running old rotations after an edit of so3.py.
+call so3.py's rotations and jacobian_kernel.py's linear algebra on the unknowns (solve,
+determinant, condition number; FREE, read here as kernel.FREE), whose digests (SO3_DIGEST,
+JACOBIAN_KERNEL_DIGEST) are written here: numba's disk cache follows each file alone, and
+would keep running old code after an edit of either.
 
 The mechanism is a table of its 5 guidance equations, one row each (mechanism.compile_scene
 builds it; lengths in mm, vehicle frame, design position):
@@ -29,15 +31,17 @@ from typing import NamedTuple
 from numba import njit
 import numpy as np
 
+from .jacobian_kernel import condition, determinant, FREE, solve_free  # noqa: F401 FREE
 from .so3 import camber_toe, quaternion, rotate, turn
 
 # sha256 of so3.py (test_kernel checks it and says the value to set after an edit there)
 SO3_DIGEST = '63b60c6921d8498a47cf8a0a86bdda0a2f05c7473f028ff5e6d7b18de31758ea'
+# sha256 of jacobian_kernel.py (the linear algebra compiled in here; test_kernel checks it)
+JACOBIAN_KERNEL_DIGEST = '281c0f6e253ec247289a5854e7d5ccb95c03dad9600efa6486b12508de336958'
 SPHERE, LINE = 0.0, 1.0   # equation table columns (see above)
 KIND, POINT, BASE, LENGTH, STEER, NORMAL = 0, 1, 4, 7, 8, 9
 COLUMNS = 12
 N_EQUATIONS = 5
-FREE = (0, 1, 3, 4, 5)   # Jacobian columns of the unknowns: x, y of M and omega
 # A solved position packed in one array (one kernel argument instead of many): travel and
 # rack (mm), M (3,), R (3, 3), Jacobian (5, 6), then what it reports (report()): residual
 # (mm), condition number, camber and toe (rad), quaternion (x, y, z, w) of R. Compiled code
@@ -166,100 +170,6 @@ def carrier_shift(eqs, center, rotation, other_center, other_rotation):
             if not moved <= worst:
                 worst = moved
     return worst
-
-
-# --- linear algebra on the 5 unknowns ------------------------------------------------------
-
-@jit
-def solve_free(jac, rhs, x):
-    """
-    Solve J_free x = rhs into x (5,), J_free the FREE columns of jac (5, 6).
-
-    By Gaussian elimination with partial pivoting. Returns the determinant of J_free (its
-    pivots' product, signed), or 0.0 if J_free is singular or anything is not finite.
-    """
-    a = np.empty((5, 6))
-    for i in range(5):
-        for j in range(5):
-            a[i, j] = jac[i, FREE[j]]
-        a[i, 5] = rhs[i]
-    determinant = 1.0
-    for col in range(5):
-        pivot = col
-        for row in range(col + 1, 5):
-            if abs(a[row, col]) > abs(a[pivot, col]):
-                pivot = row
-        if not abs(a[pivot, col]) > 0.0:   # zero or NaN
-            return 0.0
-        if pivot != col:
-            determinant = -determinant
-            for j in range(col, 6):
-                a[col, j], a[pivot, j] = a[pivot, j], a[col, j]
-        determinant *= a[col, col]
-        for row in range(col + 1, 5):
-            factor = a[row, col] / a[col, col]
-            for j in range(col, 6):
-                a[row, j] -= factor * a[col, j]
-    for i in range(4, -1, -1):
-        total = a[i, 5]
-        for j in range(i + 1, 5):
-            total -= a[i, j] * x[j]
-        x[i] = total / a[i, i]
-    return determinant if np.isfinite(x).all() and np.isfinite(determinant) else 0.0
-
-
-@jit
-def determinant(jac):
-    """
-    Return the determinant of J_free (the FREE columns of jac (5, 6)); 0.0 if singular.
-
-    Its sign is constant along a branch between two turning points and changes at each.
-    """
-    x = np.empty(5)
-    return solve_free(jac, np.zeros(5), x)
-
-
-@jit
-def condition(jac):
-    """
-    Return the 2-norm condition number of J_free (the FREE columns of jac (5, 6)).
-
-    By one-sided Jacobi (Hestenes) SVD: accurate to rounding for the small singular values
-    too. inf if singular.
-    """
-    a = np.empty((5, 5))
-    for i in range(5):
-        for j in range(5):
-            a[i, j] = jac[i, FREE[j]]
-    for _ in range(60):
-        worst = 0.0   # largest cosine between two columns before this sweep
-        for p in range(4):
-            for q in range(p + 1, 5):
-                alpha = beta = gamma = 0.0
-                for i in range(5):
-                    alpha += a[i, p] * a[i, p]
-                    beta += a[i, q] * a[i, q]
-                    gamma += a[i, p] * a[i, q]
-                cosine = abs(gamma) / math.sqrt(alpha * beta)
-                if not cosine > 1e-15:
-                    continue
-                worst = max(worst, cosine)
-                zeta = (beta - alpha) / (2.0 * gamma)
-                t = math.copysign(1.0, zeta) / (abs(zeta) + math.sqrt(1.0 + zeta * zeta))
-                c = 1.0 / math.sqrt(1.0 + t * t)
-                s = c * t
-                for i in range(5):
-                    ap, aq = a[i, p], a[i, q]
-                    a[i, p], a[i, q] = c * ap - s * aq, s * ap + c * aq
-        if worst < 1e-8:   # the column norms are the singular values to O(cosine^2)
-            break
-    largest, smallest = 0.0, np.inf
-    for j in range(5):
-        norm = math.sqrt(a[0, j] ** 2 + a[1, j] ** 2 + a[2, j] ** 2 + a[3, j] ** 2 + a[4, j] ** 2)
-        largest, smallest = max(largest, norm), min(smallest, norm)
-    if not np.isfinite(largest):
-        return np.nan
-    return largest / smallest if smallest > 0.0 else np.inf
 
 
 # --- Newton, tangent, continuation step ----------------------------------------------------
@@ -485,21 +395,6 @@ def residual_many(eqs, centers, rotations, racks, out):
     """Write the residual (mm) of n poses into out (n,): centers (n, 3), rotations (n, 3, 3)."""
     for n in range(centers.shape[0]):
         out[n] = residual(eqs, centers[n], rotations[n], racks[n])
-
-
-@jit
-def slope_many(jac, out):
-    """
-    Write d(free unknowns)/d(travel) of n solved poses into out (n, 5): J_free x = -J_travel.
-
-    jac (n, 5, 6): the Jacobians there (the implicit function theorem; NaN where singular).
-    """
-    rhs = np.empty(5)
-    for n in range(jac.shape[0]):
-        for i in range(5):
-            rhs[i] = -jac[n, i, 2]
-        if not solve_free(jac[n], rhs, out[n]):
-            out[n, :] = np.nan
 
 
 @jit

@@ -20,7 +20,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from . import geometry, kernel
+from . import geometry, jacobian_kernel, kernel
 from .geometry import unit
 
 if TYPE_CHECKING:
@@ -173,7 +173,7 @@ def scaled_condition(mech: Mechanism, jacobian: ArrayLike) -> float:
     """
     scaled = np.array(jacobian, dtype=float)
     scaled[:, 3:] /= mech.lever
-    return float(kernel.condition(scaled))
+    return float(jacobian_kernel.condition(scaled))
 
 
 def is_singular(matrix: ArrayLike) -> np.ndarray | bool:

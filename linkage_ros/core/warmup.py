@@ -1,10 +1,10 @@
 """
 The first compile of the numerical kernels: tell whether it is due, say so once, do it.
 
-numba compiles the kernels (KERNEL_MODULES: linkage_ros.core.kernel, so3, element_kernel) on
-first use (about 20 s) and keeps the machine code in its on-disk cache (NUMBA_CACHE_DIR, else
-__pycache__ beside each module); later processes load it in well under a second. A program
-calls, before its first solve:
+numba compiles the kernels (KERNEL_MODULES: linkage_ros.core.so3, jacobian_kernel, kernel,
+element_kernel) on first use (about 20 s) and keeps the machine code in its on-disk cache
+(NUMBA_CACHE_DIR, else __pycache__ beside each module); later processes load it in well under
+a second. A program calls, before its first solve:
 
     cold() -> bool                   numba's cache lacks a kernel: the next solve compiles
     say_if_cold(prog, file=stderr)   print 'prog: compiling the numerical kernels, once, about
@@ -31,8 +31,8 @@ import subprocess
 import sys
 
 # The modules of numba-compiled functions (each one's own cache files).
-KERNEL_MODULES = ('linkage_ros.core.so3', 'linkage_ros.core.kernel',
-                  'linkage_ros.core.element_kernel')
+KERNEL_MODULES = ('linkage_ros.core.so3', 'linkage_ros.core.jacobian_kernel',
+                  'linkage_ros.core.kernel', 'linkage_ros.core.element_kernel')
 MESSAGE = 'compiling the numerical kernels, once, about 20 s'
 _said = False
 
