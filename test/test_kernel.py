@@ -11,11 +11,12 @@ stress scene, float64 round-off alone is 1.7e-9 mm, so the bound scales with the
 import hashlib
 from pathlib import Path
 
-from linkage_ros.core import element_kernel, kernel, state
+from linkage_ros.core import body_kernel, element_kernel, kernel, state
 from linkage_ros.core.geometry import camber_toe, matrix_from_quaternion
 from linkage_ros.core.kinematics import Continuation, sweep
 from linkage_ros.core.mechanism import carrier_points, length_errors, linearize
 from linkage_ros.core.scene import bundled_scenes, load_scene
+from linkage_ros.study import pose_kernel
 import numpy as np
 import pytest
 
@@ -71,7 +72,11 @@ def test_one_command_at_a_time_equals_the_batched_sweep_and_the_paper_method(nam
 
 @pytest.mark.parametrize('module, compiled_in, attribute', [
     (kernel, 'so3.py', 'SO3_DIGEST'), (element_kernel, 'so3.py', 'SO3_DIGEST'),
-    (kernel, 'jacobian_kernel.py', 'JACOBIAN_KERNEL_DIGEST')],
+    (kernel, 'jacobian_kernel.py', 'JACOBIAN_KERNEL_DIGEST'),
+    (element_kernel, 'jacobian_kernel.py', 'JACOBIAN_KERNEL_DIGEST'),
+    (pose_kernel, 'so3.py', 'SO3_DIGEST'),
+    (pose_kernel, 'jacobian_kernel.py', 'JACOBIAN_KERNEL_DIGEST'),
+    (body_kernel, 'so3.py', 'SO3_DIGEST')],
     ids=lambda v: getattr(v, '__name__', v))
 def test_a_kernel_module_names_the_digest_of_each_file_it_compiles_in(module, compiled_in,
                                                                       attribute):

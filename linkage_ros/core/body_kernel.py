@@ -1,11 +1,12 @@
 """
 Compiled kernel of the bodies' frames at a pose (bodies.py: what each frame is).
 
-numba-compiled (njit, cache=True) like kernel.py, and self-contained for the same reason
-(numba's on-disk cache is per source file). The bodies come as one table, a row per body with
-named columns (bodies.Bodies.table), as kernel.py takes its equation table: numba types each
-array argument on every call, and on the node's one-command path that typing, not the
-arithmetic, is the cost. mm, vehicle frame.
+numba-compiled (njit, cache=True) like kernel.py, and like it calling so3.py (quaternion),
+whose digest (SO3_DIGEST) is written here: numba's on-disk cache is per source file
+(test_kernel says the value to set after an edit of so3.py). The bodies come as one table, a
+row per body with named columns (bodies.Bodies.table), as kernel.py takes its equation table:
+numba types each array argument on every call, and on the node's one-command path that
+typing, not the arithmetic, is the cost. mm, vehicle frame.
 """
 
 import math
@@ -13,6 +14,10 @@ import math
 from numba import njit
 import numpy as np
 
+from .so3 import quaternion as so3_quaternion
+
+# sha256 of so3.py (test_kernel checks it, as kernel.SO3_DIGEST)
+SO3_DIGEST = '63b60c6921d8498a47cf8a0a86bdda0a2f05c7473f028ff5e6d7b18de31758ea'
 CARRIER, LINK, ARM, STRUT = 0, 1, 2, 3      # KIND
 # table columns: the body's kind, its carrier joint (index into the carrier offsets), 1 for a
 # link whose body end moves with the rack, its design origin (3) and frame (3 x 3, row-major:
@@ -64,7 +69,7 @@ def frames(table, offsets, center, rotation, quaternion, rack, scale, out):
             for c in range(4):
                 out[i, 3 + c] = quaternion[c]
         else:
-            _quaternion(frame, out[i, 3:])
+            so3_quaternion(frame, out[i, 3:])
 
 
 @jit
@@ -98,27 +103,3 @@ def _arm(row, wx, wy, wz, frame):
     frame[0, 0], frame[0, 1], frame[0, 2] = xx, yx, zx
     frame[1, 0], frame[1, 1], frame[1, 2] = xy, yy, zy
     frame[2, 0], frame[2, 1], frame[2, 2] = xz, yz, zz
-
-
-@jit
-def _quaternion(m, out):
-    """Write into out (4,) the unit quaternion of rotation m as x, y, z, w; w >= 0 (Shepperd)."""
-    trace = m[0, 0] + m[1, 1] + m[2, 2]
-    if trace >= m[0, 0] and trace >= m[1, 1] and trace >= m[2, 2]:
-        s = 2.0 * math.sqrt(1.0 + trace)
-        x, y, z, w = ((m[2, 1] - m[1, 2]) / s, (m[0, 2] - m[2, 0]) / s,
-                      (m[1, 0] - m[0, 1]) / s, s / 4)
-    elif m[0, 0] >= m[1, 1] and m[0, 0] >= m[2, 2]:
-        s = 2.0 * math.sqrt(1.0 + m[0, 0] - m[1, 1] - m[2, 2])
-        x, y, z, w = (s / 4, (m[0, 1] + m[1, 0]) / s, (m[0, 2] + m[2, 0]) / s,
-                      (m[2, 1] - m[1, 2]) / s)
-    elif m[1, 1] >= m[2, 2]:
-        s = 2.0 * math.sqrt(1.0 - m[0, 0] + m[1, 1] - m[2, 2])
-        x, y, z, w = ((m[0, 1] + m[1, 0]) / s, s / 4, (m[1, 2] + m[2, 1]) / s,
-                      (m[0, 2] - m[2, 0]) / s)
-    else:
-        s = 2.0 * math.sqrt(1.0 - m[0, 0] - m[1, 1] + m[2, 2])
-        x, y, z, w = ((m[0, 2] + m[2, 0]) / s, (m[1, 2] + m[2, 1]) / s, s / 4,
-                      (m[1, 0] - m[0, 1]) / s)
-    sign = 1.0 if w >= 0.0 else -1.0
-    out[0], out[1], out[2], out[3] = sign * x, sign * y, sign * z, sign * w

@@ -1,9 +1,10 @@
 """
 Compiled kernels of the elements: the carrier's motion to second order, mount points, lengths.
 
-numba-compiled (njit, cache=True) like kernel.py, and like it calling so3.py's rotate, whose
-digest (SO3_DIGEST) is written here: numba's disk cache follows each file alone, and would
-keep running an old rotate after an edit of so3.py (test_kernel says the value to set). The
+numba-compiled (njit, cache=True) like kernel.py, and like it calling so3.py's rotate and
+jacobian_kernel.py's LU (factor, solve), whose digests (SO3_DIGEST, JACOBIAN_KERNEL_DIGEST)
+are written here: numba's disk cache follows each file alone, and would keep running old
+code after an edit of either (test_kernel says the value to set). The
 formulas are those of motion.py (the
 carrier's velocity and acceleration per travel by the implicit function theorem), mounts.py
 (points on the carrier, an arm, a link, a strut) and elements.py (length, ratio, ratio rate,
@@ -21,12 +22,14 @@ from typing import NamedTuple
 from numba import njit
 import numpy as np
 
+from .jacobian_kernel import factor, solve
 from .so3 import rotate
 
 # sha256 of so3.py (test_kernel checks it, as kernel.SO3_DIGEST)
 SO3_DIGEST = '63b60c6921d8498a47cf8a0a86bdda0a2f05c7473f028ff5e6d7b18de31758ea'
+# sha256 of jacobian_kernel.py (its LU, factor and solve, compiled in here; as kernel.py)
+JACOBIAN_KERNEL_DIGEST = 'f32896f5003901225870e386642b63cd5c91249fac0e84d342088bb0d8a67276'
 CARRIER, ARM, LINK, ALONG = 0, 1, 2, 3      # MountTable.kind
-FREE = (0, 1, 3, 4, 5)   # Jacobian columns of the unknowns (kernel.FREE); 2 is the travel
 # pack_rows columns: one row per guidance equation
 R_LINE, R_OFFSET, R_BASE, R_STEER, R_LENGTH, R_NORMAL, ROW_COLUMNS = 0, 1, 4, 7, 8, 9, 12
 # pack_elements columns: one row per element (a mount alone: body, rate, free length unused)
@@ -103,46 +106,6 @@ def pack_elements(mounts: MountTable, springs: SpringTable | None = None) -> np.
 def cross(ax, ay, az, bx, by, bz):
     """Return a x b as three floats."""
     return ay * bz - az * by, az * bx - ax * bz, ax * by - ay * bx
-
-
-@jit
-def factor(jac, lu, pivots):
-    """LU-factor J_free (the FREE columns of jac (5, 6)) into lu (5, 5); False if singular."""
-    for i in range(5):
-        for j in range(5):
-            lu[i, j] = jac[i, FREE[j]]
-        pivots[i] = i
-    for col in range(5):
-        best = col
-        for row in range(col + 1, 5):
-            if abs(lu[row, col]) > abs(lu[best, col]):
-                best = row
-        if not abs(lu[best, col]) > 0.0:   # zero or NaN
-            return False
-        if best != col:
-            for j in range(5):
-                lu[col, j], lu[best, j] = lu[best, j], lu[col, j]
-            pivots[col], pivots[best] = pivots[best], pivots[col]
-        for row in range(col + 1, 5):
-            lu[row, col] /= lu[col, col]
-            for j in range(col + 1, 5):
-                lu[row, j] -= lu[row, col] * lu[col, j]
-    return True
-
-
-@jit
-def solve(lu, pivots, rhs, x):
-    """Solve J_free x = rhs (5,) into x (5,) from factor()'s lu and pivots."""
-    for i in range(5):
-        total = rhs[pivots[i]]
-        for j in range(i):
-            total -= lu[i, j] * x[j]
-        x[i] = total
-    for i in range(4, -1, -1):
-        total = x[i]
-        for j in range(i + 1, 5):
-            total -= lu[i, j] * x[j]
-        x[i] = total / lu[i, i]
 
 
 @jit

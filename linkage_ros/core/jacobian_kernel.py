@@ -1,9 +1,11 @@
 """
-Compiled linear algebra on the Jacobian's free columns: solve, determinant, condition, slopes.
+Compiled linear algebra on the Jacobian's free columns: solve, determinant, condition, LU.
 
-numba-compiled (njit, cache=True) like kernel.py, which calls these (and names this file's
-digest, JACOBIAN_KERNEL_DIGEST: numba's disk cache follows each file alone, and would keep
-running old code here after an edit of this file; test_kernel says the value to set). A
+numba-compiled (njit, cache=True). kernel.py, element_kernel.py and study/pose_kernel.py
+compile these in, and each names this file's digest (JACOBIAN_KERNEL_DIGEST): numba's disk
+cache follows each file alone, and would keep running old code after an edit of this file
+(test_kernel says the value to set). solve_free solves once and gives the determinant;
+factor and solve share one LU among many right-hand sides. A
 Jacobian is (5, 6), d(guidance equations)/d(M, omega) as kernel.py writes it; FREE are the
 columns of the unknowns (x, y of the wheel centre M and the small rotation omega), column 2
 (dZ_M) is the travel direction.
@@ -109,6 +111,46 @@ def condition(jac):
     if not np.isfinite(largest):
         return np.nan
     return largest / smallest if smallest > 0.0 else np.inf
+
+
+@jit
+def factor(jac, lu, pivots):
+    """LU-factor J_free (the FREE columns of jac (5, 6)) into lu (5, 5); False if singular."""
+    for i in range(5):
+        for j in range(5):
+            lu[i, j] = jac[i, FREE[j]]
+        pivots[i] = i
+    for col in range(5):
+        best = col
+        for row in range(col + 1, 5):
+            if abs(lu[row, col]) > abs(lu[best, col]):
+                best = row
+        if not abs(lu[best, col]) > 0.0:   # zero or NaN
+            return False
+        if best != col:
+            for j in range(5):
+                lu[col, j], lu[best, j] = lu[best, j], lu[col, j]
+            pivots[col], pivots[best] = pivots[best], pivots[col]
+        for row in range(col + 1, 5):
+            lu[row, col] /= lu[col, col]
+            for j in range(col + 1, 5):
+                lu[row, j] -= lu[row, col] * lu[col, j]
+    return True
+
+
+@jit
+def solve(lu, pivots, rhs, x):
+    """Solve J_free x = rhs (5,) into x (5,) from factor()'s lu and pivots."""
+    for i in range(5):
+        total = rhs[pivots[i]]
+        for j in range(i):
+            total -= lu[i, j] * x[j]
+        x[i] = total
+    for i in range(4, -1, -1):
+        total = x[i]
+        for j in range(i + 1, 5):
+            total -= lu[i, j] * x[j]
+        x[i] = total / lu[i, i]
 
 
 @jit

@@ -21,7 +21,13 @@ from numba import njit
 import numpy as np
 
 from ..core import kernel
+from ..core.jacobian_kernel import factor, solve
 from ..core.so3 import rotate
+
+# sha256 of so3.py and of jacobian_kernel.py, whose rotate and LU (factor, solve) are
+# compiled in here: numba's cache follows each file alone (test_kernel checks them)
+SO3_DIGEST = '63b60c6921d8498a47cf8a0a86bdda0a2f05c7473f028ff5e6d7b18de31758ea'
+JACOBIAN_KERNEL_DIGEST = 'f32896f5003901225870e386642b63cd5c91249fac0e84d342088bb0d8a67276'
 
 jit = njit(cache=True, nogil=True, error_model='numpy')
 
@@ -82,7 +88,7 @@ def column_rates(jac, f_h, center_index, spin_index, spin_axis, spin_length, rot
     from_kernel = np.empty((5, 6))
     from_kernel[:, :] = jac
     rhs, x = np.empty(5), np.empty(5)
-    ok = _factor(from_kernel, lu, pivots)
+    ok = factor(from_kernel, lu, pivots)
     ax, ay, az = rotate(rotation, spin_axis[0], spin_axis[1], spin_axis[2])
     h2 = ax * ax + ay * ay
     h = np.sqrt(h2)
@@ -90,7 +96,7 @@ def column_rates(jac, f_h, center_index, spin_index, spin_axis, spin_length, rot
         for i in range(5):
             rhs[i] = -f_h[i, p]
         if ok:
-            _solve(lu, pivots, rhs, x)
+            solve(lu, pivots, rhs, x)
         else:
             x[:] = np.nan
         wx, wy, wz = x[2], x[3], x[4]
@@ -115,44 +121,6 @@ def column_rates(jac, f_h, center_index, spin_index, spin_axis, spin_length, rot
         out[1, p] = side_sign * (ay * dax - ax * day) / h2
         out[2, p], out[3, p] = x[0], x[1]
         out[4, p] = 1.0 if p == lift else 0.0
-
-
-@jit
-def _factor(jac, lu, pivots):
-    for i in range(5):
-        for j in range(5):
-            lu[i, j] = jac[i, kernel.FREE[j]]
-        pivots[i] = i
-    for col in range(5):
-        best = col
-        for row in range(col + 1, 5):
-            if abs(lu[row, col]) > abs(lu[best, col]):
-                best = row
-        if not abs(lu[best, col]) > 0.0:
-            return False
-        if best != col:
-            for j in range(5):
-                lu[col, j], lu[best, j] = lu[best, j], lu[col, j]
-            pivots[col], pivots[best] = pivots[best], pivots[col]
-        for row in range(col + 1, 5):
-            lu[row, col] /= lu[col, col]
-            for j in range(col + 1, 5):
-                lu[row, j] -= lu[row, col] * lu[col, j]
-    return True
-
-
-@jit
-def _solve(lu, pivots, rhs, x):
-    for i in range(5):
-        total = rhs[pivots[i]]
-        for j in range(i):
-            total -= lu[i, j] * x[j]
-        x[i] = total
-    for i in range(4, -1, -1):
-        total = x[i]
-        for j in range(i + 1, 5):
-            total -= lu[i, j] * x[j]
-        x[i] = total / lu[i, i]
 
 
 @jit
