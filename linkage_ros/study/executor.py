@@ -90,16 +90,21 @@ def executor(scheduler: str | None = None, workers: int | None = None,
         client.close()
 
 
+def in_process(function, items: Sequence, progress=None) -> list:
+    """Run the items one after another in this process: the run of no executor, in order."""
+    results = []
+    for item in items:
+        results.append(function(item))
+        if progress:
+            progress.update(len(results))
+    return results
+
+
 def _local(function, items: Sequence, progress, workers, pool_from):
     """Run the items in this process or in a pool of local processes, in order."""
     workers = workers or os.cpu_count() or 1
     if workers == 1 or len(items) < max(2, pool_from):
-        results = []
-        for item in items:
-            results.append(function(item))
-            if progress:
-                progress.update(len(results))
-        return results
+        return in_process(function, items, progress)
     # spawn: a fresh interpreter per worker, nothing inherited (threads, locks, numba state)
     context = multiprocessing.get_context('spawn')
     with ProcessPoolExecutor(max_workers=min(workers, len(items)), mp_context=context) as pool:

@@ -24,6 +24,7 @@ from typing import NamedTuple
 import numpy as np
 from scipy.optimize import least_squares
 
+from .executor import in_process
 from .hardpoints import scene_with
 from .sensitivity import sensitivities
 from .targets import Targets
@@ -139,14 +140,7 @@ def fit(targets: Targets, starts: int = 1, seed: int = 0, run=None, progress=Non
         raise LinkageError(targets.source, f'the design does not assemble over the target '
                            f'travels: {before.message}')
     items = [(targets, i, seed) for i in range(starts)]
-    if run is None:
-        outcomes = []
-        for item in items:
-            outcomes.append(fit_start(item))
-            if progress:
-                progress.update(len(outcomes))
-    else:
-        outcomes = run(fit_start, items, progress)
+    outcomes = (run or in_process)(fit_start, items, progress)
     best = min(outcomes, key=lambda o: (o['cost'], o['start']))
     after = evaluate(targets, best['x'])
     if not after.assembled:   # no start assembled: keep the design

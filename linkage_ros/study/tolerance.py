@@ -24,6 +24,7 @@ import numpy as np
 
 from . import variant_kernel
 from .equations import geometry, layout_of, table
+from .executor import in_process
 from .hardpoints import AXES, Design, scene_with
 from .quantities import SWEEP_COLUMNS
 from .sensitivity import sweep_column_rates
@@ -171,14 +172,7 @@ def tolerance(prob: Problem, run=None, progress=None) -> Tolerance:
     table = np.column_stack([np.degrees(nominal.camber), np.degrees(nominal.toe),
                              nominal.wheel_center])
     items = batches(prob)
-    if run is None:
-        results = []
-        for item in items:
-            results.append(solve_batch(item))
-            if progress:
-                progress.update(len(results))
-    else:
-        results = run(solve_batch, items, progress)
+    results = (run or in_process)(solve_batch, items, progress)
     values = np.concatenate(results) if results else np.empty((0,) + rss.shape)
     solved = np.isfinite(values)
     count = solved.sum(axis=0)
