@@ -258,6 +258,23 @@ def safe_name(text: str, fallback: str = 'output') -> str:
     return re.sub(r'[^\w.-]+', '_', str(text)).lstrip('._-') or fallback
 
 
+def plot_problem(path: str) -> str:
+    """
+    Tell why a plot cannot be written to path, in a few words; '' if it can.
+
+    The file cannot be written (writable_file), or matplotlib is not installed (said as
+    missing_package says it).
+    """
+    problem = writable_file(path)
+    if problem:
+        return problem
+    try:
+        import matplotlib  # noqa: F401 (imported to name it if it is missing)
+    except ImportError as exc:
+        return missing_package(exc, 'plotting')
+    return ''
+
+
 def missing_package(exc: ImportError, feature: str) -> str:
     """Say which optional package the feature needs and how to install it."""
     module = (getattr(exc, 'name', None) or '').split('.')[0]

@@ -15,7 +15,7 @@ import sys
 
 import numpy as np
 
-from ..cli import fail, missing_package, save_figure, warn, writable_file
+from ..cli import fail, plot_problem, save_figure, warn
 from ..core.axle import solve_axle
 from ..core.scene import link_polylines, SceneError
 from ..core.vehicle import load_vehicle
@@ -136,13 +136,9 @@ def main(paths):
     if not axle.has_patches:
         return fail(PROG, f'{vehicle.name} {axle_name} axle: roll-centre needs wheel_radius in '
                           'both scenes (the contact patches)')
-    problem = writable_file(out)
+    problem = plot_problem(out)
     if problem:
         return fail(PROG, problem)
-    try:
-        import matplotlib  # noqa: F401 (imported to name it if it is missing)
-    except ImportError as exc:
-        return fail(PROG, missing_package(exc, 'plotting'))
     compile_if_cold(PROG)
     failed = plot_roll_centre(axle, f'linkage_ros: {vehicle.name}, {axle_name} axle '
                               f'({axle.left.name} / {axle.right.name}): roll centre', out)

@@ -20,8 +20,8 @@ import sys
 
 import numpy as np
 
-from ..cli import (counted, EXIT_STATUS, fail, missing_package, Parser, program, save_figure,
-                   warn, writable_file)
+from ..cli import (counted, EXIT_STATUS, fail, Parser, plot_problem, program, save_figure,
+                   warn)
 from ..core.bundled import scene_dir
 from ..core.kinematics import sweep, travel_range
 from ..core.scene import load_scene, SceneError
@@ -235,13 +235,9 @@ def main(argv: list[str] | None = None) -> int:
             return fail(prog, exc)
         for scene in scenes:
             warn(prog, scene.warnings)
-    problem = writable_file(out)
+    problem = plot_problem(out)
     if problem:
         return fail(prog, problem)
-    try:
-        import matplotlib  # noqa: F401 (imported to name it if it is missing)
-    except ImportError as exc:
-        return fail(prog, missing_package(exc, 'plotting'))
     results = []
     if args.what == 'latency':
         plot_latency(ladder, out)
