@@ -28,7 +28,7 @@ from .so3 import rotate
 # sha256 of so3.py (test_kernel checks it, as kernel.SO3_DIGEST)
 SO3_DIGEST = '63b60c6921d8498a47cf8a0a86bdda0a2f05c7473f028ff5e6d7b18de31758ea'
 # sha256 of jacobian_kernel.py (its LU, factor and solve, compiled in here; as kernel.py)
-JACOBIAN_KERNEL_DIGEST = 'f32896f5003901225870e386642b63cd5c91249fac0e84d342088bb0d8a67276'
+JACOBIAN_KERNEL_DIGEST = '9aaaebd12e421b96856c917aeca3135397c228124eef0fe193d1176386b7aac5'
 CARRIER, ARM, LINK, ALONG = 0, 1, 2, 3      # MountTable.kind
 # pack_rows columns: one row per guidance equation
 R_LINE, R_OFFSET, R_BASE, R_STEER, R_LENGTH, R_NORMAL, ROW_COLUMNS = 0, 1, 4, 7, 8, 9, 12

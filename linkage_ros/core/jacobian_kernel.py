@@ -22,44 +22,6 @@ jit = njit(cache=True, nogil=True, error_model='numpy')
 
 
 @jit
-def solve_free(jac, rhs, x):
-    """
-    Solve J_free x = rhs into x (5,), J_free the FREE columns of jac (5, 6).
-
-    By Gaussian elimination with partial pivoting. Returns the determinant of J_free (its
-    pivots' product, signed), or 0.0 if J_free is singular or anything is not finite.
-    """
-    a = np.empty((5, 6))
-    for i in range(5):
-        for j in range(5):
-            a[i, j] = jac[i, FREE[j]]
-        a[i, 5] = rhs[i]
-    determinant = 1.0
-    for col in range(5):
-        pivot = col
-        for row in range(col + 1, 5):
-            if abs(a[row, col]) > abs(a[pivot, col]):
-                pivot = row
-        if not abs(a[pivot, col]) > 0.0:   # zero or NaN
-            return 0.0
-        if pivot != col:
-            determinant = -determinant
-            for j in range(col, 6):
-                a[col, j], a[pivot, j] = a[pivot, j], a[col, j]
-        determinant *= a[col, col]
-        for row in range(col + 1, 5):
-            factor = a[row, col] / a[col, col]
-            for j in range(col, 6):
-                a[row, j] -= factor * a[col, j]
-    for i in range(4, -1, -1):
-        total = a[i, 5]
-        for j in range(i + 1, 5):
-            total -= a[i, j] * x[j]
-        x[i] = total / a[i, i]
-    return determinant if np.isfinite(x).all() and np.isfinite(determinant) else 0.0
-
-
-@jit
 def determinant(jac):
     """
     Return the determinant of J_free (the FREE columns of jac (5, 6)); 0.0 if singular.
@@ -115,19 +77,26 @@ def condition(jac):
 
 @jit
 def factor(jac, lu, pivots):
-    """LU-factor J_free (the FREE columns of jac (5, 6)) into lu (5, 5); False if singular."""
+    """
+    LU-factor J_free (the FREE columns of jac (5, 6)) into lu (5, 5), pivots (5,) int.
+
+    By partial pivoting. Returns the sign of the row permutation (1.0 or -1.0), or 0.0 if
+    J_free is singular (a zero or NaN pivot).
+    """
     for i in range(5):
         for j in range(5):
             lu[i, j] = jac[i, FREE[j]]
         pivots[i] = i
+    sign = 1.0
     for col in range(5):
         best = col
         for row in range(col + 1, 5):
             if abs(lu[row, col]) > abs(lu[best, col]):
                 best = row
         if not abs(lu[best, col]) > 0.0:   # zero or NaN
-            return False
+            return 0.0
         if best != col:
+            sign = -sign
             for j in range(5):
                 lu[col, j], lu[best, j] = lu[best, j], lu[col, j]
             pivots[col], pivots[best] = pivots[best], pivots[col]
@@ -135,7 +104,7 @@ def factor(jac, lu, pivots):
             lu[row, col] /= lu[col, col]
             for j in range(col + 1, 5):
                 lu[row, j] -= lu[row, col] * lu[col, j]
-    return True
+    return sign
 
 
 @jit
@@ -151,6 +120,24 @@ def solve(lu, pivots, rhs, x):
         for j in range(i + 1, 5):
             total -= lu[i, j] * x[j]
         x[i] = total / lu[i, i]
+
+
+@jit
+def solve_free(jac, rhs, x):
+    """
+    Solve J_free x = rhs into x (5,), J_free the FREE columns of jac (5, 6).
+
+    By LU with partial pivoting (factor, solve). Returns the determinant of J_free (its
+    pivots' product, signed), or 0.0 if J_free is singular or anything is not finite.
+    """
+    lu, pivots = np.empty((5, 5)), np.empty(5, np.int64)
+    determinant = factor(jac, lu, pivots)   # the permutation's sign; 0.0: singular
+    if determinant == 0.0:
+        return 0.0
+    solve(lu, pivots, rhs, x)
+    for i in range(5):
+        determinant *= lu[i, i]
+    return determinant if np.isfinite(x).all() and np.isfinite(determinant) else 0.0
 
 
 @jit

@@ -37,7 +37,7 @@ from .so3 import camber_toe, quaternion, rotate, turn
 # sha256 of so3.py (test_kernel checks it and says the value to set after an edit there)
 SO3_DIGEST = '63b60c6921d8498a47cf8a0a86bdda0a2f05c7473f028ff5e6d7b18de31758ea'
 # sha256 of jacobian_kernel.py (the linear algebra compiled in here; test_kernel checks it)
-JACOBIAN_KERNEL_DIGEST = 'f32896f5003901225870e386642b63cd5c91249fac0e84d342088bb0d8a67276'
+JACOBIAN_KERNEL_DIGEST = '9aaaebd12e421b96856c917aeca3135397c228124eef0fe193d1176386b7aac5'
 SPHERE, LINE = 0.0, 1.0   # equation table columns (see above)
 KIND, POINT, BASE, LENGTH, STEER, NORMAL = 0, 1, 4, 7, 8, 9
 COLUMNS = 12

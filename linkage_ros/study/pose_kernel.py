@@ -27,7 +27,7 @@ from ..core.so3 import rotate
 # sha256 of so3.py and of jacobian_kernel.py, whose rotate and LU (factor, solve) are
 # compiled in here: numba's cache follows each file alone (test_kernel checks them)
 SO3_DIGEST = '63b60c6921d8498a47cf8a0a86bdda0a2f05c7473f028ff5e6d7b18de31758ea'
-JACOBIAN_KERNEL_DIGEST = 'f32896f5003901225870e386642b63cd5c91249fac0e84d342088bb0d8a67276'
+JACOBIAN_KERNEL_DIGEST = '9aaaebd12e421b96856c917aeca3135397c228124eef0fe193d1176386b7aac5'
 
 jit = njit(cache=True, nogil=True, error_model='numpy')
 
