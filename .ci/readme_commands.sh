@@ -51,5 +51,24 @@ NODE=$!
 .venv/bin/python drive.py | tail -1; echo "rc=$?"
 kill -INT $NODE; wait $NODE; echo "node rc=$?"
 unset FASTRTPS_DEFAULT_PROFILES_FILE
+step set params while the node runs
+.venv/bin/suspension_node > node6.log 2>&1 &
+NODE=$!
+sed -n '/^# set_params.py/,/^rclpy.try_shutdown()/p' README.md > set_params.py
+.venv/bin/python set_params.py; echo "rc=$?"
+kill -INT $NODE; wait $NODE; echo "node rc=$?"
+step qos presets
+timeout -s INT 8 .venv/bin/suspension_node --ros-args -p qos_overrides./wheel_travel.subscription.depth:=1 -p qos_overrides./wheel_carrier_pose.publisher.depth:=1 > node7.log 2>&1; echo "node rc=$? (124/130 = stopped by timeout)"
+timeout -s INT 8 .venv/bin/suspension_node --ros-args -p qos_overrides./wheel_travel.subscription.reliability:=best_effort -p qos_overrides./wheel_travel.subscription.depth:=5 -p qos_overrides./wheel_carrier_pose.publisher.reliability:=best_effort -p qos_overrides./wheel_carrier_pose.publisher.depth:=5 > node8.log 2>&1; echo "node rc=$?"
+step urdf and rerun from tf
+.venv/bin/linkage-urdf five_link -o five_link.urdf; echo "rc=$?"
+.venv/bin/linkage-rerun bags/five_link_sweep.mcap --tf -o five_link_tf.rrd; echo "rc=$?"
+step axle, roll centre picture
+.venv/bin/linkage-axle demo_vehicle --axle front > axle.csv; echo "rc=$?"; head -2 axle.csv
+.venv/bin/linkage-plot roll-centre roll_centre.png; echo "rc=$?"
+step studies
+.venv/bin/linkage-study sensitivity five_link --travel -50 0 50 --out five_link_sensitivity.csv; echo "rc=$?"
+.venv/bin/linkage-study tolerance five_link --sigma 0.05 --samples 10000 --travel -50 0 50 > tolerance.csv; echo "rc=$?"
+.venv/bin/linkage-study fit config/study/bump_steer_targets.yaml -o double_wishbone_fitted.yaml; echo "rc=$?"
 step git status
 git status --short

@@ -58,9 +58,27 @@ class Parser(argparse.ArgumentParser):
         # --from -1e3 or --from -80mm (which then fails as a number, with its own line).
         self._negative_number_matcher = re.compile(r'^-\.?[0-9]')
 
+    def parse_known_args(self, args=None, namespace=None):
+        """Parse as argparse does, keeping the arguments for error() to name."""
+        self._given = list(sys.argv[1:] if args is None else args)
+        return super().parse_known_args(args, namespace)
+
     def error(self, message: str) -> None:
         """Print one line naming the mistake and exit with status 2."""
+        if message.startswith('the following arguments are required'):
+            # argparse checks the required arguments before it looks for unknown options:
+            # 'linkage-urdf --no-such-option' would be told of its missing target instead.
+            unknown = [a for a in getattr(self, '_given', []) if self._unknown_option(a)]
+            if unknown:
+                message = f'unrecognized arguments: {" ".join(unknown)}'
         sys.exit(fail(self.prog, f'error: {message} (see {self.prog} --help)'))
+
+    def _unknown_option(self, arg: str) -> bool:
+        """Tell whether arg looks like an option (not a number) that no option starts with."""
+        if not arg.startswith('-') or arg == '-' or self._negative_number_matcher.match(arg):
+            return False
+        name = arg.split('=', 1)[0]
+        return not any(option.startswith(name) for option in self._option_string_actions)
 
 
 def program(prog: str):

@@ -41,8 +41,11 @@ TYPES = {'/wheel_travel': 'std_msgs/msg/Float64',
          '/wheel_carrier_pose': 'geometry_msgs/msg/PoseStamped',
          '/camber': 'std_msgs/msg/Float64', '/toe': 'std_msgs/msg/Float64',
          '/diagnostics': 'diagnostic_msgs/msg/DiagnosticArray'}
-# suspension_node's on five_link, whose spring and damper it publishes with every answer
-NODE_TYPES = {**TYPES, '/elements': 'sensor_msgs/msg/JointState'}
+# suspension_node's on five_link, whose spring and damper it publishes with every answer,
+# with TF on (the default): the bodies' frames per answer, the wheel's and the URDF at start
+NODE_TYPES = {**TYPES, '/elements': 'sensor_msgs/msg/JointState',
+              '/tf': 'tf2_msgs/msg/TFMessage', '/tf_static': 'tf2_msgs/msg/TFMessage',
+              '/robot_description': 'std_msgs/msg/String'}
 
 
 def pose(i):
@@ -383,21 +386,28 @@ def test_node_run_stopped_by_a_signal_leaves_complete_files_with_every_message(
     commands = [r for r in rows if r[0] == '/wheel_travel']
     n = len(commands)                                     # pings + the 11 travels
     assert n >= len(travels) + 1
-    answers = {t: n for t in NODE_TYPES if t != '/diagnostics'}   # /diagnostics: once a second
+    # /diagnostics: once a second; the wheel frame and the URDF: once, at start
+    answers = {t: 1 if t in ('/tf_static', '/robot_description') else n
+               for t in NODE_TYPES if t != '/diagnostics'}
     assert {t: sum(1 for r in rows if r[0] == t) for t in answers} == answers, err
     assert {(r[0], r[1]) for r in rows} <= set(NODE_TYPES.items())
     assert [r[3].data for r in commands[-len(travels):]] == travels
     for topic, values in (('/camber', expected.camber), ('/toe', expected.toe)):
         got = [r[3].data for r in rows if r[0] == topic][-len(travels):]
         assert got == pytest.approx(list(values), abs=1e-12)
-    # Order: every command is followed by its pose, camber, toe and elements.
+    # Order: at start the wheel frame and the URDF, then every command followed by its pose,
+    # camber, toe, elements and the bodies' frames.
     assert [r[0] for r in rows if r[0] != '/diagnostics'] == [
-        '/wheel_travel', '/wheel_carrier_pose', '/camber', '/toe', '/elements'] * n
+        '/tf_static', '/robot_description'] + [
+        '/wheel_travel', '/wheel_carrier_pose', '/camber', '/toe', '/elements', '/tf'] * n
     assert all(a[2] <= b[2] for a, b in zip(rows, rows[1:]))
     with AnyReader([mcap_path]) as bag:
         assert {c.topic: c.msgcount for c in bag.connections
                 if c.topic != '/diagnostics'} == answers
-        assert bag.connections[0].ext.offered_qos_profiles[0].depth == 1000
+        depths = {c.topic: c.ext.offered_qos_profiles[0].depth for c in bag.connections}
+        # latched (transient local, the last one) as tf2 and robot_state_publisher latch them
+        assert {t: d for t, d in depths.items() if d != 1000} == {
+            '/tf_static': 1, '/robot_description': 1}
 
     reader = RrdReader(str(rrd_path))
     samples = collections.Counter()
