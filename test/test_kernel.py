@@ -16,7 +16,7 @@ from linkage_ros.core.geometry import camber_toe, matrix_from_quaternion
 from linkage_ros.core.kinematics import Continuation, sweep
 from linkage_ros.core.mechanism import carrier_points, length_errors, linearize
 from linkage_ros.core.scene import bundled_scenes, load_scene
-from linkage_ros.study import pose_kernel
+from linkage_ros.study import pose_kernel, variant_kernel
 import numpy as np
 import pytest
 
@@ -76,7 +76,8 @@ def test_one_command_at_a_time_equals_the_batched_sweep_and_the_paper_method(nam
     (element_kernel, 'jacobian_kernel.py', 'JACOBIAN_KERNEL_DIGEST'),
     (pose_kernel, 'so3.py', 'SO3_DIGEST'),
     (pose_kernel, 'jacobian_kernel.py', 'JACOBIAN_KERNEL_DIGEST'),
-    (body_kernel, 'so3.py', 'SO3_DIGEST')],
+    (body_kernel, 'so3.py', 'SO3_DIGEST'),
+    (variant_kernel, 'so3.py', 'SO3_DIGEST'), (variant_kernel, 'kernel.py', 'KERNEL_DIGEST')],
     ids=lambda v: getattr(v, '__name__', v))
 def test_a_kernel_module_names_the_digest_of_each_file_it_compiles_in(module, compiled_in,
                                                                       attribute):

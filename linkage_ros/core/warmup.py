@@ -2,9 +2,9 @@
 The first compile of the numerical kernels: tell whether it is due, say so once, do it.
 
 numba compiles the kernels (KERNEL_MODULES: linkage_ros.core.so3, jacobian_kernel, kernel,
-element_kernel) on first use (about 20 s) and keeps the machine code in its on-disk cache
-(NUMBA_CACHE_DIR, else __pycache__ beside each module); later processes load it in well under
-a second. A program calls, before its first solve:
+element_kernel, body_kernel) on first use (about 20 s) and keeps the machine code in its
+on-disk cache (NUMBA_CACHE_DIR, else __pycache__ beside each module); later processes load it
+in well under a second. A program calls, before its first solve:
 
     cold() -> bool                   numba's cache lacks a kernel: the next solve compiles
     say_if_cold(prog, file=stderr)   print 'prog: compiling the numerical kernels, once, about
@@ -14,7 +14,8 @@ a second. A program calls, before its first solve:
     compile_kernels()                solve once along every path (both methods, a rack, a
                                      travel out of reach, a sweep, the alignment set, the
                                      elements (one answer and a batch), the carrier's
-                                     motion, an axle, roll-centre slopes): every kernel
+                                     motion, an axle, roll-centre slopes, the bodies' TF
+                                     frames): every kernel
                                      compiled, hence cached
     compile_in_child() -> bool       compile_kernels in a child process (python -m
                                      linkage_ros.core.warmup) while this one waits: the wait
@@ -32,7 +33,8 @@ import sys
 
 # The modules of numba-compiled functions (each one's own cache files).
 KERNEL_MODULES = ('linkage_ros.core.so3', 'linkage_ros.core.jacobian_kernel',
-                  'linkage_ros.core.kernel', 'linkage_ros.core.element_kernel')
+                  'linkage_ros.core.kernel', 'linkage_ros.core.element_kernel',
+                  'linkage_ros.core.body_kernel')
 MESSAGE = 'compiling the numerical kernels, once, about 20 s'
 _said = False
 
@@ -112,10 +114,11 @@ def compile_kernels() -> None:
 
 
 def _compile_elements_and_axles(scene) -> None:
-    """Solve the elements of a scene that has some, its carrier's motion, and an axle."""
+    """Solve the elements of a scene that has some, its carrier's motion, an axle, its frames."""
     import numpy as np
 
     from .axle import slopes, solve_axle
+    from .bodies import body_poses, corner_bodies
     from .elements import element_values, prepare, values_at
     from .kinematics import Continuation, sweep
     from .mechanism import compile_scene
@@ -139,6 +142,7 @@ def _compile_elements_and_axles(scene) -> None:
     mount_motion(rows, mount_table(scene, [Mount('carrier', scene.constraints[0].carrier)]),
                  poses)
     solve_axle(axle_of(load_vehicle('demo_vehicle'), 'front'), [-10.0, 0.0, 10.0])
+    body_poses(corner_bodies(scene), solution)     # the node's /tf (TF is on by default)
 
 
 def compile_in_child() -> bool:

@@ -1,8 +1,10 @@
 """
 A compiled solve batched over mechanism variants: each variant from its design to n travels.
 
-numba-compiled (njit, cache=True) like core/kernel.py, whose step and walk it calls (numba's
-disk cache follows each file; calling another file's kernels is fine). One call solves V
+numba-compiled (njit, cache=True) like core/kernel.py, whose step and walk it calls, and
+so3.py's rotations: numba's disk cache follows each file alone, and would keep running an old
+step after an edit of kernel.py, so the digests of both files are written here (KERNEL_DIGEST,
+SO3_DIGEST; test_kernel says the values to set). One call solves V
 variants, each its own equation table (equations.table), the way kinematics.sweep solves one
 mechanism: knots every knot_step mm by continuation from the design position (to knot_tol),
 then every travel as one continuation step from its nearest knot; a step that fails is
@@ -22,6 +24,9 @@ import numpy as np
 from ..core import kernel
 from ..core.so3 import camber_toe, rotate
 
+# sha256 of the files compiled in (test_kernel checks them)
+KERNEL_DIGEST = 'fa8249ccb5b6780ef7decee46ed6ec3b0a868bd994ce59b6ab2f4586ace03f12'
+SO3_DIGEST = '63b60c6921d8498a47cf8a0a86bdda0a2f05c7473f028ff5e6d7b18de31758ea'
 OUTPUTS = 5            # camber, toe, M_x, M_y, M_z
 SOLVED, FAILED = 0, 1  # status per (variant, travel)
 
