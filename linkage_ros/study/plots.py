@@ -64,8 +64,10 @@ def plot_fit(targets, result, path: str) -> None:
     fig, axes = plt.subplots(count, 1, figsize=(8, 3 * count), squeeze=False)
     for ax, t, before, after in zip(axes[:, 0], targets.targets, result.before.values,
                                     result.after.values):
-        ax.plot(t.travel, before, '--', color='tab:grey', label='before')
-        ax.plot(t.travel, after, '-', color='tab:blue', label='after')
+        marker = 'o' if len(t.travel) == 1 else None    # a target at one travel: points
+        ax.plot(t.travel, before, '--', color='tab:grey', marker=marker, mfc='none', ms=9,
+                label='before')
+        ax.plot(t.travel, after, '-', color='tab:blue', marker=marker, label='after')
         ax.plot(t.travel, t.value, 'o', ms=3, color='tab:red', label='target')
         ax.set_ylabel(t.quantity)
         ax.set_xlabel('travel, mm')
