@@ -38,7 +38,8 @@ def decoded(path):
 
 
 # What a replay also writes, as the node does with TF on: tested in test_tf_recording.py.
-TF_TOPICS = ('/tf', '/tf_static', '/robot_description')
+# What the node sends beside pose, camber and toe: TF, and five_link's elements per answer
+TF_TOPICS = ('/tf', '/tf_static', '/robot_description', '/elements')
 
 
 def by_topic(messages, topic):
@@ -110,6 +111,10 @@ def test_replaying_the_example_bag_reproduces_its_outputs(tmp_path):
             assert np.array(values(b)) == pytest.approx(np.array(values(a)), abs=1e-12)
         elif topic == '/robot_description':
             assert b.data == a.data
+        elif topic == '/elements':                 # five_link's damper and spring
+            assert (b.name, b.header.frame_id) == (a.name, a.header.frame_id)
+            assert list(b.position) == pytest.approx(list(a.position), abs=1e-12)
+            assert list(b.velocity) == pytest.approx(list(a.velocity), abs=1e-12)
         else:
             assert b.data == pytest.approx(a.data, abs=1e-12)
 
@@ -178,7 +183,8 @@ def test_another_topic_name_is_solved_and_answered_in_its_namespace(tmp_path):
     assert main(['solve', str(bag), '--topic', '/car/front_left/bump', '-o', str(out)]) == 0
     topics = [t for t, _, _ in decoded(out) if t not in TF_TOPICS]
     assert topics == ['/car/front_left/bump', '/car/front_left/wheel_carrier_pose',
-                      '/car/front_left/camber', '/car/front_left/toe'] * 2 + ['/diagnostics']
+                      '/car/front_left/camber', '/car/front_left/toe',
+                      '/car/front_left/elements'] * 2 + ['/diagnostics']
 
 
 def test_a_foreign_file_is_refused_clearly(tmp_path, capsys):

@@ -249,8 +249,9 @@ def test_a_truncated_bag_is_converted_up_to_the_cut_with_a_warning(tmp_path, cap
     cut.write_bytes(data[:-200])          # summary and footer lost, the chunk is intact
     out = tmp_path / 'cut.rrd'
     assert main([str(cut), '-o', str(out)]) == 1
-    # 161 x 5 (command, pose, camber, toe, /tf) + 4 /diagnostics + /tf_static and the URDF
-    assert 'bag truncated after 811 messages' in capsys.readouterr().err
+    # 161 x 6 (command, pose, camber, toe, elements, /tf) + 4 /diagnostics + /tf_static and
+    # the URDF
+    assert 'bag truncated after 972 messages' in capsys.readouterr().err
     rows, _, _ = contents(out)
     assert rows[('/plots/toe_deg', False)] == 161
 

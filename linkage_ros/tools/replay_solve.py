@@ -8,7 +8,8 @@ The answering is the node's own (linkage_ros.protocol.Responder, with the node's
 defaults); time is the recording's: each command at its receive time, a diagnostics report
 every period of it. As the node with TF on (its default), the recording also carries
 /tf_static and /robot_description once, at the first command's time, and /tf per solved
-command (linkage_ros.ros.tf, built without tf2_msgs).
+command (linkage_ros.ros.tf, built without tf2_msgs); a scene with elements, their JointState
+per solved command (ros/element_outputs.py), as the node publishes it.
 """
 
 import math
@@ -21,6 +22,7 @@ from ..core.errors import LinkageError
 from ..protocol import Responder
 
 DIAGNOSTIC_ARRAY = 'diagnostic_msgs/msg/DiagnosticArray'
+JOINT_STATE = 'sensor_msgs/msg/JointState'
 DIAGNOSTICS_TOPIC = '/diagnostics'
 DESCRIPTION_TOPIC = '/robot_description'
 
@@ -68,6 +70,7 @@ def solve_commands(commands, scene, method, sinks, topic=DEFAULT_TOPIC, progress
     from ..record.interfaces import qualified
     from ..robot_description import robot_description
     from ..ros import messages
+    from ..ros.element_outputs import TOPIC as ELEMENTS_TOPIC
     from ..ros.tf import CornerFrames, static_cdr, TF_STATIC_TOPIC, TF_TOPIC, TF_TYPE
     defaults = node_defaults()
     topic = qualified(topic)
@@ -80,6 +83,12 @@ def solve_commands(commands, scene, method, sinks, topic=DEFAULT_TOPIC, progress
                           condition_warn=defaults['condition_warn'], frame_id=frame_id,
                           status_name=status_name(scene),
                           period_ns=int(round(period_s * 1e9)))
+
+    elements = None
+    if scene.elements:     # the node's elements topic (ros/element_outputs.py)
+        from ..ros.element_outputs import elements_builder
+        elements = elements_builder(scene, responder.solver.mech, frame_id,
+                                    lambda: responder.solver.jacobian)
 
     def emit(name, type_name, data, time_ns, publish_ns=None):
         for sink in sinks:
@@ -109,6 +118,9 @@ def solve_commands(commands, scene, method, sinks, topic=DEFAULT_TOPIC, progress
                                  lambda: f'{topic} {command.travel!r} m')
         for name, type_name, data in reply.outputs:
             emit(f'{namespace}/{name}', type_name, data, t)
+        if reply.solution.success and elements is not None:
+            emit(f'{namespace}/{ELEMENTS_TOPIC}', JOINT_STATE,
+                 elements(reply.solution, divmod(t, 10**9)), t)
         if reply.solution.success:
             emit(TF_TOPIC, TF_TYPE, frames.tf_cdr(reply.solution, divmod(t, 10**9)), t)
         failures += not reply.solution.success
