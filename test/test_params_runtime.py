@@ -223,3 +223,25 @@ def test_from_another_process_max_step_mm_scene_and_a_refusal(node_process, loca
     assert code == 0, err
     assert 'scene double_wishbone' in err and 'Traceback' not in err
     assert not math.isnan(probe.poses[-1].pose.position.z)
+
+
+def test_a_new_scene_keeps_the_elements_topic_and_publishes_its_own_elements(
+        suspension_node, probe, client):
+    # five_link's damper and spring, then macpherson's strut, on the one elements publisher
+    # (its subscribers stay matched across the change)
+    from linkage_ros.core.elements import element_values
+    from sensor_msgs.msg import JointState
+    node = suspension_node()
+    got = []
+    probe.node.create_subscription(JointState, '/elements', got.append, 100)
+    corner = node.corners['']
+    before = corner.extras['elements'][0]
+    assert client.set(scene='macpherson') == [(True, '')]
+    assert corner.extras['elements'][0] is before
+    assert_answers(probe, 'macpherson', [0.03])
+    assert spin_until(probe.executor, lambda: got)
+    scene = load_scene('macpherson')
+    result = sweep(scene, [30.0])
+    lengths = element_values(scene, result.wheel_center, result.rotation).length[0]
+    assert list(got[-1].name) == ['strut']
+    assert list(got[-1].position) == pytest.approx(list(lengths / 1000.0), abs=1e-12)

@@ -121,7 +121,6 @@ def _compile_elements_and_axles(scene) -> None:
     from .bodies import body_poses, corner_bodies
     from .elements import element_values, prepare, values_at
     from .kinematics import Continuation, sweep
-    from .mechanism import compile_scene
     from .motion import carrier_motion, guidance_rows, pose_batch
     from .mounts import Mount, mount_motion, mount_table
     from .vehicle import load_vehicle
@@ -135,7 +134,7 @@ def _compile_elements_and_axles(scene) -> None:
     center, rotation = np.array(solution.wheel_center), np.array(solution.rotation)
     element_values(scene, center[None], rotation[None], solution.rack, model=model)  # one answer
     slopes(np.array(cont.jacobian)[None])   # the node's roll centres
-    mech = compile_scene(scene)
+    mech = cont.mech
     rows, poses = guidance_rows(scene, mech), pose_batch(mech, result.wheel_center,
                                                          result.rotation)
     carrier_motion(rows, poses)

@@ -168,15 +168,23 @@ class Corner:
         self._set_elements()
 
     def _set_elements(self) -> None:
-        """Publish the scene's elements (ros/element_outputs.py) if it has some, else not."""
-        if 'elements' in self.extras:
-            self.node.destroy_publisher(self.extras.pop('elements')[0])
-        if self.scene.elements:
-            from .element_outputs import TOPIC, elements_builder
-            self.extras['elements'] = (
-                publisher(self.node, JointState, self.prefix + TOPIC, self.qos),
-                elements_builder(self.scene, self.solver.mech, self.frame_id,
-                                 lambda: self.solver.jacobian))
+        """
+        Publish the scene's elements (ros/element_outputs.py) if it has some, else not.
+
+        A new scene with elements keeps the publisher (its subscribers stay matched) and gets
+        a new build; one without them removes it.
+        """
+        old = self.extras.pop('elements', None)
+        if not self.scene.elements:
+            if old is not None:
+                self.node.destroy_publisher(old[0])
+            return
+        from .element_outputs import TOPIC, elements_builder
+        out = old[0] if old is not None else publisher(self.node, JointState,
+                                                       self.prefix + TOPIC, self.qos)
+        self.extras['elements'] = (out, elements_builder(self.scene, self.solver.mech,
+                                                         self.frame_id,
+                                                         lambda: self.solver.jacobian))
 
     def set_outputs(self, params: dict) -> None:
         """Turn the alignment and markers outputs on or off, as params say."""
