@@ -17,7 +17,8 @@ through its template.
     TOPICS['alignment']                  -> the table names of the alignment message's fields
 
 Data only: this module imports nothing of the package (it sits at the bottom of core).
-doc/quantities.md is markdown_table() (test/test_quantities.py checks it).
+doc/quantities.md is markdown_table() (test/test_quantities.py checks it); to write it again:
+python -m linkage_ros.core.quantities > doc/quantities.md
 """
 
 from __future__ import annotations
@@ -324,3 +325,7 @@ def markdown_table() -> str:
     topics += [f'| `{t}` | ' + ', '.join(f'`{n}`' for n in ns) + ' |'
                for t, ns in TOPICS.items()]
     return '\n'.join(lines + topics) + '\n'
+
+
+if __name__ == '__main__':   # python -m linkage_ros.core.quantities > doc/quantities.md
+    print(markdown_table(), end='')
