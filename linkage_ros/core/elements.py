@@ -33,7 +33,7 @@ from typing import NamedTuple, TYPE_CHECKING
 
 import numpy as np
 
-from . import element_kernel
+from . import element_kernel, quantities
 from .element_kernel import pack_elements, pack_rows, SpringTable
 from .mechanism import compile_scene, Mechanism
 from .motion import guidance_rows, pose_batch
@@ -202,13 +202,8 @@ def values_at(model: ElementModel, center: np.ndarray, rotation: np.ndarray, rac
 
 
 def element_columns(scene: Scene) -> list[str]:
-    """Return the table columns of the scene's elements (element_table's order)."""
-    columns = []
-    for e in scene.elements:
-        columns += [f'{e.name}_length_mm', f'{e.name}_ratio']
-        if e.has_rate:
-            columns += [f'{e.name}_force_N', f'{e.name}_wheel_rate_N_per_mm']
-    return columns
+    """Return the table columns of the scene's elements (element_table's order, registry names)."""
+    return [c for e in scene.elements for c in quantities.element_columns(e.name, e.has_rate)]
 
 
 def element_table(scene: Scene, values: ElementValues) -> np.ndarray:

@@ -38,6 +38,7 @@ from .label_layout import place_labels
 from ..core.geometry import (camber_toe, carrier_points, matrix_from_quaternion, perpendicular,
                              unit)
 from ..core.kinematics import sweep, travel_range
+from ..core.quantities import title
 from ..core.scene import link_polylines
 
 if TYPE_CHECKING:
@@ -51,8 +52,8 @@ if TYPE_CHECKING:
 APP_ID = 'linkage_ros'
 TIME = 'ros_time'
 SEQUENCE = 'command'
-SERIES = {'travel_mm': 'travel (mm)', 'camber_deg': 'camber (deg)', 'toe_deg': 'toe (deg)',
-          'rack_mm': 'rack (mm)'}
+# plot name (a registry quantity, core/quantities.py): its title, 'camber (deg)'
+SERIES = {name: title(name) for name in ('travel_mm', 'camber_deg', 'toe_deg', 'rack_mm')}
 WHEEL_SEGMENTS = 72
 # Drawing sizes (mm): thin enough not to hide the joints of a 1 m wide corner.
 LINK_RADIUS = 4.0

@@ -29,6 +29,7 @@ from std_msgs.msg import Float64MultiArray, MultiArrayDimension, MultiArrayLayou
 
 from ..cdr import float64_of
 from ..core.geometry import M_PER_MM, MM_PER_M
+from ..core.quantities import quantity, TOPICS
 
 if TYPE_CHECKING:
     from collections.abc import Iterable
@@ -66,24 +67,28 @@ def joint_travel_mm(msg: JointState, joint: str) -> float | None:
     return float(msg.position[index]) * MM_PER_M
 
 
-# label: (Alignment attribute, column or None, factor from the core's unit to SI). The order
-# is the order of the data in the alignment message.
-ALIGNMENT_FIELDS = {
-    'camber_gain_rad_per_m': ('camber_gain', None, MM_PER_M),
-    'bump_steer_rad_per_m': ('bump_steer', None, MM_PER_M),
-    'caster_rad': ('caster', None, 1.0),
-    'kingpin_inclination_rad': ('kingpin_inclination', None, 1.0),
-    'scrub_radius_m': ('scrub_radius', None, M_PER_MM),
-    'mechanical_trail_m': ('mechanical_trail', None, M_PER_MM),
-    'track_change_m': ('track_change', None, M_PER_MM),
-    'wheelbase_change_m': ('wheelbase_change', None, M_PER_MM),
-    'wheel_center_lateral_shift_m': ('lateral_shift', None, M_PER_MM),
-    'wheel_center_longitudinal_shift_m': ('longitudinal_shift', None, M_PER_MM),
-    'svic_x_m': ('side_view_ic', 0, M_PER_MM),
-    'svic_z_m': ('side_view_ic', 1, M_PER_MM),
-    'fvic_y_m': ('front_view_ic', 0, M_PER_MM),
-    'fvic_z_m': ('front_view_ic', 1, M_PER_MM),
+# The alignment message's fields are the registry's (core/quantities.TOPICS['alignment']), in
+# that order: table name -> (Alignment attribute, column or None).
+_ATTRIBUTES = {
+    'camber_gain_deg_per_mm': ('camber_gain', None),
+    'bump_steer_deg_per_mm': ('bump_steer', None),
+    'caster_deg': ('caster', None),
+    'kingpin_inclination_deg': ('kingpin_inclination', None),
+    'scrub_radius_mm': ('scrub_radius', None),
+    'mechanical_trail_mm': ('mechanical_trail', None),
+    'track_change_mm': ('track_change', None),
+    'wheelbase_change_mm': ('wheelbase_change', None),
+    'wheel_center_lateral_shift_mm': ('lateral_shift', None),
+    'wheel_center_longitudinal_shift_mm': ('longitudinal_shift', None),
+    'svic_x_mm': ('side_view_ic', 0),
+    'svic_z_mm': ('side_view_ic', 1),
+    'fvic_y_mm': ('front_view_ic', 0),
+    'fvic_z_mm': ('front_view_ic', 1),
 }
+# label (the quantity's SI name): (Alignment attribute, column or None, factor from the core's
+# unit to SI). The order is the order of the data in the alignment message.
+ALIGNMENT_FIELDS = {quantity(name).si_name: (*_ATTRIBUTES[name], quantity(name).core_factor)
+                    for name in TOPICS['alignment']}
 
 
 def alignment_array(alignment: Alignment) -> Float64MultiArray:

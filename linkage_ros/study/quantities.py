@@ -20,25 +20,23 @@ from . import jets as jt
 from .equations import geometry, jacobian, layout_of, rack_column
 from .hardpoints import link_fractions, point_names
 from ..core.kingpin import kingpin_points
-from ..tools.sweep import ALIGNMENT_COLUMNS
+from ..core.quantities import columns, element_columns
 
 if TYPE_CHECKING:
     from ..core.scene import Scene
 
-SWEEP_COLUMNS = ('camber_deg', 'toe_deg', 'wheel_center_x_mm', 'wheel_center_y_mm',
-                 'wheel_center_z_mm')
+# Names from the registry (core/quantities.py), as linkage-sweep's columns
+SWEEP_COLUMNS = tuple(columns('wheel'))
+ALIGNMENT_COLUMNS = tuple(columns('alignment', 'kingpin'))
+KINGPIN_COLUMNS = tuple(columns('kingpin'))
 DEG = 180.0 / math.pi
 E_Z = np.array([0.0, 0.0, 1.0])
 
 
 def element_names(scene: Scene) -> list[str]:
     """Return the element quantities a scene has (length, ratio, force of a spring)."""
-    names = []
-    for e in scene.elements:
-        names += [f'{e.name}_length_mm', f'{e.name}_ratio']
-        if e.has_rate:
-            names.append(f'{e.name}_force_N')
-    return names
+    return [c for e in scene.elements
+            for c in element_columns(e.name, e.has_rate, wheel_rate=False)]
 
 
 def quantities(scene: Scene, points, center, rotation, rack: float = 0.0,
@@ -159,12 +157,9 @@ def joint(points, index, center, rotation, center0):
 
 def geometric_kingpin(scene, points, geom, center, rotation, rack, patch) -> dict:
     """Return the geometric kingpin's columns (kingpin.geometric_kingpin's definitions)."""
-    names = ('caster_geometric_deg', 'kingpin_inclination_geometric_deg',
-             'scrub_radius_geometric_mm', 'mechanical_trail_geometric_mm',
-             'kingpin_offset_wheel_centre_geometric_mm')
     ends = kingpin_points(scene)
     if ends is None:
-        return dict.fromkeys(names, np.nan)
+        return dict.fromkeys(KINGPIN_COLUMNS, np.nan)
     index = {name: i for i, name in enumerate(point_names(scene))}
 
     def body(c):
@@ -187,7 +182,7 @@ def geometric_kingpin(scene, points, geom, center, rotation, rack, patch) -> dic
     side = scene.side_sign
     at_ground = ground_point(lower, axis, patch[..., 2])
     at_centre = ground_point(lower, axis, center[..., 2])
-    return dict(zip(names, (
+    return dict(zip(KINGPIN_COLUMNS, (
         jt.atan2(-axis[..., 0], axis[..., 2]) * DEG,
         jt.atan2(-side * axis[..., 1], axis[..., 2]) * DEG,
         side * (patch[..., 1] - at_ground[..., 1]), at_ground[..., 0] - patch[..., 0],

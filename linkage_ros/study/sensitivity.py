@@ -25,12 +25,11 @@ import numpy as np
 from . import jets as jt
 from .equations import free, geometry, layout_of, residuals
 from .hardpoints import hardpoint_values, point_names
-from .quantities import element_names, quantities, SWEEP_COLUMNS
+from .quantities import ALIGNMENT_COLUMNS, element_names, quantities, SWEEP_COLUMNS
 from ..core.errors import LinkageError
 from ..core.kinematics import sweep
 from ..core.mechanism import compile_scene, is_singular, linearize
 from ..core.status import Status
-from ..tools.sweep import ALIGNMENT_COLUMNS
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike

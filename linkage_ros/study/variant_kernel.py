@@ -22,12 +22,16 @@ from numba import njit
 import numpy as np
 
 from ..core import kernel
+from ..core.quantities import columns
 from ..core.so3 import camber_toe, rotate
 
 # sha256 of the files compiled in (test_kernel checks them)
 KERNEL_DIGEST = 'fa8249ccb5b6780ef7decee46ed6ec3b0a868bd994ce59b6ab2f4586ace03f12'
 SO3_DIGEST = '63b60c6921d8498a47cf8a0a86bdda0a2f05c7473f028ff5e6d7b18de31758ea'
-OUTPUTS = 5            # camber, toe, M_x, M_y, M_z
+# What out holds per (variant, travel), in order: the registry's 'wheel' quantities (camber,
+# toe, wheel centre x, y, z; camber and toe in rad here, deg in tables)
+QUANTITIES = tuple(columns('wheel'))
+OUTPUTS = len(QUANTITIES)
 SOLVED, FAILED = 0, 1  # status per (variant, travel)
 
 jit = njit(cache=True, nogil=True, error_model='numpy')

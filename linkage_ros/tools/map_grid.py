@@ -24,6 +24,7 @@ from ..core.alignment import contact_patch
 from ..core.kinematics import sweep, travel_range
 from ..core.mechanism import compile_scene
 from ..core.pose_newton import tangent
+from ..core.quantities import columns
 
 if TYPE_CHECKING:
     from ..core.axle import Axle
@@ -31,9 +32,8 @@ if TYPE_CHECKING:
 
 AXES = ('travel_mm', 'rack_mm')
 SKIPPED = ('iterations',)   # how the solver got there, not a quantity of the position
-AXLE_QUANTITIES = ('roll_centre_y_mm', 'roll_centre_z_mm', 'roll_centre_height_mm',
-                   'track_mm', 'left_camber_deg', 'right_camber_deg', 'left_toe_deg',
-                   'right_toe_deg')
+# the registry's roll centre and track, then both wheels' camber and toe (core/quantities.py)
+AXLE_QUANTITIES = tuple(columns('roll_centre', 'axle_wheel'))
 
 
 class Grid(NamedTuple):

@@ -15,25 +15,16 @@ from ..core.errors import LinkageError
 from ..core.finite import all_finite, is_finite_number
 from ..core.kinematics import Continuation, METHODS, sweep, travel_range
 from ..core.limits import check_position_count, positions_needed
+from ..core.quantities import columns
 from ..core.scene import load_scene, SceneError
 from ..core.warmup import compile_if_cold
 
 PROG = 'linkage-sweep'
-COLUMNS = ['travel_mm', 'camber_deg', 'toe_deg', 'wheel_center_x_mm', 'wheel_center_y_mm',
-           'wheel_center_z_mm', 'qx', 'qy', 'qz', 'qw', 'residual_mm', 'iterations']
-
-
-# Extra columns, written only when asked for (--rack/--grid, --alignment).
-RACK_COLUMNS = ['rack_mm']
-ALIGNMENT_COLUMNS = [
-    'camber_gain_deg_per_mm', 'bump_steer_deg_per_mm', 'wheel_center_vx_per_travel',
-    'wheel_center_vy_per_travel', 'caster_deg', 'kingpin_inclination_deg', 'scrub_radius_mm',
-    'mechanical_trail_mm', 'track_change_mm', 'wheelbase_change_mm',
-    'wheel_center_lateral_shift_mm', 'wheel_center_longitudinal_shift_mm', 'svic_x_mm',
-    'svic_z_mm', 'fvic_y_mm', 'fvic_z_mm', 'screw_axis_x', 'screw_axis_y', 'screw_axis_z',
-    'screw_pitch_mm_per_rad', 'caster_geometric_deg', 'kingpin_inclination_geometric_deg',
-    'scrub_radius_geometric_mm', 'mechanical_trail_geometric_mm',
-    'kingpin_offset_wheel_centre_geometric_mm']
+# The columns, each declared once in the registry (core/quantities.py), in the table's order:
+# always COLUMNS; RACK_COLUMNS with --rack/--grid; ALIGNMENT_COLUMNS with --alignment.
+COLUMNS = columns('travel', 'wheel', 'rotation', 'solver')
+RACK_COLUMNS = columns('rack')
+ALIGNMENT_COLUMNS = columns('alignment', 'kingpin')
 
 
 def table(result, scene=None, with_rack=False, elements=None):

@@ -1,0 +1,331 @@
+"""
+The registry of quantities: every quantity an output names, declared once.
+
+Each Quantity has its name as tables write it (the unit in the name: `camber_deg`), its table
+unit, the SI unit and factor (table value x factor = SI value, as ROS messages carry it),
+its sign convention, its group (the block of columns it belongs to, in output order) and a
+one-line doc. Axes ISO 8855 / REP 103: x forward, y left, z up; a right wheel mirrors y, so
+camber (+ = top outboard), toe (+ = toe-in) and the outboard shifts read alike on both sides.
+
+A name may be a template: `{element}_length_mm` (one per element of a scene, the element's
+name in place) or `{side}_camber_deg` (left and right). quantity(name) finds a concrete name
+through its template.
+
+    quantity('camber_deg').si_name       -> 'camber_rad'
+    columns('travel', 'wheel')           -> ['travel_mm', 'camber_deg', 'toe_deg', ...]
+    element_columns('spring', rate=True) -> ['spring_length_mm', 'spring_ratio', ...]
+    TOPICS['alignment']                  -> the table names of the alignment message's fields
+
+Data only: this module imports nothing of the package (it sits at the bottom of core).
+doc/quantities.md is markdown_table() (test/test_quantities.py checks it); to write it again:
+python -m linkage_ros.core.quantities > doc/quantities.md
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from typing import NamedTuple
+
+DEG = math.pi / 180.0
+
+# table unit: (SI unit, factor table -> SI, factor core -> SI). The core holds angles in rad and
+# everything else in the table's unit. A unit is spelt in names as suffix() says.
+UNITS = {
+    'mm': ('m', 1e-3, 1e-3),
+    'deg': ('rad', DEG, 1.0),
+    'deg/mm': ('rad/m', DEG * 1e3, 1e3),
+    'mm/rad': ('m/rad', 1e-3, 1e-3),
+    'N': ('N', 1.0, 1.0),
+    'N/mm': ('N/m', 1e3, 1e3),
+    'Nm': ('Nm', 1.0, 1.0),
+    'Nm/deg': ('Nm/rad', 1.0 / DEG, 1.0),
+    '%': ('1', 1e-2, 1e-2),
+    '1': ('1', 1.0, 1.0),
+}
+# What a template's placeholder stands for (a regular expression).
+PLACEHOLDERS = {'element': r'.+', 'side': r'left|right'}
+SIDES = ('left', 'right')
+
+
+def suffix(unit: str) -> str:
+    """Return how a unit is spelt at the end of a name: 'deg/mm' -> 'deg_per_mm', '1' -> ''."""
+    return {'%': 'pct', '1': ''}.get(unit, unit.replace('/', '_per_'))
+
+
+class Quantity(NamedTuple):
+    """One quantity: its name in tables and what it means."""
+
+    name: str       # as in tables, unit included; may hold {element} or {side}
+    unit: str       # table unit, a key of UNITS ('1': a number without unit)
+    sign: str       # sign convention ('' where none applies)
+    group: str      # the block of columns it belongs to
+    doc: str        # one line
+    needs: str = ''  # what a scene or axle must have for the quantity to be written
+
+    @property
+    def si_unit(self) -> str:
+        """Return the SI unit (ROS messages)."""
+        return UNITS[self.unit][0]
+
+    @property
+    def factor(self) -> float:
+        """Return the factor from the table unit to SI (SI value = table value x factor)."""
+        return UNITS[self.unit][1]
+
+    @property
+    def core_factor(self) -> float:
+        """Return the factor from the core's unit (the table's, angles in rad) to SI."""
+        return UNITS[self.unit][2]
+
+    @property
+    def stem(self) -> str:
+        """Return the name without its unit: 'camber_gain_deg_per_mm' -> 'camber_gain'."""
+        end = suffix(self.unit)
+        return self.name[:-len(end) - 1] if end else self.name
+
+    @property
+    def si_name(self) -> str:
+        """Return the name in SI, as ROS messages label it: 'caster_deg' -> 'caster_rad'."""
+        end = suffix(self.si_unit)
+        return f'{self.stem}_{end}' if end else self.stem
+
+    @property
+    def label(self) -> str:
+        """Return the stem in words, for plot titles: 'camber_gain_deg_per_mm' -> 'camber gain'."""
+        return self.stem.replace('_', ' ')
+
+
+def _q(name, unit, sign, group, doc, needs=''):
+    return Quantity(name, unit, sign, group, doc, needs)
+
+
+_STEER_AXIS = 'a steer: rack link'
+_PATCH = 'wheel_radius'
+_DECLARED = (
+    # the sweep's leading columns (linkage-sweep, maps, study)
+    _q('travel_mm', 'mm', '+ = bump', 'travel',
+       'wheel travel: the wheel centre height from design'),
+    _q('camber_deg', 'deg', '+ = top outboard', 'wheel', 'camber of the wheel to the body'),
+    _q('toe_deg', 'deg', '+ = toe-in', 'wheel', 'toe of the wheel to the body'),
+    _q('wheel_center_x_mm', 'mm', '+ = forward', 'wheel', 'wheel centre x, vehicle frame'),
+    _q('wheel_center_y_mm', 'mm', '+ = left', 'wheel', 'wheel centre y, vehicle frame'),
+    _q('wheel_center_z_mm', 'mm', '+ = up', 'wheel', 'wheel centre z, vehicle frame'),
+    _q('qx', '1', '', 'rotation', 'carrier rotation from design, quaternion x'),
+    _q('qy', '1', '', 'rotation', 'carrier rotation from design, quaternion y'),
+    _q('qz', '1', '', 'rotation', 'carrier rotation from design, quaternion z'),
+    _q('qw', '1', '', 'rotation', 'carrier rotation from design, quaternion w (1 at design)'),
+    _q('residual_mm', 'mm', '', 'solver', 'largest constraint violation of the solved pose'),
+    _q('iterations', '1', '', 'solver', 'Newton iterations of the last continuation step'),
+    _q('rack_mm', 'mm', '+ = rack to the left', 'rack', 'steering rack travel', _STEER_AXIS),
+    # the alignment set (linkage-sweep --alignment; core/alignment.py)
+    _q('camber_gain_deg_per_mm', 'deg/mm', '+ = camber grows in bump', 'alignment',
+       'd camber / d travel'),
+    _q('bump_steer_deg_per_mm', 'deg/mm', '+ = toe-in grows in bump', 'alignment',
+       'd toe / d travel'),
+    _q('wheel_center_vx_per_travel', '1', '+ = forward in bump', 'alignment',
+       'd wheel centre x / d travel'),
+    _q('wheel_center_vy_per_travel', '1', '+ = left in bump', 'alignment',
+       'd wheel centre y / d travel'),
+    _q('caster_deg', 'deg', '+ = top rearward', 'alignment',
+       'caster of the instantaneous steer axis', _STEER_AXIS),
+    _q('kingpin_inclination_deg', 'deg', '+ = top inboard', 'alignment',
+       'kingpin inclination of the instantaneous steer axis', _STEER_AXIS),
+    _q('scrub_radius_mm', 'mm', '+ = axis meets the ground inboard of the patch', 'alignment',
+       'where the instantaneous steer axis meets the ground, along y', _STEER_AXIS),
+    _q('mechanical_trail_mm', 'mm', '+ = axis meets the ground ahead of the patch', 'alignment',
+       'where the instantaneous steer axis meets the ground, along x', _STEER_AXIS),
+    _q('track_change_mm', 'mm', '+ = wider', 'alignment',
+       '2 x the outboard shift of the contact patch from design', _PATCH),
+    _q('wheelbase_change_mm', 'mm', '+ = forward', 'alignment',
+       'shift of the contact patch from design along x', _PATCH),
+    _q('wheel_center_lateral_shift_mm', 'mm', '+ = outboard', 'alignment',
+       'shift of the wheel centre from design along y'),
+    _q('wheel_center_longitudinal_shift_mm', 'mm', '+ = forward', 'alignment',
+       'shift of the wheel centre from design along x'),
+    _q('svic_x_mm', 'mm', '+ = forward', 'alignment', 'side-view instant centre x'),
+    _q('svic_z_mm', 'mm', '+ = up', 'alignment', 'side-view instant centre z'),
+    _q('fvic_y_mm', 'mm', '+ = left', 'alignment', 'front-view instant centre y'),
+    _q('fvic_z_mm', 'mm', '+ = up', 'alignment', 'front-view instant centre z'),
+    _q('screw_axis_x', '1', '', 'alignment', "carrier's instantaneous screw axis, unit x"),
+    _q('screw_axis_y', '1', '', 'alignment', "carrier's instantaneous screw axis, unit y"),
+    _q('screw_axis_z', '1', '', 'alignment', "carrier's instantaneous screw axis, unit z"),
+    _q('screw_pitch_mm_per_rad', 'mm/rad', '', 'alignment', 'pitch of that screw axis'),
+    # the geometric kingpin (core/kingpin.py), beside the instantaneous steer axis
+    _q('caster_geometric_deg', 'deg', '+ = top rearward', 'kingpin',
+       'caster of the geometric kingpin axis', 'a kingpin'),
+    _q('kingpin_inclination_geometric_deg', 'deg', '+ = top inboard', 'kingpin',
+       'kingpin inclination of the geometric axis', 'a kingpin'),
+    _q('scrub_radius_geometric_mm', 'mm', '+ = axis meets the ground inboard of the patch',
+       'kingpin', 'where the geometric axis meets the ground, along y', 'a kingpin'),
+    _q('mechanical_trail_geometric_mm', 'mm', '+ = axis meets the ground ahead of the patch',
+       'kingpin', 'where the geometric axis meets the ground, along x', 'a kingpin'),
+    _q('kingpin_offset_wheel_centre_geometric_mm', 'mm', '+ = axis inboard', 'kingpin',
+       "lateral distance from the wheel centre to the axis at the wheel centre's height",
+       'a kingpin'),
+    # per element of a scene (linkage-sweep --elements; core/elements.py)
+    _q('{element}_length_mm', 'mm', '', 'element', "the element's length"),
+    _q('{element}_ratio', '1', '+ = lengthens in bump', 'element',
+       'motion ratio d length / d travel'),
+    _q('{element}_force_N', 'N', '+ = compressed', 'element', "the spring's force",
+       'a spring rate'),
+    _q('{element}_wheel_rate_N_per_mm', 'N/mm', '', 'element',
+       "the spring's rate at the wheel", 'a spring rate'),
+    # an axle (linkage-axle, linkage-map; core/axle.py)
+    _q('heave_mm', 'mm', '+ = bump', 'axle', 'both wheels travel by the heave'),
+    _q('roll_deg', 'deg', '+ = right side down', 'axle', 'body roll over the ground'),
+    _q('{side}_travel_mm', 'mm', '+ = bump', 'axle', "each wheel's travel"),
+    _q('roll_centre_y_mm', 'mm', '+ = left', 'roll_centre', 'roll centre y, vehicle frame',
+       _PATCH),
+    _q('roll_centre_z_mm', 'mm', '+ = up', 'roll_centre', 'roll centre z, vehicle frame',
+       _PATCH),
+    _q('roll_centre_height_mm', 'mm', '+ = up', 'roll_centre',
+       'roll centre above the ground line through the contact patches', _PATCH),
+    _q('track_mm', 'mm', '', 'roll_centre', 'left patch y minus right patch y', _PATCH),
+    _q('{side}_camber_deg', 'deg', '+ = top outboard', 'axle_wheel',
+       "each wheel's camber to the body"),
+    _q('{side}_toe_deg', 'deg', '+ = toe-in', 'axle_wheel', "each wheel's toe to the body"),
+    _q('{side}_camber_ground_deg', 'deg', '+ = top outboard', 'axle_ground',
+       "each wheel's camber to the ground"),
+    _q('{side}_toe_ground_deg', 'deg', '+ = toe-in', 'axle_ground',
+       "each wheel's toe to the ground"),
+    _q('anti_dive_pct', '%', '', 'anti', 'anti-dive of a front axle in braking',
+       'brake_share, cg_height'),
+    _q('anti_lift_pct', '%', '', 'anti',
+       'anti-lift: a rear axle in braking, a front axle in drive', 'a share, cg_height'),
+    _q('anti_squat_pct', '%', '', 'anti', 'anti-squat of a rear axle in drive',
+       'drive_share, cg_height'),
+    _q('{side}_steer_deg', 'deg', '+ = to the left', 'axle_steer', "each wheel's steer (yaw)",
+       'a rack'),
+    _q('mean_steer_deg', 'deg', '+ = to the left', 'axle_steer', 'mean of the two steers',
+       'a rack'),
+    _q('ackermann_pct', '%', '', 'axle_steer', 'Ackermann of the two steers',
+       'a rack, wheel_radius, wheelbase'),
+    # an axle's anti-roll bar (core/anti_roll_bar.py)
+    _q('arb_{side}_angle_deg', 'deg', '', 'anti_roll_bar',
+       "each arm's angle about the bar's axis, directed to the left", 'an anti_roll_bar'),
+    _q('arb_twist_deg', 'deg', '', 'anti_roll_bar', 'left minus right arm angle',
+       'an anti_roll_bar'),
+    _q('arb_ratio_deg_per_deg_roll', '1', '', 'anti_roll_bar', 'd twist / d roll',
+       'an anti_roll_bar'),
+    _q('arb_ratio_{side}_deg_per_mm', 'deg/mm', '', 'anti_roll_bar',
+       'd twist / d travel of one wheel, the other held', 'an anti_roll_bar'),
+    _q('arb_torque_Nm', 'Nm', '', 'anti_roll_bar', "the bar's torque", 'a bar rate'),
+    _q('arb_roll_moment_Nm', 'Nm', '', 'anti_roll_bar', 'the roll moment the bar resists with',
+       'a bar rate'),
+    _q('arb_roll_stiffness_Nm_per_deg', 'Nm/deg', '', 'anti_roll_bar',
+       "the bar's roll stiffness", 'a bar rate'),
+)
+QUANTITIES = {q.name: q for q in _DECLARED}
+
+# The quantities each of a corner's topics carries (names relative to the corner's namespace),
+# in message order: std_msgs/Float64 (SI), the pose's wheel centre (m) and quaternion, the
+# alignment message's fields (labelled by si_name), the elements JointState (position, velocity).
+TOPICS = {
+    'wheel_travel': ('travel_mm',),
+    'steering_rack': ('rack_mm',),
+    'wheel_carrier_pose': ('wheel_center_x_mm', 'wheel_center_y_mm', 'wheel_center_z_mm',
+                           'qx', 'qy', 'qz', 'qw'),
+    'camber': ('camber_deg',),
+    'toe': ('toe_deg',),
+    'alignment': ('camber_gain_deg_per_mm', 'bump_steer_deg_per_mm', 'caster_deg',
+                  'kingpin_inclination_deg', 'scrub_radius_mm', 'mechanical_trail_mm',
+                  'track_change_mm', 'wheelbase_change_mm', 'wheel_center_lateral_shift_mm',
+                  'wheel_center_longitudinal_shift_mm', 'svic_x_mm', 'svic_z_mm', 'fvic_y_mm',
+                  'fvic_z_mm'),
+    'elements': ('{element}_length_mm', '{element}_ratio'),
+}
+
+
+def _pattern(template: str) -> re.Pattern:
+    parts = re.split(r'\{(\w+)\}', template)
+    return re.compile(''.join(re.escape(p) if i % 2 == 0 else f'(?:{PLACEHOLDERS[p]})'
+                              for i, p in enumerate(parts)) + r'\Z')
+
+
+_TEMPLATES = [(_pattern(q.name), q) for q in _DECLARED if '{' in q.name]
+
+
+def quantity(name: str) -> Quantity:
+    """Return the Quantity of a name (a template's, for a concrete name); KeyError if none."""
+    if name in QUANTITIES:
+        return QUANTITIES[name]
+    for pattern, q in _TEMPLATES:
+        if pattern.match(name):
+            return q
+    raise KeyError(f'{name!r} is no quantity of linkage_ros.core.quantities')
+
+
+def known(name: str) -> bool:
+    """Tell whether a table name is a quantity of the registry."""
+    try:
+        quantity(name)
+    except KeyError:
+        return False
+    return True
+
+
+def known_si(name: str) -> bool:
+    """Tell whether an SI name (a message label: 'caster_rad') is one of a quantity."""
+    return any(q.si_name == name for q in _DECLARED)
+
+
+def names(*groups: str) -> list[str]:
+    """Return the names declared in groups (templates as such), group after group."""
+    return [q.name for g in groups for q in _DECLARED if q.group == g]
+
+
+def sides(template: str) -> list[str]:
+    """Return a {side} template's names, left then right; a plain name alone."""
+    return [template.format(side=s) for s in SIDES] if '{side}' in template else [template]
+
+
+def columns(*groups: str) -> list[str]:
+    """Return the columns of groups: names(*groups), each {side} template left then right."""
+    return [n for template in names(*groups) for n in sides(template)]
+
+
+def element_columns(element: str, rate: bool, wheel_rate: bool = True) -> list[str]:
+    """
+    Return an element's columns: length and ratio; with a spring rate, force (and wheel rate).
+
+    wheel_rate False leaves the wheel rate out (it needs the carrier's second-order motion).
+    """
+    wanted = [q.name for q in _DECLARED if q.group == 'element'
+              and (rate or not q.needs) and (wheel_rate or 'wheel_rate' not in q.name)]
+    return [n.format(element=element) for n in wanted]
+
+
+def title(name: str) -> str:
+    """Return a plot title of a quantity: 'camber (deg)'."""
+    return f'{quantity(name).label} ({quantity(name).unit})'
+
+
+def markdown_table() -> str:
+    """Return the registry as doc/quantities.md (a markdown table per group)."""
+    lines = ['# Quantities', '',
+             'Every quantity an output of linkage_ros names, from its registry',
+             '(`linkage_ros/core/quantities.py`; this file is `markdown_table()`, and',
+             '`test/test_quantities.py` checks that it matches). Tables are in the table unit,',
+             'with the unit in the name; ROS messages are in SI: SI value = table value x factor,',
+             'labelled by the SI name. `{element}` stands for each element of a scene,',
+             '`{side}` for left and right. Axes ISO 8855 / REP 103 (x forward, y left, z up);',
+             'a right wheel mirrors y.', '']
+    header = ['| name | unit | SI name | SI unit | factor | sign | needs | meaning |',
+              '|---|---|---|---|---|---|---|---|']
+    for group in dict.fromkeys(q.group for q in _DECLARED):
+        lines += [f'## {group}', ''] + header
+        for q in _DECLARED:
+            if q.group == group:
+                lines.append(f'| `{q.name}` | {q.unit} | `{q.si_name}` | {q.si_unit} | '
+                             f'{q.factor:.10g} | {q.sign} | {q.needs} | {q.doc} |')
+        lines.append('')
+    topics = ['## Topics', '', "The quantities of a corner's topics, in message order.", '',
+              '| topic | quantities |', '|---|---|']
+    topics += [f'| `{t}` | ' + ', '.join(f'`{n}`' for n in ns) + ' |'
+               for t, ns in TOPICS.items()]
+    return '\n'.join(lines + topics) + '\n'
+
+
+if __name__ == '__main__':   # python -m linkage_ros.core.quantities > doc/quantities.md
+    print(markdown_table(), end='')
