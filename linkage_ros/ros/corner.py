@@ -143,11 +143,9 @@ class Corner:
         """
         old = self.responder
         self.responder = self._responder(self.scene, params)
-        self.responder.health = self.health = old.health
-        self.health.condition_warn = params['condition_warn']
+        self.responder.follow(old)
+        self.health = self.responder.health
         self.method = params['method']
-        if (old.solver.travel, old.solver.rack) != (0.0, 0.0):
-            self.solver.solve(old.solver.travel, old.solver.rack)
 
     def set_scene(self, scene: Scene, params: dict) -> None:
         """
@@ -155,15 +153,10 @@ class Corner:
 
         steering_rack is subscribed if the new scene steers (and stays, if the old one did).
         """
-        health = self.health
-        self.scene = scene
+        old, self.scene = self.responder, scene
         self.responder = self._responder(scene, params)
-        self.responder.health = self.health = health
-        health.last, health.sent, health.refused = None, '', ''
-        health.set_fault(health.fault)           # the level and message of no command yet
-        if not health.fault:
-            health.message = (f'scene changed to {scene.name} ({scene.source}): continuation '
-                              'restarts from its design position')
+        self.responder.follow(old)
+        self.health = self.responder.health
         self._listen_to_rack()
         self._set_elements()
 
