@@ -34,8 +34,8 @@ import sys
 import time
 
 from .replay_args import parse_args, PROG
-from .replay_commands import (METADATA, parameter_changes, read_commands, seconds,
-                              stored_scene, stored_text, SWEEP_HZ)
+from .replay_commands import (load_changed_scenes, METADATA, parameter_changes,
+                              read_commands, seconds, stored_scene, stored_text, SWEEP_HZ)
 from .. import cli
 from ..cli import counted
 from ..core.errors import LinkageError
@@ -180,21 +180,16 @@ def _changes(bag_path, bag, commands):
     load here (a file of the recording's machine, say) cannot be replayed: it is named on
     stderr, neither it nor the commands from its time on are solved, and the status is 1.
     """
-    from ..core.scene import load_scene
-    changes, scenes = parameter_changes(bag), {}
-    for k, change in enumerate(changes):
-        name = change.values.get('scene')
-        if name is None or name in scenes:
-            continue
-        try:
-            scenes[name] = load_scene(name)
-        except (LinkageError, OSError) as exc:
-            kept = [c for c in commands if c.log_time < change.log_time]
-            print(f'{PROG}: warning: {bag_path}: the node changed its scene to {name!r} at '
-                  f'{seconds(change.log_time)} s, which does not load here ({exc}); the '
-                  f'{counted(len(commands) - len(kept), "command")} from then on are not '
-                  'replayed', file=sys.stderr)
-            return changes[:k], scenes, kept, cli.DAMAGED
+    changes = parameter_changes(bag)
+    scenes, failed = load_changed_scenes(changes)
+    if failed is not None:
+        change, exc = failed
+        kept = [c for c in commands if c.log_time < change.log_time]
+        print(f'{PROG}: warning: {bag_path}: the node changed its scene to '
+              f'{change.values["scene"]!r} at {seconds(change.log_time)} s, which does not '
+              f'load here ({exc}); the {counted(len(commands) - len(kept), "command")} from '
+              'then on are not replayed', file=sys.stderr)
+        return changes[:changes.index(change)], scenes, kept, cli.DAMAGED
     return changes, scenes, commands, cli.DONE
 
 

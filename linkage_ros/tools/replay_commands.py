@@ -4,6 +4,7 @@ The commands linkage-replay works on: read from a bag, or made for a sweep.
     read_commands(path, topic)      -> Commands: the decoded commands, the bag, what was lost
     sweep_commands(scene, ...)      -> [Command] of a travel sweep on a timeline
     parameter_changes(bag)          -> [Change]: the node's run-time parameter changes
+    load_changed_scenes(changes)    -> the scenes they name, and the first that does not load
     stored_scene(bag, topic)        -> the scene a recording stores, or None
 
 A command is std_msgs/msg/Float64 in CDR, in m: wheel travel on the command topic, and the
@@ -241,6 +242,26 @@ def sweep_commands(scene, start=None, stop=None, step=None, hz=SWEEP_HZ, t0=None
     period = int(round(1e9 / hz))
     return [Command(t0 + i * period, t0 + i * period, float(travel) / 1000.0)
             for i, travel in enumerate(travel_range(start, stop, step))]
+
+
+def load_changed_scenes(changes):
+    """
+    Load the scenes that changes ([Change]) name, in order, up to the first that fails.
+
+    Returns ({scene parameter value: Scene}, None), or with (Change, error) for the first
+    change whose scene does not load here (a file of the recording's machine, say).
+    """
+    from ..core.scene import load_scene
+    scenes = {}
+    for change in changes:
+        name = change.values.get('scene')
+        if name is None or name in scenes:
+            continue
+        try:
+            scenes[name] = load_scene(name)
+        except (LinkageError, OSError) as exc:
+            return scenes, (change, exc)
+    return scenes, None
 
 
 def stored_scene(bag, topic):
