@@ -129,3 +129,16 @@ def test_a_change_of_solver_method_is_replayed_and_reported_as_the_node_reports_
     values = status_values(statuses[-1])       # the report after the last command
     assert values['method'] == 'paper'
     assert float(values['travel_m']) == pytest.approx(0.055, abs=1e-15)
+
+
+def test_joint_states_commands_that_solve_does_not_replay_are_named_and_give_status_1(
+        tmp_path, capsys):
+    from sensor_msgs.msg import JointState
+    bag = tmp_path / 'run.mcap'
+    with McapRecorder(bag) as rec:
+        rec.record('/wheel_travel', 'std_msgs/msg/Float64', Float64(data=0.01), T0, T0)
+        rec.record('/joint_states', 'sensor_msgs/msg/JointState',
+                   JointState(name=['travel'], position=[0.02]), T0 + 1, T0 + 1)
+    assert main([str(bag), '-o', str(tmp_path / 'out.mcap')]) == 1
+    assert (f'{bag}: 1 joint_states message (sensor_msgs/JointState commands) not replayed'
+            in capsys.readouterr().err)

@@ -13,7 +13,8 @@ folder holding one. The commands are std_msgs/msg/Float64 wheel travel in m on -
 received; solve also applies the node's run-time parameter changes recorded on
 /parameter_events (scene, method, max_step_mm, condition_warn, diagnostic_period) as the node
 applied them, and a scene change that cannot be replayed (its scene does not load here) ends
-the replay there, with status 1. Outputs are what suspension_node publishes, answered by the node's
+the replay there, with status 1 (joint_states commands are not replayed: named, status 1).
+Outputs are what suspension_node publishes, answered by the node's
 own protocol (linkage_ros.protocol), in the command topic's namespace: wheel_carrier_pose
 (geometry_msgs/PoseStamped, m), camber and toe (std_msgs/Float64, rad) and /tf
 (tf2_msgs/TFMessage: the frames of the carrier, links and arms) for a solved command, stamped
@@ -149,7 +150,7 @@ def run(args):
     changes, scenes = [], {}
     if bag_path and args.command == 'solve':
         changes, scenes, commands, replayable = _changes(bag_path, read.bag, commands)
-        status = max(status, replayable)
+        status = max(status, replayable, _joint_states(bag_path, read.bag))
     if not bag_path:
         from .replay_commands import sweep_commands
         commands = sweep_commands(scene, args.start, args.stop, args.step,
@@ -191,6 +192,24 @@ def _changes(bag_path, bag, commands):
               'then on are not replayed', file=sys.stderr)
         return changes[:changes.index(change)], scenes, kept, cli.DAMAGED
     return changes, scenes, commands, cli.DONE
+
+
+def _joint_states(bag_path, bag):
+    """
+    Say that the node's joint_states commands in a bag are not replayed; return the status.
+
+    The node takes travel (and rack) from sensor_msgs/JointState too (its travel_joint, a
+    vehicle's joints); a replay solves the Float64 commands only, so such a run is replayed
+    in part: status 1.
+    """
+    count = sum(1 for m in bag.messages if m.topic.rsplit('/', 1)[-1] == 'joint_states'
+                and m.carries('sensor_msgs/msg/JointState'))
+    if not count:
+        return cli.DONE
+    print(f'{PROG}: warning: {bag_path}: {counted(count, "joint_states message")} '
+          '(sensor_msgs/JointState commands) not replayed: solve replays the Float64 commands '
+          'of --topic and steering_rack beside it', file=sys.stderr)
+    return cli.DAMAGED
 
 
 def _inputs(bag_path, scene):
