@@ -10,6 +10,7 @@ back with Rerun's RrdReader.
 
 from linkage_ros.core.scene import load_scene
 from linkage_ros.record.mcap_writer import McapRecorder
+from linkage_ros.record.rerun_draw import HIDDEN_SCALE
 from linkage_ros.record.rerun_tf import HIDDEN
 from linkage_ros.tools.replay import main as replay
 from linkage_ros.tools.rerun_convert import main
@@ -50,7 +51,7 @@ def test_each_part_of_a_changed_run_is_drawn_with_its_own_scene(changed_run, tmp
     out = tmp_path / 'run.rrd'
     assert main([str(changed_run), '-o', str(out)]) == 0
     rows, _, _ = contents(out)
-    assert rows[('/five_link/suspension/links', False)] == len(FIRST)
+    assert rows[('/five_link/suspension/links', False)] == len(FIRST) + 1   # + its Clear
     assert rows[('/double_wishbone/suspension/links', False)] == len(THEN)
     # each pose's strips are its own scene's constraints, from its own carrier points
     strips = column(out, '/double_wishbone/suspension/links', 'LineStrips3D:strips')
@@ -60,6 +61,28 @@ def test_each_part_of_a_changed_run_is_drawn_with_its_own_scene(changed_run, tmp
     pose = by_topic(decoded(changed_run), '/wheel_carrier_pose')[-1].pose.position
     assert centre == pytest.approx([1000.0 * pose.x, 1000.0 * pose.y, 1000.0 * pose.z],
                                    abs=1e-3)    # stored as float32
+    # the first part's carrier and links no more from the second part's first command on
+    (hidden,) = scaled(out, '/five_link/suspension/carrier')
+    first_then = min(transforms_times(out, '/double_wishbone/suspension/carrier'))
+    assert hidden == (first_then, pytest.approx(HIDDEN_SCALE, rel=1e-7))
+
+
+def scaled(path, entity):
+    """Return [(ns, scale)] of the rows of an entity that set a Transform3D scale."""
+    got = []
+    for chunk in RrdReader(str(path)).stream():
+        batch = chunk.to_record_batch()
+        if chunk.entity_path == entity and 'Transform3D:scale' in batch.schema.names:
+            got += zip(batch.column('ros_time').cast('int64').to_pylist(),
+                       [s[0][0] for s in batch.column('Transform3D:scale').to_pylist()])
+    return got
+
+
+def transforms_times(path, entity):
+    """Return the times (ns) of an entity's temporal rows."""
+    return [t for chunk in RrdReader(str(path)).stream()
+            if chunk.entity_path == entity and not chunk.is_static
+            for t in chunk.to_record_batch().column('ros_time').cast('int64').to_pylist()]
 
 
 def transforms(path, entity):

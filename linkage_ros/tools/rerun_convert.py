@@ -21,7 +21,8 @@ scene alone). Progress goes to stderr.
 A vehicle commanded by joint_states (sensor_msgs/msg/JointState; the vehicle file names each
 corner's travel_joint and rack_joint) has each corner's travel and rack plotted from it. A
 run whose scene the node changed while it ran (recorded on /parameter_events) is drawn in
-parts, each with its own scene under its name (five_link, then double_wishbone); a change
+parts, each with its own scene under its name (five_link, then double_wishbone), a part's
+carrier and links hidden once the next part starts (its base points stay); a change
 whose scene does not load here is named, what follows is drawn with the scene before, and
 the status is 1 (tools/rerun_inputs.py).
 
@@ -69,19 +70,24 @@ def drawable(bag):
     return messages, foreign
 
 
-def convert(messages, output, scene=None, corners=None, recording_id=None):
+def convert(messages, output, scene=None, corners=None, recording_id=None, ends=()):
     """
     Log messages (BagMessages that decode, from drawable) into output (.rrd).
 
-    scene: the one Scene drawn, or corners: {corner name: Scene} of a vehicle. Returns
-    {role: samples logged}.
+    scene: the one Scene drawn, or corners: {corner name: Scene} of a vehicle or of the parts
+    of a run. ends: [(ns, root)] in time order, where a part of a run under root ended: its
+    carrier and links are hidden from there on (RerunRecorder.hide). Returns {role: samples
+    logged}.
     """
     from ..record.rerun_view import RerunRecorder, topic_role
     counts = {}
+    ends = list(ends)
     rack = any(topic_role(m.topic) == 'rack' for m in messages)
     with RerunRecorder(output, scene, recording_id=recording_id, batch_rows=math.inf,
                        batch_delay=math.inf, corners=corners, rack=rack) as viewer:
         for m in messages:
+            while ends and ends[0][0] <= m.log_time:
+                viewer.hide(ends.pop(0)[1], m.log_time)
             viewer.record(m.topic, m.type_name, m.data, m.log_time, m.publish_time)
             role = topic_role(m.topic)
             counts[role] = counts.get(role, 0) + 1
@@ -151,7 +157,7 @@ def run(args):
     for line in bag.losses():
         print(f'{PROG}: warning: {args.bag}: {line}', file=sys.stderr)
     status = cli.DONE if bag.complete else cli.DAMAGED
-    name = scene.name if scene is not None else 'vehicle'
+    name, ends = (scene.name if scene is not None else 'vehicle'), []
     if scene is not None:   # a scene changed while the node ran: each part with its own
         from .rerun_inputs import run_parts, split_parts
         parts, problem = run_parts(bag, scene)
@@ -160,13 +166,14 @@ def run(args):
             status = cli.DAMAGED
         if len(parts) > 1:
             corners, messages = split_parts(parts, messages)
+            ends = list(zip([p.start for p in parts[1:]], corners))
             print(f'{PROG}: {len(parts)} parts, each drawn with its scene under its name: '
                   f'{", ".join(corners)}', file=sys.stderr)
             scene, name = None, ' then '.join(corners)
     compile_if_cold(PROG)   # the plots are framed on a sweep of each scene
     print(f'{PROG}: {name}: converting {len(messages)} messages of {args.bag}',
           file=sys.stderr)
-    counts = convert(messages, output, scene, corners)
+    counts = convert(messages, output, scene, corners, ends=ends)
     summary = ', '.join(f'{n} {role}' for role, n in counts.items()) or 'nothing but the scene'
     print(f'{PROG}: wrote {output}: {summary}', file=sys.stderr)
     return status
