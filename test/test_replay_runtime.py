@@ -142,3 +142,17 @@ def test_joint_states_commands_that_solve_does_not_replay_are_named_and_give_sta
     assert main([str(bag), '-o', str(tmp_path / 'out.mcap')]) == 1
     assert (f'{bag}: 1 joint_states message (sensor_msgs/JointState commands) not replayed'
             in capsys.readouterr().err)
+
+
+def test_with_several_nodes_events_only_suspension_kinematics_changes_are_replayed(tmp_path):
+    from linkage_ros.record.mcap_reader import read_bag
+    from linkage_ros.tools.replay_commands import parameter_changes
+    bag = tmp_path / 'run.mcap'
+    with McapRecorder(bag) as rec:
+        for i, (node, value) in enumerate([('/other_node', 'paper'),
+                                           ('/car/suspension_kinematics', 'fast')]):
+            event = ParameterEvent(node=node, changed_parameters=[
+                Parameter('method', value=value).to_parameter_msg()])
+            rec.record('/parameter_events', 'rcl_interfaces/msg/ParameterEvent', event,
+                       T0 + i, T0 + i)
+    assert [c.values for c in parameter_changes(read_bag(bag))] == [{'method': 'fast'}]

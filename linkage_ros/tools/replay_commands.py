@@ -179,13 +179,16 @@ def parameter_changes(bag):
 
     The node records each change it applies as the rcl_interfaces/msg/ParameterEvent it
     publishes on /parameter_events (ros/runtime.py); only the parameters that change its
-    answers (REPLAYED) are kept, and events without any are left out. Raises ReplayError
-    naming the time of an event that does not decode: the run cannot be replayed past it.
+    answers (REPLAYED) are kept, and events without any are left out. A bag with the events
+    of several nodes (rosbag2 records every node's) keeps those of nodes named
+    suspension_kinematics (in any namespace). Raises ReplayError naming the time of an event
+    that does not decode: the run cannot be replayed past it.
     """
     from rclpy.parameter import parameter_value_to_python
 
     from ..cdr import CdrError, from_cdr
-    changes = []
+    from ..ros.node import NODE_NAME
+    changes, nodes = [], set()
     for m in bag.messages:
         if m.topic != PARAMETER_EVENTS or not m.carries(PARAMETER_EVENT):
             continue
@@ -199,9 +202,11 @@ def parameter_changes(bag):
                   for p in (*event.new_parameters, *event.changed_parameters)
                   if p.name in REPLAYED}
         if values:
-            changes.append(Change(m.log_time, values, bytes(m.data)))
-    changes.sort(key=lambda c: c.log_time)
-    return changes
+            changes.append((event.node, Change(m.log_time, values, bytes(m.data))))
+            nodes.add(event.node)
+    if len(nodes) > 1:
+        changes = [(n, c) for n, c in changes if n.rsplit('/', 1)[-1] == NODE_NAME]
+    return sorted((c for _, c in changes), key=lambda c: c.log_time)
 
 
 def topic_list(bag):
