@@ -127,6 +127,9 @@ class Responder:
         """
         Take over from old, the corner's Responder until a change of its parameters.
 
+        What ros/corner.Corner.configure and set_scene do to the node's corner, for
+        linkage-replay (the corner is to call this too, once its own changes settle: one home).
+
         Its Health goes on counting (with this condition_warn), and its report times (a
         period started keeps its end). The same scene: this solver
         walks from design to old's last solved travel and rack, the branch the corner keeps

@@ -143,9 +143,11 @@ class Corner:
         """
         old = self.responder
         self.responder = self._responder(self.scene, params)
-        self.responder.follow(old)
-        self.health = self.responder.health
+        self.responder.health = self.health = old.health
+        self.health.condition_warn = params['condition_warn']
         self.method = params['method']
+        if (old.solver.travel, old.solver.rack) != (0.0, 0.0):
+            self.solver.solve(old.solver.travel, old.solver.rack)
 
     def set_scene(self, scene: Scene, params: dict) -> None:
         """
@@ -153,10 +155,15 @@ class Corner:
 
         steering_rack is subscribed if the new scene steers (and stays, if the old one did).
         """
-        old, self.scene = self.responder, scene
+        health = self.health
+        self.scene = scene
         self.responder = self._responder(scene, params)
-        self.responder.follow(old)
-        self.health = self.responder.health
+        self.responder.health = self.health = health
+        health.last, health.sent, health.refused = None, '', ''
+        health.set_fault(health.fault)           # the level and message of no command yet
+        if not health.fault:
+            health.message = (f'scene changed to {scene.name} ({scene.source}): continuation '
+                              'restarts from its design position')
         self._listen_to_rack()
         self._set_elements()
 
