@@ -156,3 +156,15 @@ def test_with_several_nodes_events_only_suspension_kinematics_changes_are_replay
             rec.record('/parameter_events', 'rcl_interfaces/msg/ParameterEvent', event,
                        T0 + i, T0 + i)
     assert [c.values for c in parameter_changes(read_bag(bag))] == [{'method': 'fast'}]
+
+
+def test_a_scene_change_after_the_last_command_is_replayed_too(tmp_path):
+    bag = tmp_path / 'run.mcap'
+    write_run_with_change(bag, 'scene', 'double_wishbone', [0.01, 0.02], [])
+    out = tmp_path / 'replayed.mcap'
+    assert main([str(bag), '-o', str(out)]) == 0
+    got = decoded(out)
+    names = [m.data.split('name="', 2)[1].split('"')[0]
+             for m in by_topic(got, '/robot_description')]
+    assert names == ['five_link', 'double_wishbone']
+    assert len(by_topic(got, '/parameter_events')) == 1

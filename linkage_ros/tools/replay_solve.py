@@ -162,17 +162,21 @@ def solve_commands(commands, scene, method, sinks, topic=DEFAULT_TOPIC, progress
             {prefix: corner.scene}, frame_id, corner.scene.name)), time_ns)
 
     pending = list(changes)
-    failures, t = 0, 0
-    if commands:
-        describe(commands[0].log_time)
-    for i, command in enumerate(commands):
-        t = command.log_time
-        while pending and pending[0].log_time <= t:
+
+    def apply_changes(until):     # the changes recorded by time until (ns), as the node did
+        while pending and pending[0].log_time <= until:
             change = pending.pop(0)
             emit(PARAMETER_EVENTS, PARAMETER_EVENT, change.data, change.log_time)
             if corner.change(change.values, scenes or {}, change.log_time):
                 describe(change.log_time)
                 report(change.log_time)
+
+    failures, t = 0, 0
+    if commands:
+        describe(commands[0].log_time)
+    for i, command in enumerate(commands):
+        t = command.log_time
+        apply_changes(t)
         responder = corner.responder
         due = responder.due(t)
         if due is not None:           # the period ended before this command
@@ -198,6 +202,7 @@ def solve_commands(commands, scene, method, sinks, topic=DEFAULT_TOPIC, progress
             progress.update(i + 1)
     if commands:
         report(t)
+        apply_changes(pending[-1].log_time if pending else t)   # those after the last command
     return failures
 
 
