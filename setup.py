@@ -63,6 +63,7 @@ setup(
             'linkage-map = linkage_ros.tools.kinematic_map:main',
             'linkage-tf2-msgs = linkage_ros.tools.tf2_msgs_build:main',
             'linkage-urdf = linkage_ros.tools.urdf:main',
+            'linkage-foxglove = linkage_ros.tools.foxglove_layout:main',
             'linkage-study = linkage_ros.study.cli:main',
         ],
     },

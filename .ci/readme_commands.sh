@@ -63,6 +63,7 @@ timeout -s INT 8 .venv/bin/suspension_node --ros-args -p qos_overrides./wheel_tr
 step urdf and rerun from tf
 .venv/bin/linkage-urdf five_link -o five_link.urdf; echo "rc=$?"
 .venv/bin/linkage-rerun bags/five_link_sweep.mcap --tf -o five_link_tf.rrd; echo "rc=$?"
+.venv/bin/linkage-foxglove demo_vehicle -o demo_vehicle_layout.json; echo "rc=$?"
 step axle, roll centre picture
 .venv/bin/linkage-axle demo_vehicle --axle front > axle.csv; echo "rc=$?"; head -2 axle.csv
 .venv/bin/linkage-plot roll-centre roll_centre.png; echo "rc=$?"

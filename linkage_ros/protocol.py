@@ -8,6 +8,7 @@ How suspension_node answers a corner's commands, without ROS: the node and linka
     reply = responder.answer(travel_mm, rack_mm, stamp, sent)
     reply.outputs                         # [(output name, type name, CDR bytes)] to publish
     reply.report                          # /diagnostics must say so at once
+    new.follow(responder)                 # new settings or scene: take over its Health
 
 One command: solved by continuation from the last good pose (Continuation); a solved command
 is answered by wheel_carrier_pose (geometry_msgs/PoseStamped: wheel centre in m, carrier
@@ -96,7 +97,7 @@ class Responder:
         its clock at start), or None for the time of the first call of due().
         """
         self.scene, self.method, self.frame_id = scene, method, frame_id
-        self.status_name = status_name
+        self.status_name, self.condition_warn = status_name, condition_warn
         self.solver = Continuation(scene, method=method, max_step=max_step_mm)
         self.health = Health(condition_warn)
         self.period = int(period_ns)
@@ -121,6 +122,37 @@ class Responder:
         else:
             outputs, said = [], sent() if callable(sent) else sent
         return Reply(solution, outputs, said, self.health.add(solution, said))
+
+    def follow(self, old: Responder) -> None:
+        """
+        Take over from old, the corner's Responder until a change of its parameters.
+
+        What ros/corner.Corner.configure and set_scene do to the node's corner, for
+        linkage-replay (the corner is to call this too, once its own changes settle: one home).
+
+        Its Health goes on counting (with this condition_warn), and its report times (a
+        period started keeps its end). The same scene: this solver
+        walks from design to old's last solved travel and rack, the branch the corner keeps
+        (new solver settings at the pose held). Another scene: the corner restarts from its
+        design position, and the Health says so in its message.
+        """
+        health = self.health = old.health
+        health.condition_warn = self.condition_warn
+        self._next = old._next
+        if self.scene is old.scene:
+            if (old.solver.travel, old.solver.rack) != (0.0, 0.0):
+                self.solver.solve(old.solver.travel, old.solver.rack)
+            return
+        health.last, health.sent, health.refused = None, '', ''
+        health.set_fault(health.fault)           # the level and message of no command yet
+        if not health.fault:
+            health.message = (f'scene changed to {self.scene.name} ({self.scene.source}): '
+                              'continuation restarts from its design position')
+
+    def restart_period(self, period_ns: int, now_ns: int) -> None:
+        """Count report periods of period_ns from now_ns on (a new diagnostic_period)."""
+        self.period = int(period_ns)
+        self._next = int(now_ns) + self.period
 
     def due(self, now_ns: int) -> int | None:
         """

@@ -189,7 +189,8 @@ def test_the_foxglove_layout_draws_the_urdf_by_tf_and_plots_what_the_bag_holds()
     assert three_d['followTf'] == 'base_link'
     plotted = [p['value'] for k, v in panels.items() if k.startswith('Plot!')
                for p in v['paths']]
-    assert plotted == ['/wheel_travel.data', '/camber.data.@degrees', '/toe.data.@degrees']
+    assert plotted == ['/wheel_carrier_pose.pose.position.z', '/camber.data.@degrees',
+                       '/toe.data.@degrees']
     # every panel is placed, and every topic it reads is in the bundled bag
     placed, stack = [], [layout['layout']]
     while stack:

@@ -61,6 +61,7 @@ POINT_RADIUS = 10.0
 ANCHOR_RADIUS = 0.01     # a label's anchor: a point too small to see
 WHEEL_LINE_RADIUS = 3.0
 AXES_LENGTH = 100.0
+HIDDEN_SCALE = 1e-6      # the carrier of a part of a run that ended: a 500 mm body, 0.5 um
 COLORS = {'sphere': (70, 130, 220), 'circle': (230, 140, 40), 'line': (60, 170, 90),
           'base': (150, 150, 150), 'joint': (220, 70, 70), 'wheel': (190, 190, 190)}
 # Camera: from the front, outboard and above the corner (x forward, y outboard, z up).
@@ -351,6 +352,21 @@ def _strips_array(scene, points):
     offsets = np.concatenate([[0], np.cumsum(lengths)]).astype(np.int32)
     inner = Vec3DBatch(points.reshape(-1, 3).astype(np.float32)).as_arrow_array()
     return pa.ListArray.from_arrays(offsets, inner, type=LineStrip3DBatch._ARROW_DATATYPE)
+
+
+def send_hidden(rec: rr.RecordingStream, time_ns: int, sequence: int, root: str) -> None:
+    """
+    Draw root's moving bodies no more from time_ns and command sequence on.
+
+    The carrier (its joints and wheel) is scaled to a speck (HIDDEN_SCALE: a scale of 0 is
+    not invertible, which Rerun refuses) and the links are cleared; the base points, logged
+    static, stay.
+    """
+    indexes = _indexes([time_ns], [sequence])
+    rec.send_columns(entity(root, 'suspension/carrier'), indexes=indexes,
+                     columns=rr.Transform3D.columns(scale=[[HIDDEN_SCALE] * 3]))
+    rec.send_columns(entity(root, 'suspension/links'), indexes=indexes,
+                     columns=rr.Clear.columns(is_recursive=[False]))
 
 
 def send_values(rec: rr.RecordingStream, name: str, times_ns: Sequence[int],

@@ -21,7 +21,7 @@ import rerun as rr
 
 from .errors import RecordingError
 from .output_file import claim, whereabouts
-from .rerun_draw import new_recording, send_poses, send_values
+from .rerun_draw import new_recording, send_hidden, send_poses, send_values
 from ..cdr import CdrError, float64_of, pose_of, to_cdr
 from ..core.geometry import MM_PER_M
 
@@ -243,6 +243,17 @@ class RerunRecorder:
             rows.clear()
         self._buffered = 0
         self._oldest = None
+
+    def hide(self, root: str, time_ns: int) -> None:
+        """
+        Draw root's carrier and links no more from time_ns on (rerun_draw.send_hidden).
+
+        For a part of a run that ended (linkage-rerun draws each part under its own root):
+        from the next command on, the next part shows alone but for the base points.
+        """
+        self.flush()
+        if not self._closed:
+            send_hidden(self._rec, time_ns, self.sequence + 1, root)
 
     @property
     def error(self) -> str | None:

@@ -9,7 +9,12 @@ linkage-replay: solve the wheel-travel commands of a recorded run, or republish 
 
 BAG is an MCAP file with the ROS 2 profile (ours, rosbag2's, Foxglove's) or a rosbag2 bag
 folder holding one. The commands are std_msgs/msg/Float64 wheel travel in m on --topic
-(default /wheel_travel). Outputs are what suspension_node publishes, answered by the node's
+(default /wheel_travel) and steering rack in m on steering_rack beside it, in the order
+received; solve also applies the node's run-time parameter changes recorded on
+/parameter_events (scene, method, max_step_mm, condition_warn, diagnostic_period) as the node
+applied them, and a scene change that cannot be replayed (its scene does not load here) ends
+the replay there, with status 1 (joint_states commands are not replayed: named, status 1).
+Outputs are what suspension_node publishes, answered by the node's
 own protocol (linkage_ros.protocol), in the command topic's namespace: wheel_carrier_pose
 (geometry_msgs/PoseStamped, m), camber and toe (std_msgs/Float64, rad) and /tf
 (tf2_msgs/TFMessage: the frames of the carrier, links and arms) for a solved command, stamped
@@ -30,8 +35,8 @@ import sys
 import time
 
 from .replay_args import parse_args, PROG
-from .replay_commands import (METADATA, read_commands, stored_scene, stored_text,
-                              SWEEP_HZ)
+from .replay_commands import (load_changed_scenes, METADATA, parameter_changes,
+                              read_commands, seconds, stored_scene, stored_text, SWEEP_HZ)
 from .. import cli
 from ..cli import counted
 from ..core.errors import LinkageError
@@ -142,6 +147,10 @@ def run(args):
                 scene = load_scene('five_link')
     if scene is not None:
         cli.warn(PROG, scene.warnings)
+    changes, scenes = [], {}
+    if bag_path and args.command == 'solve':
+        changes, scenes, commands, replayable = _changes(bag_path, read.bag, commands)
+        status = max(status, replayable, _joint_states(bag_path, read.bag))
     if not bag_path:
         from .replay_commands import sweep_commands
         commands = sweep_commands(scene, args.start, args.stop, args.step,
@@ -161,7 +170,46 @@ def run(args):
         from .replay_solve import benchmark
         benchmark(commands, scene, args.method)
         return status
-    return _solve(args, commands, scene, source, output, stored, status)
+    return _solve(args, commands, scene, source, output, stored, status, (changes, scenes))
+
+
+def _changes(bag_path, bag, commands):
+    """
+    Return what can be replayed of the node's run-time parameter changes, and the status.
+
+    (changes, {scene value: Scene}, commands, status). A scene change whose scene does not
+    load here (a file of the recording's machine, say) cannot be replayed: it is named on
+    stderr, neither it nor the commands from its time on are solved, and the status is 1.
+    """
+    changes = parameter_changes(bag)
+    scenes, failed = load_changed_scenes(changes)
+    if failed is not None:
+        change, exc = failed
+        kept = [c for c in commands if c.log_time < change.log_time]
+        print(f'{PROG}: warning: {bag_path}: the node changed its scene to '
+              f'{change.values["scene"]!r} at {seconds(change.log_time)} s, which does not '
+              f'load here ({exc}); the {counted(len(commands) - len(kept), "command")} from '
+              'then on are not replayed', file=sys.stderr)
+        return changes[:changes.index(change)], scenes, kept, cli.DAMAGED
+    return changes, scenes, commands, cli.DONE
+
+
+def _joint_states(bag_path, bag):
+    """
+    Say that the node's joint_states commands in a bag are not replayed; return the status.
+
+    The node takes travel (and rack) from sensor_msgs/JointState too (its travel_joint, a
+    vehicle's joints); a replay solves the Float64 commands only, so such a run is replayed
+    in part: status 1.
+    """
+    count = sum(1 for m in bag.messages if m.topic.rsplit('/', 1)[-1] == 'joint_states'
+                and m.carries('sensor_msgs/msg/JointState'))
+    if not count:
+        return cli.DONE
+    print(f'{PROG}: warning: {bag_path}: {counted(count, "joint_states message")} '
+          '(sensor_msgs/JointState commands) not replayed: solve replays the Float64 commands '
+          'of --topic and steering_rack beside it', file=sys.stderr)
+    return cli.DAMAGED
 
 
 def _inputs(bag_path, scene):
@@ -220,7 +268,7 @@ def _copy(args, output):
     return status
 
 
-def _solve(args, commands, scene, source, output, stored, status):
+def _solve(args, commands, scene, source, output, stored, status, changed=((), {})):
     from ..record.interfaces import qualified
     from ..record.mcap_writer import McapRecorder
     from .replay_solve import latched_topics, solve_commands
@@ -230,7 +278,8 @@ def _solve(args, commands, scene, source, output, stored, status):
     with McapRecorder(output, custom_data=custom, qos=latched_topics(),
                       metadata=stored_text(scene, stored)) as recorder:
         failures = solve_commands(commands, scene, args.method, [recorder], args.topic,
-                                  Progress(len(commands), 'commands solved'), args.frame_id)
+                                  Progress(len(commands), 'commands solved'), args.frame_id,
+                                  changes=changed[0], scenes=changed[1])
         written = recorder.message_count
     print(f'{PROG}: wrote {counted(written, "message")} to {output}; '
           f'{counted(len(commands) - failures, "command")} solved, {failures} not (see '

@@ -33,7 +33,9 @@ EXIT_STATUSES = """exit status:
 
 # subcommand: (summary, [(example arguments, what it does)])
 COMMANDS = {
-    'solve': ('solve the commands of a recorded run as suspension_node answers them',
+    'solve': ('solve the commands of a recorded run as suspension_node answers them: travel, '
+              'the steering rack beside it, and the scene and solver changes of '
+              '/parameter_events, in the recorded order',
               [('run.mcap', 'writes ./run_solved.mcap'),
                ('run.mcap -o again.mcap --scene macpherson', ''),
                ('car/ --topic /front_left/wheel_travel', 'a corner of a vehicle')]),

@@ -1,13 +1,18 @@
 """
-The wheel-travel commands linkage-replay works on: read from a bag, or made for a sweep.
+The commands linkage-replay works on: read from a bag, or made for a sweep.
 
     read_commands(path, topic)      -> Commands: the decoded commands, the bag, what was lost
     sweep_commands(scene, ...)      -> [Command] of a travel sweep on a timeline
+    parameter_changes(bag)          -> [Change]: the node's run-time parameter changes
+    load_changed_scenes(changes)    -> the scenes they name, and the first that does not load
     stored_scene(bag, topic)        -> the scene a recording stores, or None
 
-A command is std_msgs/msg/Float64 in CDR, travel in m. A message that does not decode (too
-short, not CDR) is lost and named; messages of another type on the command topic are skipped
-with a line. Times are ns since the epoch, the recording's receive (log) time.
+A command is std_msgs/msg/Float64 in CDR, in m: wheel travel on the command topic, and the
+steering rack on steering_rack in its namespace (/front_left/wheel_travel:
+/front_left/steering_rack), both in the recorded order, as the node answered them. A message
+that does not decode (too short, not CDR) is lost and named; messages of another type on a
+command topic are skipped with a line. Times are ns since the epoch, the recording's receive
+(log) time.
 """
 
 from __future__ import annotations
@@ -23,7 +28,13 @@ from ..core.kinematics import travel_range
 from ..record.stored import RECORD as METADATA
 
 FLOAT64 = 'std_msgs/msg/Float64'
+PARAMETER_EVENT = 'rcl_interfaces/msg/ParameterEvent'
+PARAMETER_EVENTS = '/parameter_events'
 DEFAULT_TOPIC = '/wheel_travel'
+RACK_TOPIC = 'steering_rack'    # the rack commands' name, in the command topic's namespace
+TRAVEL, RACK = 'travel', 'rack'
+# The run-time parameters that change what the node answers (ros/runtime.py): replayed
+REPLAYED = ('scene', 'method', 'max_step_mm', 'condition_warn', 'diagnostic_period')
 SWEEP_HZ = 50.0
 # A sweep's commands are held in memory (about 240 bytes each, measured) and solved one by
 # one (some 0.1 ms each, recording included): a million is 240 MB and a few minutes.
@@ -38,11 +49,25 @@ class ReplayError(LinkageError):
 
 @dataclass(frozen=True)
 class Command:
-    """One wheel-travel command: receive (log) and publish time in ns, travel in m."""
+    """
+    One command: receive (log) and publish time in ns, its value in m, and its kind.
+
+    kind: TRAVEL (wheel travel, the value's name for history) or RACK (steering rack).
+    """
 
     log_time: int
     publish_time: int
     travel: float
+    kind: str = TRAVEL
+
+
+@dataclass(frozen=True)
+class Change:
+    """A run-time change of the node's parameters: log time (ns), {name: new value}, the CDR."""
+
+    log_time: int
+    values: dict
+    data: bytes
 
 
 @dataclass
@@ -50,31 +75,43 @@ class Commands:
     """
     What read_commands found: the commands, the bag, and what is not among the commands.
 
-    lost: messages on the topic that do not decode, [(BagMessage, CdrError)]; skipped:
-    {type name: count} of messages of another type on the topic.
+    commands: travel and rack commands in the order they were received. lost: messages on
+    the command topics that do not decode, [(BagMessage, CdrError)]; skipped: {(topic, type
+    name): count} of messages of another type on them.
     """
 
     commands: list
     bag: object                 # record.mcap_reader.Bag
-    topic: str                  # the topic, qualified
+    topic: str                  # the travel topic, qualified
     lost: list = field(default_factory=list)
     skipped: dict = field(default_factory=dict)
+
+    @property
+    def rack_topic(self):
+        """Return the steering-rack topic beside the travel topic (qualified)."""
+        return rack_topic(self.topic)
 
     def warnings(self):
         """Return the lines (without the program's name) that say what was not used."""
         lines = []
-        path, topic = self.bag.path, self.topic
-        for type_name, count in self.skipped.items():
+        path = self.bag.path
+        for (topic, type_name), count in self.skipped.items():
             lines.append(f'{path}: {count} message{"s" if count > 1 else ""} of '
                          f'{type_name or "no schema"} on {topic} skipped: commands are '
                          f'{FLOAT64}')
         if self.lost:
             message, error = self.lost[0]
             total = len(self.lost) + len(self.commands)
-            lines.append(f'{path}: {len(self.lost)} of the {total} commands on {topic} do not '
-                         f'decode and are lost (the first at {seconds(message.log_time)} s: '
-                         f'{error})')
+            topics = ' and '.join(sorted({m.topic for m, _ in self.lost}))
+            lines.append(f'{path}: {len(self.lost)} of the {total} commands on {topics} do '
+                         f'not decode and are lost (the first at {seconds(message.log_time)} '
+                         f's: {error})')
         return lines
+
+
+def rack_topic(topic):
+    """Return the steering-rack topic in the namespace of a travel topic (qualified)."""
+    return topic.rsplit('/', 1)[0] + '/' + RACK_TOPIC
 
 
 def seconds(time_ns):
@@ -90,7 +127,10 @@ def stamp_of(time_ns):
 
 def read_commands(path, topic=DEFAULT_TOPIC):
     """
-    Read the commands on topic in a bag, in file order.
+    Read the travel commands on topic and the rack commands beside it, in the order received.
+
+    The order is the receive (log) time's, file order where times tie: the order the node
+    answered them in.
 
     Raises ReplayError (a mistake) if an intact bag has no such topic, or the topic carries
     no std_msgs/msg/Float64 in CDR; RecordingError if the path is not a bag. From a damaged
@@ -108,23 +148,65 @@ def read_commands(path, topic=DEFAULT_TOPIC):
             return result
         raise ReplayError(path, f'no topic {name} (topics present: {topic_list(bag)}); '
                           'choose the wheel-travel topic with --topic')
-    on_topic = [m for m in bag.messages if m.topic == name]
     if bag.encodings.get(name) != 'cdr' or (bag.topics[name] != FLOAT64 and not any(
-            m.type_name == FLOAT64 for m in on_topic)):
+            m.type_name == FLOAT64 for m in bag.messages if m.topic == name)):
         raise ReplayError(path, f'topic {name} carries {bag.topics[name] or "no schema"} '
                           f"('{bag.encodings.get(name)}' encoding), but wheel-travel commands "
                           f'must be {FLOAT64} in cdr (topics present: {topic_list(bag)})')
-    for m in on_topic:
-        if m.type_name != FLOAT64:
-            result.skipped[m.type_name] = result.skipped.get(m.type_name, 0) + 1
+    kinds = {name: TRAVEL, result.rack_topic: RACK}
+    for m in bag.messages:
+        kind = kinds.get(m.topic)
+        if kind is None:
+            continue
+        if not m.carries(FLOAT64):
+            key = (m.topic, m.type_name)
+            result.skipped[key] = result.skipped.get(key, 0) + 1
             continue
         try:
-            travel = float64_of(m.data)
+            value = float64_of(m.data)
         except CdrError as exc:
             result.lost.append((m, exc))
             continue
-        result.commands.append(Command(m.log_time, m.publish_time, travel))
+        result.commands.append(Command(m.log_time, m.publish_time, value, kind))
+    # in the order the node took them (file order where times tie)
+    result.commands.sort(key=lambda c: c.log_time)
     return result
+
+
+def parameter_changes(bag):
+    """
+    Return the run-time parameter changes a recording holds, [Change] in time order.
+
+    The node records each change it applies as the rcl_interfaces/msg/ParameterEvent it
+    publishes on /parameter_events (ros/runtime.py); only the parameters that change its
+    answers (REPLAYED) are kept, and events without any are left out. A bag with the events
+    of several nodes (rosbag2 records every node's) keeps those of nodes named
+    suspension_kinematics (in any namespace). Raises ReplayError naming the time of an event
+    that does not decode: the run cannot be replayed past it.
+    """
+    from rclpy.parameter import parameter_value_to_python
+
+    from ..cdr import CdrError, from_cdr
+    from ..ros.node import NODE_NAME
+    changes, nodes = [], set()
+    for m in bag.messages:
+        if m.topic != PARAMETER_EVENTS or not m.carries(PARAMETER_EVENT):
+            continue
+        try:
+            event = from_cdr(PARAMETER_EVENT, m.data)
+        except CdrError as exc:
+            raise ReplayError(bag.path, f'the parameter event at {seconds(m.log_time)} s '
+                              f'does not decode ({exc}): the run cannot be replayed past '
+                              'it') from None
+        values = {p.name: parameter_value_to_python(p.value)
+                  for p in (*event.new_parameters, *event.changed_parameters)
+                  if p.name in REPLAYED}
+        if values:
+            changes.append((event.node, Change(m.log_time, values, bytes(m.data))))
+            nodes.add(event.node)
+    if len(nodes) > 1:
+        changes = [(n, c) for n, c in changes if n.rsplit('/', 1)[-1] == NODE_NAME]
+    return sorted((c for _, c in changes), key=lambda c: c.log_time)
 
 
 def topic_list(bag):
@@ -165,6 +247,26 @@ def sweep_commands(scene, start=None, stop=None, step=None, hz=SWEEP_HZ, t0=None
     period = int(round(1e9 / hz))
     return [Command(t0 + i * period, t0 + i * period, float(travel) / 1000.0)
             for i, travel in enumerate(travel_range(start, stop, step))]
+
+
+def load_changed_scenes(changes):
+    """
+    Load the scenes that changes ([Change]) name, in order, up to the first that fails.
+
+    Returns ({scene parameter value: Scene}, None), or with (Change, error) for the first
+    change whose scene does not load here (a file of the recording's machine, say).
+    """
+    from ..core.scene import load_scene
+    scenes = {}
+    for change in changes:
+        name = change.values.get('scene')
+        if name is None or name in scenes:
+            continue
+        try:
+            scenes[name] = load_scene(name)
+        except (LinkageError, OSError) as exc:
+            return scenes, (change, exc)
+    return scenes, None
 
 
 def stored_scene(bag, topic):

@@ -1,14 +1,15 @@
 """
-Republish wheel-travel commands on ROS 2 at their recorded pace (linkage-replay publish).
+Republish recorded commands on ROS 2 at their recorded pace (linkage-replay publish).
 
     check_rate(commands, rate)                       ReplayError if the pace cannot be kept
-    publish_commands(commands, topic, rate, wait)    std_msgs/Float64 on topic (and /clock)
+    publish_commands(commands, topic, rate, wait)    std_msgs/Float64 on topic, the rack's on
+                                                     steering_rack beside it (and /clock)
 """
 
 import sys
 import time
 
-from .replay_commands import ReplayError, stamp_of
+from .replay_commands import RACK, rack_topic, ReplayError, stamp_of
 
 PROG = 'linkage-replay'
 # The longest wait time.sleep() takes: int64 nanoseconds, about 292 years.
@@ -30,7 +31,9 @@ def check_rate(commands, rate):
 
 def publish_commands(commands, topic, rate=1.0, wait=10.0, progress=None, clock=False):
     """
-    Publish the commands as std_msgs/Float64 on topic at the recorded pace / rate.
+    Publish the commands as std_msgs/Float64 at the recorded pace / rate.
+
+    Travel commands on topic, rack commands (if any) on steering_rack in its namespace.
 
     rate > 0 (2 = twice as fast). Waits up to wait s for a subscriber first (with clock, for
     one on /clock too). clock: before each command, publish rosgraph_msgs/Clock on /clock
@@ -50,6 +53,11 @@ def publish_commands(commands, topic, rate=1.0, wait=10.0, progress=None, clock=
         # Reliable, keep last 1000: a burst is never overwritten before it is acknowledged.
         publisher = node.create_publisher(Float64, qualified(topic), QoSProfile(depth=1000))
         publishers = [publisher]
+        by_kind = {}
+        if any(c.kind == RACK for c in commands):
+            by_kind[RACK] = node.create_publisher(Float64, rack_topic(qualified(topic)),
+                                                  QoSProfile(depth=1000))
+            publishers.append(by_kind[RACK])
         if clock:
             from rosgraph_msgs.msg import Clock
             clock_publisher = node.create_publisher(Clock, '/clock', QoSProfile(depth=1000))
@@ -69,7 +77,7 @@ def publish_commands(commands, topic, rate=1.0, wait=10.0, progress=None, clock=
                 time.sleep(delay)
             if clock:   # the time first: the command's answer is stamped with it
                 clock_publisher.publish(Clock(clock=stamp_of(command.log_time)))
-            publisher.publish(Float64(data=command.travel))
+            by_kind.get(command.kind, publisher).publish(Float64(data=command.travel))
             published += 1
             if progress:
                 progress.update(published)

@@ -9,7 +9,9 @@ defaults); time is the recording's: each command at its receive time, a diagnost
 every period of it. As the node with TF on (its default), the recording also carries
 /tf_static and /robot_description once, at the first command's time, and /tf per solved
 command (linkage_ros.ros.tf, built without tf2_msgs); a scene with elements, their JointState
-per solved command (ros/element_outputs.py), as the node publishes it.
+per solved command (ros/element_outputs.py), as the node publishes it. Rack commands and the
+node's run-time parameter changes (a new scene, new solver settings) are replayed in their
+recorded order, as the node took them.
 """
 
 import math
@@ -49,8 +51,60 @@ def status_name(scene):
     return named('/' + NODE_NAME, scene.name)
 
 
+class _Corner:
+    """
+    The corner a replay answers as: its Responder, frames and elements build, for its scene.
+
+    change() takes the node's run-time parameter changes as ros/runtime.py applies them.
+    """
+
+    def __init__(self, scene, method, frame_id, prefix, period_s):
+        self.settings = {**node_defaults(), 'method': method, 'frame_id': frame_id,
+                         'diagnostic_period': period_s}
+        self.prefix = prefix
+        self.responder = None
+        self._build(scene)
+
+    def _build(self, scene):
+        from ..ros.tf import CornerFrames
+        old, s = self.responder, self.settings
+        self.scene = scene
+        self.responder = Responder(scene, method=s['method'], max_step_mm=s['max_step_mm'],
+                                   condition_warn=s['condition_warn'], frame_id=s['frame_id'],
+                                   status_name=status_name(scene),
+                                   period_ns=int(round(s['diagnostic_period'] * 1e9)))
+        if old is not None:
+            self.responder.follow(old)
+        self.frames = CornerFrames(scene, s['frame_id'], self.prefix)
+        self.elements = None
+        if scene.elements:     # the node's elements topic (ros/element_outputs.py)
+            from ..ros.element_outputs import elements_builder
+            solver = self.responder.solver
+            self.elements = elements_builder(scene, solver.mech, s['frame_id'],
+                                             lambda: solver.jacobian)
+
+    def change(self, values, scenes, time_ns):
+        """
+        Apply a change's values as the node does; return True if the scene changed.
+
+        scenes: {scene parameter value: Scene} loaded for the changes.
+        """
+        solver = {k: v for k, v in values.items()
+                  if k in ('method', 'max_step_mm', 'condition_warn')}
+        self.settings.update(solver)
+        if 'diagnostic_period' in values:    # the node's timer starts again at the change
+            self.settings['diagnostic_period'] = values['diagnostic_period']
+            self.responder.restart_period(round(values['diagnostic_period'] * 1e9), time_ns)
+        if 'scene' in values:
+            self._build(scenes[values['scene']])
+            return True
+        if solver:
+            self._build(self.scene)
+        return False
+
+
 def solve_commands(commands, scene, method, sinks, topic=DEFAULT_TOPIC, progress=None,
-                   frame_id=None, period_s=None):
+                   frame_id=None, period_s=None, changes=(), scenes=None):
     """
     Solve each command as the node does; hand it and what the node publishes to each sink.
 
@@ -60,6 +114,13 @@ def solve_commands(commands, scene, method, sinks, topic=DEFAULT_TOPIC, progress
     the node's diagnostic_period), at once for a failed command or a change of level, and a
     last one after the last command (a gap in the commands gives one report, not one per
     period). Outputs are in the command topic's namespace; frame_id defaults to the node's.
+
+    commands: travel and rack commands (replay_commands.Command) in the order received, rack
+    ones solved at the last travel. changes: the node's run-time parameter changes
+    (replay_commands.Change), each applied at its time as ros/runtime.py applies it, and
+    recorded on /parameter_events: new solver settings at the pose held; a new scene
+    (scenes: {scene parameter value: Scene}) from its design position, with its
+    /tf_static and robot_description sent again and /diagnostics at once, as the node does.
 
     Frames: those of the node's corner in the command topic's namespace ('' for /wheel_travel,
     'front_left/' for /front_left/wheel_travel), in frame_id.
@@ -71,24 +132,16 @@ def solve_commands(commands, scene, method, sinks, topic=DEFAULT_TOPIC, progress
     from ..robot_description import robot_description
     from ..ros import messages
     from ..ros.element_outputs import TOPIC as ELEMENTS_TOPIC
-    from ..ros.tf import CornerFrames, static_cdr, TF_STATIC_TOPIC, TF_TOPIC, TF_TYPE
+    from ..ros.tf import static_cdr, TF_STATIC_TOPIC, TF_TOPIC, TF_TYPE
+    from .replay_commands import PARAMETER_EVENT, PARAMETER_EVENTS, RACK, rack_topic
     defaults = node_defaults()
     topic = qualified(topic)
+    rack = rack_topic(topic)
     namespace = topic.rsplit('/', 1)[0]
     period_s = defaults['diagnostic_period'] if period_s is None else period_s
     frame_id = frame_id or defaults['frame_id']
     prefix = namespace.strip('/') + '/' if namespace.strip('/') else ''
-    frames = CornerFrames(scene, frame_id, prefix)
-    responder = Responder(scene, method=method, max_step_mm=defaults['max_step_mm'],
-                          condition_warn=defaults['condition_warn'], frame_id=frame_id,
-                          status_name=status_name(scene),
-                          period_ns=int(round(period_s * 1e9)))
-
-    elements = None
-    if scene.elements:     # the node's elements topic (ros/element_outputs.py)
-        from ..ros.element_outputs import elements_builder
-        elements = elements_builder(scene, responder.solver.mech, frame_id,
-                                    lambda: responder.solver.jacobian)
+    corner = _Corner(scene, method, frame_id, prefix, period_s)
 
     def emit(name, type_name, data, time_ns, publish_ns=None):
         for sink in sinks:
@@ -96,33 +149,52 @@ def solve_commands(commands, scene, method, sinks, topic=DEFAULT_TOPIC, progress
                         time_ns if publish_ns is None else publish_ns)
 
     def report(time_ns):
-        status = messages.health_status(responder.health, responder.status_name, scene.name,
-                                        method)
+        responder = corner.responder
+        status = messages.health_status(responder.health, responder.status_name,
+                                        corner.scene.name, corner.settings['method'])
         emit(DIAGNOSTICS_TOPIC, DIAGNOSTIC_ARRAY,
              to_cdr(messages.diagnostics([status], stamp_of(time_ns))), time_ns)
 
-    failures, t = 0, 0
-    if commands:     # what the node sends at start, latched
-        start = commands[0].log_time
-        emit(TF_STATIC_TOPIC, TF_TYPE, static_cdr([frames], divmod(start, 10**9)), start)
+    def describe(time_ns):     # what the node sends at start and after a scene change, latched
+        emit(TF_STATIC_TOPIC, TF_TYPE, static_cdr([corner.frames], divmod(time_ns, 10**9)),
+             time_ns)
         emit(DESCRIPTION_TOPIC, 'std_msgs/msg/String', string_cdr(robot_description(
-            {prefix: scene}, frame_id, scene.name)), start)
+            {prefix: corner.scene}, frame_id, corner.scene.name)), time_ns)
+
+    pending = list(changes)
+
+    def apply_changes(until):     # the changes recorded by time until (ns), as the node did
+        while pending and pending[0].log_time <= until:
+            change = pending.pop(0)
+            emit(PARAMETER_EVENTS, PARAMETER_EVENT, change.data, change.log_time)
+            if corner.change(change.values, scenes or {}, change.log_time):
+                describe(change.log_time)
+                report(change.log_time)
+
+    failures, t = 0, 0
+    if commands:
+        describe(commands[0].log_time)
     for i, command in enumerate(commands):
         t = command.log_time
+        apply_changes(t)
+        responder = corner.responder
         due = responder.due(t)
         if due is not None:           # the period ended before this command
             report(due)
             responder.health.reset_period()
-        emit(topic, FLOAT64, float64_cdr(command.travel), t, command.publish_time)
-        reply = responder.answer(command.travel * 1000.0, None, divmod(t, 10**9),
-                                 lambda: f'{topic} {command.travel!r} m')
-        for name, type_name, data in reply.outputs:
-            emit(f'{namespace}/{name}', type_name, data, t)
-        if reply.solution.success and elements is not None:
+        name = rack if command.kind == RACK else topic
+        emit(name, FLOAT64, float64_cdr(command.travel), t, command.publish_time)
+        value_mm = command.travel * 1000.0
+        reply = responder.answer(None if command.kind == RACK else value_mm,
+                                 value_mm if command.kind == RACK else None, divmod(t, 10**9),
+                                 lambda: f'{name} {command.travel!r} m')
+        for output, type_name, data in reply.outputs:
+            emit(f'{namespace}/{output}', type_name, data, t)
+        if reply.solution.success and corner.elements is not None:
             emit(f'{namespace}/{ELEMENTS_TOPIC}', JOINT_STATE,
-                 elements(reply.solution, divmod(t, 10**9)), t)
+                 corner.elements(reply.solution, divmod(t, 10**9)), t)
         if reply.solution.success:
-            emit(TF_TOPIC, TF_TYPE, frames.tf_cdr(reply.solution, divmod(t, 10**9)), t)
+            emit(TF_TOPIC, TF_TYPE, corner.frames.tf_cdr(reply.solution, divmod(t, 10**9)), t)
         failures += not reply.solution.success
         if reply.report:
             report(t)
@@ -130,6 +202,7 @@ def solve_commands(commands, scene, method, sinks, topic=DEFAULT_TOPIC, progress
             progress.update(i + 1)
     if commands:
         report(t)
+        apply_changes(pending[-1].log_time if pending else t)   # those after the last command
     return failures
 
 

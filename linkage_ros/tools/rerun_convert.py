@@ -18,9 +18,18 @@ and its readable messages are converted; a message whose bytes do not decode is 
 named. Either ends with status 1, even when nothing could be drawn (the .rrd then holds the
 scene alone). Progress goes to stderr.
 
+A vehicle commanded by joint_states (sensor_msgs/msg/JointState; the vehicle file names each
+corner's travel_joint and rack_joint) has each corner's travel and rack plotted from it. A
+run whose scene the node changed while it ran (recorded on /parameter_events) is drawn in
+parts, each with its own scene under its name (five_link, then double_wishbone), a part's
+carrier and links hidden once the next part starts (its base points stay); a change
+whose scene does not load here is named, what follows is drawn with the scene before, and
+the status is 1 (tools/rerun_inputs.py).
+
 --tf draws instead what any ROS viewer draws, from the bag alone: the URDF of
 /robot_description through Rerun's URDF loader, placed by /tf and /tf_static
-(record.rerun_tf), beside travel, camber and toe; no scene file is read.
+(record.rerun_tf), beside travel, camber and toe; no scene file is read. A run whose scene
+changed holds a URDF per scene: each is drawn only while its part of the run lasts.
 """
 
 import importlib
@@ -61,19 +70,24 @@ def drawable(bag):
     return messages, foreign
 
 
-def convert(messages, output, scene=None, corners=None, recording_id=None):
+def convert(messages, output, scene=None, corners=None, recording_id=None, ends=()):
     """
     Log messages (BagMessages that decode, from drawable) into output (.rrd).
 
-    scene: the one Scene drawn, or corners: {corner name: Scene} of a vehicle. Returns
-    {role: samples logged}.
+    scene: the one Scene drawn, or corners: {corner name: Scene} of a vehicle or of the parts
+    of a run. ends: [(ns, root)] in time order, where a part of a run under root ended: its
+    carrier and links are hidden from there on (RerunRecorder.hide). Returns {role: samples
+    logged}.
     """
     from ..record.rerun_view import RerunRecorder, topic_role
     counts = {}
+    ends = list(ends)
     rack = any(topic_role(m.topic) == 'rack' for m in messages)
     with RerunRecorder(output, scene, recording_id=recording_id, batch_rows=math.inf,
                        batch_delay=math.inf, corners=corners, rack=rack) as viewer:
         for m in messages:
+            while ends and ends[0][0] <= m.log_time:
+                viewer.hide(ends.pop(0)[1], m.log_time)
             viewer.record(m.topic, m.type_name, m.data, m.log_time, m.publish_time)
             role = topic_role(m.topic)
             counts[role] = counts.get(role, 0) + 1
@@ -124,9 +138,12 @@ def run(args):
     bag = read_bag(args.bag)
     if args.tf:
         return _run_tf(args, bag, output)
-    scene, corners = drawing(args, bag)
+    scene, corners, joints = drawing(args, bag)
     cli.warn(PROG, [w for s in ([scene] if scene else corners.values()) for w in s.warnings])
     messages, foreign = drawable(bag)
+    if joints:       # a vehicle commanded by joint_states: each corner's travel and rack
+        from .rerun_inputs import joint_commands
+        messages = sorted(messages + joint_commands(bag, joints), key=lambda m: m.log_time)
     if bag.complete and not messages:
         wrong = ''.join(f'; {topic} is {kind}' for topic, kind in foreign.items())
         raise cli.Mistake(f'{args.bag}: no {ROLES} messages to convert (topics: '
@@ -139,14 +156,27 @@ def run(args):
               file=sys.stderr)
     for line in bag.losses():
         print(f'{PROG}: warning: {args.bag}: {line}', file=sys.stderr)
-    name = scene.name if scene is not None else 'vehicle'
+    status = cli.DONE if bag.complete else cli.DAMAGED
+    name, ends = (scene.name if scene is not None else 'vehicle'), []
+    if scene is not None:   # a scene changed while the node ran: each part with its own
+        from .rerun_inputs import run_parts, split_parts
+        parts, problem = run_parts(bag, scene)
+        if problem:
+            print(f'{PROG}: warning: {args.bag}: {problem}', file=sys.stderr)
+            status = cli.DAMAGED
+        if len(parts) > 1:
+            corners, messages = split_parts(parts, messages)
+            ends = list(zip([p.start for p in parts[1:]], corners))
+            print(f'{PROG}: {len(parts)} parts, each drawn with its scene under its name: '
+                  f'{", ".join(corners)}', file=sys.stderr)
+            scene, name = None, ' then '.join(corners)
     compile_if_cold(PROG)   # the plots are framed on a sweep of each scene
     print(f'{PROG}: {name}: converting {len(messages)} messages of {args.bag}',
           file=sys.stderr)
-    counts = convert(messages, output, scene, corners)
+    counts = convert(messages, output, scene, corners, ends=ends)
     summary = ', '.join(f'{n} {role}' for role, n in counts.items()) or 'nothing but the scene'
     print(f'{PROG}: wrote {output}: {summary}', file=sys.stderr)
-    return cli.DONE if bag.complete else cli.DAMAGED
+    return status
 
 
 def _run_tf(args, bag, output):
@@ -163,26 +193,29 @@ def _run_tf(args, bag, output):
 
 def drawing(args, bag):
     """
-    Return (scene, corners) to draw a Bag with: one Scene, or {corner: Scene} of a vehicle.
+    Return (scene, corners, joints) to draw a Bag with.
 
-    --scene; else the content stored in the recording's 'linkage_ros' metadata (vehicle_yaml,
-    scene_yaml); else the vehicle or scene named in its custom data; else DEFAULT_SCENE.
+    One Scene, or corners {corner: Scene} of a vehicle with joints {corner: (travel joint,
+    rack joint)} of its joint_states. --scene; else the content stored in the recording's
+    'linkage_ros' metadata (vehicle_yaml, scene_yaml); else the vehicle or scene named in
+    its custom data; else DEFAULT_SCENE.
     """
     if args.scene:
-        return load_scene(args.scene), None
+        return load_scene(args.scene), None, {}
     try:
         loaded = load_stored(bag.metadata, str(args.bag))
     except LinkageError as exc:
         raise cli.Mistake(f'{exc} (choose a scene with --scene)') from None
     if isinstance(loaded, Scene):
-        return loaded, None
+        return loaded, None, {}
     if loaded is not None:
-        return None, loaded.corners
+        return None, loaded.corners, loaded.joints
     vehicle, named = bag.custom_data.get('vehicle'), bag.custom_data.get('scene')
     try:
         if vehicle:
-            return None, load_vehicle(vehicle).corners
-        return load_scene(named or DEFAULT_SCENE), None
+            loaded = load_vehicle(vehicle)
+            return None, loaded.corners, loaded.joints
+        return load_scene(named or DEFAULT_SCENE), None, {}
     except LinkageError as exc:
         if not (vehicle or named):
             raise
