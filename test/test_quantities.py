@@ -175,11 +175,17 @@ def test_the_foxglove_layout_plots_registry_quantities_with_their_units_and_sign
     assert plots
     for panel in plots.values():
         for path in panel['paths']:
-            # /camber.data.@degrees, /front_left/alignment.data[2]: a corner's topic, a field
+            # /camber.data.@degrees, /front_left/alignment.data[2]: a corner's topic, a field;
+            # /wheel_carrier_pose.pose.position.z: the pose's wheel centre, x y z in order
             match = re.fullmatch(r'/(?:\w+/)*(\w+)\.data(?:\[(\d+)\])?(\.@degrees)?',
                                  path['value'])
-            assert match, f'{path["value"]}: a path this test cannot read; teach it'
-            topic, index, degrees = match.groups()
+            pose = re.fullmatch(r'/(?:\w+/)*(wheel_carrier_pose)\.pose\.position\.([xyz])',
+                                path['value'])
+            assert match or pose, f'{path["value"]}: a path this test cannot read; teach it'
+            if pose:
+                topic, index, degrees = pose[1], 'xyz'.index(pose[2]), None
+            else:
+                topic, index, degrees = match.groups()
             names = registry.TOPICS[topic]
             q = registry.quantity(names[int(index or 0)])
             unit = 'deg' if degrees else q.si_unit
