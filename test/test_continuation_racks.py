@@ -32,6 +32,7 @@ ISSUE = [[(None, -48.31355482355407)], [(None, 19.746413405364134), (500.0, None
 STEER = st.one_of(st.tuples(RACK, TRAVEL).map(lambda c: [(None, c[0]), (c[1], None)]),
                   st.tuples(TRAVEL, RACK).map(lambda c: [c]))
 
+
 def test_every_bundled_scene_with_a_rack_is_among_those_checked():
     assert {'macpherson', 'double_wishbone', 'chrono_generic_multilink'} <= set(STEERED)
     assert len(STEERED) >= 10
