@@ -190,6 +190,22 @@ class Continuation:
         self._asked_rack = (0.0, 0.0)
         self._limits_at(self.rack)
 
+    def take_pose(self, other: Continuation) -> None:
+        """
+        Start from the pose another Continuation of the same scene holds (new settings).
+
+        Its state, the travel range explored and the travel limits found are taken as they
+        are: they belong to the mechanism, not to the settings. Raises ValueError for another
+        scene's Continuation.
+        """
+        if other.scene is not self.scene:
+            raise ValueError('take_pose: the other Continuation solves another scene')
+        self._commit(other.state)
+        self.reachable = other.reachable
+        self.limits = {rack: list(limits) for rack, limits in other.limits.items()}
+        self._asked_rack = other._asked_rack
+        self._limits_at(other._limits_rack)
+
     def solve(self, travel: float, rack: float | None = None) -> Solution:
         """
         Solve the pose at travel (mm) and steering rack (mm; None = unchanged).

@@ -4,10 +4,14 @@ suspension_node's parameters while it runs: a SetParameters request checked, the
     RuntimeParameters(node, params)   registers the node's on-set and post-set callbacks
 
 A request (rcl_interfaces SetParameters; `ros2 param set` in a full install) is taken whole
-or not at all. Refused, with the reason and the old values kept: a value out of its range or
-of the wrong type (ros/parameters.checked, the wording of the node's start), a method that
-does not exist, a scene that does not load (the loader's line), a change of a FIXED parameter
-(vehicle, record_mcap, rerun_rrd, frame_id, ...: why it is fixed), scene on a vehicle node.
+or not at all: rclpy's SetParameters service sets each parameter of a request on its own, so
+the node answers it itself (set_whole): every parameter is checked first, then all are set in
+one step, and a refusal refuses each of them with the same reason. Refused, with the reason
+and the old values kept: a parameter the node does not have (named, with the closest name), a
+value out of its range or of the wrong type (ros/parameters.checked, the wording of the
+node's start), a method that does not exist, a scene that does not load (the loader's line,
+any OSError of the file system included), a change of a FIXED parameter (vehicle,
+record_mcap, rerun_rrd, frame_id, ...: why it is fixed), scene on a vehicle node.
 
 Applied, once rclpy has stored the values (the post-set callback):
     method, max_step_mm, condition_warn   every corner's solver, at the pose it holds
@@ -27,14 +31,15 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 from rcl_interfaces.msg import ParameterEvent, SetParametersResult
+from rclpy.exceptions import ParameterException
+from rclpy.parameter import Parameter
 
-from .parameters import checked, FIXED, PARAMETERS
+from .parameters import checked, FIXED, PARAMETERS, unknown_parameter
 from ..cdr import to_cdr
 from ..core.errors import LinkageError
 
 if TYPE_CHECKING:
     from rclpy.node import Node
-    from rclpy.parameter import Parameter
 
 PARAMETER_EVENT = 'rcl_interfaces/msg/ParameterEvent'
 SOLVER = ('method', 'max_step_mm', 'condition_warn')
@@ -48,14 +53,45 @@ class RuntimeParameters:
         self._pending = {}     # checked values of the request being set, and a loaded scene
         node.add_on_set_parameters_callback(self.check)
         node.add_post_set_parameters_callback(self.apply)
+        # rclpy's services answer with the node's own handlers (see set_whole)
+        for service in node.services:
+            if service.srv_name.endswith('/set_parameters'):
+                service.callback = self.set_whole
+            elif service.srv_name.endswith('/set_parameters_atomically'):
+                service.callback = self.set_atomically
+
+    def set_whole(self, request, response):
+        """Answer rcl_interfaces SetParameters: the request set whole or refused whole."""
+        result = self.set_all([Parameter.from_parameter_msg(p) for p in request.parameters])
+        response.results = [SetParametersResult(successful=result.successful,
+                                                reason=result.reason)
+                            for _ in request.parameters]
+        return response
+
+    def set_atomically(self, request, response):
+        """Answer rcl_interfaces SetParametersAtomically (as set_whole, one result)."""
+        response.result = self.set_all([Parameter.from_parameter_msg(p)
+                                        for p in request.parameters])
+        return response
+
+    def set_all(self, parameters: list[Parameter]) -> SetParametersResult:
+        """Set parameters in one step, or none of them: the SetParametersResult."""
+        for parameter in parameters:   # rclpy's refusal would name none (rclpy 7.1)
+            if not self.node.has_parameter(parameter.name):
+                return SetParametersResult(successful=False, reason=(
+                    f'{parameter.name}: {unknown_parameter(parameter.name)}'))
+        try:
+            return self.node.set_parameters_atomically(parameters)
+        except ParameterException as exc:
+            return SetParametersResult(successful=False, reason=str(exc))
 
     def check(self, parameters: list[Parameter]) -> SetParametersResult:
         """Check a request whole: SetParametersResult refused with the reason, or accepted."""
         try:
             self._pending = self._checked(parameters)
-        except LinkageError as exc:
+        except (LinkageError, OSError) as exc:   # OSError: a scene path the system refuses
             self._pending = {}
-            return SetParametersResult(successful=False, reason=str(exc))
+            return SetParametersResult(successful=False, reason=' '.join(str(exc).split()))
         return SetParametersResult(successful=True)
 
     def _checked(self, parameters):
@@ -97,6 +133,8 @@ class RuntimeParameters:
             node.robot_name = scene.name
             node.get_logger().info(f'scene {scene.name} ({scene.source}): continuation '
                                    'restarts from its design position')
+            for line in scene.warnings:   # as at start (a singular design, a unit slip)
+                node.get_logger().warning(line)
         elif any(name in changed for name in SOLVER):
             for corner in node.corners.values():
                 corner.configure(values)
