@@ -8,6 +8,7 @@ silently resets the node. In process, over DDS in one Context, with the probe's 
 import math
 import os
 from pathlib import Path
+import threading
 
 from conftest import spin_until
 from diagnostic_msgs.msg import DiagnosticStatus
@@ -17,6 +18,7 @@ from linkage_ros.core.scene import load_scene
 from linkage_ros.ros.messages import status_values
 from linkage_ros.ros.node import QOS, SuspensionNode
 import pytest
+from rcl_interfaces.srv import SetParameters
 from rclpy.parameter import Parameter
 from std_msgs.msg import Float64
 from test_params_runtime import assert_answers, ParameterClient
@@ -123,3 +125,49 @@ def test_a_rack_command_to_a_scene_without_a_rack_is_refused_after_a_switch(
     assert 'scene five_link has no steer: rack link' in error.message
     assert len(probe.poses) == before_poses
     assert math.isclose(float(status_values(error)['travel_m']), 0.0, abs_tol=1e-12)
+
+
+def test_commands_are_answered_while_a_new_scene_loads_and_the_request_waits_for_it(
+        suspension_node, probe, client, monkeypatch):
+    # The loader is held until the test lets it go: a large scene (0.5 MB took 1-4 s) that
+    # loaded on the executor would hold every command back as long.
+    import linkage_ros.core.scene as scenes
+    load, release = scenes.load_scene, threading.Event()
+
+    def held_load(name):
+        release.wait(60.0)
+        return load(name)
+
+    monkeypatch.setattr(scenes, 'load_scene', held_load)
+    node = suspension_node()
+    assert spin_until(probe.executor, client.client.service_is_ready)
+    request = SetParameters.Request(parameters=[
+        Parameter('scene', value='macpherson').to_parameter_msg()])
+    future = client.client.call_async(request)
+    answer = probe.ask(0.02, timeout=30.0)              # answered with the scene held
+    assert answer.pose is not None and not future.done()
+    assert node.get_parameter('scene').value == 'five_link'
+    release.set()
+    assert spin_until(probe.executor, future.done, 20.0)
+    assert [(r.successful, r.reason) for r in future.result().results] == [(True, '')]
+    assert node.get_parameter('scene').value == 'macpherson'
+    assert_answers(probe, 'macpherson', [0.03])
+
+
+def test_a_scene_that_fails_to_load_in_the_background_refuses_the_whole_request(
+        suspension_node, client, tmp_path):
+    node = suspension_node()
+    bad = tmp_path / 'bad.yaml'
+    bad.write_text('name: [unclosed\n')
+    results = client.set(scene=str(bad), max_step_mm=2.0)
+    assert [ok for ok, _ in results] == [False, False]
+    assert results[0][1].startswith(f'{bad}: line ')
+    assert node.get_parameter('max_step_mm').value == 5.0
+
+
+def test_a_scene_is_switched_under_sim_time_with_no_clock_published(suspension_node, client):
+    # The wait for the loaded scene runs on the steady clock: a node clock stopped at 0 (sim
+    # time, no /clock yet) must not hold the answer back.
+    node = suspension_node(use_sim_time=True)
+    assert client.set(scene='macpherson') == [(True, '')]
+    assert node.corners[''].scene.name == 'macpherson'
