@@ -171,3 +171,21 @@ def test_a_scene_is_switched_under_sim_time_with_no_clock_published(suspension_n
     node = suspension_node(use_sim_time=True)
     assert client.set(scene='macpherson') == [(True, '')]
     assert node.corners[''].scene.name == 'macpherson'
+
+
+def test_set_parameters_atomically_names_an_unknown_parameter_and_sets_nothing(
+        suspension_node, probe):
+    from rcl_interfaces.srv import SetParametersAtomically
+    node = suspension_node()
+    atomic = probe.node.create_client(SetParametersAtomically,
+                                      '/suspension_kinematics/set_parameters_atomically')
+    assert spin_until(probe.executor, atomic.service_is_ready, 20.0)
+    future = atomic.call_async(SetParametersAtomically.Request(parameters=[
+        Parameter('max_step_mm', value=2.0).to_parameter_msg(),
+        Parameter('sceen', value='macpherson').to_parameter_msg()]))
+    assert spin_until(probe.executor, future.done, 20.0)
+    result = future.result().result
+    assert not result.successful
+    assert result.reason.startswith('sceen: not a parameter of suspension_node (did you mean '
+                                    'scene?')
+    assert node.get_parameter('max_step_mm').value == 5.0
