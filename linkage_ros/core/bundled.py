@@ -70,6 +70,20 @@ def resolve(name_or_path: str | PathLike, kind: str = 'scene') -> Path:
         raise SceneError(shown, kind, f'empty: give a bundled {kind} name or the path of a '
                          f'{kind} YAML file ({bundled})')
     path = Path(text)
+    try:
+        return _resolved(path, text, shown, kind, folder, names, bundled)
+    except OSError as exc:   # a name too long, a loop of links, no permission, ...
+        raise SceneError(_shortened(shown), kind,
+                         f'cannot be looked up ({exc.strerror or exc})') from None
+
+
+def _shortened(text, most=200):
+    """Return text cut to at most characters (a name of 5000 is said as its start)."""
+    return text if len(text) <= most else f'{text[:most]}... ({len(text)} characters)'
+
+
+def _resolved(path, text, shown, kind, folder, names, bundled):
+    """resolve() once the name is not empty; OSError as the file system raises it."""
     if is_bare_name(text):
         if text in names:
             return folder / f'{text}.yaml'

@@ -181,9 +181,30 @@ class Continuation:
         self.reachable = (0.0, 0.0)
         # Travel limits found, per rack (mm): [rebound, bump] (mm), -inf / inf until found.
         # Every state is on the design branch (a step never crosses a turning point), so a
-        # limit found at a rack holds there for good.
+        # limit found at a rack holds there for good. Keyed on the rack of the state (never
+        # on a commanded rack: the walk's arithmetic may land an ulp away from it), and
+        # read only through _limits_at, which makes the entry of the state's rack.
         self.limits = {}
-        self._limits_at(0.0)
+        # (commanded rack, the state's rack it was reached at): the same command again is
+        # the same rack, not a new walk of an ulp that forgets the limits found there
+        self._asked_rack = (0.0, 0.0)
+        self._limits_at(self.rack)
+
+    def take_pose(self, other: Continuation) -> None:
+        """
+        Start from the pose another Continuation of the same scene holds (new settings).
+
+        Its state, the travel range explored and the travel limits found are taken as they
+        are: they belong to the mechanism, not to the settings. Raises ValueError for another
+        scene's Continuation.
+        """
+        if other.scene is not self.scene:
+            raise ValueError('take_pose: the other Continuation solves another scene')
+        self._commit(other.state)
+        self.reachable = other.reachable
+        self.limits = {rack: list(limits) for rack, limits in other.limits.items()}
+        self._asked_rack = other._asked_rack
+        self._limits_at(other._limits_rack)
 
     def solve(self, travel: float, rack: float | None = None) -> Solution:
         """
@@ -198,6 +219,8 @@ class Continuation:
             return self._failure(travel, Status.NOT_FINITE,
                                  f'{name} {value!r} mm is not a finite number', 0)
         travel, rack = float(travel), float(rack)
+        if rack == self._asked_rack[0]:
+            rack = self._asked_rack[1]
         low, high = self._refused_beyond
         if rack == self.rack and not low <= travel <= high:
             return self._beyond_known_limit(travel)
@@ -213,7 +236,8 @@ class Continuation:
             walked = self._paper_walk(travel, rack)
         if walked.outcome == kernel.REACHED:   # the usual case, first
             if rack != saved_rack:
-                self._limits_at(rack)
+                self._asked_rack = (rack, self.rack)
+                self._limits_at(self.rack)
             return self._solution(walked.iterations, walked.steps)
         steps, iterations, status, error = self._stopped(walked, travel, rack, saved)
         if not status:   # reached by arclength
@@ -361,8 +385,8 @@ class Continuation:
                 f'travel {self.travel:g} mm (the guidance equations are singular there)')
         limit = found if status == Status.OUT_OF_REACH else self.travel
         if status == Status.OUT_OF_REACH:
-            self.limits[self.rack][target > start] = limit
-            self._limits_at(self.rack)
+            self.limits[self._limits_rack][target > start] = limit
+            self._limits_at(self._limits_rack)
         return steps, 0, status, self._limit_message(start, target, limit, status)
 
     def _limit_message(self, start, target, limit, status):
@@ -384,11 +408,12 @@ class Continuation:
         the limit is located that closely, and no reachable travel may be refused.
         """
         low, high = self.limits.setdefault(rack, [-math.inf, math.inf])
+        self._limits_rack = rack
         self._refused_beyond = (low - self._located, high + self._located)
 
     def _beyond_known_limit(self, travel):
         """Refuse at once a travel beyond a limit already found at this rack."""
-        limit = self.limits[self.rack][travel > self.travel]
+        limit = self.limits[self._limits_rack][travel > self.travel]
         message = self._limit_message(self.travel, travel, limit, Status.OUT_OF_REACH)
         return self._failure(travel, Status.OUT_OF_REACH, message, 0)
 

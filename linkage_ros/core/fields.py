@@ -12,6 +12,7 @@ from __future__ import annotations
 import difflib
 import re
 from typing import Any, TYPE_CHECKING
+import unicodedata
 
 import numpy as np
 
@@ -102,6 +103,19 @@ class Fields:
             self.fail(where or key, f'expected text, got {type(value).__name__}')
         return str(value)
 
+    def name(self, data: dict, key: str, default: str = '', where: str | None = None) -> str:
+        """
+        Return the text data[key], refused if no frame may have it; default if absent or ''.
+
+        A scene's, a constraint's or a vehicle's name becomes TF frame names, URDF names and
+        diagnostic names: name_problem says what is refused.
+        """
+        value = self.text(data, key, default, where)
+        problem = name_problem(value) if value != '' else ''   # '': the default applies
+        if problem:
+            self.fail(where or key, problem)
+        return value
+
     def number(self, data: dict, key: str, where: str, default: float | None = None,
                minimum: float | None = None, length: bool = True) -> float:
         """Return data[key], a finite number: a length within the limit unless not length."""
@@ -137,3 +151,23 @@ class Fields:
                 self.fail(where, f'coordinate {v!r} is not finite')
             self.length(v, where, 'coordinate')
         return np.array(value, dtype=float)
+
+
+def name_problem(name: str) -> str:
+    """
+    Say why text cannot be a name of frames, URDF elements and topics; '' if it can.
+
+    Refused: an empty name; a control, format, private-use or unassigned character (NUL,
+    U+0001, U+FFFE: XML cannot hold them, and C strings end at a NUL); a leading '/' (tf2
+    refuses a frame named so). The characters are said by their code points.
+    """
+    if not name.strip():
+        return 'empty: give a name'
+    bad = sorted({c for c in name if unicodedata.category(c)[0] == 'C'})
+    if bad:
+        said = ', '.join(f'U+{ord(c):04X}' for c in bad)
+        return (f'{name!r} holds {said}: a name may not hold control or unassigned characters '
+                '(they break the URDF, which is XML, and the frame names)')
+    if name.startswith('/'):
+        return f'{name!r} starts with /, which tf2 refuses in a frame name'
+    return ''

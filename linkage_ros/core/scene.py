@@ -208,7 +208,7 @@ def parse_scene(data: Any, source: str = '<scene>') -> Scene:
         from .kingpin import check_kingpin
         check_kingpin(source, data['kingpin'], constraints)
     from .elements import parse_elements   # here: elements.py reads SceneError from here
-    scene = Scene(name=check.text(data, 'name') or Path(source).stem, source=source,
+    scene = Scene(name=check.name(data, 'name') or Path(source).stem, source=source,
                   side=side, units=units, wheel_center=wheel_center, spin_axis_point=spin_point,
                   third_point=third_point, constraints=constraints, travel=travel,
                   wheel_radius=radius, description=check.text(data, 'description').strip(),
@@ -320,7 +320,7 @@ def _parse_constraint(check, item, index, scale):
     if not isinstance(item, dict):
         check.fail(where, 'expected a mapping with name, type, base or axis, carrier')
     check.keys(item, ALL_CONSTRAINT_KEYS, where)
-    name = check.text(item, 'name', where=f'{where}.name')
+    name = check.name(item, 'name', where=f'{where}.name')
     where = f'constraints[{index}] ({name})' if name else where
     kind = check.choice(item, 'type', tuple(EQUATIONS_PER_TYPE), f'{where}.type')
     other = 'base' if kind == 'circle' else 'axis'

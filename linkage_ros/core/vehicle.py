@@ -87,7 +87,7 @@ def load_vehicle(name_or_path: str | PathLike) -> Vehicle:
     if any(key in data for key in AXLE_KEYS):   # axle code loads only for a file that has axles
         from .vehicle_axles import parse_axles
         axles = parse_axles(path, data, corners, UNITS_TO_MM[units])
-    return Vehicle(name=check.text(data, 'name') or path.stem, source=str(path),
+    return Vehicle(name=check.name(data, 'name') or path.stem, source=str(path),
                    corners=corners, joints=joints, axles=axles,
                    extras={k: v for k, v in data.items() if k not in VEHICLE_KEYS + AXLE_KEYS})
 

@@ -18,8 +18,10 @@ and no point (`1e-3`) is a number, as in YAML 1.2 (PyYAML's YAML 1.1 reads it as
 
 from __future__ import annotations
 
+import os
 from pathlib import Path
 import re
+import stat
 from typing import Any, TYPE_CHECKING
 
 import yaml
@@ -89,7 +91,7 @@ def read_yaml(path: str | PathLike, what: str = 'scene') -> Any:
     """
     path = Path(path)
     try:
-        with open(path, 'rb') as stream:
+        with open_regular(path) as stream:
             raw = stream.read(FILE_LIMIT_BYTES + 1)
     except OSError as exc:
         raise SceneError(path, 'file', f'cannot read ({exc.strerror or exc})') from None
@@ -102,6 +104,33 @@ def read_yaml(path: str | PathLike, what: str = 'scene') -> Any:
     except UnicodeDecodeError as exc:
         raise SceneError(path, 'file', f'not UTF-8 text ({exc})') from None
     return parse_yaml(text, path)
+
+
+def open_regular(path: str | PathLike):
+    """
+    Open a regular file for reading in binary, or raise SceneError(path, 'file', why not).
+
+    Opened without blocking (O_NONBLOCK) and checked on the open descriptor: a FIFO, a
+    device or a socket named as a scene would otherwise block the reader (and a node's
+    executor) until something writes to it, or forever. OSError as open raises it.
+    """
+    descriptor = os.open(path, os.O_RDONLY | os.O_NONBLOCK | getattr(os, 'O_CLOEXEC', 0))
+    try:
+        mode = os.fstat(descriptor).st_mode
+        if not stat.S_ISREG(mode):
+            raise SceneError(path, 'file', f'not a regular file ({_file_kind(mode)}): give '
+                             'a YAML file')
+        os.set_blocking(descriptor, True)
+        return os.fdopen(descriptor, 'rb')
+    except BaseException:
+        os.close(descriptor)
+        raise
+
+
+def _file_kind(mode):
+    kinds = ((stat.S_ISDIR, 'a folder'), (stat.S_ISFIFO, 'a FIFO'), (stat.S_ISSOCK, 'a socket'),
+             (stat.S_ISCHR, 'a character device'), (stat.S_ISBLK, 'a block device'))
+    return next((said for test, said in kinds if test(mode)), 'not a file')
 
 
 def parse_yaml(text: str, where: str | PathLike) -> Any:

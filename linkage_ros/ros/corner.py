@@ -48,6 +48,7 @@ FLOAT64 = 'std_msgs/msg/Float64'
 JOINT_STATE = 'sensor_msgs/msg/JointState'
 OUTPUTS = {'wheel_carrier_pose': PoseStamped, 'camber': Float64, 'toe': Float64}
 UNDECODABLE = 'undecodable'   # the kind of a bad command whose bytes do not decode
+NO_RACK = 'no rack'           # the kind of a rack command to a scene without a steer: rack
 
 
 class Outlet(Protocol):
@@ -138,16 +139,17 @@ class Corner:
         """
         Take new solver settings (method, max_step_mm, condition_warn) at the present pose.
 
-        The new solver walks from design to the last solved travel and rack (the branch the
-        node keeps); the health goes on counting.
+        The new solver starts at the pose the old one holds (its state, the travel limits
+        found: Continuation.take_pose), not walked again from design, which the new settings
+        might not manage (a max_step_mm too short for the way back); the health goes on
+        counting.
         """
         old = self.responder
         self.responder = self._responder(self.scene, params)
         self.responder.health = self.health = old.health
         self.health.condition_warn = params['condition_warn']
         self.method = params['method']
-        if (old.solver.travel, old.solver.rack) != (0.0, 0.0):
-            self.solver.solve(old.solver.travel, old.solver.rack)
+        self.solver.take_pose(old.solver)
 
     def set_scene(self, scene: Scene, params: dict) -> None:
         """
@@ -213,6 +215,11 @@ class Corner:
 
     def on_rack(self, data: bytes) -> None:
         # A new rack at the last travel: Continuation keeps the travel it was last solved at.
+        if not steered(self.scene):   # subscribed for an earlier scene that steered
+            if self.outlet.received(self.rack_topic, FLOAT64, data) is not None:
+                self.refuse(self.rack_topic, f'scene {self.scene.name} has no steer: rack '
+                            'link: a rack command moves nothing (no pose)', NO_RACK)
+            return
         self._float64_command(self.rack_topic, data, rack=True)
 
     def _float64_command(self, topic: str, data: bytes, rack: bool) -> None:
@@ -272,9 +279,9 @@ class Corner:
             self.outlet.report([self])
         return solution
 
-    def refuse(self, topic: str, error: CdrError) -> None:
-        """Count an input whose bytes do not decode: an ERROR status now, no pose."""
-        self.outlet.bad_command(topic, UNDECODABLE, str(error))
+    def refuse(self, topic: str, error: CdrError | str, kind: str = UNDECODABLE) -> None:
+        """Count an input that cannot be answered (bytes that do not decode): ERROR, no pose."""
+        self.outlet.bad_command(topic, kind, str(error))
         self.health.refuse(f'{topic}: {error}')
         self.outlet.report([self])
 

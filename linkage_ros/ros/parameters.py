@@ -29,6 +29,7 @@ from rclpy.parameter import Parameter
 
 from .qos import check_overrides, MAX_DEPTH, QOS_DEPTH
 from ..core.errors import LinkageError
+from ..core.fields import name_problem
 from ..core.kinematics import METHODS
 
 if TYPE_CHECKING:
@@ -145,6 +146,8 @@ def checked(name: str, value: Any) -> Any:
         raise LinkageError(name, f'expected {expected}, got {value!r}')
     if spec.low is not None and not (spec.low <= value <= spec.high):   # NaN is refused too
         raise LinkageError(name, f'must be from {spec.range_text()}, got {value!r}')
+    if name == 'frame_id' and name_problem(value):   # it names every frame and the URDF root
+        raise LinkageError(name, name_problem(value))
     if name == 'method' and value not in METHODS:
         raise LinkageError(name, f'unknown value {value!r} (expected one of: '
                            f'{", ".join(METHODS)})')
