@@ -29,11 +29,11 @@ from typing import Callable, NamedTuple, TYPE_CHECKING
 
 from .cdr import float64_cdr, pose_stamped_cdr
 from .core.geometry import M_PER_MM
-from .core.kinematics import Continuation
+from .core.kinematics import Continuation, Solution
+from .core.status import Status
 from .health import Health
 
 if TYPE_CHECKING:
-    from .core.kinematics import Solution
     from .core.scene import Scene
 
 # output name (relative to the corner's namespace): ROS 2 type, in publishing order
@@ -115,6 +115,8 @@ class Responder:
         wheel_travel 0.5 m'), or a function that says it, called only for a failed command;
         a failure's status message starts with it.
         """
+        if rack_mm is not None and not self.scene.steered:
+            return self._no_rack(sent() if callable(sent) else sent)
         travel = self.solver.travel if travel_mm is None else travel_mm
         solution = self.solver.solve(travel, rack_mm)
         if solution.success:
@@ -123,25 +125,36 @@ class Responder:
             outputs, said = [], sent() if callable(sent) else sent
         return Reply(solution, outputs, said, self.health.add(solution, said))
 
+    def _no_rack(self, said: str) -> Reply:
+        """Refuse a rack command to a scene without a steer: rack link: ERROR, no pose."""
+        why = (f'scene {self.scene.name} has no steer: rack link: a rack command moves '
+               'nothing (no pose)')
+        solver = self.solver
+        solution = Solution(travel=solver.travel, success=False, message=why,
+                            reachable=tuple(solver.reachable), rack=solver.rack,
+                            status=Status.NO_RACK)
+        self.health.refuse(f'{said}: {why}' if said else why)
+        return Reply(solution, [], said, True)
+
     def follow(self, old: Responder) -> None:
         """
         Take over from old, the corner's Responder until a change of its parameters.
 
-        What ros/corner.Corner.configure and set_scene do to the node's corner, for
-        linkage-replay (the corner is to call this too, once its own changes settle: one home).
+        What the node's corner (ros/corner.Corner.configure and set_scene) and linkage-replay
+        do on a change of parameters: one home.
 
         Its Health goes on counting (with this condition_warn), and its report times (a
-        period started keeps its end). The same scene: this solver
-        walks from design to old's last solved travel and rack, the branch the corner keeps
-        (new solver settings at the pose held). Another scene: the corner restarts from its
-        design position, and the Health says so in its message.
+        period started keeps its end). The same scene: this solver takes over the pose old
+        holds (its state and the travel limits found: Continuation.take_pose), not walked
+        again from design, which new settings might not manage (a max_step_mm too short for
+        the way back). Another scene: the corner restarts from its design position, and the
+        Health says so in its message.
         """
         health = self.health = old.health
         health.condition_warn = self.condition_warn
         self._next = old._next
         if self.scene is old.scene:
-            if (old.solver.travel, old.solver.rack) != (0.0, 0.0):
-                self.solver.solve(old.solver.travel, old.solver.rack)
+            self.solver.take_pose(old.solver)
             return
         health.last, health.sent, health.refused = None, '', ''
         health.set_fault(health.fault)           # the level and message of no command yet

@@ -81,7 +81,7 @@ class Axle:
     @property
     def steered(self) -> bool:
         """Whether a corner has a steer: rack link."""
-        return any(c.steer == 'rack' for s in self.scenes for c in s.constraints)
+        return any(s.steered for s in self.scenes)
 
     def design_patches(self) -> np.ndarray:
         """Return the contact patches at design (2, 3) mm; wheel centres without a radius."""

@@ -109,6 +109,11 @@ class Scene:
         return 1.0 if self.side == 'left' else -1.0
 
     @property
+    def steered(self) -> bool:
+        """Whether a steer: rack link moves with the rack (it takes rack commands)."""
+        return any(c.steer == 'rack' for c in self.constraints)
+
+    @property
     def size(self) -> float:
         """Largest hardpoint coordinate magnitude (mm): sets the scale of tolerances."""
         pts = [self.wheel_center, self.spin_axis_point]

@@ -17,6 +17,7 @@ class Status(IntEnum):
     CURVE_LOST = 3     # continuation could not follow the solution curve any further
     SINGULAR = 4       # the Jacobian is singular where the command needs it
     SUBSTEP_LIMIT = 5  # the walk needs more substeps than max_substeps allows
+    NO_RACK = 6        # a rack command to a scene without a steer: rack link
 
     @property
     def phrase(self) -> str:

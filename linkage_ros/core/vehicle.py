@@ -101,7 +101,7 @@ def _joints(path, corner, spec, scene):
             raise SceneError(path, f'corners.{corner}.{key}',
                              f'expected a joint name (text), got {value!r}')
         names.append(value)
-    if names[1] and not any(c.steer == 'rack' for c in scene.constraints):
+    if names[1] and not scene.steered:
         raise SceneError(path, f'corners.{corner}.rack_joint',
                          f'scene {scene.source} has no steer: rack link for a rack to move')
     return tuple(names)

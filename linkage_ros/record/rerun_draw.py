@@ -102,14 +102,9 @@ def wheel_circle(scene: Scene, segments: int = WHEEL_SEGMENTS) -> np.ndarray | N
     return scene.wheel_radius * (np.cos(angle)[:, None] * e1 + np.sin(angle)[:, None] * e2)
 
 
-def steered(scene: Scene) -> bool:
-    """Tell whether a scene has a steer: rack link (and so a rack to plot)."""
-    return any(c.steer == 'rack' for c in scene.constraints)
-
-
 def series(scene: Scene) -> list[str]:
     """Return the plots (names of SERIES) a scene has: the rack only with a steer: rack link."""
-    return [name for name in SERIES if name != 'rack_mm' or steered(scene)]
+    return [name for name in SERIES if name != 'rack_mm' or scene.steered]
 
 
 def rack_points(scene: Scene) -> np.ndarray:

@@ -48,7 +48,6 @@ FLOAT64 = 'std_msgs/msg/Float64'
 JOINT_STATE = 'sensor_msgs/msg/JointState'
 OUTPUTS = {'wheel_carrier_pose': PoseStamped, 'camber': Float64, 'toe': Float64}
 UNDECODABLE = 'undecodable'   # the kind of a bad command whose bytes do not decode
-NO_RACK = 'no rack'           # the kind of a rack command to a scene without a steer: rack
 
 
 class Outlet(Protocol):
@@ -129,7 +128,7 @@ class Corner:
 
     def _listen_to_rack(self) -> None:
         """Subscribe steering_rack if the scene steers and it is not subscribed yet."""
-        if steered(self.scene) and self.rack_topic is None:
+        if self.scene.steered and self.rack_topic is None:
             rack = subscription(self.node, Float64, self.prefix + 'steering_rack', self.on_rack,
                                 self.qos, raw=True)
             self.rack_topic = rack.topic_name
@@ -139,17 +138,11 @@ class Corner:
         """
         Take new solver settings (method, max_step_mm, condition_warn) at the present pose.
 
-        The new solver starts at the pose the old one holds (its state, the travel limits
-        found: Continuation.take_pose), not walked again from design, which the new settings
-        might not manage (a max_step_mm too short for the way back); the health goes on
-        counting.
+        The new solver starts at the pose the old one holds (Responder.follow); the health
+        goes on counting.
         """
-        old = self.responder
-        self.responder = self._responder(self.scene, params)
-        self.responder.health = self.health = old.health
-        self.health.condition_warn = params['condition_warn']
+        self._follow(self.scene, params)
         self.method = params['method']
-        self.solver.take_pose(old.solver)
 
     def set_scene(self, scene: Scene, params: dict) -> None:
         """
@@ -157,17 +150,17 @@ class Corner:
 
         steering_rack is subscribed if the new scene steers (and stays, if the old one did).
         """
-        health = self.health
         self.scene = scene
-        self.responder = self._responder(scene, params)
-        self.responder.health = self.health = health
-        health.last, health.sent, health.refused = None, '', ''
-        health.set_fault(health.fault)           # the level and message of no command yet
-        if not health.fault:
-            health.message = (f'scene changed to {scene.name} ({scene.source}): continuation '
-                              'restarts from its design position')
+        self._follow(scene, params)
         self._listen_to_rack()
         self._set_elements()
+
+    def _follow(self, scene: Scene, params: dict) -> None:
+        """Answer with a new Responder for scene and params, as linkage-replay does."""
+        old = self.responder
+        self.responder = self._responder(scene, params)
+        self.responder.follow(old)
+        self.health = self.responder.health
 
     def _set_elements(self) -> None:
         """
@@ -215,11 +208,7 @@ class Corner:
 
     def on_rack(self, data: bytes) -> None:
         # A new rack at the last travel: Continuation keeps the travel it was last solved at.
-        if not steered(self.scene):   # subscribed for an earlier scene that steered
-            if self.outlet.received(self.rack_topic, FLOAT64, data) is not None:
-                self.refuse(self.rack_topic, f'scene {self.scene.name} has no steer: rack '
-                            'link: a rack command moves nothing (no pose)', NO_RACK)
-            return
+        # A scene without a rack link (subscribed for an earlier one) refuses it (Responder).
         self._float64_command(self.rack_topic, data, rack=True)
 
     def _float64_command(self, topic: str, data: bytes, rack: bool) -> None:
@@ -300,7 +289,7 @@ def corner_topics(scene: Scene, params: dict, prefix: str = '') -> list[str]:
     names = ['wheel_travel', *OUTPUTS]
     if params['travel_joint']:
         names.append('joint_states')
-    if steered(scene):
+    if scene.steered:
         names.append('steering_rack')
     names += [name for name in ('alignment', 'markers') if params[name]]
     if scene.elements:
@@ -313,11 +302,6 @@ def corner_outputs(scene: Scene, params: dict, prefix: str = '') -> dict[str, st
     inputs = ('wheel_travel', 'joint_states', 'steering_rack')
     return {name: 'subscription' if name.rsplit('/', 1)[-1] in inputs else 'publisher'
             for name in corner_topics(scene, params, prefix)}
-
-
-def steered(scene: Scene) -> bool:
-    """Tell whether the scene has a steer: rack link (then it takes steering_rack commands)."""
-    return any(c.steer == 'rack' for c in scene.constraints)
 
 
 def joints_sent(topic: str, msg: JointState, joints: list[str]) -> str:

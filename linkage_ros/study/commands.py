@@ -29,7 +29,7 @@ def run_sensitivity(args, say) -> int:
     scene = design.scene
     say('', scene.warnings)
     _finite(args.travel + [args.rack], '--travel')
-    if args.rack and not any(c.steer == 'rack' for c in scene.constraints):
+    if args.rack and not scene.steered:
         raise LinkageError('--rack', f'{scene.name}: no constraint is marked steer: rack')
     result = sensitivities(scene, args.travel, rack=args.rack,
                            wanted=tuple(args.quantity) if args.quantity else None)

@@ -125,11 +125,6 @@ def _is_vehicle(path):
     return isinstance(data, dict) and isinstance(data.get('corners'), dict)
 
 
-def steered(scene):
-    """Tell whether a rack moves something in the scene (a steer: rack link)."""
-    return any(c.steer == 'rack' for c in scene.constraints)
-
-
 class Job(NamedTuple):
     """One map to make: its name, grid size, quantities and how to solve it."""
 
@@ -143,13 +138,13 @@ def corner_jobs(corners, args):
     """Return a Job per corner over (travel, rack); LinkageError for a bad grid."""
     travel = args.travel and grid_option(args.travel, '--travel')
     rack = args.rack and grid_option(args.rack, '--rack')
-    if rack and not any(steered(s) for s in corners.values()):
+    if rack and not any(s.steered for s in corners.values()):
         raise LinkageError('--rack', 'no corner has a steer: rack link, so a rack moves '
                            'nothing')
     jobs = []
     for name, scene in corners.items():
         travels = travel or Grid(*scene.travel)
-        racks = (rack or DEFAULT_RACK) if steered(scene) else None
+        racks = (rack or DEFAULT_RACK) if scene.steered else None
         jobs.append(Job(name, (travels.count, racks.count if racks else 1),
                         len(quantities(scene)),
                         partial(solve_corner, scene, travels, racks, name)))

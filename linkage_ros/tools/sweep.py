@@ -208,7 +208,7 @@ def main(argv: list[str] | None = None) -> int:
     except LinkageError as exc:
         return fail(PROG, exc)
     travels = travel_range(start, stop, step)
-    if racks != [0.0] and not any(c.steer == 'rack' for c in scene.constraints):
+    if racks != [0.0] and not scene.steered:
         return fail(PROG, f'{scene.name}: no constraint is marked steer: rack, so a rack input '
                           'moves nothing')
     if args.elements and not scene.elements:
