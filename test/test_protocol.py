@@ -16,6 +16,7 @@ import sys
 from builtin_interfaces.msg import Time
 from linkage_ros.cdr import float64_of, from_cdr
 from linkage_ros.core.scene import load_scene
+from linkage_ros.core.status import Status
 from linkage_ros.protocol import Responder
 from linkage_ros.record.mcap_writer import McapRecorder
 from linkage_ros.ros import messages
@@ -222,3 +223,17 @@ def test_the_protocol_and_health_import_nothing_of_the_ros_adapter():
     assert loaded_by('linkage_ros.protocol, linkage_ros.health', 'm.startswith(('
                      '"linkage_ros.ros", "linkage_ros.record", "linkage_ros.tools"))'
                      ) == '[]\n'
+
+
+def test_a_rack_command_to_a_scene_without_a_rack_link_is_refused_with_no_pose():
+    # five_link has no steer: rack link: the node and linkage-replay refuse alike (Responder)
+    responder = Responder(load_scene('five_link'), method='fast', max_step_mm=5.0,
+                          condition_warn=1e4, frame_id='base_link', status_name='s',
+                          period_ns=10**9)
+    responder.answer(20.0, None, (0, 0))
+    reply = responder.answer(None, 5.0, (0, 1), '/steering_rack 0.005 m')
+    assert (reply.solution.success, reply.solution.status) == (False, Status.NO_RACK)
+    assert reply.outputs == [] and reply.report
+    assert reply.sent == '/steering_rack 0.005 m'
+    assert responder.health.level == 2   # ERROR (diagnostic_msgs), as for undecodable bytes
+    assert responder.solver.travel == 20.0 and responder.solver.rack == 0.0   # the pose kept
