@@ -47,8 +47,8 @@ def test_the_mid_cell_error_table_is_what_the_program_prints(maps_folder):
 
 def test_the_parquet_example_reads_with_pyarrow_alone_no_pandas(maps_folder, monkeypatch):
     # issue 27 item 24: the doc read Parquet with .to_pandas(), and no extra installs pandas
-    assert main(['double_wishbone', '--out', str(maps_folder / 'maps'), '--format',
-                     'parquet']) == 0
+    folder = str(maps_folder / 'maps')
+    assert main(['double_wishbone', '--out', folder, '--format', 'parquet']) == 0
     (code,) = [b for b in BLOCKS if 'parquet' in b]
     monkeypatch.setitem(sys.modules, 'pandas', None)   # import pandas raises ImportError
     printed = run(code, maps_folder).split()
