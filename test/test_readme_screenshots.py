@@ -19,7 +19,7 @@ def test_xvfb_starts_the_pointer_off_the_window_so_no_hover_tooltip_is_captured(
     # window at the top left (measured with xdotool getmouselocation and xwininfo: 1400x700+0+0
     # and the pointer at 800,450 over the 3D view on a 1600x900 screen). The centre is off
     # the window when the screen is at least twice the window in width or height.
-    screen = re.search(r"-screen 0 (\d+)x(\d+)x\d+", line)
+    screen = re.search(r'-screen 0 (\d+)x(\d+)x\d+', line)
     window = re.search(r'--window-size (\d+)x(\d+)', line)
     assert screen and window, line
     (width, height), (w, h) = (map(int, m.groups()) for m in (screen, window))
