@@ -193,8 +193,12 @@ def benchmark(axle, heave, roll, rack, rounds):
           f'{"axle/one_corner":>17}{"axle/two_corners":>18}')
     left, right = wheel_travels(axle, heave, np.radians(roll))
     for scale in (1, 10, 100):
-        shift = np.repeat(np.arange(scale) * 1e-3, len(heave))
-        h, r, k = np.tile(heave, scale) + shift, np.tile(roll, scale), np.tile(rack, scale)
+        # each copy shifted towards the middle of the travel block, never past its limits
+        # (solve_axle would stop there, and the time be of fewer positions)
+        h = np.tile(heave, scale)
+        shift = np.repeat(np.arange(scale) * 1e-3, len(heave)) * np.where(
+            h > 0.5 * (axle.left.travel[0] + axle.left.travel[1]), -1.0, 1.0)
+        h, r, k = h + shift, np.tile(roll, scale), np.tile(rack, scale)
         tl, tr = np.tile(left, scale) + shift, np.tile(right, scale) + shift
         runs = {'one': lambda: sweep(axle.left, tl, rack=k[0]),
                 'two': lambda: (sweep(axle.left, tl, rack=k[0]),
