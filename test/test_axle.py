@@ -144,6 +144,20 @@ def test_ackermann_and_mean_steer_match_the_turning_centre_of_the_inner_wheel(na
             100 * (d_inner - d_outer) / (d_inner - ideal), abs=1e-6)
 
 
+def test_ackermann_is_nan_below_the_mean_steer_threshold_as_in_roll_at_rack_0():
+    # The demo front axle rolled 4 deg at rack 0: the wheels yaw 0.36 and 0.55 deg by roll
+    # steer alone, which gave -15347 %; 1 deg of steer from the rack gives a value again.
+    from linkage_ros.core.axle import ACKERMANN_MIN_STEER
+    axle = axle_of('double_wishbone', wheelbase=WHEELBASE)
+    result = solve_axle(axle, 0.0, np.radians([-4.0, 4.0, 0.0, 0.0]), [0.0, 0.0, 0.0, 10.0])
+    assert result.success
+    assert np.all(np.abs(result.mean_steer[:2]) < ACKERMANN_MIN_STEER)
+    assert np.all(np.abs(result.mean_steer[:2]) > math.radians(0.4))
+    assert np.isnan(result.ackermann[:3]).all()
+    assert abs(result.mean_steer[3]) > ACKERMANN_MIN_STEER
+    assert -10.0 < result.ackermann[3] < 0.0   # slightly anti-Ackermann (doc/axle.md)
+
+
 def test_ackermann_is_100_for_wheels_at_the_ideal_angles_and_0_for_parallel_steer():
     from linkage_ros.core.axle import ackermann
     inner = math.radians(20.0)
@@ -169,13 +183,42 @@ def test_roll_camber_relative_to_the_ground_adds_the_body_roll():
     assert shift == pytest.approx([-2.0, 2.0], abs=2e-3)   # toe of 0.1 deg: cos effects only
 
 
+def wide_axle_of(name, travel=(-1000.0, 1000.0, 1.0)):
+    """Return axle_of(name) with a travel block wide enough to reach the kinematic limits."""
+    from dataclasses import replace
+    scene = replace(load_scene(name), travel=travel)
+    return Axle(scene, mirror(scene), name=name)
+
+
 def test_a_roll_beyond_reach_ends_the_result_with_the_limit_of_the_wheel():
-    axle = axle_of('five_link')
+    axle = wide_axle_of('five_link')
     result = solve_axle(axle, 0.0, np.radians([0.0, 5.0, 40.0, 10.0]))
     assert not result.success and result.status == Status.OUT_OF_REACH
     assert len(result.heave) == 2
     assert result.message.startswith('heave 0 mm, roll 40 deg, rack 0 mm: the left wheel ')
     assert 'rebound limit' in result.message
+
+
+@pytest.mark.parametrize('heave, roll_deg, rack, solved, says', [
+    # heave: both wheels at the bump limit of 80 mm are within; 81 mm is not
+    ([0.0, 40.0, 80.0, 81.0, 20.0], 0.0, 0.0, 3, 'the left wheel (double_wishbone) would '
+     'travel 81 mm'),
+    # roll: s = 760 tan(phi) passes 80 mm between 6.0 deg (79.9 mm) and 6.1 deg (81.2 mm)
+    (0.0, [0.0, 3.0, 6.0, 6.1, 2.0], 0.0, 3, 'the left wheel (double_wishbone) would travel '
+     '-81.2'),
+    # steer: a rack grid at a heave beyond the limits stops before its first rack
+    (-85.0, 0.0, [-10.0, 0.0, 10.0], 0, 'the left wheel (double_wishbone) would travel -85 mm'),
+])
+def test_a_position_beyond_a_corners_travel_limits_ends_the_result_before_it(
+        heave, roll_deg, rack, solved, says):
+    axle = axle_of('double_wishbone')   # travel block -80 to 80 mm, design track 1520 mm
+    result = solve_axle(axle, heave, np.radians(roll_deg), rack)
+    assert not result.success and result.status == Status.OUT_OF_REACH
+    assert len(result.heave) == len(result.wheel_center) == solved
+    assert np.abs(result.travel).max(initial=0.0) <= 80.0 + 1e-9
+    assert says in result.message
+    assert result.message.endswith("beyond its travel limits -80 to 80 mm (the scene's "
+                                   'travel block)')
 
 
 def test_an_axle_without_wheel_radius_leaves_the_patch_quantities_out_and_says_why():

@@ -82,13 +82,30 @@ def test_the_rear_axle_has_anti_lift_under_braking_and_anti_squat_under_drive(ca
     assert out.splitlines()[0].endswith('right_toe_ground_deg,anti_lift_pct,anti_squat_pct')
 
 
-def test_a_roll_out_of_reach_writes_the_rows_before_it_and_names_the_limit(capsys):
+def test_a_roll_beyond_the_travel_limits_writes_the_rows_before_it_with_status_1(capsys):
+    # issue 27 item 21: roll 15 deg asks -203.6 mm of a corner whose travel block is +-80 mm
+    code, rows, _, err = run(capsys, '--heave', '0', '--roll=0:15:5')
+    assert code == 1 and [float(r['roll_deg']) for r in rows] == [0.0, 5.0]
+    assert err.splitlines()[-1] == (
+        'linkage-axle: heave 0 mm, roll 10 deg, rack 0 mm: the left wheel (front_left) would '
+        "travel -134.009 mm, beyond its travel limits -80 to 80 mm (the scene's travel block) "
+        '(2 positions written)')
+
+
+def test_a_roll_out_of_reach_writes_the_rows_before_it_and_names_the_limit(capsys, tmp_path):
     # double_wishbone's rebound limit is -276.781 mm: roll 20 deg asks -276.617 mm of the
-    # left wheel, 30 deg -438.786 mm.
-    code, rows, _, err = run(capsys, '--heave', '0', '--roll=0:40:10')
+    # left wheel, 30 deg -438.786 mm (a travel block of +-500 mm lets the wheel get there).
+    scene = (SCENES / 'double_wishbone.yaml').read_text()
+    wide = scene.replace('travel: {min: -80, max: 80, step: 1}',
+                         'travel: {min: -500, max: 500, step: 1}')
+    assert wide != scene
+    (tmp_path / 'wide.yaml').write_text(wide)
+    path = vehicle_file(tmp_path, '  front: {left: fl, right: fr}\n',
+                        scene=str(tmp_path / 'wide.yaml'))
+    code, rows, _, err = run(capsys, str(path), '--heave', '0', '--roll=0:40:10')
     assert code == 1 and [float(r['roll_deg']) for r in rows] == [0.0, 10.0, 20.0]
     assert err.splitlines()[-1] == (
-        'linkage-axle: heave 0 mm, roll 30 deg, rack 0 mm: the left wheel (front_left): '
+        'linkage-axle: heave 0 mm, roll 30 deg, rack 0 mm: the left wheel (fl): '
         'travel -438.786 mm is out of reach: continuation from -276.617 mm ends at the rebound '
         'limit -276.781 mm (a turning point, located to 0.01 mm); reachable range found: '
         '[-276.781, 0.000] mm (3 positions written)')
@@ -168,3 +185,22 @@ def test_a_single_axle_without_wheelbase_steers_but_says_it_has_no_ackermann(cap
     assert code == 0 and out.splitlines()[0].endswith('mean_steer_deg')
     assert f'linkage-axle: {path} has no wheelbase (and not two axles to derive it from): ' \
            'no Ackermann\n' in err
+
+
+def test_the_benchmark_times_every_position_it_counts_within_the_travel_limits(
+        capsys, monkeypatch):
+    # Its copies of the heaves are shifted by up to 0.099 mm: away from the middle, the copies
+    # of the 80 mm heave went past the travel limit, and solve_axle stopped there.
+    from linkage_ros.tools import axle as axle_tool
+    solved = []
+
+    def counting(*args, **kwargs):
+        result = solve_axle(*args, **kwargs)
+        solved.append((len(np.ravel(args[1])), len(result.heave), result.success))
+        return result
+
+    monkeypatch.setattr(axle_tool, 'solve_axle', counting)
+    code, _, out, _ = run(capsys, '--heave=-80:80:40', '--benchmark', '1')
+    assert code == 0 and len(out.splitlines()) == 5   # the title, the header, 3 sizes
+    assert [n for n, _, _ in solved] == [5, 50, 500]
+    assert all(asked == done and success for asked, done, success in solved), solved

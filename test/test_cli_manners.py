@@ -6,6 +6,7 @@ one line on stderr that starts with the program's name (never a traceback).
 """
 
 from pathlib import Path
+import re
 import subprocess
 import sys
 
@@ -76,6 +77,23 @@ def test_replay_help_names_each_subcommand_with_examples_and_the_statuses(capsys
         assert f'\n    {command} ' in text                          # listed with its summary
         assert f'\n  linkage-replay {command} ' in text             # and an example
     assert 'BAG alone (solve),\n--sweep, --copy, --publish, --benchmark' in text   # old spellings
+
+
+def test_replay_help_names_every_topic_a_solved_run_holds_with_its_type(capsys, tmp_path):
+    # issue 27 item 25: the help left out elements, which a scene with elements adds
+    from linkage_ros.record.mcap_reader import read_bag
+    out = tmp_path / 'sweep.mcap'
+    assert replay.main(['sweep', '--scene', 'double_wishbone', '--from', '0', '--to', '10',
+                        '--step', '10', '-o', str(out)]) == 0
+    topics = read_bag(out).topics
+    assert '/elements' in topics
+    capsys.readouterr()
+    text = ' '.join(help_of(replay.main, ['--help'], capsys).split())
+    for topic, type_name in topics.items():
+        if topic == '/wheel_travel':          # the commands: named with --topic
+            continue
+        assert re.search(rf'(^|[ /]){topic[1:]}\b', text), topic
+        assert type_name.replace('/msg/', '/') in text, type_name
 
 
 # subcommand: (its options, what its help says of units and defaults)
@@ -312,3 +330,18 @@ def test_a_missing_optional_package_is_named_with_the_command_that_installs_it(
     assert result.returncode == 2, result.stderr
     assert result.stderr.count('\n') == 1 and result.stderr.startswith(expected), result.stderr
     assert list(tmp_path.iterdir()) == []
+
+
+def test_study_workers_default_is_the_same_in_help_and_doc_study_md(capsys):
+    # issue 27 item 25: --help said "every core", doc/study.md "every core once a study has
+    # 16 batches"; both now say what linkage_ros.study.commands does, from its numbers.
+    from linkage_ros.study import cli as study_cli
+    from linkage_ros.study.commands import POOL_FROM
+    from linkage_ros.study.tolerance import BATCH
+    said = f'default 0: every core once a tolerance study has {POOL_FROM} batches of {BATCH} ' \
+        'variants or more, a fit 2 starts or more; less work runs in this process'
+    for command in ('tolerance', 'fit'):
+        text = help_of(study_cli.main, [command, '--help'], capsys)
+        assert said in ' '.join(text.split()), command
+    doc = (ROOT / 'doc' / 'study.md').read_text()
+    assert said in ' '.join(doc.split())

@@ -253,3 +253,56 @@ def test_the_python_of_doc_elements_runs_as_written(capsys):
     exec(compile(code, 'doc/elements.md', 'exec'), {'__name__': '__main__'})
     printed = capsys.readouterr().out.split('\n')
     assert printed[0].startswith('[') and len(printed) > 3
+
+
+def spring_through_its_body_point(tmp_path, travel=40.0):
+    """Return double_wishbone with its spring's body point where its seat is at travel (mm)."""
+    from linkage_ros.core.mechanism import compile_scene
+    from linkage_ros.core.motion import guidance_rows, pose_batch
+    from linkage_ros.core.mounts import mount_motion, mount_table
+    scene = load_scene('double_wishbone')
+    mech = compile_scene(scene)
+    at = sweep(scene, [travel])
+    seat = mount_motion(guidance_rows(scene, mech), mount_table(scene, [scene.elements[1].mount]),
+                        pose_batch(mech, at.wheel_center, at.rotation, at.rack))[0][0, 0]
+    data, _ = scene_file(scene)
+    data['elements'][1]['body'] = seat.tolist()
+    (tmp_path / 'through.yaml').write_text(yaml.safe_dump(data))
+    return tmp_path / 'through.yaml'
+
+
+def test_a_spring_whose_ends_pass_through_each_other_is_nan_from_there_not_a_huge_rate(
+        tmp_path):
+    # Before: -9.2e14 N/mm where the seat met the body point (1 / L of round-off), then a
+    # force that fell again as the "spring" turned inside out.
+    scene = load_scene(spring_through_its_body_point(tmp_path))
+    travels = travel_range(30.0, 50.0, 2.0)
+    result = sweep(scene, travels)
+    got = element_values(scene, result.wheel_center, result.rotation)
+    before, after = travels < 40.0, travels >= 40.0
+    for quantity in ElementValues._fields:
+        assert np.isnan(getattr(got, quantity)[after, 1]).all(), quantity
+    assert np.isfinite(got.wheel_rate[before, 1]).all()
+    assert np.abs(got.wheel_rate[before, 1]).max() < 100.0   # k ratio^2 ~ 60 x 0.34 N/mm
+    assert got.length[before, 1] == pytest.approx(1.16 * (40.0 - travels[before]) / 2,
+                                                  rel=0.01)   # 0.58 mm per mm of travel
+    assert np.isfinite(got.length[:, 0]).all()   # the damper is not affected
+    cont = Continuation(scene)                   # the node's path agrees
+    model = prepare(scene, cont.mech)
+    answer = cont.solve(44.0)
+    assert np.isnan(values_at(model, answer.wheel_center, answer.rotation, answer.rack,
+                              cont.jacobian)[:, 1]).all()
+
+
+def test_sweep_warns_once_naming_the_element_and_the_travels_where_its_ends_cross(
+        tmp_path, capsys):
+    path = spring_through_its_body_point(tmp_path)
+    code = main([str(path), '--elements', '--from', '30', '--to', '50', '--step', '2'])
+    out, err = capsys.readouterr()
+    rows = list(csv.DictReader(io.StringIO(out)))
+    assert code == 0 and len(rows) == 11
+    assert [row['spring_wheel_rate_N_per_mm'] for row in rows[5:]] == ['nan'] * 6
+    assert err.count('element spring') == 1
+    assert ('linkage-sweep: warning: double_wishbone: element spring: its ends meet or pass '
+            'through each other at 6 of 11 positions, travel 40 to 50 mm: its length, ratio, '
+            'force and wheel rate are NaN there (doc/elements.md)\n') in err

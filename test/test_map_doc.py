@@ -5,6 +5,7 @@ import io
 import os
 from pathlib import Path
 import re
+import sys
 
 from linkage_ros.tools.kinematic_map import main
 import pytest
@@ -40,4 +41,16 @@ def test_the_loading_example_interpolates_the_map(maps_folder):
 
 
 def test_the_mid_cell_error_table_is_what_the_program_prints(maps_folder):
-    assert run(BLOCKS[1], maps_folder) == PRINTED
+    (code,) = [b for b in BLOCKS if 'mid_cell_errors.py' in b]
+    assert run(code, maps_folder) == PRINTED
+
+
+def test_the_parquet_example_reads_with_pyarrow_alone_no_pandas(maps_folder, monkeypatch):
+    # issue 27 item 24: the doc read Parquet with .to_pandas(), and no extra installs pandas
+    folder = str(maps_folder / 'maps')
+    assert main(['double_wishbone', '--out', folder, '--format', 'parquet']) == 0
+    (code,) = [b for b in BLOCKS if 'parquet' in b]
+    monkeypatch.setitem(sys.modules, 'pandas', None)   # import pandas raises ImportError
+    printed = run(code, maps_folder).split()
+    assert printed[:3] == ['2737', '-80.0', '80.0']    # 161 travels x 17 racks, mm
+    assert -10.0 < float(printed[3]) < float(printed[4]) < 10.0   # camber, deg

@@ -12,6 +12,7 @@ import sys
 from conftest import spin_until
 from geometry_msgs.msg import PoseStamped
 from linkage_ros.record.mcap_reader import read_bag
+import pytest
 from rclpy.qos import HistoryPolicy, QoSProfile, ReliabilityPolicy
 from std_msgs.msg import Float64
 
@@ -80,8 +81,38 @@ def test_an_override_of_a_topic_the_node_lacks_is_refused_with_the_closest_name(
     assert done.returncode == 2      # (a first start may say it compiles the kernels first)
     assert done.stderr.splitlines()[-1] + '\n' == (
         'suspension_node: parameter qos_overrides./wheel_carier_pose.publisher.depth: '
-        '/wheel_carier_pose.publisher is not a topic of the node (did you mean '
+        'the node does not publish /wheel_carier_pose (did you mean '
         'qos_overrides./wheel_carrier_pose.publisher.depth?)\n')
+
+
+class ParameterNames:
+    """The one method of a Node that unknown_overrides asks: its parameters' names."""
+
+    def __init__(self, *names):
+        self.names = list(names)
+
+    def list_parameters(self, prefixes, depth):
+        return self
+
+
+KNOWN = {('/wheel_travel', 'subscription'), ('/wheel_carrier_pose', 'publisher'),
+         ('/camber', 'publisher')}
+
+
+@pytest.mark.parametrize('name, problem', [
+    ('qos_overrides./wheel_carier_pose.publisher.depth', 'the node does not publish '
+     '/wheel_carier_pose (did you mean qos_overrides./wheel_carrier_pose.publisher.depth?)'),
+    # issue 27 item 25: the topic is the node's, the wrong end of it was named
+    ('qos_overrides./wheel_travel.publisher.depth', 'the node does not publish /wheel_travel '
+     '(it subscribes to it) (did you mean qos_overrides./wheel_travel.subscription.depth?)'),
+    ('qos_overrides./camber.subscription.reliability', 'the node does not subscribe to '
+     '/camber (it publishes it) (did you mean qos_overrides./camber.publisher.reliability?)'),
+    ('qos_overrides./speed.subscription.depth', 'the node does not subscribe to /speed'),
+])
+def test_an_override_of_an_end_the_node_lacks_says_what_the_node_does_with_the_topic(
+        name, problem):
+    from linkage_ros.ros.qos import unknown_overrides
+    assert unknown_overrides(ParameterNames(name, 'qos_depth'), KNOWN) == {name: problem}
 
 
 def test_the_sensor_pipeline_preset_serves_a_best_effort_client_over_dds(

@@ -21,7 +21,8 @@ Quantities at every position, from the exact velocities of the implicit function
                   Race Car Vehicle Dynamics, ch. 17), v the velocity under travel of the
                   contact patch (outboard brakes) or the wheel centre (inboard brakes,
                   drive), sign + front, - rear; the mean of the two wheels
-  Ackermann (%)   100 (d_i - d_o) / (d_i - d_o*), d_o* = atan(L / (L / tan(d_i) + t))
+  Ackermann (%)   100 (d_i - d_o) / (d_i - d_o*), d_o* = atan(L / (L / tan(d_i) + t)); NaN
+                  below ACKERMANN_MIN_STEER (1 deg) of mean steer
   anti-roll bar   its twist, ratios and roll stiffness, for an axle that has one
                   (anti_roll_bar.py, imported only then)
 Units: mm, rad, vehicle frame (x forward, y left, z up). Arrays (n,) or (n, 2) with column 0
@@ -51,6 +52,13 @@ if TYPE_CHECKING:
     from .scene import Scene
 
 SIDES = ('left', 'right')
+# Mean steer (rad) below which Ackermann is NaN. Its denominator, the ideal difference
+# delta_i - delta_o*, is about (t / L) delta_i^2: 0.009 deg at 1 deg, where bump and roll steer
+# (toe from wheel travel alone, up to a 0.7 deg mean on the demo front axle within its travel
+# limits) would pass for steering and give thousands of percent (-15347 % at 4 deg of roll).
+ACKERMANN_MIN_STEER = math.radians(1.0)
+# Relative slack of the travel limits: a few hundred ulps, far below any travel that matters.
+TRAVEL_LIMIT_ROUNDING = 1e-12
 
 
 @dataclass(frozen=True)
@@ -149,7 +157,7 @@ class AxleResult:
     anti: dict[str, np.ndarray]  # anti_dive / anti_lift / anti_squat, (n,) percent
     steer: np.ndarray            # (n, 2) yaw of each wheel relative to the body, + = left
     mean_steer: np.ndarray       # (n,) rad
-    ackermann: np.ndarray        # (n,) percent; NaN when straight ahead
+    ackermann: np.ndarray        # (n,) percent; NaN below ACKERMANN_MIN_STEER of mean steer
     success: bool = True
     status: Status = Status.OK
     message: str = 'ok'
@@ -163,14 +171,17 @@ def solve_axle(axle: Axle, heave: ArrayLike, roll: ArrayLike = 0.0, rack: ArrayL
     Solve an axle at n positions (heave mm, roll rad, rack mm, broadcast together).
 
     Runs of positions at one rack are swept together, in order; a position out of reach of
-    either wheel ends the result there (success False, the status and the limit in message).
+    either wheel, or beyond either corner's travel limits (its scene's travel block), ends the
+    result there (success False, status OUT_OF_REACH, the limit in message), in heave, roll
+    and steer alike.
     """
     heave, roll, rack = (np.ravel(a).astype(float)
                          for a in np.broadcast_arrays(heave, roll, rack))
     travels = np.stack(wheel_travels(axle, heave, roll), axis=1)
+    inside, beyond = within_travel_limits(axle, travels)
     centers, rotations, done = [], [], 0
     status, message = Status.OK, 'ok'
-    for start, stop in _runs(rack):
+    for start, stop in _runs(rack[:inside]):
         solved = [sweep(scene, travels[start:stop, k], method=method, rack=rack[start],
                         **settings) for k, scene in enumerate(axle.scenes)]
         count = min(len(s.travel) for s in solved)
@@ -185,6 +196,11 @@ def solve_axle(axle: Axle, heave: ArrayLike, roll: ArrayLike = 0.0, rack: ArrayL
                 f'{rack[i]:g} mm: the {SIDES[k]} wheel ({axle.scenes[k].name}): '
                 f'{solved[k].message}')
             break
+    else:
+        if beyond:
+            status, message = Status.OUT_OF_REACH, (
+                f'heave {heave[done]:g} mm, roll {math.degrees(roll[done]):g} deg, rack '
+                f'{rack[done]:g} mm: {beyond}')
     center = np.concatenate(centers) if centers else np.empty((0, 2, 3))
     rotation = np.concatenate(rotations) if rotations else np.empty((0, 2, 3, 3))
     values = axle_quantities(axle, heave[:done], roll[:done], rack[:done], center, rotation)
@@ -192,6 +208,29 @@ def solve_axle(axle: Axle, heave: ArrayLike, roll: ArrayLike = 0.0, rack: ArrayL
                       travel=travels[:done], wheel_center=center, rotation=rotation,
                       success=status == Status.OK, status=status, message=message,
                       **values)
+
+
+def within_travel_limits(axle: Axle, travels: np.ndarray) -> tuple[int, str]:
+    """
+    Return how many positions come before the first beyond a corner's travel limits, and why.
+
+    travels (n, 2) mm, left and right wheel. Each corner's limits are its scene's travel
+    block (min, max), the range linkage-sweep sweeps by default: past them a table would give
+    a wheel where its suspension does not go. A travel within TRAVEL_LIMIT_ROUNDING of a limit
+    counts as at it: heave +- (t / 2) tan(roll) lands a few ulps beyond a limit asked for
+    exactly. The reason is '' when every position is within.
+    """
+    first, reason = len(travels), ''
+    for k, scene in enumerate(axle.scenes):
+        low, high = scene.travel[:2]
+        slack = TRAVEL_LIMIT_ROUNDING * max(1.0, abs(low), abs(high))
+        out = np.flatnonzero((travels[:, k] < low - slack) | (travels[:, k] > high + slack))
+        if len(out) and out[0] < first:
+            first = int(out[0])
+            reason = (f'the {SIDES[k]} wheel ({scene.name}) would travel '
+                      f'{travels[first, k]:g} mm, beyond its travel limits {low:g} to '
+                      f"{high:g} mm (the scene's travel block)")
+    return first, reason
 
 
 def _runs(rack):
@@ -363,9 +402,11 @@ def ackermann(steer: np.ndarray, wheelbase: float, track: np.ndarray) -> np.ndar
     The inner wheel is on the side the axle turns to (the sign of the mean yaw); with d_i
     and d_o the inner and outer steer angles, the ideal outer angle is d_o* = atan(L / (L /
     tan(d_i) + t)), t the track (mm), and the result 100 (d_i - d_o) / (d_i - d_o*): 100 =
-    Ackermann, 0 = parallel, < 0 = anti-Ackermann. NaN straight ahead.
+    Ackermann, 0 = parallel, < 0 = anti-Ackermann. NaN where the mean yaw is below
+    ACKERMANN_MIN_STEER (straight ahead included).
     """
-    turn = np.sign(steer.mean(axis=1))
+    mean = steer.mean(axis=1)
+    turn = np.where(np.abs(mean) >= ACKERMANN_MIN_STEER, np.sign(mean), 0.0)
     left_turn = turn > 0
     inner = np.where(left_turn, steer[:, 0], -steer[:, 1])
     outer = np.where(left_turn, steer[:, 1], -steer[:, 0])

@@ -33,8 +33,15 @@ CARRIER, ARM, LINK, ALONG = 0, 1, 2, 3      # MountTable.kind
 # pack_rows columns: one row per guidance equation
 R_LINE, R_OFFSET, R_BASE, R_STEER, R_LENGTH, R_NORMAL, ROW_COLUMNS = 0, 1, 4, 7, 8, 9, 12
 # pack_elements columns: one row per element (a mount alone: body, rate, free length unused)
-(E_KIND, E_OFFSET, E_BASE, E_AXIS, E_COEFF, E_STEER, E_BODY, E_RATE, E_FREE,
- ELEMENT_COLUMNS) = 0, 1, 4, 7, 10, 13, 14, 17, 18, 19
+(E_KIND, E_OFFSET, E_BASE, E_AXIS, E_COEFF, E_STEER, E_BODY, E_RATE, E_FREE, E_DIRECTION,
+ ELEMENT_COLUMNS) = 0, 1, 4, 7, 10, 13, 14, 17, 18, 19, 22
+# mm: an element is defined while its moving point stays more than this ahead of its body
+# point along its design direction (body to moving point). At or below it the two ends have
+# met or passed through each other, which no spring or damper can: its direction, ratio and
+# wheel rate lose their meaning (1 / L runs away: -9e14 N/mm where the ends met), so every
+# value is NaN there. Far above the round-off of the points (about 1e-13 mm at a suspension's
+# size), far below any real element's length.
+MIN_LENGTH = 1e-6
 
 # Scratch rows of the kernels' workspace (WORK_ROWS, 5): 0-4 the LU factors, 5-6 right-hand
 # side and solution, then ([:3]) 7-10 the carrier's motion, 11-13 a mount's point and rates.
@@ -74,6 +81,7 @@ class SpringTable(NamedTuple):
     body: np.ndarray          # (k, 3)
     rate: np.ndarray          # (k,)
     free_length: np.ndarray   # (k,)
+    direction: np.ndarray     # (k, 3) unit: body point to moving point at design
 
 
 class Poses(NamedTuple):
@@ -95,11 +103,12 @@ def pack_elements(mounts: MountTable, springs: SpringTable | None = None) -> np.
     """Pack k mounts (and their elements' springs) into the kernels' (k, ELEMENT_COLUMNS)."""
     k = len(mounts.kind)
     if springs is None:
-        springs = SpringTable(np.zeros((k, 3)), np.full(k, np.nan), np.full(k, np.nan))
+        springs = SpringTable(np.zeros((k, 3)), np.full(k, np.nan), np.full(k, np.nan),
+                              np.zeros((k, 3)))
     return np.ascontiguousarray(np.column_stack((
         mounts.kind.astype(float), mounts.offset, mounts.base, mounts.axis, mounts.coeff,
-        mounts.steer, springs.body, springs.rate, springs.free_length)).reshape(
-            k, ELEMENT_COLUMNS))
+        mounts.steer, springs.body, springs.rate, springs.free_length,
+        springs.direction)).reshape(k, ELEMENT_COLUMNS))
 
 
 @jit
@@ -207,6 +216,7 @@ def elements_one(rows, table, center, rotation, rack, jac, values):
     values[0] length (mm), [1] ratio dL/dz, [2] ratio rate d2L/dz2 (1/mm), [3] force
     k (L0 - L) (N, + = compressed), [4] wheel rate k ratio^2 - F ratio_rate (N/mm). rows:
     pack_rows; table: pack_elements; center (3,) mm, rotation (3, 3), rack mm, jac (5, 6).
+    All five NaN for an element whose ends have met or passed through each other (MIN_LENGTH).
     """
     work, pivots = np.empty((WORK_ROWS, 5)), np.empty(5, np.int64)
     elements_at(rows, table, center, rotation, rack, jac, values, work, pivots)
@@ -223,6 +233,10 @@ def elements_at(rows, table, center, rotation, rack, jac, values, work, pivots):
         dy = point[0, 1] - table[j, E_BODY + 1]
         dz = point[0, 2] - table[j, E_BODY + 2]
         vx, vy, vz = point[1, 0], point[1, 1], point[1, 2]
+        if not (dx * table[j, E_DIRECTION] + dy * table[j, E_DIRECTION + 1]
+                + dz * table[j, E_DIRECTION + 2]) > MIN_LENGTH:
+            values[:, j] = math.nan
+            continue
         length = math.sqrt(dx * dx + dy * dy + dz * dz)
         ratio = (dx * vx + dy * vy + dz * vz) / length
         rate2 = (dx * point[2, 0] + dy * point[2, 1] + dz * point[2, 2]

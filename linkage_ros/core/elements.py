@@ -21,7 +21,10 @@ At every solved position each element has (element_values):
     vertical wheel load it carries (virtual work). With the installation ratio MR = -ratio
     this is the textbook k MR^2 + F dMR/dz.
 ratio and ratio_rate are exact (the implicit function theorem to second order, motion.py),
-computed compiled (element_kernel.py): a few microseconds per answer.
+computed compiled (element_kernel.py): a few microseconds per answer. Where an element's
+ends meet or pass through each other (its moving point no longer ahead of its body point
+along its design direction) every quantity is NaN (element_kernel.MIN_LENGTH), and
+crossing_notes says where.
 """
 
 from __future__ import annotations
@@ -162,9 +165,11 @@ def prepare(scene: Scene, mech: Mechanism | None = None) -> ElementModel:
     """Prepare the scene's elements for element_values (mech: compile_scene(scene) if given)."""
     mech = mech if mech is not None else compile_scene(scene)
     elements = scene.elements
-    springs = SpringTable(np.array([e.body for e in elements]).reshape(-1, 3),
-                          np.array([e.rate for e in elements]),
-                          np.array([e.free_length for e in elements]))
+    body = np.array([e.body for e in elements]).reshape(-1, 3)
+    direction = np.array([e.mount.point for e in elements]).reshape(-1, 3) - body
+    springs = SpringTable(body, np.array([e.rate for e in elements]),
+                          np.array([e.free_length for e in elements]),
+                          direction / np.linalg.norm(direction, axis=1, keepdims=True))
     return ElementModel(mech, pack_rows(guidance_rows(scene, mech)),
                         pack_elements(mount_table(scene, [e.mount for e in elements]), springs))
 
@@ -199,6 +204,25 @@ def values_at(model: ElementModel, center: np.ndarray, rotation: np.ndarray, rac
     values = np.empty((5, model.table.shape[0]))
     element_kernel.elements_one(model.rows, model.table, center, rotation, rack, jac, values)
     return values
+
+
+def crossing_notes(scene: Scene, travel: ArrayLike, length: ArrayLike) -> tuple[str, ...]:
+    """
+    Say, once per element whose ends meet or pass through each other, where (travel, mm).
+
+    travel (n,) mm and length (n, k) mm (ElementValues.length, NaN there: element_kernel's
+    MIN_LENGTH) of n solved positions, in any order (a grid's racks concatenated).
+    """
+    travel, length = np.asarray(travel, dtype=float), np.asarray(length, dtype=float)
+    notes = []
+    for j, e in enumerate(scene.elements):
+        crossed = travel[np.isnan(length[:, j])]
+        if len(crossed):
+            notes.append(f'{scene.name}: element {e.name}: its ends meet or pass through each '
+                         f'other at {len(crossed)} of {len(travel)} positions, travel '
+                         f'{crossed.min():g} to {crossed.max():g} mm: its length, ratio, force '
+                         'and wheel rate are NaN there (doc/elements.md)')
+    return tuple(notes)
 
 
 def element_columns(scene: Scene) -> list[str]:

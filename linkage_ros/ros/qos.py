@@ -146,9 +146,26 @@ def unknown_overrides(node: Node, known: set[tuple[str, str]]) -> dict[str, str]
     for name in node.list_parameters([], 0).names:
         if not name.startswith(PREFIX):
             continue
-        head = name.rpartition('.')[0]
+        head, _, policy = name.rpartition('.')
         if head not in names:
-            close = difflib.get_close_matches(head, names, n=1)
-            guess = f' (did you mean {close[0]}.{name.rpartition(".")[2]}?)' if close else ''
-            problems[name] = f'{head[len(PREFIX):]} is not a topic of the node{guess}'
+            topic, _, entity = head[len(PREFIX):].rpartition('.')
+            other = 'subscription' if entity == 'publisher' else 'publisher'
+            if (topic, other) in known:       # the right topic, the wrong end of it
+                close = [f'{PREFIX}{topic}.{other}']
+            else:                             # a misspelt topic: the nearest of its kind
+                close = [f'{PREFIX}{t}.{entity}' for t in difflib.get_close_matches(
+                    topic, sorted(t for t, e in known if e == entity), n=1)]
+            guess = f' (did you mean {close[0]}.{policy}?)' if close else ''
+            problems[name] = f'{_no_such(entity, topic, known)}{guess}'
     return problems
+
+
+def _no_such(entity: str, topic: str, known: set[tuple[str, str]]) -> str:
+    """Say that the node has no entity ('publisher' or 'subscription') on topic (resolved)."""
+    verbs = {'publisher': ('publish', 'publishes'),
+             'subscription': ('subscribe to', 'subscribes to')}
+    if entity not in verbs:     # check_overrides refuses these first
+        return f'{entity!r} is neither publisher nor subscription'
+    other = 'subscription' if entity == 'publisher' else 'publisher'
+    also = f' (it {verbs[other][1]} it)' if (topic, other) in known else ''
+    return f'the node does not {verbs[entity][0]} {topic}{also}'

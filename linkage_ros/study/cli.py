@@ -72,9 +72,17 @@ def parser() -> Parser:
     for p in (two, three):
         p.add_argument('--scheduler', metavar='ADDRESS',
                        help='a Dask scheduler (tcp://host:8786): run the batches there')
-        p.add_argument('--workers', type=int, default=0,
-                       help='local processes without --scheduler (default: every core)')
+        p.add_argument('--workers', type=int, default=0, help=workers_help())
     return top
+
+
+def workers_help() -> str:
+    """Say what --workers does by default, from the numbers the studies use."""
+    from .commands import POOL_FROM
+    from .tolerance import BATCH
+    return (f'local processes without --scheduler (default 0: every core once a tolerance '
+            f'study has {POOL_FROM} batches of {BATCH} variants or more, a fit 2 starts or '
+            'more; less work runs in this process, since a process takes seconds to start)')
 
 
 def parse_args(argv):

@@ -8,13 +8,14 @@ relative to the body and to the ground, the anti-dive, anti-lift or anti-squat t
 and with a rack the steer angles and Ackermann (definitions and sources: doc/axle.md).
 """
 
+import math
 import sys
 import time
 
 import numpy as np
 
 from ..cli import EXIT_STATUS, fail, Parser, program, warn, writable_file
-from ..core.axle import solve_axle, wheel_travels
+from ..core.axle import ACKERMANN_MIN_STEER, solve_axle, wheel_travels
 from ..core.errors import LinkageError
 from ..core.finite import all_finite, is_finite_number
 from ..core.kinematics import sweep, travel_range
@@ -32,8 +33,9 @@ EPILOG = """columns: heave_mm, roll_deg (+ = right side down), rack_mm (+ = rack
   (+ = toe-in) relative to the body, the same relative to the ground (*_ground_deg); then
   anti_dive_pct, anti_lift_pct or anti_squat_pct as the axle's brake_share and drive_share
   ask; with --rack or --rack-grid: left_/right_steer_deg (yaw, + = to the left),
-  mean_steer_deg and ackermann_pct; with an anti_roll_bar: arb_left_angle_deg,
-  arb_right_angle_deg (each arm about the bar's axis, directed to the left), arb_twist_deg
+  mean_steer_deg and ackermann_pct (NaN below MIN_STEER deg of mean steer); with an
+  anti_roll_bar: arb_left_angle_deg, arb_right_angle_deg (each arm about the bar's axis,
+  directed to the left), arb_twist_deg
   (left minus right), arb_ratio_deg_per_deg_roll, arb_ratio_left_deg_per_mm and
   arb_ratio_right_deg_per_mm (twist per mm of one wheel's travel, the other held), and with
   its rate arb_torque_Nm, arb_roll_moment_Nm and arb_roll_stiffness_Nm_per_deg. A corner
@@ -49,13 +51,15 @@ examples:
 
 A negative FROM needs the = (--roll=-4:4:1), or it reads as an option.
 
-exit status: 0 every position solved; 1 a position is out of reach of a wheel (the rows
-solved before it are written, the message names the limit) or of the anti-roll bar's drop
-links (its columns are NaN there); """ + EXIT_STATUS
+exit status: 0 every position solved; 1 a position is out of reach of a wheel or beyond a
+corner's travel limits (its scene's travel block; the rows solved before it are written, the
+message names the limit) or out of reach of the anti-roll bar's drop links (its columns are
+NaN there); """ + EXIT_STATUS
 
 
 def parse_args(argv):
-    parser = Parser(PROG, __doc__, EPILOG)
+    parser = Parser(PROG, __doc__, EPILOG.replace(
+        'MIN_STEER', f'{math.degrees(ACKERMANN_MIN_STEER):g}'))
     parser.add_argument('vehicle', nargs='?', default='demo_vehicle',
                         help='bundled vehicle name or path to a vehicle YAML file with axles '
                         '(default demo_vehicle)')
@@ -189,8 +193,12 @@ def benchmark(axle, heave, roll, rack, rounds):
           f'{"axle/one_corner":>17}{"axle/two_corners":>18}')
     left, right = wheel_travels(axle, heave, np.radians(roll))
     for scale in (1, 10, 100):
-        shift = np.repeat(np.arange(scale) * 1e-3, len(heave))
-        h, r, k = np.tile(heave, scale) + shift, np.tile(roll, scale), np.tile(rack, scale)
+        # each copy shifted towards the middle of the travel block, never past its limits
+        # (solve_axle would stop there, and the time be of fewer positions)
+        h = np.tile(heave, scale)
+        shift = np.repeat(np.arange(scale) * 1e-3, len(heave)) * np.where(
+            h > 0.5 * (axle.left.travel[0] + axle.left.travel[1]), -1.0, 1.0)
+        h, r, k = h + shift, np.tile(roll, scale), np.tile(rack, scale)
         tl, tr = np.tile(left, scale) + shift, np.tile(right, scale) + shift
         runs = {'one': lambda: sweep(axle.left, tl, rack=k[0]),
                 'two': lambda: (sweep(axle.left, tl, rack=k[0]),

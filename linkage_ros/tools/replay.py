@@ -16,9 +16,11 @@ applied them, and a scene change that cannot be replayed (its scene does not loa
 the replay there, with status 1 (joint_states commands are not replayed: named, status 1).
 Outputs are what suspension_node publishes, answered by the node's
 own protocol (linkage_ros.protocol), in the command topic's namespace: wheel_carrier_pose
-(geometry_msgs/PoseStamped, m), camber and toe (std_msgs/Float64, rad) and /tf
-(tf2_msgs/TFMessage: the frames of the carrier, links and arms) for a solved command, stamped
-with its receive time, /tf_static and /robot_description (the URDF) once, and /diagnostics
+(geometry_msgs/PoseStamped, m), camber and toe (std_msgs/Float64, rad), /tf
+(tf2_msgs/TFMessage: the frames of the carrier, links and arms) and, for a scene with
+elements, elements (sensor_msgs/JointState: each spring's, damper's and length's length in m
+and motion ratio; doc/elements.md) for a solved command, stamped with its receive time,
+/tf_static and /robot_description (std_msgs/String: the URDF) once, and /diagnostics
 (diagnostic_msgs/DiagnosticArray) as the node sends it: a report every second of recorded
 time, at once for a command that cannot be solved (ERROR, with the reason) or a change of
 level, and one after the last command. The new bag keeps the recorded timeline. A bag cut

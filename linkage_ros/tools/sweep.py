@@ -240,6 +240,12 @@ def main(argv: list[str] | None = None) -> int:
     except OSError as exc:         # a full disk; --csv was writable when checked
         return fail(PROG, f'{args.csv or "stdout"}: cannot write the table '
                           f'({exc.strerror or exc})')
+    if args.elements:
+        from ..core.elements import crossing_notes, element_values
+        warn(PROG, crossing_notes(scene, np.concatenate([r.travel for r in results]),
+                                  np.concatenate([element_values(
+                                      scene, r.wheel_center, r.rotation, r.rack).length
+                                      for r in results])))
     failed = [r for r in results if not r.success]
     if failed:
         written = counted(sum(len(r.travel) for r in results), 'position')
