@@ -88,7 +88,7 @@ def test_each_variant_is_what_continuation_solves_and_those_out_of_reach_are_cou
     prob = problem(design, sigmas(design, 2.0), 48, [0.0, 384.0], seed=3)
     values = solve_batch((prob, 0))
     lost = 0
-    for points, variant in zip(perturbed(prob, 0), values):
+    for points, variant in zip(perturbed(prob, 0)[0], values):
         solution = Continuation(scene_with(design, points)).solve(384.0)
         if not solution.success:
             lost += 1

@@ -7,7 +7,7 @@ M_z = M0_z(H) + travel, so moving a hardpoint moves the solution by
 
     J_free dx/dH = -(dF/dH + J_z dM0_z/dH)
 
-with dF/dH taken at the fixed pose (M, R) (equations.py's rows on jets.Jet), J the Jacobian
+with dF/dH taken at the fixed pose (M, R) (mechanism.geometry_of's rows on jets.Jet, equations.py), J the Jacobian
 of the solve, omega applied as R <- exp(omega) R. The pose then carries its derivative into
 every quantity (quantities.py), which also depends on H directly: the spin axis
 unit(M0 - N0), the carrier points relative to M0, the body points, the design contact patch.
@@ -22,13 +22,12 @@ from typing import NamedTuple, TYPE_CHECKING
 
 import numpy as np
 
-from . import jets as jt
-from .equations import free, geometry, layout_of, residuals
-from .hardpoints import hardpoint_values, point_names
+from ..core import jets as jt
+from .equations import free, residuals
 from .quantities import element_names, quantities, SWEEP_COLUMNS
 from ..core.errors import LinkageError
 from ..core.kinematics import sweep
-from ..core.mechanism import compile_scene, is_singular, linearize
+from ..core.mechanism import compile_scene, geometry_of, is_singular, linearize
 from ..core.status import Status
 from ..tools.sweep import ALIGNMENT_COLUMNS
 
@@ -54,7 +53,7 @@ class Sensitivity(NamedTuple):
 def available(scene: Scene) -> tuple[str, ...]:
     """Return the quantities a scene has: NaN columns (no steer axis, no radius) left out."""
     names = SWEEP_COLUMNS + tuple(ALIGNMENT_COLUMNS) + tuple(element_names(scene))
-    values = quantities(scene, hardpoint_values(scene), compile_scene(scene).design_center[None],
+    values = quantities(scene, scene.points, compile_scene(scene).design_center[None],
                         np.eye(3)[None])
     return tuple(n for n in names if np.isfinite(np.asarray(jt.value(values[n]))).all())
 
@@ -79,10 +78,10 @@ def pose_derivative(scene: Scene, points: np.ndarray, center: np.ndarray,
     center (n, 3), rotation (n, 3, 3): the poses solved for the design whose hardpoints are
     points (k, 3) mm. NaN derivatives where the Jacobian is singular.
     """
-    layout = layout_of(scene)
+    layout = scene.layout
     params = jt.seed(points)
     size = params.g.shape[-1]
-    moved = residuals(layout, geometry(layout, params), center, rotation, rack)   # dF/dH
+    moved = residuals(layout, geometry_of(layout, params), center, rotation, rack)   # dF/dH
     jac = linearize(compile_scene(scene), center, rotation, rack)[1]
     lift = np.zeros(size)   # dM0_z / dH: travel is counted from the design wheel centre
     lift[3 * layout.center + 2] = 1.0
@@ -108,7 +107,7 @@ def sensitivities(scene: Scene, travels: ArrayLike, rack: float = 0.0,
     names = check_quantities(scene, wanted)
     travels = np.asarray(travels, dtype=float).ravel()
     table = sweep(scene, travels, rack=rack, **settings)
-    points = hardpoint_values(scene)
+    points = scene.points
     n = len(table.travel)
     derivative = np.empty((n, len(names), len(points), 3))
     nominal = np.empty((n, len(names)))
@@ -120,7 +119,7 @@ def sensitivities(scene: Scene, travels: ArrayLike, rack: float = 0.0,
             value = values[name]
             derivative[:, j] = value.g.reshape(n, len(points), 3)
             nominal[:, j] = value.v
-    return Sensitivity(table.travel, names, point_names(scene), derivative, nominal,
+    return Sensitivity(table.travel, names, scene.point_names, derivative, nominal,
                        table.success, table.message, table.status)
 
 
@@ -134,11 +133,11 @@ def sweep_column_rates(scene: Scene, center: np.ndarray, rotation: np.ndarray,
     """
     from . import pose_kernel
     mech = compile_scene(scene)
-    layout = layout_of(scene)
+    layout = scene.layout
     center = np.ascontiguousarray(np.reshape(center, (-1, 3)), dtype=float)
     rotation = np.ascontiguousarray(np.reshape(rotation, (-1, 3, 3)), dtype=float)
     jac = np.ascontiguousarray(linearize(mech, center, rotation, rack)[1])
-    points = hardpoint_values(scene)
+    points = scene.points
     out = np.empty((len(center), 5, points.size))
     pose_kernel.sweep_rates_many(
         mech.equations, layout.carrier, layout.base, np.array([layout.center, layout.spin]),
