@@ -144,7 +144,7 @@ class Scene:
 
     @cached_property
     def points(self) -> np.ndarray:
-        """Return the hardpoint table (k, 3) mm, design position, rows as point_names (read-only)."""
+        """Return the hardpoint table (k, 3) mm, design position, rows as point_names."""
         rows = []
         for c in self.constraints:
             rows += list(c.base) + [c.carrier]

@@ -16,11 +16,11 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..core import jets as jt
 from .equations import jacobian, rack_column
 from .hardpoints import link_fractions
-from ..core.mechanism import geometry_of
+from ..core import jets as jt
 from ..core.kingpin import kingpin_points
+from ..core.mechanism import geometry_of
 from ..tools.sweep import ALIGNMENT_COLUMNS
 
 if TYPE_CHECKING:

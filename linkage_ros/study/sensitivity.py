@@ -7,10 +7,11 @@ M_z = M0_z(H) + travel, so moving a hardpoint moves the solution by
 
     J_free dx/dH = -(dF/dH + J_z dM0_z/dH)
 
-with dF/dH taken at the fixed pose (M, R) (mechanism.geometry_of's rows on jets.Jet, equations.py), J the Jacobian
-of the solve, omega applied as R <- exp(omega) R. The pose then carries its derivative into
-every quantity (quantities.py), which also depends on H directly: the spin axis
-unit(M0 - N0), the carrier points relative to M0, the body points, the design contact patch.
+with dF/dH taken at the fixed pose (M, R) (mechanism.geometry_of's rows on jets.Jet,
+equations.py), J the Jacobian of the solve, omega applied as R <- exp(omega) R. The pose
+then carries its derivative into every quantity (quantities.py), which also depends on H
+directly: the spin axis unit(M0 - N0), the carrier points relative to M0, the body points,
+the design contact patch.
 Exact to rounding (the only error is the pose's residual, 1e-10 mm): no finite differences.
 
     sensitivities(scene, travels) -> Sensitivity: derivative (n, q, k, 3), unit per mm
@@ -22,12 +23,12 @@ from typing import NamedTuple, TYPE_CHECKING
 
 import numpy as np
 
-from ..core import jets as jt
 from .equations import free, residuals
 from .quantities import element_names, quantities, SWEEP_COLUMNS
+from ..core import jets as jt, kernel
 from ..core.errors import LinkageError
 from ..core.kinematics import sweep
-from ..core.mechanism import compile_scene, geometry_of, is_singular, linearize
+from ..core.mechanism import compile_scene, geometry_of, is_singular, linearize, radii
 from ..core.status import Status
 from ..tools.sweep import ALIGNMENT_COLUMNS
 
@@ -86,6 +87,11 @@ def pose_derivative(scene: Scene, points: np.ndarray, center: np.ndarray,
     lift = np.zeros(size)   # dM0_z / dH: travel is counted from the design wheel centre
     lift[3 * layout.center + 2] = 1.0
     rhs = -(moved.g + jac[..., 2, None] * lift)
+    return _pose_jets(center, rotation, jac, rhs, lift)
+
+
+def _pose_jets(center, rotation, jac, rhs, lift):
+    """Return M, R as Jets: J_free dx/dp = rhs (n, 5, P); dM_z/dp = lift (P,)."""
     a = free(jac)
     singular = is_singular(a)
     dx = np.linalg.solve(np.where(singular[..., None, None], np.eye(5), a), rhs)
@@ -94,6 +100,31 @@ def pose_derivative(scene: Scene, points: np.ndarray, center: np.ndarray,
     omega = dx[:, 2:]                                      # (n, 3, P)
     d_rotation = np.cross(omega[:, :, None, :], rotation[:, :, :, None], axis=1)
     return jt.Jet(center, d_center), jt.Jet(rotation, d_rotation)
+
+
+def length_rates(scene: Scene, center: np.ndarray, rotation: np.ndarray,
+                 rack: float = 0.0) -> np.ndarray:
+    """
+    Return d(SWEEP_COLUMNS)/d(length) (n, 5, c) per constraint, at n solved poses.
+
+    A constraint's length: a link's, an arm's pivot-to-ball distance (mechanism.radii and
+    lengthened), with the hardpoints kept. Its rows' lengths l change by rho / l per mm,
+    and dF/dl = -1 at a solution (F = (|d|^2 - l^2) / 2l), so J_free dx/dlength = rho / l
+    on its rows; travel is imposed (M_z fixed). A strut's column is 0. Units per mm.
+    """
+    mech, layout = compile_scene(scene), scene.layout
+    center = np.reshape(center, (-1, 3))
+    rotation = np.reshape(rotation, (-1, 3, 3))
+    jac = linearize(mech, center, rotation, rack)[1]
+    lengths = np.where(layout.line, 1.0, mech.equations[:, kernel.LENGTH])
+    gain = radii(layout, mech.equations, mech.design_center) / lengths   # (5,)
+    count = len(scene.constraints)
+    rhs = np.zeros((5, count))
+    rhs[np.arange(5), layout.constraint] = gain
+    pose = _pose_jets(center, rotation, jac, np.broadcast_to(rhs, (len(center), 5, count)),
+                      np.zeros(count))
+    values = quantities(scene, scene.points, *pose, rack, SWEEP_COLUMNS)
+    return np.stack([np.asarray(values[name].g) for name in SWEEP_COLUMNS], axis=1)
 
 
 def sensitivities(scene: Scene, travels: ArrayLike, rack: float = 0.0,

@@ -33,14 +33,13 @@ from . import variant_kernel
 from .executor import in_process
 from .hardpoints import AXES, Design
 from .quantities import SWEEP_COLUMNS
-from .sensitivity import sweep_column_rates
-from ..core import kernel, state
+from .sensitivity import length_rates, sweep_column_rates
+from ..core import state
 from ..core.continuation import Continuation
 from ..core.errors import LinkageError
 from ..core.geometry import camber_toe
 from ..core.kinematics import sweep
-from ..core.mechanism import (compile_scene, equation_table, geometry_of, lengthened,
-                              linearize, radii)
+from ..core.mechanism import compile_scene, equation_table, geometry_of, lengthened, linearize
 from ..core.scene import with_points
 
 if TYPE_CHECKING:
@@ -225,30 +224,6 @@ def _by_continuation(prob, points, status, values):
     return values
 
 
-def length_rates(scene, center: np.ndarray, rotation: np.ndarray,
-                 rates: np.ndarray) -> np.ndarray:
-    """
-    Return d(SWEEP_COLUMNS)/d(length) (n, 5, c) per constraint, at n solved poses.
-
-    rates (n, 5, k, 3): d/dH (sweep_column_rates). A row's length l enters as its body
-    point A does along the link, u = (C - A) / l at the pose (dF/dl = -1 = dF/dA . u), and
-    only through the pose; a constraint's length changes its rows' l by rho / l (radii).
-    Rack 0. A strut's column is 0.
-    """
-    layout, mech = scene.layout, compile_scene(scene)
-    eqs = mech.equations
-    offsets = eqs[:, kernel.POINT:kernel.POINT + 3]
-    joints = center[:, None, :] + np.einsum('nij,rj->nri', rotation, offsets)   # C (n, 5, 3)
-    bases = scene.points[layout.base]
-    gain = radii(layout, eqs, mech.design_center) / np.where(layout.line, 1.0,
-                                                              eqs[:, kernel.LENGTH])
-    u = (joints - bases) / np.linalg.norm(joints - bases, axis=-1)[..., None]
-    per_row = np.einsum('nqri,nri->nqr', rates[:, :, layout.base, :], u) * gain
-    out = np.zeros(per_row.shape[:2] + (len(scene.constraints),))
-    np.add.at(out, (slice(None), slice(None), layout.constraint), per_row)
-    return out
-
-
 def tolerance(prob: Problem, run=None, progress=None) -> Tolerance:
     """
     Return the stack-up of a Problem; run(function, items, progress) runs the batches.
@@ -260,8 +235,7 @@ def tolerance(prob: Problem, run=None, progress=None) -> Tolerance:
     rates = sweep_column_rates(scene, center, rotation)
     spread = np.sum((rates * prob.sigma) ** 2, axis=(2, 3))
     if prob.lengths.any():
-        spread += np.sum((length_rates(scene, center, rotation, rates) * prob.lengths) ** 2,
-                         axis=2)
+        spread += np.sum((length_rates(scene, center, rotation) * prob.lengths) ** 2, axis=2)
     rss = np.sqrt(spread)
     camber, toe = camber_toe(rotation @ compile_scene(scene).spin_axis, scene.side_sign)
     table = np.column_stack([np.degrees(camber), np.degrees(toe), center])
