@@ -12,7 +12,7 @@ from linkage_ros.core.bundled import bundled_scenes
 from linkage_ros.core.continuation import Continuation
 from linkage_ros.core.kinematics import sweep
 from linkage_ros.core.mechanism import compile_scene
-from linkage_ros.core.scene import load_scene, parse_scene
+from linkage_ros.core.scene import load_scene, parse_scene, with_points
 from linkage_ros.study.hardpoints import load_design, scene_data_with
 from linkage_ros.study.quantities import quantities, SWEEP_COLUMNS
 from linkage_ros.study.sensitivity import sensitivities, sweep_column_rates
@@ -128,6 +128,29 @@ def test_the_hardpoint_table_holds_the_scenes_points_by_name():
             np.testing.assert_array_equal(row[f'{c.name}.carrier'], c.carrier)
             ends = ('axis0', 'axis1') if c.type == 'circle' else ('base',)
             np.testing.assert_array_equal([row[f'{c.name}.{e}'] for e in ends], c.base)
+
+
+@pytest.mark.parametrize('name', SCENES)
+def test_a_moved_design_is_the_scene_its_moved_file_would_load(name):
+    # with_points moves the Scene itself (no file); the fitted-scene route writes the moved
+    # file data and loads it. Same points, spin axis, third point and element points, to
+    # the rounding of a scene's metres (1e-9 mm); a static camber/toe scene re-derives its
+    # spin axis point along the same axis, so the axis is compared, not the point.
+    design = load_design(name)
+    moved = design.values + np.random.default_rng(1).normal(0.0, 0.5, design.values.shape)
+    moved[design.index('wheel_center')] = design.values[design.index('wheel_center')]
+    moved[design.index('spin_axis_point')] = design.values[design.index('spin_axis_point')]
+    direct = with_points(design.scene, moved)
+    loaded = parse_scene(scene_data_with(design, moved), source=design.scene.source)
+    np.testing.assert_allclose(direct.points[:-1], loaded.points[:-1], rtol=0, atol=1e-9)
+    axes = [(s.wheel_center - s.spin_axis_point) / np.linalg.norm(
+        s.wheel_center - s.spin_axis_point) for s in (direct, loaded)]
+    np.testing.assert_allclose(axes[0], axes[1], rtol=0, atol=1e-12)
+    np.testing.assert_allclose(direct.third_point, loaded.third_point, rtol=0, atol=1e-9)
+    assert len(direct.elements) == len(loaded.elements)
+    for a, b in zip(direct.elements, loaded.elements):
+        np.testing.assert_allclose(a.body, b.body, rtol=0, atol=1e-9)
+        np.testing.assert_allclose(a.mount.point, b.mount.point, rtol=0, atol=1e-9)
 
 
 def test_the_quantities_written_on_hardpoints_reproduce_linkage_sweeps_table():
