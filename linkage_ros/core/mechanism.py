@@ -10,6 +10,9 @@ Residuals are lengths in mm, so a tolerance reads the same in every scene:
                       as two components along carrier-fixed normals of the line.
 The equations themselves are written once, compiled, in kernel.py; the functions here apply
 them to one pose or to a batch (leading axes of center (..., 3) and rotation (..., 3, 3)).
+The table is compiled once, from the scene's hardpoint table (Scene.points rowed by
+Scene.layout: geometry_of, equation_table), for one design (compile_scene, kept on the
+Scene), a batch of variants (leading axes), or on jets.Jet points (exact d/dH).
 """
 
 from __future__ import annotations
