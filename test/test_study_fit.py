@@ -8,7 +8,6 @@ import time
 from linkage_ros.core.kinematics import sweep
 from linkage_ros.core.scene import load_scene
 from linkage_ros.study.fit import fit
-from linkage_ros.study.hardpoints import hardpoint_values, point_names
 from linkage_ros.study.targets import load_targets
 import numpy as np
 import pytest
@@ -45,8 +44,8 @@ def test_a_fitted_tie_rod_base_cuts_the_bump_steer_tenfold_within_its_bounds(tmp
     original, fitted = load_scene('double_wishbone'), load_scene(tmp_path / 'fitted.yaml')
     before, after = largest_toe(original), largest_toe(fitted)
     assert before > 0.5 and after <= before / 10, (before, after)
-    names = point_names(original)
-    moved = hardpoint_values(fitted) - hardpoint_values(original)
+    names = original.point_names
+    moved = fitted.points - original.points
     tie_rod = names.index('tie_rod.base')
     assert np.all(np.abs(moved[tie_rod]) <= 30.0) and np.abs(moved[tie_rod]).max() > 1.0
     assert not np.delete(moved, tie_rod, axis=0).any()   # nothing else moved

@@ -3,18 +3,17 @@ Exact hardpoint sensitivities (linkage_ros.study.sensitivity) against an indepen
 
 The independent path is central differences of linkage-sweep's own table (sweep + table of
 tools/sweep.py) for scenes whose hardpoints are moved in the scene file's data and loaded
-again (hardpoints.scene_with: the loader, compile_scene, the batched sweep). Nothing of the
-study's equations or jets is on that path.
+again (hardpoints.scene_data_with and the loader, compile_scene, the batched sweep).
+Nothing of the study's equations or jets is on that path.
 """
 
+from linkage_ros.core import jets, kernel
 from linkage_ros.core.bundled import bundled_scenes
 from linkage_ros.core.continuation import Continuation
 from linkage_ros.core.kinematics import sweep
 from linkage_ros.core.mechanism import compile_scene
-from linkage_ros.core.scene import load_scene
-from linkage_ros.study import jets
-from linkage_ros.study.equations import geometry, layout_of, table
-from linkage_ros.study.hardpoints import hardpoint_values, load_design, scene_with
+from linkage_ros.core.scene import load_scene, parse_scene, with_points
+from linkage_ros.study.hardpoints import load_design, scene_data_with
 from linkage_ros.study.quantities import quantities, SWEEP_COLUMNS
 from linkage_ros.study.sensitivity import sensitivities, sweep_column_rates
 from linkage_ros.tools.sweep import header, table as sweep_table
@@ -37,7 +36,7 @@ RELATIVE, ABSOLUTE = 1e-6, 1e-9
 
 def moved_table(design, values, names):
     """Return the sweep table's columns names (n, q) for the design moved to values."""
-    scene = scene_with(design, values)
+    scene = parse_scene(scene_data_with(design, values), source=design.scene.source)
     result = sweep(scene, TRAVELS, tol=SOLVE_TOL)
     assert result.success, result.message
     elements = scene if scene.elements else None
@@ -101,12 +100,57 @@ def test_at_design_the_carrier_follows_the_wheel_centre_and_nothing_else_moves_i
     np.testing.assert_allclose(others, 0.0, atol=1e-12)
 
 
-def test_the_equations_written_on_hardpoints_are_compile_scenes_table():
+def test_the_compiled_table_holds_the_scenes_hardpoint_table_exactly():
+    # One compile, from Scene.points by Scene.layout: the body points are copied and the
+    # carrier points are one subtraction (the same IEEE operation on the same input here).
     for name in SCENES:
         scene = load_scene(name)
-        layout = layout_of(scene)
-        built = table(layout, geometry(layout, hardpoint_values(scene)))
-        np.testing.assert_array_equal(built, compile_scene(scene).equations, err_msg=name)
+        points, layout, eqs = scene.points, scene.layout, compile_scene(scene).equations
+        np.testing.assert_array_equal(eqs[:, kernel.BASE:kernel.BASE + 3],
+                                      points[layout.base], err_msg=name)
+        np.testing.assert_array_equal(eqs[:, kernel.POINT:kernel.POINT + 3],
+                                      points[layout.carrier] - points[layout.center],
+                                      err_msg=name)
+        spheres = ~layout.line
+        np.testing.assert_allclose(   # a length: a root of a sum, 1e-15 relative
+            eqs[spheres, kernel.LENGTH],
+            np.linalg.norm(points[layout.carrier] - points[layout.base], axis=1)[spheres],
+            rtol=1e-14, err_msg=name)
+
+
+def test_the_hardpoint_table_holds_the_scenes_points_by_name():
+    for name in SCENES:
+        scene = load_scene(name)
+        row = dict(zip(scene.point_names, scene.points))
+        np.testing.assert_array_equal(row['wheel_center'], scene.wheel_center)
+        np.testing.assert_array_equal(row['spin_axis_point'], scene.spin_axis_point)
+        for c in scene.constraints:
+            np.testing.assert_array_equal(row[f'{c.name}.carrier'], c.carrier)
+            ends = ('axis0', 'axis1') if c.type == 'circle' else ('base',)
+            np.testing.assert_array_equal([row[f'{c.name}.{e}'] for e in ends], c.base)
+
+
+@pytest.mark.parametrize('name', SCENES)
+def test_a_moved_design_is_the_scene_its_moved_file_would_load(name):
+    # with_points moves the Scene itself (no file); the fitted-scene route writes the moved
+    # file data and loads it. Same points, spin axis, third point and element points, to
+    # the rounding of a scene's metres (1e-9 mm); a static camber/toe scene re-derives its
+    # spin axis point along the same axis, so the axis is compared, not the point.
+    design = load_design(name)
+    moved = design.values + np.random.default_rng(1).normal(0.0, 0.5, design.values.shape)
+    moved[design.index('wheel_center')] = design.values[design.index('wheel_center')]
+    moved[design.index('spin_axis_point')] = design.values[design.index('spin_axis_point')]
+    direct = with_points(design.scene, moved)
+    loaded = parse_scene(scene_data_with(design, moved), source=design.scene.source)
+    np.testing.assert_allclose(direct.points[:-1], loaded.points[:-1], rtol=0, atol=1e-9)
+    axes = [(s.wheel_center - s.spin_axis_point) / np.linalg.norm(
+        s.wheel_center - s.spin_axis_point) for s in (direct, loaded)]
+    np.testing.assert_allclose(axes[0], axes[1], rtol=0, atol=1e-12)
+    np.testing.assert_allclose(direct.third_point, loaded.third_point, rtol=0, atol=1e-9)
+    assert len(direct.elements) == len(loaded.elements)
+    for a, b in zip(direct.elements, loaded.elements):
+        np.testing.assert_allclose(a.body, b.body, rtol=0, atol=1e-9)
+        np.testing.assert_allclose(a.mount.point, b.mount.point, rtol=0, atol=1e-9)
 
 
 def test_the_quantities_written_on_hardpoints_reproduce_linkage_sweeps_table():
@@ -117,7 +161,7 @@ def test_the_quantities_written_on_hardpoints_reproduce_linkage_sweeps_table():
         elements = scene if scene.elements else None
         columns = header(scene, True, elements)
         expected = sweep_table(result, scene, True, elements)
-        got = quantities(scene, hardpoint_values(scene), result.wheel_center, result.rotation,
+        got = quantities(scene, scene.points, result.wheel_center, result.rotation,
                          rack)
         for quantity, values in got.items():
             reference = expected[:, columns.index(quantity)]

@@ -10,18 +10,20 @@ Residuals are lengths in mm, so a tolerance reads the same in every scene:
                       as two components along carrier-fixed normals of the line.
 The equations themselves are written once, compiled, in kernel.py; the functions here apply
 them to one pose or to a batch (leading axes of center (..., 3) and rotation (..., 3, 3)).
+The table is compiled once, from the scene's hardpoint table (Scene.points rowed by
+Scene.layout: geometry_of, equation_table), for one design (compile_scene, kept on the
+Scene), a batch of variants (leading axes), or on jets.Jet points (exact d/dH).
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
 import math
-from typing import TYPE_CHECKING
+from typing import NamedTuple, TYPE_CHECKING
 
 import numpy as np
 
-from . import geometry, jacobian_kernel, kernel
-from .geometry import unit
+from . import geometry, jacobian_kernel, jets as jt, kernel
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
@@ -32,6 +34,37 @@ if TYPE_CHECKING:
 # Jacobian then holds about 4 significant digits of 16, and its null direction (the motion
 # it does not determine) is as good as exact; a duplicated link gives 1e16 and more.
 SINGULAR_CONDITION = 1e12
+# line_normals: the spin axis helps build a strut's normals unless nearly parallel to it
+HELPER_SINE = 0.1
+
+
+class Layout(NamedTuple):
+    """
+    A scene's 5 equation rows as indices into its hardpoint table (Scene.points).
+
+    Sphere rows first (each link, then an arm's two axis points), then a strut's two rows.
+    The layout follows from the constraint types alone; the geometry from the points.
+    """
+
+    carrier: np.ndarray      # (5,) int: hardpoint of the row's carrier point
+    base: np.ndarray         # (5,) int: hardpoint of its body point (A, an axis point, T)
+    line: np.ndarray         # (5,) bool: a strut line row
+    normal: np.ndarray       # (5,) int: which of the strut's two normals (line rows)
+    steer: np.ndarray        # (5,) 1.0 where the body point moves with the rack
+    center: int              # hardpoint index of wheel_center
+    spin: int                # hardpoint index of spin_axis_point
+    constraint: np.ndarray   # (5,) int: index into scene.constraints of the row
+
+
+class Geometry(NamedTuple):
+    """The equation rows of one design or of many (leading axes), arrays or jets.Jet, mm."""
+
+    center0: object     # (..., 3) design wheel centre M0
+    spin_axis: object   # (..., 3) design outboard spin-axis unit vector
+    offset: object      # (..., 5, 3) carrier point minus M0
+    base: object        # (..., 5, 3) body point
+    length: object      # (..., 5) link length (1.0 on line rows)
+    normal: object      # (..., 5, 3) carrier-fixed unit normal (0 on sphere rows)
 
 
 @dataclass(frozen=True)
@@ -63,45 +96,138 @@ class Mechanism:
                 for i, row in enumerate(self.equations) if row[kernel.KIND] == kernel.LINE]
 
 
-def compile_scene(scene: Scene) -> Mechanism:
-    """Build the Mechanism of a validated Scene: sphere rows first, then strut line rows."""
-    m0 = scene.wheel_center
-    offsets = np.array([c.carrier - m0 for c in scene.constraints])
+def layout_of(scene: Scene) -> Layout:
+    """Return the row map of a scene: sphere rows first, then the strut's two rows each."""
+    names = scene.point_names
     spheres, lines = [], []
     for index, c in enumerate(scene.constraints):
-        if c.type in ('sphere', 'circle'):
-            for base in c.base:
-                row = np.zeros(kernel.COLUMNS)
-                row[kernel.KIND] = kernel.SPHERE
-                row[kernel.BASE:kernel.BASE + 3] = base
-                row[kernel.LENGTH] = np.linalg.norm(c.carrier - base)
-                row[kernel.STEER] = 1.0 if c.steer == 'rack' else 0.0
-                spheres.append((index, row))
+        joint = names.index(f'{c.name}.carrier')
+        steer = 1.0 if c.steer == 'rack' else 0.0
+        if c.type == 'line':
+            top = names.index(f'{c.name}.base')
+            lines += [(joint, top, True, 0, 0.0, index), (joint, top, True, 1, 0.0, index)]
         else:
-            for normal in line_normals(c.base[0] - c.carrier, m0 - scene.spin_axis_point):
-                row = np.zeros(kernel.COLUMNS)
-                row[kernel.KIND] = kernel.LINE
-                row[kernel.BASE:kernel.BASE + 3] = c.base[0]
-                row[kernel.NORMAL:kernel.NORMAL + 3] = normal
-                lines.append((index, row))
-    rows = spheres + lines
-    equations = np.array([row for _, row in rows])
-    points = np.array([index for index, _ in rows], dtype=np.int64)
-    equations[:, kernel.POINT:kernel.POINT + 3] = offsets[points]
+            ends = ('axis0', 'axis1') if c.type == 'circle' else ('base',)
+            spheres += [(joint, names.index(f'{c.name}.{end}'), False, 0, steer, index)
+                        for end in ends]
+    rows = list(zip(*(spheres + lines)))
+    return Layout(np.array(rows[0]), np.array(rows[1]), np.array(rows[2], dtype=bool),
+                  np.array(rows[3]), np.array(rows[4], dtype=float),
+                  names.index('wheel_center'), names.index('spin_axis_point'),
+                  np.array(rows[5]))
+
+
+def geometry_of(layout: Layout, points) -> Geometry:
+    """
+    Return the rows of the design(s) whose hardpoints are points (..., k, 3) mm.
+
+    The one compile of a mechanism: compile_scene packs it for one design, the tolerance
+    study for a batch of variants (leading axes), and the sensitivities run it on jets.Jet
+    points (d/dH), since jets' functions take plain arrays and Jets alike.
+    """
+    center0 = points[..., layout.center, :]
+    spin = center0 - points[..., layout.spin, :]
+    joints = points[..., layout.carrier, :]
+    bases = points[..., layout.base, :]
+    offset = joints - center0[..., None, :]
+    length = jt.where(layout.line, 1.0, jt.norm(joints - bases))
+    n1, n2 = line_normals(bases - joints, spin[..., None, :])
+    normal = jt.where(layout.line[:, None], jt.where((layout.normal == 0)[:, None], n1, n2), 0.0)
+    return Geometry(center0, jt.unit(spin), offset, bases, length, normal)
+
+
+def line_normals(direction, helper):
+    """
+    Return a strut line's two unit normals (..., 3), square to each other and to the line.
+
+    helper (the spin axis M0 - N0) builds the first unless nearly parallel to the line
+    (sine below HELPER_SINE); then the x axis does. Arrays or jets.Jet.
+    """
+    d = jt.unit(direction)
+    sine = jt.value(jt.norm(jt.cross(d, jt.unit(helper))))
+    helper = jt.where((sine > HELPER_SINE)[..., None], helper, np.array([1.0, 0.0, 0.0]))
+    n1 = jt.unit(jt.cross(d, helper))
+    return n1, jt.cross(d, n1)
+
+
+def equation_table(layout: Layout, geom: Geometry) -> np.ndarray:
+    """Pack plain-array geometry into kernel equation tables (..., 5, kernel.COLUMNS)."""
+    offset = np.asarray(geom.offset)
+    out = np.zeros(offset.shape[:-1] + (kernel.COLUMNS,))
+    out[..., kernel.KIND] = np.where(layout.line, kernel.LINE, kernel.SPHERE)
+    out[..., kernel.POINT:kernel.POINT + 3] = offset
+    out[..., kernel.BASE:kernel.BASE + 3] = geom.base
+    out[..., kernel.LENGTH] = np.where(layout.line, 0.0, geom.length)
+    out[..., kernel.STEER] = layout.steer
+    out[..., kernel.NORMAL:kernel.NORMAL + 3] = geom.normal
+    return out
+
+
+def radii(layout: Layout, equations: np.ndarray, center0: ArrayLike) -> np.ndarray:
+    """
+    Return each row's radius (..., 5) mm: what a length tolerance of its constraint changes.
+
+    A link's row: its length l. An arm's two rows: the ball's distance rho from the arm's
+    axis (its pivot-to-ball distance), the same for both. A strut's rows: 0 (no length).
+    A link is an arm whose radius is its length: a row's length l changes with the radius
+    as l^2 - rho^2 (the ball's place along the axis) stays, dl/drho = rho / l.
+    equations (..., 5, COLUMNS), center0 (..., 3) the design wheel centre M0 of each table.
+    """
+    eqs = np.asarray(equations, dtype=float)
+    out = np.where(layout.line, 0.0, eqs[..., kernel.LENGTH])
+    ball = eqs[..., kernel.POINT:kernel.POINT + 3] + np.asarray(center0)[..., None, :]
+    for c in np.unique(layout.constraint):
+        rows = np.flatnonzero(layout.constraint == c)
+        if len(rows) == 2 and not layout.line[rows[0]]:   # an arm: axis A0-A1
+            a0, a1 = (eqs[..., r, kernel.BASE:kernel.BASE + 3] for r in rows)
+            arm = ball[..., rows[0], :] - a0
+            along = geometry.unit(a1 - a0)
+            rho = np.linalg.norm(arm - np.sum(arm * along, axis=-1)[..., None] * along, axis=-1)
+            out[..., rows] = rho[..., None]
+    return out
+
+
+def lengthened(layout: Layout, equations: np.ndarray, center0: ArrayLike,
+               delta: ArrayLike) -> np.ndarray:
+    """
+    Return equation tables (..., 5, COLUMNS) with each constraint's length changed by delta.
+
+    delta (..., c) mm, one per constraint: a link's length, an arm's pivot-to-ball distance
+    (radii: l^2 - rho^2 kept); a strut has none (its delta is ignored). center0 (..., 3): the
+    design wheel centre of each table. The hardpoints are unchanged, so the design pose no
+    longer assembles: the solvers re-assemble it (from the nominal pose).
+    """
+    out = np.array(equations, dtype=float)
+    rho = radii(layout, out, center0)
+    grown = rho + np.asarray(delta, dtype=float)[..., layout.constraint]
+    length = out[..., kernel.LENGTH]
+    out[..., kernel.LENGTH] = np.where(layout.line, length,
+                                       np.sqrt(length * length - rho * rho + grown * grown))
+    return out
+
+
+def compile_scene(scene: Scene) -> Mechanism:
+    """
+    Return the Mechanism of a Scene, compiled from its hardpoint table once.
+
+    The Scene (frozen) keeps it (Scene.mechanism, which calls compile_points): every solver
+    of one scene shares one Mechanism, whose arrays nobody writes.
+    """
+    return scene.mechanism
+
+
+def compile_points(scene: Scene) -> Mechanism:
+    """Build the Mechanism of a Scene from its hardpoint table (Scene.points, Scene.layout)."""
+    layout = scene.layout
+    geom = geometry_of(layout, scene.points)
+    equations = equation_table(layout, geom)
+    first = np.array([list(layout.constraint).index(i) for i in range(len(scene.constraints))])
+    offsets = geom.offset[first]   # each constraint's carrier point, from a row of it
     return Mechanism(
-        design_center=m0.copy(), offsets=offsets,
+        design_center=geom.center0.copy(), offsets=offsets,
         point_names=tuple(c.name for c in scene.constraints),
-        equations=np.ascontiguousarray(equations), equation_point=points,
-        spin_axis=unit(scene.wheel_center - scene.spin_axis_point),
-        lever=float(np.max(np.linalg.norm(offsets, axis=1))))
-
-
-def line_normals(direction: ArrayLike, spin_axis: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
-    """Return two unit normals of a strut line, chosen square to each other and to the line."""
-    d = unit(direction)
-    helper = spin_axis if np.linalg.norm(np.cross(d, unit(spin_axis))) > 0.1 else [1.0, 0, 0]
-    n1 = unit(np.cross(d, helper))
-    return n1, np.cross(d, n1)
+        equations=np.ascontiguousarray(equations), equation_point=layout.constraint.copy(),
+        spin_axis=geom.spin_axis, lever=float(np.max(np.linalg.norm(offsets, axis=1))))
 
 
 def carrier_points(mech: Mechanism, center: ArrayLike, rotation: ArrayLike) -> np.ndarray:

@@ -12,6 +12,7 @@ warnings, one line each, for the programs to print: the core prints nothing.
 from __future__ import annotations
 
 from dataclasses import dataclass, field, replace
+from functools import cached_property
 import math
 from pathlib import Path
 import re
@@ -26,7 +27,8 @@ from .fields import Fields, FREE_KEYS
 from .geometry import perpendicular, unit
 # LENGTH_LIMIT_MM, SceneError and within_length_limit are also read from here, where they were.
 from .limits import LENGTH_LIMIT_MM, positions_needed, within_length_limit  # noqa: F401
-from .mechanism import design_condition, SINGULAR_CONDITION
+from .mechanism import (compile_points, design_condition, Layout, layout_of, Mechanism,
+                        SINGULAR_CONDITION)
 from .yaml_file import read_yaml, SceneError  # noqa: F401 (SceneError: kept here)
 
 if TYPE_CHECKING:
@@ -129,6 +131,41 @@ class Scene:
         In constraint order (geometry.carrier_points places them at a pose).
         """
         return np.array([c.carrier for c in self.constraints]) - self.wheel_center
+
+    @cached_property
+    def point_names(self) -> tuple[str, ...]:
+        """
+        Return the names of the hardpoints, in the order of the rows of points.
+
+        `<constraint>.base` (a link's or a strut's body point), `<constraint>.axis0` and
+        `<constraint>.axis1` (an arm's revolute axis), `<constraint>.carrier` (the carrier
+        joint), then wheel_center and spin_axis_point.
+        """
+        names = []
+        for c in self.constraints:
+            ends = ('axis0', 'axis1') if c.type == 'circle' else ('base',)
+            names += [f'{c.name}.{end}' for end in ends] + [f'{c.name}.carrier']
+        return tuple(names + ['wheel_center', 'spin_axis_point'])
+
+    @cached_property
+    def points(self) -> np.ndarray:
+        """Return the hardpoint table (k, 3) mm, design position, rows as point_names."""
+        rows = []
+        for c in self.constraints:
+            rows += list(c.base) + [c.carrier]
+        table = np.array(rows + [self.wheel_center, self.spin_axis_point], dtype=float)
+        table.flags.writeable = False
+        return table
+
+    @cached_property
+    def layout(self) -> Layout:
+        """Return the row map of the guidance equations into points (mechanism.layout_of)."""
+        return layout_of(self)
+
+    @cached_property
+    def mechanism(self) -> Mechanism:
+        """Return the scene compiled for the solvers, once (mechanism.compile_scene)."""
+        return compile_points(self)
 
     def to_mm(self, value: float | np.ndarray) -> float | np.ndarray:
         """Convert a length (or an array of them) from the scene's units to mm."""
@@ -443,3 +480,54 @@ def translate(scene: Scene, offset: ArrayLike) -> Scene:
                    spin_axis_point=scene.spin_axis_point + offset,
                    third_point=scene.third_point + offset, constraints=constraints,
                    elements=tuple(e.transformed(1.0, offset) for e in scene.elements))
+
+
+def with_points(scene: Scene, points: ArrayLike) -> Scene:
+    """
+    Return the same scene with its hardpoints at points (k, 3) mm, rows as scene.point_names.
+
+    A moved design, without a file: the constraints, wheel centre and spin axis point take
+    the new rows; a spring or damper on a link keeps its fraction of the link, one along a
+    strut follows the strut, one on an arm or the carrier keeps its coordinates; a third
+    point that was chosen is chosen again (a given one is kept). Not validated, and without
+    warnings: the caller tells a variant that is no mechanism by its solve.
+    """
+    points = np.array(points, dtype=float).reshape(scene.points.shape)
+    row = {name: i for i, name in enumerate(scene.point_names)}
+    constraints = []
+    for c in scene.constraints:
+        ends = ('axis0', 'axis1') if c.type == 'circle' else ('base',)
+        constraints.append(replace(c, base=points[[row[f'{c.name}.{e}'] for e in ends]],
+                                   carrier=points[row[f'{c.name}.carrier']]))
+    center, spin = points[row['wheel_center']], points[row['spin_axis_point']]
+    third = scene.third_point
+    if np.array_equal(third, choose_third_point(scene.wheel_center, scene.spin_axis_point,
+                                                [c.carrier for c in scene.constraints])):
+        third = choose_third_point(center, spin, [c.carrier for c in constraints])
+    elements = tuple(_moved_element(e, scene.constraints, constraints)
+                     for e in scene.elements)
+    return replace(scene, wheel_center=center, spin_axis_point=spin, third_point=third,
+                   constraints=tuple(constraints), elements=elements, warnings=())
+
+
+def _moved_element(element, before, after):
+    """Return an element of a moved design (with_points says where its points go)."""
+    mount = element.mount
+    if mount.kind == 'link':
+        fraction, new = link_fraction(element, before), after[mount.constraint]
+        point = new.base[0] + fraction * (new.carrier - new.base[0])
+        return replace(element, mount=replace(mount, point=point))
+    if mount.kind == 'along':
+        new = after[mount.constraint]
+        return replace(element, body=new.base[0].copy(),
+                       mount=replace(mount, point=new.carrier.copy()))
+    return element
+
+
+def link_fraction(element, constraints: Sequence[Constraint]) -> float | None:
+    """Return an element's fraction along its link from the body end (None if not on one)."""
+    if element.mount.kind != 'link':
+        return None
+    c = constraints[element.mount.constraint]
+    span = c.carrier - c.base[0]
+    return float((element.mount.point - c.base[0]) @ span / (span @ span))

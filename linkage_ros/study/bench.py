@@ -98,9 +98,8 @@ def bench_sensitivity(repeats):
 
 def _kernel_only(scene, table, repeats):
     """Return the CPU time of pose_kernel.sweep_rates_many at one pose, inputs prepared."""
-    from .equations import layout_of
     from ..core.mechanism import compile_scene, linearize
-    mech, layout = compile_scene(scene), layout_of(scene)
+    mech, layout = compile_scene(scene), scene.layout
     center, rotation = table.wheel_center, table.rotation
     jac = np.ascontiguousarray(linearize(mech, center, rotation)[1])
     out = np.empty((1, 5, 36))

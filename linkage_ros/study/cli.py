@@ -59,7 +59,8 @@ def parser() -> Parser:
     two.add_argument('--seed', type=int, default=0, help='random seed (default 0)')
     two.add_argument('--tolerances', metavar='FILE',
                      help='YAML of per-point standard deviations, mm: POINT: SD or '
-                     'POINT: {x: SD, y: SD, z: SD}')
+                     'POINT: {x: SD, y: SD, z: SD}; and of lengths (the design re-assembles): '
+                     'CONSTRAINT.length: SD')
     two.add_argument('--plot', metavar='PNG', help='draw the distributions here')
     three = sub('fit', 'fit free hardpoints to target curves (bounded least squares)')
     three.add_argument('targets', help='targets file (YAML: scene, free, targets)')

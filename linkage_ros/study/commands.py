@@ -46,7 +46,7 @@ def run_sensitivity(args, say) -> int:
 
 def run_tolerance(args, say) -> int:
     """linkage-study tolerance: the stack-up table, a progress bar, and the picture."""
-    from .tolerance import batches, problem, rows, sigmas, tolerance
+    from .tolerance import batches, length_sigmas, problem, rows, sigmas, tolerance
     design = load_design(args.scene)
     say('', design.scene.warnings)
     _finite(args.travel, '--travel')
@@ -54,7 +54,7 @@ def run_tolerance(args, say) -> int:
     if overrides is not None and not isinstance(overrides, dict):
         raise LinkageError(args.tolerances, 'expected a mapping POINT: SD or POINT: {x, y, z}')
     prob = problem(design, sigmas(design, args.sigma, overrides), args.samples, args.travel,
-                   args.seed)
+                   args.seed, length_sigmas(design, overrides))
     count = len(batches(prob))
     # without --workers, a pool of local processes only for work that repays their start
     with executor(args.scheduler, args.workers or None,

@@ -5,11 +5,12 @@ Names: `<constraint>.base` (a link's or a strut's body point), `<constraint>.axi
 `<constraint>.axis1` (an arm's revolute axis), `<constraint>.carrier` (the carrier joint),
 `wheel_center` and `spin_axis_point`. Coordinates are mm, vehicle frame, design position.
 
-A moved design is written as the scene file it would be (scene_data_with), so that every
-study solves exactly what the loader reads: a spring or damper on a link stays at its
-fraction of the link; one on an arm or the carrier keeps its coordinates; a scene given
-with static camber and toe gets its spin_axis_point written out once the wheel centre or
-that point moves (its spin axis is then the line through them, as for any other scene).
+A moved design is the same Scene with other points (scene.with_points: no file written or
+read); a fitted design is written as the scene file it would be (scene_data_with): a spring
+or damper on a link stays at its fraction of the link; one on an arm or the carrier keeps
+its coordinates; a scene given with static camber and toe gets its spin_axis_point written
+out once the wheel centre or that point moves (its spin axis is then the line through them,
+as for any other scene).
 """
 
 from __future__ import annotations
@@ -21,7 +22,8 @@ from typing import Any, TYPE_CHECKING
 import numpy as np
 
 from ..core.errors import LinkageError
-from ..core.scene import parse_scene, resolve_scene_path, UNITS_TO_MM
+from ..core.scene import (link_fraction, parse_scene, resolve_scene_path, UNITS_TO_MM,
+                          with_points)
 from ..core.yaml_file import read_yaml
 
 if TYPE_CHECKING:
@@ -47,42 +49,17 @@ class Design:
         return self.names.index(name)
 
 
-def point_names(scene: Scene) -> tuple[str, ...]:
-    """Return the names of a scene's hardpoints, in the order of hardpoint_values."""
-    names = []
-    for c in scene.constraints:
-        ends = ('axis0', 'axis1') if c.type == 'circle' else ('base',)
-        names += [f'{c.name}.{end}' for end in ends] + [f'{c.name}.carrier']
-    return tuple(names + ['wheel_center', 'spin_axis_point'])
-
-
-def hardpoint_values(scene: Scene) -> np.ndarray:
-    """Return a scene's hardpoints (k, 3) mm in point_names order."""
-    points = []
-    for c in scene.constraints:
-        points += list(c.base) + [c.carrier]
-    return np.array(points + [scene.wheel_center, scene.spin_axis_point], dtype=float)
-
-
 def load_design(name_or_path: str) -> Design:
     """Load a scene (bundled name or path) with its file's data. Raises SceneError."""
     path = resolve_scene_path(name_or_path)
     data = read_yaml(path, 'scene')
     scene = parse_scene(data, source=str(path))
-    return Design(scene, data, point_names(scene), hardpoint_values(scene))
+    return Design(scene, data, scene.point_names, scene.points)
 
 
 def link_fractions(scene: Scene) -> list[float | None]:
     """Return, per element, its fraction along its link from the body end (None if not on one)."""
-    out = []
-    for e in scene.elements:
-        if e.mount.kind != 'link':
-            out.append(None)
-            continue
-        c = scene.constraints[e.mount.constraint]
-        span = c.carrier - c.base[0]
-        out.append(float((e.mount.point - c.base[0]) @ span / (span @ span)))
-    return out
+    return [link_fraction(e, scene.constraints) for e in scene.elements]
 
 
 def scene_data_with(design: Design, values: np.ndarray) -> dict[str, Any]:
@@ -122,8 +99,8 @@ def scene_data_with(design: Design, values: np.ndarray) -> dict[str, Any]:
 
 
 def scene_with(design: Design, values: np.ndarray) -> Scene:
-    """Return the Scene of the design with its hardpoints at values (k, 3) mm. SceneError."""
-    return parse_scene(scene_data_with(design, values), source=design.scene.source)
+    """Return the Scene of the design with its hardpoints at values (k, 3) mm (no file read)."""
+    return with_points(design.scene, values)
 
 
 def coordinate_names(names: tuple[str, ...]) -> list[tuple[str, str]]:

@@ -16,10 +16,11 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from . import jets as jt
-from .equations import geometry, jacobian, layout_of, rack_column
-from .hardpoints import link_fractions, point_names
+from .equations import jacobian, rack_column
+from .hardpoints import link_fractions
+from ..core import jets as jt
 from ..core.kingpin import kingpin_points
+from ..core.mechanism import geometry_of
 from ..core.quantities import columns, element_columns
 
 if TYPE_CHECKING:
@@ -46,8 +47,8 @@ def quantities(scene: Scene, points, center, rotation, rack: float = 0.0,
 
     wanted: the names to compute (None: all); groups not asked for are skipped.
     """
-    layout = layout_of(scene)
-    geom = geometry(layout, points)
+    layout = scene.layout
+    geom = geometry_of(layout, points)
     axis = jt.matvec(rotation, geom.spin_axis)
     camber, toe = camber_toe(axis, scene.side_sign)
     out = {'camber_deg': camber * DEG, 'toe_deg': toe * DEG, 'wheel_center_x_mm': center[..., 0],
@@ -160,7 +161,7 @@ def geometric_kingpin(scene, points, geom, center, rotation, rack, patch) -> dic
     ends = kingpin_points(scene)
     if ends is None:
         return dict.fromkeys(KINGPIN_COLUMNS, np.nan)
-    index = {name: i for i, name in enumerate(point_names(scene))}
+    index = {name: i for i, name in enumerate(scene.point_names)}
 
     def body(c):
         shift = np.array([0.0, float(rack), 0.0]) if c.steer == 'rack' else 0.0
@@ -204,7 +205,7 @@ def closest_approach(a0, a1, b0, b1):
 def elements(scene, points, center, rotation, rack, motion) -> dict:
     """Return each element's length (mm), ratio (d length / d travel) and spring force (N)."""
     v, w = motion
-    index = {name: i for i, name in enumerate(point_names(scene))}
+    index = {name: i for i, name in enumerate(scene.point_names)}
     center0 = points[index['wheel_center']]
     out = {}
     for e, fraction in zip(scene.elements, link_fractions(scene)):

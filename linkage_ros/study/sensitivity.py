@@ -7,10 +7,11 @@ M_z = M0_z(H) + travel, so moving a hardpoint moves the solution by
 
     J_free dx/dH = -(dF/dH + J_z dM0_z/dH)
 
-with dF/dH taken at the fixed pose (M, R) (equations.py's rows on jets.Jet), J the Jacobian
-of the solve, omega applied as R <- exp(omega) R. The pose then carries its derivative into
-every quantity (quantities.py), which also depends on H directly: the spin axis
-unit(M0 - N0), the carrier points relative to M0, the body points, the design contact patch.
+with dF/dH taken at the fixed pose (M, R) (mechanism.geometry_of's rows on jets.Jet,
+equations.py), J the Jacobian of the solve, omega applied as R <- exp(omega) R. The pose
+then carries its derivative into every quantity (quantities.py), which also depends on H
+directly: the spin axis unit(M0 - N0), the carrier points relative to M0, the body points,
+the design contact patch.
 Exact to rounding (the only error is the pose's residual, 1e-10 mm): no finite differences.
 
     sensitivities(scene, travels) -> Sensitivity: derivative (n, q, k, 3), unit per mm
@@ -22,13 +23,12 @@ from typing import NamedTuple, TYPE_CHECKING
 
 import numpy as np
 
-from . import jets as jt
-from .equations import free, geometry, layout_of, residuals
-from .hardpoints import hardpoint_values, point_names
+from .equations import free, residuals
 from .quantities import ALIGNMENT_COLUMNS, element_names, quantities, SWEEP_COLUMNS
+from ..core import jets as jt, kernel
 from ..core.errors import LinkageError
 from ..core.kinematics import sweep
-from ..core.mechanism import compile_scene, is_singular, linearize
+from ..core.mechanism import compile_scene, geometry_of, is_singular, linearize, radii
 from ..core.status import Status
 
 if TYPE_CHECKING:
@@ -53,7 +53,7 @@ class Sensitivity(NamedTuple):
 def available(scene: Scene) -> tuple[str, ...]:
     """Return the quantities a scene has: NaN columns (no steer axis, no radius) left out."""
     names = SWEEP_COLUMNS + tuple(ALIGNMENT_COLUMNS) + tuple(element_names(scene))
-    values = quantities(scene, hardpoint_values(scene), compile_scene(scene).design_center[None],
+    values = quantities(scene, scene.points, compile_scene(scene).design_center[None],
                         np.eye(3)[None])
     return tuple(n for n in names if np.isfinite(np.asarray(jt.value(values[n]))).all())
 
@@ -78,14 +78,19 @@ def pose_derivative(scene: Scene, points: np.ndarray, center: np.ndarray,
     center (n, 3), rotation (n, 3, 3): the poses solved for the design whose hardpoints are
     points (k, 3) mm. NaN derivatives where the Jacobian is singular.
     """
-    layout = layout_of(scene)
+    layout = scene.layout
     params = jt.seed(points)
     size = params.g.shape[-1]
-    moved = residuals(layout, geometry(layout, params), center, rotation, rack)   # dF/dH
+    moved = residuals(layout, geometry_of(layout, params), center, rotation, rack)   # dF/dH
     jac = linearize(compile_scene(scene), center, rotation, rack)[1]
     lift = np.zeros(size)   # dM0_z / dH: travel is counted from the design wheel centre
     lift[3 * layout.center + 2] = 1.0
     rhs = -(moved.g + jac[..., 2, None] * lift)
+    return _pose_jets(center, rotation, jac, rhs, lift)
+
+
+def _pose_jets(center, rotation, jac, rhs, lift):
+    """Return M, R as Jets: J_free dx/dp = rhs (n, 5, P); dM_z/dp = lift (P,)."""
     a = free(jac)
     singular = is_singular(a)
     dx = np.linalg.solve(np.where(singular[..., None, None], np.eye(5), a), rhs)
@@ -94,6 +99,31 @@ def pose_derivative(scene: Scene, points: np.ndarray, center: np.ndarray,
     omega = dx[:, 2:]                                      # (n, 3, P)
     d_rotation = np.cross(omega[:, :, None, :], rotation[:, :, :, None], axis=1)
     return jt.Jet(center, d_center), jt.Jet(rotation, d_rotation)
+
+
+def length_rates(scene: Scene, center: np.ndarray, rotation: np.ndarray,
+                 rack: float = 0.0) -> np.ndarray:
+    """
+    Return d(SWEEP_COLUMNS)/d(length) (n, 5, c) per constraint, at n solved poses.
+
+    A constraint's length: a link's, an arm's pivot-to-ball distance (mechanism.radii and
+    lengthened), with the hardpoints kept. Its rows' lengths l change by rho / l per mm,
+    and dF/dl = -1 at a solution (F = (|d|^2 - l^2) / 2l), so J_free dx/dlength = rho / l
+    on its rows; travel is imposed (M_z fixed). A strut's column is 0. Units per mm.
+    """
+    mech, layout = compile_scene(scene), scene.layout
+    center = np.reshape(center, (-1, 3))
+    rotation = np.reshape(rotation, (-1, 3, 3))
+    jac = linearize(mech, center, rotation, rack)[1]
+    lengths = np.where(layout.line, 1.0, mech.equations[:, kernel.LENGTH])
+    gain = radii(layout, mech.equations, mech.design_center) / lengths   # (5,)
+    count = len(scene.constraints)
+    rhs = np.zeros((5, count))
+    rhs[np.arange(5), layout.constraint] = gain
+    pose = _pose_jets(center, rotation, jac, np.broadcast_to(rhs, (len(center), 5, count)),
+                      np.zeros(count))
+    values = quantities(scene, scene.points, *pose, rack, SWEEP_COLUMNS)
+    return np.stack([np.asarray(values[name].g) for name in SWEEP_COLUMNS], axis=1)
 
 
 def sensitivities(scene: Scene, travels: ArrayLike, rack: float = 0.0,
@@ -107,7 +137,7 @@ def sensitivities(scene: Scene, travels: ArrayLike, rack: float = 0.0,
     names = check_quantities(scene, wanted)
     travels = np.asarray(travels, dtype=float).ravel()
     table = sweep(scene, travels, rack=rack, **settings)
-    points = hardpoint_values(scene)
+    points = scene.points
     n = len(table.travel)
     derivative = np.empty((n, len(names), len(points), 3))
     nominal = np.empty((n, len(names)))
@@ -119,7 +149,7 @@ def sensitivities(scene: Scene, travels: ArrayLike, rack: float = 0.0,
             value = values[name]
             derivative[:, j] = value.g.reshape(n, len(points), 3)
             nominal[:, j] = value.v
-    return Sensitivity(table.travel, names, point_names(scene), derivative, nominal,
+    return Sensitivity(table.travel, names, scene.point_names, derivative, nominal,
                        table.success, table.message, table.status)
 
 
@@ -133,11 +163,11 @@ def sweep_column_rates(scene: Scene, center: np.ndarray, rotation: np.ndarray,
     """
     from . import pose_kernel
     mech = compile_scene(scene)
-    layout = layout_of(scene)
+    layout = scene.layout
     center = np.ascontiguousarray(np.reshape(center, (-1, 3)), dtype=float)
     rotation = np.ascontiguousarray(np.reshape(rotation, (-1, 3, 3)), dtype=float)
     jac = np.ascontiguousarray(linearize(mech, center, rotation, rack)[1])
-    points = hardpoint_values(scene)
+    points = scene.points
     out = np.empty((len(center), 5, points.size))
     pose_kernel.sweep_rates_many(
         mech.equations, layout.carrier, layout.base, np.array([layout.center, layout.spin]),

@@ -1,15 +1,22 @@
 """
-Tolerance stack-up: how hardpoint tolerances spread camber, toe and the wheel centre.
+Tolerance stack-up: how hardpoint and length tolerances spread camber, toe and wheel centre.
 
 Each hardpoint coordinate is an independent normal variable about its design value, with
-standard deviation sigma (mm; per point and axis, sigmas()). Two answers per travel and
+standard deviation sigma (mm; per point and axis, sigmas()). Hardpoints are design
+positions: a variant of them assembles at its own design position. A length tolerance
+(length_sigmas(): `<constraint>.length`, a link's length or an arm's pivot-to-ball
+distance) is another independent normal variable; the hardpoints then no longer assemble,
+and the design re-assembles: it is solved at design travel (0) from the nominal pose, which
+gives the static camber and toe spread (travel 0's rows). Two answers per travel and
 quantity (SWEEP_COLUMNS):
-  first order: rss_std = sqrt(sum over coordinates of (dq/dp sigma_p)^2), from the exact
-               sensitivities (sensitivity.sweep_column_rates, compiled);
-  Monte Carlo: samples variants, each solved from its own design position to every travel
-               by a compiled kernel batched over variants (variant_kernel.py); mean, std,
-               1st and 99th percentiles of the variants solved, and how many were out of
-               reach (solved again by Continuation, arclength included, to be sure).
+  first order: rss_std = sqrt(sum over coordinates and lengths of (dq/dp sigma_p)^2), from
+               the exact sensitivities (sensitivity.sweep_column_rates, compiled; a
+               length's is its body point's along the link, length_rates());
+  Monte Carlo: samples variants, each solved at every travel from the design's pose there
+               by the design's batched sweep kernel, batched over variants
+               (variant_kernel.py); mean, std, 1st and 99th percentiles of the variants
+               solved, and how many were out of reach (a point variant is solved again by
+               Continuation, arclength included, to be sure).
 
 The variants come in batches of BATCH; batch i draws its perturbations from
 SeedSequence(seed, spawn_key=(i,)), so the result depends on the seed alone, never on where
@@ -23,20 +30,23 @@ from typing import NamedTuple, TYPE_CHECKING
 import numpy as np
 
 from . import variant_kernel
-from .equations import geometry, layout_of, table
 from .executor import in_process
-from .hardpoints import AXES, Design, scene_with
+from .hardpoints import AXES, Design
 from .quantities import SWEEP_COLUMNS
-from .sensitivity import sweep_column_rates
+from .sensitivity import length_rates, sweep_column_rates
+from ..core import state
 from ..core.continuation import Continuation
 from ..core.errors import LinkageError
+from ..core.geometry import camber_toe
 from ..core.kinematics import sweep
-from ..core.scene import SceneError
+from ..core.mechanism import compile_scene, equation_table, geometry_of, lengthened, linearize
+from ..core.scene import with_points
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
 
 BATCH = 4096                # variants per batch: fixed, so that a seed means one sample
+LENGTH = '.length'          # a constraint's length tolerance: `<constraint>.length`
 DEG = 180.0 / np.pi
 SCALES = np.array([DEG, DEG, 1.0, 1.0, 1.0])   # kernel outputs (rad, mm) -> table units
 
@@ -50,6 +60,8 @@ class Problem(NamedTuple):
     seed: int
     samples: int
     controls: tuple         # variant_kernel.Controls
+    starts: np.ndarray      # (T, STATE_SIZE) the design's solved states at the travels
+    lengths: np.ndarray     # (c,) mm: standard deviation of each constraint's length
 
 
 class Tolerance(NamedTuple):
@@ -73,11 +85,14 @@ def sigmas(design: Design, sigma: float, overrides: dict | None = None) -> np.nd
 
     overrides maps a point name to a number (every axis) or to {x, y, z} (axes not named
     keep sigma). Values >= 0; 0 fixes a coordinate. Raises LinkageError naming the mistake.
+    Keys `<constraint>.length` are length_sigmas'.
     """
     if not (np.isfinite(sigma) and sigma > 0):
         raise LinkageError('--sigma', f'must be a number of mm above 0, got {sigma:g}')
     out = np.full(design.values.shape, float(sigma))
     for name, given in (overrides or {}).items():
+        if str(name).endswith(LENGTH):   # length_sigmas reads them
+            continue
         i = design.index(str(name))
         if isinstance(given, dict):
             for axis, value in given.items():
@@ -89,6 +104,30 @@ def sigmas(design: Design, sigma: float, overrides: dict | None = None) -> np.nd
     return out
 
 
+def length_sigmas(design: Design, overrides: dict | None = None) -> np.ndarray:
+    """
+    Return the standard deviations (c,) mm of the constraints' lengths: 0 unless given.
+
+    overrides' keys `<constraint>.length` (a number >= 0): a link's length (sphere) or an
+    arm's pivot-to-ball distance (circle); a strut (line) has no length. Raises LinkageError
+    naming the mistake.
+    """
+    constraints = design.scene.constraints
+    out = np.zeros(len(constraints))
+    names = [c.name for c in constraints]
+    for name, given in (overrides or {}).items():
+        name = str(name)
+        if not name.endswith(LENGTH):
+            continue
+        owner = name[:-len(LENGTH)]
+        if owner not in names or constraints[names.index(owner)].type == 'line':
+            lengths = ', '.join(f'{c.name}{LENGTH}' for c in constraints if c.type != 'line')
+            raise LinkageError(name, 'not a length of the scene '
+                               f'{design.scene.name} (its lengths: {lengths})')
+        out[names.index(owner)] = _sd(name, given)
+    return out
+
+
 def _sd(where, value):
     if isinstance(value, bool) or not isinstance(value, (int, float)) \
             or not (np.isfinite(value) and value >= 0):
@@ -97,15 +136,31 @@ def _sd(where, value):
 
 
 def problem(design: Design, sigma: np.ndarray, samples: int, travels: ArrayLike,
-            seed: int = 0) -> Problem:
-    """Return the Problem of a study; the solver settings are the design's (Continuation)."""
-    cfg = Continuation(design.scene).settings
-    controls = variant_kernel.Controls(design.scene.side_sign, cfg.tol, cfg.max_iter,
-                                       cfg.max_step, cfg.min_step, cfg.max_substeps,
-                                       cfg.knot_step, cfg.knot_tol)
-    return Problem(design, np.asarray(sigma, dtype=float),
-                   np.asarray(travels, dtype=float).ravel(), int(seed), int(samples),
-                   tuple(controls))
+            seed: int = 0, lengths: ArrayLike | None = None) -> Problem:
+    """
+    Return the Problem of a study; the solver settings are the design's (Continuation).
+
+    lengths (c,) mm: length_sigmas (None: none). Solves the design at the travels (its
+    states start every variant's solve); LinkageError if it does not reach one of them.
+    """
+    travels = np.asarray(travels, dtype=float).ravel()
+    scene = design.scene
+    cfg = Continuation(scene).settings
+    # a variant whose pose is within one continuation substep of the design's is on its
+    # branch: another branch is a link's length away
+    controls = variant_kernel.Controls(scene.side_sign, cfg.tol, cfg.max_iter, cfg.max_step,
+                                       cfg.min_step, cfg.max_substeps, cfg.max_step)
+    nominal = sweep(scene, travels)
+    if not nominal.success or len(nominal.travel) != len(travels):
+        raise LinkageError('--travel', f'the design does not reach every travel: '
+                           f'{nominal.message}')
+    jac = linearize(compile_scene(scene), nominal.wheel_center, nominal.rotation)[1]
+    starts = np.array([state.pack(t, 0.0, c, r, j) for t, c, r, j in
+                       zip(travels, nominal.wheel_center, nominal.rotation, jac)])
+    lengths = np.zeros(len(scene.constraints)) if lengths is None else lengths
+    return Problem(design, np.asarray(sigma, dtype=float), travels, int(seed), int(samples),
+                   tuple(controls), starts.reshape(len(travels), -1),
+                   np.asarray(lengths, dtype=float))
 
 
 def batches(prob: Problem) -> list[tuple[Problem, int]]:
@@ -113,40 +168,54 @@ def batches(prob: Problem) -> list[tuple[Problem, int]]:
     return [(prob, i) for i in range((prob.samples + BATCH - 1) // BATCH)]
 
 
-def perturbed(prob: Problem, index: int) -> np.ndarray:
-    """Return the hardpoints (n, k, 3) mm of batch index: design + sigma x N(0, 1)."""
+def perturbed(prob: Problem, index: int) -> tuple[np.ndarray, np.ndarray | None]:
+    """
+    Return batch index's hardpoints (n, k, 3) and length changes (n, c) (None: none), mm.
+
+    Hardpoints design + sigma x N(0, 1); then, if any length has a tolerance, lengths
+    lengths x N(0, 1) from the same stream (a study without them draws what it always did).
+    """
     n = min(BATCH, prob.samples - index * BATCH)
     rng = np.random.default_rng(np.random.SeedSequence(prob.seed, spawn_key=(index,)))
-    return prob.design.values + prob.sigma * rng.standard_normal((n,) + prob.sigma.shape)
+    points = prob.design.values + prob.sigma * rng.standard_normal((n,) + prob.sigma.shape)
+    if not prob.lengths.any():
+        return points, None
+    return points, prob.lengths * rng.standard_normal((n, len(prob.lengths)))
 
 
 def solve_batch(item: tuple[Problem, int]) -> np.ndarray:
     """Return the quantities (n, T, Q) of a batch's variants, NaN where out of reach."""
     prob, index = item
-    points = perturbed(prob, index)
-    layout = layout_of(prob.design.scene)
+    points, deltas = perturbed(prob, index)
+    layout = prob.design.scene.layout
     with np.errstate(invalid='ignore', divide='ignore'):   # a degenerate variant: NaN rows
-        geom = geometry(layout, points)
-        variants = variant_kernel.Variants(np.ascontiguousarray(table(layout, geom)),
-                                           np.ascontiguousarray(geom.spin_axis),
-                                           np.ascontiguousarray(geom.center0))
+        geom = geometry_of(layout, points)
+        equations = equation_table(layout, geom)
+        if deltas is not None:
+            equations = lengthened(layout, equations, geom.center0, deltas)
+    variants = variant_kernel.Variants(np.ascontiguousarray(equations),
+                                       np.ascontiguousarray(geom.spin_axis),
+                                       np.ascontiguousarray(geom.center0))
     n, count = len(points), len(prob.travels)
     values = np.empty((n, count, variant_kernel.OUTPUTS))
     status = np.empty((n, count), dtype=np.int64)
-    variant_kernel.solve_variants(tuple(variants), prob.travels, prob.controls, values, status)
+    variant_kernel.solve_variants(tuple(variants), prob.starts, prob.travels, prob.controls,
+                                  values, status)
     for v in np.flatnonzero((status != variant_kernel.SOLVED).any(axis=1)):
-        values[v] = _by_continuation(prob, points[v], status[v], values[v])
+        if deltas is None:   # a Continuation solves a scene: a moved design has one
+            values[v] = _by_continuation(prob, points[v], status[v], values[v])
     return values * SCALES
 
 
 def _by_continuation(prob, points, status, values):
     """Solve a variant's failed travels one by one by Continuation (arclength included)."""
     values = values.copy()
-    try:
-        cont = Continuation(scene_with(prob.design, points))
-    except SceneError:   # the variant is not a mechanism (a zero-length link, say)
-        values[:] = np.nan
-        return values
+    with np.errstate(invalid='ignore', divide='ignore'):
+        try:
+            cont = Continuation(with_points(prob.design.scene, points))
+        except LinkageError:   # the variant is not a mechanism (a zero-length link, say)
+            values[:] = np.nan
+            return values
     for t in np.flatnonzero(status != variant_kernel.SOLVED):
         cont.reset()
         solution = cont.solve(float(prob.travels[t]))
@@ -159,18 +228,17 @@ def tolerance(prob: Problem, run=None, progress=None) -> Tolerance:
     """
     Return the stack-up of a Problem; run(function, items, progress) runs the batches.
 
-    run: an executor (executor.py; None: this process). Raises LinkageError if the design
-    itself does not reach a travel.
+    run: an executor (executor.py; None: this process).
     """
     scene = prob.design.scene
-    nominal = sweep(scene, prob.travels)
-    if not nominal.success or len(nominal.travel) != len(prob.travels):
-        raise LinkageError('--travel', f'the design does not reach every travel: '
-                           f'{nominal.message}')
-    rates = sweep_column_rates(scene, nominal.wheel_center, nominal.rotation)
-    rss = np.sqrt(np.sum((rates * prob.sigma) ** 2, axis=(2, 3)))
-    table = np.column_stack([np.degrees(nominal.camber), np.degrees(nominal.toe),
-                             nominal.wheel_center])
+    center, rotation = state.centers(prob.starts), state.rotations(prob.starts)
+    rates = sweep_column_rates(scene, center, rotation)
+    spread = np.sum((rates * prob.sigma) ** 2, axis=(2, 3))
+    if prob.lengths.any():
+        spread += np.sum((length_rates(scene, center, rotation) * prob.lengths) ** 2, axis=2)
+    rss = np.sqrt(spread)
+    camber, toe = camber_toe(rotation @ compile_scene(scene).spin_axis, scene.side_sign)
+    table = np.column_stack([np.degrees(camber), np.degrees(toe), center])
     items = batches(prob)
     results = (run or in_process)(solve_batch, items, progress)
     values = np.concatenate(results) if results else np.empty((0,) + rss.shape)

@@ -1,21 +1,22 @@
 """
-A compiled solve batched over mechanism variants: each variant from its design to n travels.
+A compiled solve batched over mechanism variants: each variant at n travels, from the design's.
 
-numba-compiled (njit, cache=True) like core/kernel.py, whose step and walk it calls, and
+numba-compiled (njit, cache=True) like core/kernel.py, whose step_many and walk it calls, and
 so3.py's rotations: numba's disk cache follows each file alone, and would keep running an old
 step after an edit of kernel.py, so the digests of both files are written here (KERNEL_DIGEST,
-SO3_DIGEST; test_kernel says the values to set). One call solves V
-variants, each its own equation table (equations.table), the way kinematics.sweep solves one
-mechanism: knots every knot_step mm by continuation from the design position (to knot_tol),
-then every travel as one continuation step from its nearest knot; a step that fails is
-walked from the design position with halving substeps (kernel.walk). What still fails is
-left to the caller (FAILED), which solves it by Continuation (arclength included) to tell
-a travel out of reach from a hard step.
+SO3_DIGEST; test_kernel says the values to set). One call solves V variants, each its own
+equation table (mechanism.equation_table of mechanism.geometry_of, the one compile, batched),
+with the kernel that solves the design's batched sweep (kernel.step_many): variant v at
+travel t is one continuation step of length 0 from the design's solved state at t (Newton
+from the nominal pose: a design 0.05 mm away converges in 2-3 iterations), branch-checked.
+Where that fails, the variant is re-assembled at travel 0 from the design pose (a variant
+with other lengths does not assemble there) and walked with halving substeps (kernel.walk).
+What still fails is left to the caller (FAILED), which solves it by Continuation (arclength
+included) to tell a travel out of reach from a hard step.
 
 Quantities per (variant, travel), OUTPUTS: camber, toe (rad), wheel centre x, y, z (mm).
 """
 
-import math
 from typing import NamedTuple
 
 from numba import njit
@@ -54,8 +55,7 @@ class Controls(NamedTuple):
     max_step: float
     min_step: float
     max_substeps: int
-    knot_step: float
-    knot_tol: float
+    near: float   # a variant's pose within this of the nominal one is on its branch
 
 
 @jit
@@ -72,32 +72,6 @@ def design_state(equations, center0):
 
 
 @jit
-def knots(setup, start, low, high, knot_step, out):
-    """
-    Write continuation knots from start (travel 0) to high, then to low, into out (K, SIZE).
-
-    Steps of at most knot_step mm with setup (its tol the knots' own). Returns the count,
-    or -1 if a step fails or out is too short.
-    """
-    out[0] = start
-    count = 1
-    for end in (high, low):
-        last = 0
-        while out[last, kernel.TRAVEL] != end:
-            travel = out[last, kernel.TRAVEL]
-            target = end if abs(end - travel) <= knot_step else (
-                travel + math.copysign(knot_step, end - travel))
-            if count == out.shape[0]:
-                return -1
-            _, accepted = kernel.step(setup, out[last], target, 0.0, out[count])
-            if not accepted:
-                return -1
-            last = count
-            count += 1
-    return count
-
-
-@jit
 def outputs(state, spin_axis, side_sign, out):
     """Write camber, toe (rad), M (mm) of a solved state into out (OUTPUTS,)."""
     center, rotation, _ = kernel.views(state)
@@ -107,45 +81,43 @@ def outputs(state, spin_axis, side_sign, out):
 
 
 @jit
-def solve_variants(variants, travels, controls, values, status):
+def solve_variants(variants, starts, travels, controls, values, status):
     """
     Solve V variants at travels (T,) mm: values (V, T, OUTPUTS), status (V, T) SOLVED/FAILED.
 
-    variants: tuple(Variants); controls: tuple(Controls). A failed entry's values are NaN.
+    variants: tuple(Variants); starts (T, kernel.STATE_SIZE): the design's solved states at
+    the travels (Jacobians included); controls: tuple(Controls). A failed entry's values are
+    NaN.
     """
     equations, spin_axis, center0 = variants
-    side_sign, tol, max_iter, max_step, min_step, max_substeps, knot_step, knot_tol = controls
-    low, high = min(travels.min(), 0.0), max(travels.max(), 0.0)
-    room = int((high - low) / knot_step) + 4
-    chain = np.empty((room, kernel.STATE_SIZE))
-    state = np.empty(kernel.STATE_SIZE)
+    side_sign, tol, max_iter, max_step, min_step, max_substeps, near = controls
+    count = travels.shape[0]
+    nearest = np.arange(count)
+    states = np.empty((count, kernel.STATE_SIZE))
+    assembled = np.empty(kernel.STATE_SIZE)
+    iterations = np.empty(count, dtype=np.int64)
+    accepted = np.empty(count, dtype=np.bool_)
     for v in range(equations.shape[0]):
-        eqs = equations[v]
-        z0 = center0[v, 2]
-        setup = kernel.Setup(eqs, spin_axis[v], side_sign, z0, tol, max_iter, 10 * tol,
-                             max_step, min_step, max_substeps)
-        knot_setup = kernel.Setup(eqs, spin_axis[v], side_sign, z0, knot_tol, max_iter,
-                                  1e3 * knot_tol, max_step, min_step, max_substeps)
-        batch_setup = kernel.Setup(eqs, spin_axis[v], side_sign, z0, tol, max_iter,
-                                   1e3 * knot_tol, max_step, min_step, max_substeps)
-        start = design_state(eqs, center0[v])
-        count = knots(knot_setup, start, low, high, knot_step, chain)
-        for t in range(travels.shape[0]):
-            travel = travels[t]
-            accepted, result = False, state
-            if count > 0:
-                nearest, gap = 0, np.inf
-                for k in range(count):
-                    if abs(chain[k, kernel.TRAVEL] - travel) < gap:
-                        nearest, gap = k, abs(chain[k, kernel.TRAVEL] - travel)
-                _, accepted = kernel.step(batch_setup, chain[nearest], travel, 0.0, state)
-                result = state
-            if not accepted:
-                walked = kernel.walk(setup, start, travel, 0.0, 0.0, 0.0)
-                accepted = walked.outcome == kernel.REACHED
-                result = walked.state
-            if accepted:
-                outputs(result, spin_axis[v], side_sign, values[v, t])
+        eqs, axis, z0 = equations[v], spin_axis[v], center0[v, 2]
+        # from the nominal pose: a step of length 0 whose branch check allows `near` mm
+        from_nominal = kernel.Setup(eqs, axis, side_sign, z0, tol, max_iter, near, max_step,
+                                    min_step, max_substeps)
+        kernel.step_many(from_nominal, nearest, starts, travels, 0.0, states, iterations,
+                         accepted)
+        setup = kernel.Setup(eqs, axis, side_sign, z0, tol, max_iter, 10 * tol, max_step,
+                             min_step, max_substeps)
+        ready = 0   # 0: not yet re-assembled at travel 0; 1: done; -1: it does not assemble
+        for t in range(count):
+            accepted_t, result = accepted[t], states[t]
+            if not accepted_t and ready == 0:
+                _, good = kernel.step(from_nominal, design_state(eqs, center0[v]), 0.0, 0.0,
+                                      assembled)
+                ready = 1 if good else -1
+            if not accepted_t and ready == 1:
+                walked = kernel.walk(setup, assembled, travels[t], 0.0, 0.0, 0.0)
+                accepted_t, result = walked.outcome == kernel.REACHED, walked.state
+            if accepted_t:
+                outputs(result, axis, side_sign, values[v, t])
                 status[v, t] = SOLVED
             else:
                 values[v, t, :] = np.nan
