@@ -13,10 +13,10 @@ from pathlib import Path
 
 from linkage_ros.bench import reference
 from linkage_ros.core import kernel
-from linkage_ros.core.kinematics import Continuation, METHODS, sweep
-from linkage_ros.core.mechanism import compile_scene
-from linkage_ros.core.scene import load_scene
-from linkage_ros.core.status import Status
+from linkage_ros.core.base.status import Status
+from linkage_ros.core.model.scene import load_scene
+from linkage_ros.core.solve.kinematics import Continuation, METHODS, sweep
+from linkage_ros.core.solve.mechanism import compile_scene
 import numpy as np
 import pytest
 

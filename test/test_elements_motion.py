@@ -1,15 +1,15 @@
 """
-The carrier's exact velocity and acceleration per travel (core/motion.py).
+The carrier's exact velocity and acceleration per travel (core/measure/motion.py).
 
 Checked against central differences of solved poses, and the guidance rows it reads against
 the mechanism's own Jacobian.
 """
 
-from linkage_ros.core.kinematics import sweep
-from linkage_ros.core.mechanism import compile_scene, linearize
-from linkage_ros.core.motion import carrier_motion, guidance_rows, pose_batch
-from linkage_ros.core.mounts import Mount, mount_motion, mount_table
-from linkage_ros.core.scene import bundled_scenes, load_scene
+from linkage_ros.core.measure.motion import carrier_motion, guidance_rows, pose_batch
+from linkage_ros.core.measure.mounts import Mount, mount_motion, mount_table
+from linkage_ros.core.model.scene import bundled_scenes, load_scene
+from linkage_ros.core.solve.kinematics import sweep
+from linkage_ros.core.solve.mechanism import compile_scene, linearize
 import numpy as np
 import pytest
 

@@ -12,10 +12,10 @@ import hashlib
 from pathlib import Path
 
 from linkage_ros.core import body_kernel, element_kernel, kernel, state
-from linkage_ros.core.geometry import camber_toe, matrix_from_quaternion
-from linkage_ros.core.kinematics import Continuation, sweep
-from linkage_ros.core.mechanism import carrier_points, length_errors, linearize
-from linkage_ros.core.scene import bundled_scenes, load_scene
+from linkage_ros.core.base.geometry import camber_toe, matrix_from_quaternion
+from linkage_ros.core.model.scene import bundled_scenes, load_scene
+from linkage_ros.core.solve.kinematics import Continuation, sweep
+from linkage_ros.core.solve.mechanism import carrier_points, length_errors, linearize
 from linkage_ros.study import pose_kernel, variant_kernel
 import numpy as np
 import pytest

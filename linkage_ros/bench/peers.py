@@ -22,8 +22,8 @@ from scipy.spatial.transform import Rotation
 
 from .reference import build, equations, exp_so3, LD, PoseModel
 from ..core import paper_method
-from ..core.kinematics import Continuation, sweep
-from ..core.mechanism import compile_scene, linearize
+from ..core.solve.kinematics import Continuation, sweep
+from ..core.solve.mechanism import compile_scene, linearize
 
 
 class CoreSolver:

@@ -12,9 +12,9 @@ import numpy as np
 
 from . import reference
 from .report import progress
-from ..core.continuation import MIN_STEP
-from ..core.kinematics import Continuation, Settings, sweep, travel_range
-from ..core.scene import bundled_scenes, config_dir, load_scene, parse_scene
+from ..core.model.scene import bundled_scenes, config_dir, load_scene, parse_scene
+from ..core.solve.continuation import MIN_STEP
+from ..core.solve.kinematics import Continuation, Settings, sweep, travel_range
 
 STRESS_DIR = config_dir() / 'stress'
 

@@ -12,10 +12,10 @@ Imports numpy, scipy, PyYAML and numba only. The public names:
     LinkageError                                         base of every bad-input error
 """
 
-from .errors import LinkageError
-from .kinematics import Continuation, Settings, Solution, Sweep, sweep
-from .scene import load_scene, Scene, SceneError
-from .status import Status
+from .base.errors import LinkageError
+from .base.status import Status
+from .model.scene import load_scene, Scene, SceneError
+from .solve.kinematics import Continuation, Settings, Solution, Sweep, sweep
 
 __all__ = ['Continuation', 'LinkageError', 'load_scene', 'Scene', 'SceneError', 'Settings',
            'Solution', 'Status', 'Sweep', 'sweep']

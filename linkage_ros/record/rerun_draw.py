@@ -35,10 +35,10 @@ from rerun.components import LineStrip3DBatch
 from rerun.encodings import Vec3DBatch
 
 from .label_layout import place_labels
-from ..core.geometry import (camber_toe, carrier_points, matrix_from_quaternion, perpendicular,
+from ..core.base.geometry import (camber_toe, carrier_points, matrix_from_quaternion, perpendicular,
                              unit)
-from ..core.kinematics import sweep, travel_range
-from ..core.scene import link_polylines
+from ..core.model.scene import link_polylines
+from ..core.solve.kinematics import sweep, travel_range
 
 if TYPE_CHECKING:
     from collections.abc import Sequence
@@ -46,7 +46,7 @@ if TYPE_CHECKING:
 
     from numpy.typing import ArrayLike
 
-    from ..core.scene import Scene
+    from ..core.model.scene import Scene
 
 APP_ID = 'linkage_ros'
 TIME = 'ros_time'
@@ -71,7 +71,7 @@ EYE_DISTANCE = 1.7      # times the size of the scene's bounding box
 
 def link_points(scene: Scene, joints: ArrayLike) -> np.ndarray:
     """
-    Return the link polylines (core.scene.link_polylines) of many poses as one array.
+    Return the link polylines (core.model.scene.link_polylines) of many poses as one array.
 
     joints (n, m, 3) mm -> (n, sum of polyline lengths, 3) mm, polylines one after another
     in constraint order.

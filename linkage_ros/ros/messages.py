@@ -28,7 +28,7 @@ from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
 from std_msgs.msg import Float64MultiArray, MultiArrayDimension, MultiArrayLayout
 
 from ..cdr import float64_of
-from ..core.geometry import M_PER_MM, MM_PER_M
+from ..core.base.geometry import M_PER_MM, MM_PER_M
 
 if TYPE_CHECKING:
     from collections.abc import Iterable
@@ -36,7 +36,7 @@ if TYPE_CHECKING:
     from builtin_interfaces.msg import Time
     from sensor_msgs.msg import JointState
 
-    from ..core.alignment import Alignment
+    from ..core.measure.alignment import Alignment
     from ..health import Health
 
 
@@ -90,7 +90,7 @@ def alignment_array(alignment: Alignment) -> Float64MultiArray:
     """
     Return the alignment set of one solved position as a Float64MultiArray in SI.
 
-    alignment is a linkage_ros.core.alignment.Alignment with n = 1. data[i] is the field
+    alignment is a linkage_ros.core.measure.alignment.Alignment with n = 1. data[i] is the field
     named by layout.dim[i].label (one dimension of size 1 per field, labels and order of
     ALIGNMENT_FIELDS). NaN where a field is undefined (no steer axis without a steer: rack
     link, no contact patch without a wheel radius).

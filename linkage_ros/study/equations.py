@@ -25,7 +25,7 @@ from .hardpoints import point_names
 from ..core import kernel
 
 if TYPE_CHECKING:
-    from ..core.scene import Scene
+    from ..core.model.scene import Scene
 
 E_Y = np.array([0.0, 1.0, 0.0])
 FREE = list(kernel.FREE)

@@ -20,12 +20,12 @@ from typing import Any, TYPE_CHECKING
 
 import numpy as np
 
-from ..core.errors import LinkageError
-from ..core.scene import parse_scene, resolve_scene_path, UNITS_TO_MM
-from ..core.yaml_file import read_yaml
+from ..core.base.errors import LinkageError
+from ..core.model.scene import parse_scene, resolve_scene_path, UNITS_TO_MM
+from ..core.model.yaml_file import read_yaml
 
 if TYPE_CHECKING:
-    from ..core.scene import Scene
+    from ..core.model.scene import Scene
 
 AXES = ('x', 'y', 'z')
 

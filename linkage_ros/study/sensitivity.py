@@ -26,16 +26,16 @@ from . import jets as jt
 from .equations import free, geometry, layout_of, residuals
 from .hardpoints import hardpoint_values, point_names
 from .quantities import element_names, quantities, SWEEP_COLUMNS
-from ..core.errors import LinkageError
-from ..core.kinematics import sweep
-from ..core.mechanism import compile_scene, is_singular, linearize
-from ..core.status import Status
+from ..core.base.errors import LinkageError
+from ..core.base.status import Status
+from ..core.solve.kinematics import sweep
+from ..core.solve.mechanism import compile_scene, is_singular, linearize
 from ..tools.sweep import ALIGNMENT_COLUMNS
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
 
-    from ..core.scene import Scene
+    from ..core.model.scene import Scene
 
 
 class Sensitivity(NamedTuple):

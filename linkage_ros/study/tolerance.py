@@ -28,10 +28,10 @@ from .executor import in_process
 from .hardpoints import AXES, Design, scene_with
 from .quantities import SWEEP_COLUMNS
 from .sensitivity import sweep_column_rates
-from ..core.continuation import Continuation
-from ..core.errors import LinkageError
-from ..core.kinematics import sweep
-from ..core.scene import SceneError
+from ..core.base.errors import LinkageError
+from ..core.model.scene import SceneError
+from ..core.solve.continuation import Continuation
+from ..core.solve.kinematics import sweep
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike

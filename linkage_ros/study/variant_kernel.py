@@ -1,7 +1,7 @@
 """
 A compiled solve batched over mechanism variants: each variant from its design to n travels.
 
-numba-compiled (njit, cache=True) like core/kernel.py, whose step and walk it calls, and
+numba-compiled (njit, cache=True) like core/solve/kernel.py, whose step and walk it calls, and
 so3.py's rotations: numba's disk cache follows each file alone, and would keep running an old
 step after an edit of kernel.py, so the digests of both files are written here (KERNEL_DIGEST,
 SO3_DIGEST; test_kernel says the values to set). One call solves V
@@ -22,7 +22,7 @@ from numba import njit
 import numpy as np
 
 from ..core import kernel
-from ..core.so3 import camber_toe, rotate
+from ..core.base.so3 import camber_toe, rotate
 
 # sha256 of the files compiled in (test_kernel checks them)
 KERNEL_DIGEST = 'fa8249ccb5b6780ef7decee46ed6ec3b0a868bd994ce59b6ab2f4586ace03f12'

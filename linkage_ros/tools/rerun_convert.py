@@ -28,9 +28,9 @@ import math
 import sys
 
 from .. import cli
-from ..core.errors import LinkageError
-from ..core.scene import load_scene, Scene
-from ..core.vehicle import load_vehicle
+from ..core.base.errors import LinkageError
+from ..core.model.scene import load_scene, Scene
+from ..core.model.vehicle import load_vehicle
 from ..core.warmup import compile_if_cold
 from ..record.stored import load_stored
 

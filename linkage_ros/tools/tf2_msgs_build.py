@@ -28,7 +28,7 @@ import tempfile
 import time
 
 from .. import cli
-from ..core.bundled import config_dir
+from ..core.model.bundled import config_dir
 
 PROG = 'linkage-tf2-msgs'
 EXAMPLE = """example:

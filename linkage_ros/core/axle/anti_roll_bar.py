@@ -11,7 +11,7 @@ vehicle frame, at design position:
                                        link
       drop_left: {arm: lower_arm, point: [x, y, z]}   the drop link's lower end, on the left
                                        corner: carrier: [x, y, z], arm: NAME + point, or
-                                       link: NAME + point (core/mounts.py)
+                                       link: NAME + point (core/measure/mounts.py)
       arm_right, drop_right            the same on the right; leave both out for the left
                                        mirrored in y (y -> -y)
       rate: 40.0                       optional: N m per degree of twist, whatever the units
@@ -51,14 +51,14 @@ from typing import NamedTuple, TYPE_CHECKING
 
 import numpy as np
 
-from .fields import Fields
-from .geometry import cross
-from .motion import guidance_rows, pose_batch
-from .mounts import Mount, mount_motion, mount_table, parse_mount
+from ..base.geometry import cross
+from ..measure.motion import guidance_rows, pose_batch
+from ..measure.mounts import Mount, mount_motion, mount_table, parse_mount
+from ..model.fields import Fields
 
 if TYPE_CHECKING:
     from .axle import Axle
-    from .scene import Scene
+    from ..model.scene import Scene
 
 KEYS = ('axis', 'arm_left', 'drop_left', 'arm_right', 'drop_right', 'rate')
 SIDES = ('left', 'right')

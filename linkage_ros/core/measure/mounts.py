@@ -24,18 +24,18 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from . import element_kernel
-from .element_kernel import ALONG, ARM, CARRIER, LINK, MountTable
-from .geometry import unit
+from ..base.geometry import unit
+from ..solve import element_kernel
+from ..solve.element_kernel import ALONG, ARM, CARRIER, LINK, MountTable
 
 if TYPE_CHECKING:
     from collections.abc import Sequence
 
     from numpy.typing import ArrayLike
 
-    from .element_kernel import Poses
     from .motion import Rows
-    from .scene import Constraint, Scene
+    from ..model.scene import Constraint, Scene
+    from ..solve.element_kernel import Poses
 
 KINDS = {'carrier': None, 'arm': 'circle', 'link': 'sphere', 'along': 'line'}
 # A point given on a link may lie this far (relative to the link length) off the link's

@@ -33,16 +33,16 @@ from typing import NamedTuple, TYPE_CHECKING
 
 import numpy as np
 
-from . import element_kernel
-from .element_kernel import pack_elements, pack_rows, SpringTable
-from .mechanism import compile_scene, Mechanism
 from .motion import guidance_rows, pose_batch
 from .mounts import KINDS, Mount, mount_table, parse_mount
+from ..solve import element_kernel
+from ..solve.element_kernel import pack_elements, pack_rows, SpringTable
+from ..solve.mechanism import compile_scene, Mechanism
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
 
-    from .scene import Constraint, Scene
+    from ..model.scene import Constraint, Scene
 
 TYPES = ('spring', 'damper', 'length')
 KEYS = ('name', 'type', 'body', 'point', 'rate', 'free_length') + tuple(KINDS)

@@ -9,7 +9,7 @@ The axles of a vehicle file, and the vehicle-level data that axle quantities nee
       rear:  {left: rear_left, right: rear_right, brake_share: 0.4, drive_share: 1.0,
               brakes: outboard}
 
-An axle may also have an anti_roll_bar (core/anti_roll_bar.py, doc/anti_roll_bar.md), whose
+An axle may also have an anti_roll_bar (core/axle/anti_roll_bar.py, doc/anti_roll_bar.md), whose
 module is imported only for a file that has one.
 
 An axle is front or rear, and names the vehicle's left and right corners. brake_share and
@@ -31,10 +31,10 @@ import numpy as np
 from .scene import LENGTH_LIMIT_MM, SceneError, within_length_limit
 
 if TYPE_CHECKING:
-    from .anti_roll_bar import AntiRollBar
-    from .axle import Axle
     from .scene import Scene
     from .vehicle import Vehicle
+    from ..axle.anti_roll_bar import AntiRollBar
+    from ..axle.axle import Axle
 
 AXLE_NAMES = ('front', 'rear')
 BRAKES = ('outboard', 'inboard')
@@ -129,7 +129,7 @@ def _axle(path, name, spec, corners, scale):
                          f'of: {", ".join(BRAKES)})')
     bar = None
     if spec.get('anti_roll_bar') is not None:
-        from .anti_roll_bar import parse_bar
+        from ..axle.anti_roll_bar import parse_bar
         bar = parse_bar(str(path), f'{where}.anti_roll_bar', spec['anti_roll_bar'],
                         (corners[sides[0]], corners[sides[1]]), scale)
     return AxleSpec(name, *sides, *shares, brakes, bar)
@@ -155,7 +155,7 @@ def _length(path, data, key, scale):
 
 def axle_of(vehicle: Vehicle, name: str) -> Axle:
     """Return the named axle of a vehicle as an Axle, or raise SceneError naming the file."""
-    from .axle import Axle
+    from ..axle.axle import Axle
     data = vehicle.axles
     if data is None or name not in data.axles:
         known = ', '.join(data.axles) if data is not None and data.axles else 'none'

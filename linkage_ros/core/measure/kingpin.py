@@ -28,10 +28,10 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .yaml_file import SceneError
+from ..model.yaml_file import SceneError
 
 if TYPE_CHECKING:
-    from .scene import Constraint, Scene
+    from ..model.scene import Constraint, Scene
 
 KEY = 'kingpin'
 

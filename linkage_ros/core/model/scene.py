@@ -21,13 +21,13 @@ import numpy as np
 
 # bundled_scenes, config_dir and scene_dir are also read from here, where they were.
 from .bundled import bundled_scenes, config_dir, resolve, scene_dir  # noqa: F401
-from .errors import LinkageError
 from .fields import Fields, FREE_KEYS
-from .geometry import perpendicular, unit
+from ..base.errors import LinkageError
+from ..base.geometry import perpendicular, unit
 # LENGTH_LIMIT_MM, SceneError and within_length_limit are also read from here, where they were.
-from .limits import LENGTH_LIMIT_MM, positions_needed, within_length_limit  # noqa: F401
-from .mechanism import design_condition, SINGULAR_CONDITION
 from .yaml_file import read_yaml, SceneError  # noqa: F401 (SceneError: kept here)
+from ..base.limits import LENGTH_LIMIT_MM, positions_needed, within_length_limit  # noqa: F401
+from ..solve.mechanism import design_condition, SINGULAR_CONDITION
 
 if TYPE_CHECKING:
     from collections.abc import Sequence
@@ -205,9 +205,9 @@ def parse_scene(data: Any, source: str = '<scene>') -> Scene:
                        'carrier.third_point' if given_p is not None else 'carrier',
                        given_p is not None, scene_size)
     if data.get('kingpin') is not None:   # a misspelt joint fails on load, not in a sweep
-        from .kingpin import check_kingpin
+        from ..measure.kingpin import check_kingpin
         check_kingpin(source, data['kingpin'], constraints)
-    from .elements import parse_elements   # here: elements.py reads SceneError from here
+    from ..measure.elements import parse_elements   # here: elements.py reads SceneError from here
     scene = Scene(name=check.text(data, 'name') or Path(source).stem, source=source,
                   side=side, units=units, wheel_center=wheel_center, spin_axis_point=spin_point,
                   third_point=third_point, constraints=constraints, travel=travel,

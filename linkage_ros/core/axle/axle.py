@@ -37,18 +37,18 @@ from typing import Any, TYPE_CHECKING
 
 import numpy as np
 
-from . import jacobian_kernel
-from .alignment import contact_patch
-from .geometry import camber_toe, cross
-from .kinematics import sweep
-from .mechanism import compile_scene, linearize
-from .status import Status
+from ..base.geometry import camber_toe, cross
+from ..base.status import Status
+from ..measure.alignment import contact_patch
+from ..solve import jacobian_kernel
+from ..solve.kinematics import sweep
+from ..solve.mechanism import compile_scene, linearize
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
 
-    from .mechanism import Mechanism
-    from .scene import Scene
+    from ..model.scene import Scene
+    from ..solve.mechanism import Mechanism
 
 SIDES = ('left', 'right')
 

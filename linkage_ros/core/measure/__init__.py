@@ -1,0 +1,1 @@
+"""measure: see linkage_ros/core/__init__.py for the layers."""

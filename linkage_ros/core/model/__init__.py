@@ -1,0 +1,1 @@
+"""model: see linkage_ros/core/__init__.py for the layers."""

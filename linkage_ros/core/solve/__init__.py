@@ -1,0 +1,1 @@
+"""solve: see linkage_ros/core/__init__.py for the layers."""
