@@ -117,13 +117,13 @@ def _compile_elements_and_axles(scene) -> None:
     """Solve the elements of a scene that has some, its carrier's motion, an axle, its frames."""
     import numpy as np
 
-    from .axle.axle import slopes, solve_axle
+    from .axle.axle import axle_of, slopes, solve_axle
     from .measure.bodies import body_poses, corner_bodies
     from .measure.elements import element_values, prepare, values_at
     from .measure.motion import carrier_motion, guidance_rows, pose_batch
-    from .measure.mounts import Mount, mount_motion, mount_table
+    from .measure.mounts import mount_motion, mount_table
+    from .model.mounts import Mount
     from .model.vehicle import load_vehicle
-    from .model.vehicle_axles import axle_of
     from .solve.kinematics import Continuation, sweep
     result = sweep(scene, np.linspace(-20.0, 20.0, 5))
     element_values(scene, result.wheel_center, result.rotation)

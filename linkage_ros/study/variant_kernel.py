@@ -21,11 +21,11 @@ from typing import NamedTuple
 from numba import njit
 import numpy as np
 
-from ..core import kernel
 from ..core.base.so3 import camber_toe, rotate
+from ..core.solve import kernel
 
 # sha256 of the files compiled in (test_kernel checks them)
-KERNEL_DIGEST = 'fa8249ccb5b6780ef7decee46ed6ec3b0a868bd994ce59b6ab2f4586ace03f12'
+KERNEL_DIGEST = 'aac551c5ae7e0ce7eefb2d02eae639375599903a43e8c3ba5170f5430657f31f'
 SO3_DIGEST = '63b60c6921d8498a47cf8a0a86bdda0a2f05c7473f028ff5e6d7b18de31758ea'
 OUTPUTS = 5            # camber, toe, M_x, M_y, M_z
 SOLVED, FAILED = 0, 1  # status per (variant, travel)

@@ -40,6 +40,7 @@ import numpy as np
 from ..base.geometry import camber_toe, cross
 from ..base.status import Status
 from ..measure.alignment import contact_patch
+from ..model.yaml_file import SceneError
 from ..solve import jacobian_kernel
 from ..solve.kinematics import sweep
 from ..solve.mechanism import compile_scene, linearize
@@ -48,6 +49,7 @@ if TYPE_CHECKING:
     from numpy.typing import ArrayLike
 
     from ..model.scene import Scene
+    from ..model.vehicle import Vehicle
     from ..solve.mechanism import Mechanism
 
 SIDES = ('left', 'right')
@@ -240,9 +242,9 @@ def axle_quantities(axle: Axle, heave: np.ndarray, roll: np.ndarray, rack: np.nd
     bar, notes = None, missing_radius_notes(axle)
     if axle.anti_roll_bar is not None:
         from .anti_roll_bar import bar_notes, bar_values
-        bar = bar_values(axle, axle.anti_roll_bar, roll, rack, center, rotation,
-                         tuple(jacobians))
-        notes += bar_notes(axle, bar)
+        bar = bar_values(axle.scenes, axle.mechanisms, axle.design_track, axle.anti_roll_bar,
+                         roll, rack, center, rotation, tuple(jacobians))
+        notes += bar_notes(axle.name, bar)
     return {
         'camber': camber, 'toe': toe, 'camber_ground': camber_ground, 'toe_ground': toe_ground,
         'contact_patch': patch, 'patch_velocity': v_patch, 'center_velocity': v_center,
@@ -379,3 +381,17 @@ def missing_radius_notes(axle: Axle) -> tuple[str, ...]:
     return tuple(f'{s.name} ({s.source}) has no wheel_radius: no contact patch, so no roll '
                  'centre, track, contact-patch anti-dive or Ackermann'
                  for s in axle.scenes if not s.wheel_radius > 0)
+
+
+def axle_of(vehicle: Vehicle, name: str) -> Axle:
+    """Return the named axle of a vehicle as an Axle, or raise SceneError naming the file."""
+    data = vehicle.axles
+    if data is None or name not in data.axles:
+        known = ', '.join(data.axles) if data is not None and data.axles else 'none'
+        raise SceneError(vehicle.source, 'axles', f'no axle {name!r} (axles: {known})')
+    spec = data.axles[name]
+    return Axle(left=vehicle.corners[spec.left], right=vehicle.corners[spec.right],
+                name=name, front=name == 'front', wheelbase=data.wheelbase,
+                cg_height=data.cg_height, brake_share=spec.brake_share,
+                drive_share=spec.drive_share, brakes=spec.brakes,
+                anti_roll_bar=spec.anti_roll_bar)

@@ -31,10 +31,8 @@ import numpy as np
 from .scene import LENGTH_LIMIT_MM, SceneError, within_length_limit
 
 if TYPE_CHECKING:
+    from .anti_roll_bar import AntiRollBar
     from .scene import Scene
-    from .vehicle import Vehicle
-    from ..axle.anti_roll_bar import AntiRollBar
-    from ..axle.axle import Axle
 
 AXLE_NAMES = ('front', 'rear')
 BRAKES = ('outboard', 'inboard')
@@ -129,7 +127,7 @@ def _axle(path, name, spec, corners, scale):
                          f'of: {", ".join(BRAKES)})')
     bar = None
     if spec.get('anti_roll_bar') is not None:
-        from ..axle.anti_roll_bar import parse_bar
+        from .anti_roll_bar import parse_bar
         bar = parse_bar(str(path), f'{where}.anti_roll_bar', spec['anti_roll_bar'],
                         (corners[sides[0]], corners[sides[1]]), scale)
     return AxleSpec(name, *sides, *shares, brakes, bar)
@@ -151,18 +149,3 @@ def _length(path, data, key, scale):
         raise SceneError(path, key, f'expected a positive length within {LENGTH_LIMIT_MM:g} '
                          f'mm, got {value!r}')
     return float(value) * scale
-
-
-def axle_of(vehicle: Vehicle, name: str) -> Axle:
-    """Return the named axle of a vehicle as an Axle, or raise SceneError naming the file."""
-    from ..axle.axle import Axle
-    data = vehicle.axles
-    if data is None or name not in data.axles:
-        known = ', '.join(data.axles) if data is not None and data.axles else 'none'
-        raise SceneError(vehicle.source, 'axles', f'no axle {name!r} (axles: {known})')
-    spec = data.axles[name]
-    return Axle(left=vehicle.corners[spec.left], right=vehicle.corners[spec.right],
-                name=name, front=name == 'front', wheelbase=data.wheelbase,
-                cg_height=data.cg_height, brake_share=spec.brake_share,
-                drive_share=spec.drive_share, brakes=spec.brakes,
-                anti_roll_bar=spec.anti_roll_bar)
