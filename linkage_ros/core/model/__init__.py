@@ -1,1 +1,28 @@
-"""model: see linkage_ros/core/__init__.py for the layers."""
+"""
+model: what a file declares.
+
+Scenes (scene.py: parser and checks; constraint.py), their elements, mounts and kingpin as
+declared, vehicles and their axles (an anti-roll bar's declaration is model/anti_roll_bar.py,
+loaded only for a file that has one), YAML reading, field checks and the bundled files. Imports
+base only; a declaration never imports the solver (one exception left: scene.py's singular-
+design warning asks solve.mechanism).
+"""
+
+from .bundled import bundled_scenes, config_dir, scene_dir, vehicle_dir
+from .constraint import Constraint
+from .elements import Element, parse_elements
+from .fields import Fields, FREE_KEYS
+from .kingpin import check_kingpin, KingpinPoint
+from .mounts import Mount, parse_mount
+from .scene import (link_polylines, load_scene, mirror, parse_scene, resolve_scene_path, safe_stem,
+                    Scene, translate, UNITS_TO_MM)
+from .vehicle import load_vehicle, Vehicle
+from .vehicle_axles import AxleSpec, VehicleAxles
+from .yaml_file import FILE_LIMIT_BYTES, parse_yaml, read_yaml, SceneError, VALUES_LIMIT
+
+__all__ = ['AxleSpec', 'bundled_scenes', 'check_kingpin', 'config_dir', 'Constraint', 'Element',
+           'Fields', 'FILE_LIMIT_BYTES', 'FREE_KEYS', 'KingpinPoint', 'link_polylines',
+           'load_scene', 'load_vehicle', 'mirror', 'Mount', 'parse_elements', 'parse_mount',
+           'parse_scene', 'parse_yaml', 'read_yaml', 'resolve_scene_path', 'safe_stem', 'Scene',
+           'scene_dir', 'SceneError', 'translate', 'UNITS_TO_MM', 'VALUES_LIMIT', 'Vehicle',
+           'vehicle_dir', 'VehicleAxles']
