@@ -27,13 +27,13 @@ from __future__ import annotations
 from typing import Callable, NamedTuple, TYPE_CHECKING
 
 from .cdr import float64_cdr, pose_stamped_cdr
-from .core.base.geometry import M_PER_MM
-from .core.solve.kinematics import Continuation
+from .core.base import M_PER_MM
+from .core.solve import Continuation
 from .health import Health
 
 if TYPE_CHECKING:
-    from .core.model.scene import Scene
-    from .core.solve.kinematics import Solution
+    from .core.model import Scene
+    from .core.solve import Solution
 
 # output name (relative to the corner's namespace): ROS 2 type, in publishing order
 ANSWER_TYPES = {'wheel_carrier_pose': 'geometry_msgs/msg/PoseStamped',

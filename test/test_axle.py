@@ -11,12 +11,11 @@ sweeps of each corner at the rack.
 
 import math
 
-from linkage_ros.core.axle.axle import Axle, solve_axle, wheel_travels
-from linkage_ros.core.base.status import Status
-from linkage_ros.core.measure.alignment import contact_patch
-from linkage_ros.core.model.scene import bundled_scenes, load_scene, mirror
-from linkage_ros.core.solve.kinematics import sweep
-from linkage_ros.core.solve.mechanism import compile_scene
+from linkage_ros.core.axle import Axle, solve_axle, wheel_travels
+from linkage_ros.core.base import Status
+from linkage_ros.core.measure import contact_patch
+from linkage_ros.core.model import bundled_scenes, load_scene, mirror
+from linkage_ros.core.solve import compile_scene, sweep
 import numpy as np
 import pytest
 
@@ -145,7 +144,7 @@ def test_ackermann_and_mean_steer_match_the_turning_centre_of_the_inner_wheel(na
 
 
 def test_ackermann_is_100_for_wheels_at_the_ideal_angles_and_0_for_parallel_steer():
-    from linkage_ros.core.axle.axle import ackermann
+    from linkage_ros.core.axle import ackermann
     inner = math.radians(20.0)
     ideal = math.atan(2800.0 / (2800.0 / math.tan(inner) + 1500.0))
     steer = np.array([[inner, ideal], [inner, inner], [-ideal, -inner]])   # left, right
@@ -195,7 +194,7 @@ def pivoting_scene(axis):
     Two carrier points on circles about the axis, a third on a sphere centred on it; wheel
     radius 330 mm. An axis along x makes a swing axle, one along y a trailing arm.
     """
-    from linkage_ros.core.model.scene import parse_scene
+    from linkage_ros.core.model import parse_scene
     return parse_scene({
         'units': 'mm', 'side': 'left', 'wheel_radius': 330,
         'carrier': {'wheel_center': [0.0, 760.0, 300.0], 'spin_axis_point': [0.0, 660.0, 300.0]},

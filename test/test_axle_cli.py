@@ -7,10 +7,8 @@ import subprocess
 import sys
 
 from linkage_ros.core import warmup
-from linkage_ros.core.axle.axle import solve_axle
-from linkage_ros.core.model.scene import SceneError
-from linkage_ros.core.model.vehicle import load_vehicle
-from linkage_ros.core.model.vehicle_axles import axle_of
+from linkage_ros.core.axle import axle_of, solve_axle
+from linkage_ros.core.model import load_vehicle, SceneError
 from linkage_ros.tools.axle import main
 import numpy as np
 import pytest

@@ -12,10 +12,10 @@ import io
 from pathlib import Path
 import re
 
-from linkage_ros.core.measure.elements import element_values, ElementValues, prepare, values_at
-from linkage_ros.core.model.scene import bundled_scenes, load_scene, mirror, translate, UNITS_TO_MM
-from linkage_ros.core.model.vehicle import load_vehicle
-from linkage_ros.core.solve.kinematics import Continuation, sweep, travel_range
+from linkage_ros.core.measure import element_values, ElementValues, prepare, values_at
+from linkage_ros.core.model import (bundled_scenes, load_scene, load_vehicle, mirror, translate,
+                                    UNITS_TO_MM)
+from linkage_ros.core.solve import Continuation, sweep, travel_range
 from linkage_ros.tools.sweep import main
 import numpy as np
 import pytest

@@ -5,11 +5,10 @@ Checked against central differences of solved poses, and the guidance rows it re
 the mechanism's own Jacobian.
 """
 
-from linkage_ros.core.measure.motion import carrier_motion, guidance_rows, pose_batch
-from linkage_ros.core.measure.mounts import Mount, mount_motion, mount_table
-from linkage_ros.core.model.scene import bundled_scenes, load_scene
-from linkage_ros.core.solve.kinematics import sweep
-from linkage_ros.core.solve.mechanism import compile_scene, linearize
+from linkage_ros.core.measure import (carrier_motion, guidance_rows, mount_motion, mount_table,
+                                      pose_batch)
+from linkage_ros.core.model import bundled_scenes, load_scene, Mount
+from linkage_ros.core.solve import compile_scene, linearize, sweep
 import numpy as np
 import pytest
 

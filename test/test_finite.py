@@ -7,8 +7,8 @@ direction (linkage_ros.core.base.geometry), against Python's and an independent 
 
 import math
 
-from linkage_ros.core.base.finite import all_finite, is_finite_number
-from linkage_ros.core.base.geometry import exp_so3, matrix_from_quaternion, quaternion_from_matrix
+from linkage_ros.core.base import (all_finite, exp_so3, is_finite_number, matrix_from_quaternion,
+                                   quaternion_from_matrix)
 import numpy as np
 import pytest
 

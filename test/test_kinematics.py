@@ -4,11 +4,10 @@ from pathlib import Path
 import subprocess
 import sys
 
-from linkage_ros.core import paper_method, pose_newton
-from linkage_ros.core.base.geometry import camber_toe, exp_so3, trilaterate
-from linkage_ros.core.base.status import Status
-from linkage_ros.core.model.scene import bundled_scenes, load_scene, mirror
-from linkage_ros.core.solve.kinematics import Continuation, METHODS, sweep, travel_range
+from linkage_ros.core.base import camber_toe, exp_so3, Status, trilaterate
+from linkage_ros.core.model import bundled_scenes, load_scene, mirror
+from linkage_ros.core.solve import (Continuation, METHODS, paper_method, pose_newton, sweep,
+                                    travel_range)
 from linkage_ros.core.solve.mechanism import carrier_points, compile_scene, linearize
 import numpy as np
 import pytest

@@ -11,11 +11,9 @@ from pathlib import Path
 import subprocess
 import sys
 
-from linkage_ros.core.axle.axle import solve_axle
-from linkage_ros.core.model.scene import load_scene
-from linkage_ros.core.model.vehicle import load_vehicle
-from linkage_ros.core.model.vehicle_axles import axle_of
-from linkage_ros.core.solve.kinematics import Continuation, Sweep
+from linkage_ros.core.axle import axle_of, solve_axle
+from linkage_ros.core.model import load_scene, load_vehicle
+from linkage_ros.core.solve import Continuation, Sweep
 from linkage_ros.core.solve.mechanism import carrier_points
 from linkage_ros.tools.kinematic_map import main
 from linkage_ros.tools.sweep import header, table

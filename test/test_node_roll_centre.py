@@ -12,11 +12,9 @@ import sys
 
 from geometry_msgs.msg import PointStamped
 from linkage_ros.cdr import point_stamped_cdr
-from linkage_ros.core.axle.axle import axle_quantities, roll_centre_of_poses, solve_axle
-from linkage_ros.core.model.vehicle import load_vehicle
-from linkage_ros.core.model.vehicle_axles import axle_of
-from linkage_ros.core.solve.kinematics import Continuation
-from linkage_ros.core.solve.mechanism import linearize
+from linkage_ros.core.axle import axle_of, axle_quantities, roll_centre_of_poses, solve_axle
+from linkage_ros.core.model import load_vehicle
+from linkage_ros.core.solve import Continuation, linearize
 from linkage_ros.ros.node import QOS
 from linkage_ros.ros.testing import spin_until
 import numpy as np

@@ -366,7 +366,7 @@ def test_a_sweep_stores_the_text_of_its_scene_file(tmp_path):
 
 def test_a_vehicle_recording_is_solved_with_the_corner_its_topic_names(tmp_path, capsys):
     from linkage_ros import Continuation
-    from linkage_ros.core.model.vehicle import load_vehicle
+    from linkage_ros.core.model import load_vehicle
     text = (ROOT / 'config' / 'vehicles' / 'demo_vehicle.yaml').read_text()
     bag, out = tmp_path / 'car.mcap', tmp_path / 'out.mcap'
     write_stored(bag, {'linkage_ros': {'vehicle_yaml': text}}, [0.01, 0.02],

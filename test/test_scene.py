@@ -3,7 +3,7 @@
 import copy
 from pathlib import Path
 
-from linkage_ros.core.model.scene import bundled_scenes, load_scene, mirror, SceneError
+from linkage_ros.core.model import bundled_scenes, load_scene, mirror, SceneError
 import numpy as np
 import pytest
 import yaml

@@ -12,12 +12,11 @@ from pathlib import Path
 import subprocess
 import sys
 
-from linkage_ros.core import arclength, paper_method, pose_newton
-from linkage_ros.core.base.status import Status
-from linkage_ros.core.model.scene import bundled_scenes, load_scene
-from linkage_ros.core.solve.kinematics import Continuation, METHODS, sweep, travel_range
-from linkage_ros.core.solve.mechanism import (compile_scene, design_condition, design_jacobian,
-                                        linearize, SINGULAR_CONDITION)
+from linkage_ros.core.base import Status
+from linkage_ros.core.model import bundled_scenes, load_scene
+from linkage_ros.core.solve import (arclength, compile_scene, Continuation, design_condition,
+                                    design_jacobian, linearize, METHODS, paper_method, pose_newton,
+                                    SINGULAR_CONDITION, sweep, travel_range)
 import numpy as np
 import pytest
 

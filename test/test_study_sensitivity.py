@@ -7,11 +7,8 @@ again (hardpoints.scene_with: the loader, compile_scene, the batched sweep). Not
 study's equations or jets is on that path.
 """
 
-from linkage_ros.core.model.bundled import bundled_scenes
-from linkage_ros.core.model.scene import load_scene
-from linkage_ros.core.solve.continuation import Continuation
-from linkage_ros.core.solve.kinematics import sweep
-from linkage_ros.core.solve.mechanism import compile_scene
+from linkage_ros.core.model import bundled_scenes, load_scene
+from linkage_ros.core.solve import compile_scene, Continuation, sweep
 from linkage_ros.study import jets
 from linkage_ros.study.equations import geometry, layout_of, table
 from linkage_ros.study.hardpoints import hardpoint_values, load_design, scene_with

@@ -9,8 +9,7 @@ from pathlib import Path
 import subprocess
 import sys
 
-from linkage_ros.core.solve.continuation import Continuation
-from linkage_ros.core.solve.kinematics import sweep
+from linkage_ros.core.solve import Continuation, sweep
 from linkage_ros.study.executor import executor
 from linkage_ros.study.hardpoints import load_design, scene_with
 from linkage_ros.study.tables import TOLERANCE_COLUMNS

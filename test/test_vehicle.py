@@ -2,9 +2,8 @@
 
 from pathlib import Path
 
-from linkage_ros.core.model.scene import SceneError
-from linkage_ros.core.model.vehicle import load_vehicle
-from linkage_ros.core.solve.kinematics import sweep
+from linkage_ros.core.model import load_vehicle, SceneError
+from linkage_ros.core.solve import sweep
 import numpy as np
 import pytest
 

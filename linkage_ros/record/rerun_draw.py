@@ -35,10 +35,9 @@ from rerun.components import LineStrip3DBatch
 from rerun.encodings import Vec3DBatch
 
 from .label_layout import place_labels
-from ..core.base.geometry import (camber_toe, carrier_points, matrix_from_quaternion, perpendicular,
-                             unit)
-from ..core.model.scene import link_polylines
-from ..core.solve.kinematics import sweep, travel_range
+from ..core.base import camber_toe, carrier_points, matrix_from_quaternion, perpendicular, unit
+from ..core.model import link_polylines
+from ..core.solve import sweep, travel_range
 
 if TYPE_CHECKING:
     from collections.abc import Sequence
@@ -46,7 +45,7 @@ if TYPE_CHECKING:
 
     from numpy.typing import ArrayLike
 
-    from ..core.model.scene import Scene
+    from ..core.model import Scene
 
 APP_ID = 'linkage_ros'
 TIME = 'ros_time'

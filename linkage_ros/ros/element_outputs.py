@@ -21,15 +21,14 @@ from __future__ import annotations
 from typing import Callable, TYPE_CHECKING
 
 from ..cdr import joint_state_cdr
-from ..core.base.geometry import M_PER_MM
-from ..core.measure.elements import prepare, values_at
+from ..core.base import M_PER_MM
+from ..core.measure import prepare, values_at
 
 if TYPE_CHECKING:
     import numpy as np
 
-    from ..core.model.scene import Scene
-    from ..core.solve.kinematics import Solution
-    from ..core.solve.mechanism import Mechanism
+    from ..core.model import Scene
+    from ..core.solve import Mechanism, Solution
 
 TOPIC = 'elements'
 

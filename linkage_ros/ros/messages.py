@@ -28,7 +28,7 @@ from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
 from std_msgs.msg import Float64MultiArray, MultiArrayDimension, MultiArrayLayout
 
 from ..cdr import float64_of
-from ..core.base.geometry import M_PER_MM, MM_PER_M
+from ..core.base import M_PER_MM, MM_PER_M
 
 if TYPE_CHECKING:
     from collections.abc import Iterable
@@ -36,7 +36,7 @@ if TYPE_CHECKING:
     from builtin_interfaces.msg import Time
     from sensor_msgs.msg import JointState
 
-    from ..core.measure.alignment import Alignment
+    from ..core.measure import Alignment
     from ..health import Health
 
 

@@ -28,8 +28,8 @@ from rcl_interfaces.msg import FloatingPointRange, IntegerRange, ParameterDescri
 from rclpy.parameter import Parameter
 
 from .qos import check_overrides, MAX_DEPTH, QOS_DEPTH
-from ..core.base.errors import LinkageError
-from ..core.solve.kinematics import METHODS
+from ..core.base import LinkageError
+from ..core.solve import METHODS
 
 if TYPE_CHECKING:
     from rclpy.node import Node

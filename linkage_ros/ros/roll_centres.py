@@ -31,16 +31,16 @@ import numpy as np
 
 from .qos import publisher
 from ..cdr import point_stamped_cdr
-from ..core.axle.axle import roll_centre_of_poses
-from ..core.base.geometry import M_PER_MM
+from ..core.axle import roll_centre_of_poses
+from ..core.base import M_PER_MM
 
 if TYPE_CHECKING:
     from rclpy.node import Node
     from rclpy.qos import QoSProfile
 
     from .corner import Corner, Outlet
-    from ..core.model.vehicle_axles import VehicleAxles
-    from ..core.solve.kinematics import Solution
+    from ..core.model import VehicleAxles
+    from ..core.solve import Solution
 
 TOPIC = 'roll_centre'
 

@@ -30,7 +30,7 @@ from rcl_interfaces.msg import ParameterEvent, SetParametersResult
 
 from .parameters import checked, FIXED, PARAMETERS
 from ..cdr import to_cdr
-from ..core.base.errors import LinkageError
+from ..core.base import LinkageError
 
 if TYPE_CHECKING:
     from rclpy.node import Node
@@ -75,7 +75,7 @@ class RuntimeParameters:
                 raise LinkageError('scene', f'not used by a node of vehicle '
                                    f'{self.values["vehicle"]}: each corner has its scene from '
                                    'the vehicle file')
-            from ..core.model.scene import load_scene
+            from ..core.model import load_scene
             pending['_scene'] = load_scene(pending['scene'])     # SceneError: the reason
         return pending
 

@@ -24,12 +24,12 @@ import importlib
 from typing import TYPE_CHECKING
 
 from ..cdr import tf_message_cdr
-from ..core.base.geometry import M_PER_MM, quaternion_from_matrix
-from ..core.measure.bodies import body_poses, corner_bodies
+from ..core.base import M_PER_MM, quaternion_from_matrix
+from ..core.measure import body_poses, corner_bodies
 
 if TYPE_CHECKING:
-    from ..core.model.scene import Scene
-    from ..core.solve.kinematics import Solution
+    from ..core.model import Scene
+    from ..core.solve import Solution
 
 TF_TYPE = 'tf2_msgs/msg/TFMessage'
 TF_TOPIC, TF_STATIC_TOPIC = '/tf', '/tf_static'

@@ -22,10 +22,10 @@ import numpy as np
 
 from . import jets as jt
 from .hardpoints import point_names
-from ..core import kernel
+from ..core.solve import kernel
 
 if TYPE_CHECKING:
-    from ..core.model.scene import Scene
+    from ..core.model import Scene
 
 E_Y = np.array([0.0, 1.0, 0.0])
 FREE = list(kernel.FREE)

@@ -20,12 +20,11 @@ from typing import Any, TYPE_CHECKING
 
 import numpy as np
 
-from ..core.base.errors import LinkageError
-from ..core.model.scene import parse_scene, resolve_scene_path, UNITS_TO_MM
-from ..core.model.yaml_file import read_yaml
+from ..core.base import LinkageError
+from ..core.model import parse_scene, read_yaml, resolve_scene_path, UNITS_TO_MM
 
 if TYPE_CHECKING:
-    from ..core.model.scene import Scene
+    from ..core.model import Scene
 
 AXES = ('x', 'y', 'z')
 

@@ -20,8 +20,8 @@ a0 = (M0 - N0) / |M0 - N0|: da = omega x a + R da0. Columns SWEEP_COLUMNS, per m
 from numba import njit
 import numpy as np
 
-from ..core import kernel
 from ..core.base.so3 import rotate
+from ..core.solve import kernel
 from ..core.solve.jacobian_kernel import factor, solve
 
 # sha256 of so3.py and of jacobian_kernel.py, whose rotate and LU (factor, solve) are

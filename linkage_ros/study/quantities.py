@@ -19,11 +19,11 @@ import numpy as np
 from . import jets as jt
 from .equations import geometry, jacobian, layout_of, rack_column
 from .hardpoints import link_fractions, point_names
-from ..core.measure.kingpin import kingpin_points
+from ..core.measure import kingpin_points
 from ..tools.sweep import ALIGNMENT_COLUMNS
 
 if TYPE_CHECKING:
-    from ..core.model.scene import Scene
+    from ..core.model import Scene
 
 SWEEP_COLUMNS = ('camber_deg', 'toe_deg', 'wheel_center_x_mm', 'wheel_center_y_mm',
                  'wheel_center_z_mm')

@@ -26,16 +26,14 @@ from . import jets as jt
 from .equations import free, geometry, layout_of, residuals
 from .hardpoints import hardpoint_values, point_names
 from .quantities import element_names, quantities, SWEEP_COLUMNS
-from ..core.base.errors import LinkageError
-from ..core.base.status import Status
-from ..core.solve.kinematics import sweep
-from ..core.solve.mechanism import compile_scene, is_singular, linearize
+from ..core.base import LinkageError, Status
+from ..core.solve import compile_scene, is_singular, linearize, sweep
 from ..tools.sweep import ALIGNMENT_COLUMNS
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
 
-    from ..core.model.scene import Scene
+    from ..core.model import Scene
 
 
 class Sensitivity(NamedTuple):

@@ -28,10 +28,9 @@ from .executor import in_process
 from .hardpoints import AXES, Design, scene_with
 from .quantities import SWEEP_COLUMNS
 from .sensitivity import sweep_column_rates
-from ..core.base.errors import LinkageError
-from ..core.model.scene import SceneError
-from ..core.solve.continuation import Continuation
-from ..core.solve.kinematics import sweep
+from ..core.base import LinkageError
+from ..core.model import SceneError
+from ..core.solve import Continuation, sweep
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike

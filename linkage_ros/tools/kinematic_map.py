@@ -22,11 +22,9 @@ import yaml
 from .map_files import FORMATS, UNREACHED, write_map, write_unreached
 from .map_grid import axle_grid_map, AXLE_QUANTITIES, corner_map, Grid, GridMap, quantities
 from ..cli import EXIT_STATUS, fail, Parser, program, warn
-from ..core.base.errors import LinkageError
-from ..core.base.finite import all_finite
-from ..core.model.scene import load_scene
-from ..core.model.vehicle import load_vehicle, vehicle_dir
-from ..core.model.vehicle_axles import axle_of
+from ..core.axle import axle_of
+from ..core.base import all_finite, LinkageError
+from ..core.model import load_scene, load_vehicle, vehicle_dir
 from ..core.warmup import compile_if_cold
 
 PROG = 'linkage-map'

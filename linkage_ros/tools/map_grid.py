@@ -20,14 +20,12 @@ from typing import Callable, NamedTuple, TYPE_CHECKING
 import numpy as np
 
 from .sweep import header, table
-from ..core.measure.alignment import contact_patch
-from ..core.solve.kinematics import sweep, travel_range
-from ..core.solve.mechanism import compile_scene
-from ..core.solve.pose_newton import tangent
+from ..core.measure import contact_patch
+from ..core.solve import compile_scene, sweep, tangent, travel_range
 
 if TYPE_CHECKING:
-    from ..core.axle.axle import Axle
-    from ..core.model.scene import Scene
+    from ..core.axle import Axle
+    from ..core.model import Scene
 
 AXES = ('travel_mm', 'rack_mm')
 SKIPPED = ('iterations',)   # how the solver got there, not a quantity of the position
@@ -190,7 +188,7 @@ def axle_map(left: WheelColumn, right: WheelColumn,
 
 def axle_grid_map(axle: Axle, travels: np.ndarray) -> GridMap:
     """Solve an axle's map over (left travel, right travel), both over travels (mm)."""
-    from ..core.axle.axle import height_above_ground, roll_centre
+    from ..core.axle import height_above_ground, roll_centre
     left, right = wheel_column(axle.left, travels), wheel_column(axle.right, travels)
     found = axle_map(left, right, roll_centre, height_above_ground)
     values = np.stack([found[q] for q in AXLE_QUANTITIES], axis=2)

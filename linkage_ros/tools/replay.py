@@ -34,7 +34,7 @@ from .replay_commands import (METADATA, read_commands, stored_scene, stored_text
                               SWEEP_HZ)
 from .. import cli
 from ..cli import counted
-from ..core.base.errors import LinkageError
+from ..core.base import LinkageError
 from ..core.warmup import compile_if_cold
 
 PROGRESS_PERIOD = 1.0   # s between progress lines
@@ -117,7 +117,7 @@ def run(args):
         cli.check_input(bag_path)
     scene = None
     if args.command != 'copy' and (args.scene or not bag_path):
-        from ..core.model.scene import load_scene
+        from ..core.model import load_scene
         scene = load_scene(args.scene or 'five_link')
     output = None
     if args.command in ('solve', 'sweep', 'copy'):
@@ -138,7 +138,7 @@ def run(args):
             if scene is not None:
                 print(f'{PROG}: the scene stored in {bag_path}: {scene.name}', file=sys.stderr)
             else:
-                from ..core.model.scene import load_scene
+                from ..core.model import load_scene
                 scene = load_scene('five_link')
     if scene is not None:
         cli.warn(PROG, scene.warnings)

@@ -17,9 +17,8 @@ import math
 from pathlib import Path
 import time
 
-from ..core.base.errors import LinkageError
-from ..core.base.finite import is_finite_number
-from ..core.solve.kinematics import travel_range
+from ..core.base import is_finite_number, LinkageError
+from ..core.solve import travel_range
 from ..record.stored import RECORD as METADATA
 
 FLOAT64 = 'std_msgs/msg/Float64'
@@ -175,7 +174,7 @@ def stored_scene(bag, topic):
     namespace (/front_left/wheel_travel: front_left). Raises SceneError naming the bag for
     stored content that does not load.
     """
-    from ..core.model.scene import Scene, SceneError
+    from ..core.model import Scene, SceneError
     from ..record.stored import load_stored
     loaded = load_stored(bag.metadata, str(bag.path))
     if loaded is None or isinstance(loaded, Scene):

@@ -18,7 +18,7 @@ import sys
 import time
 
 from .replay_commands import DEFAULT_TOPIC, FLOAT64, stamp_of
-from ..core.base.errors import LinkageError
+from ..core.base import LinkageError
 from ..protocol import Responder
 
 DIAGNOSTIC_ARRAY = 'diagnostic_msgs/msg/DiagnosticArray'

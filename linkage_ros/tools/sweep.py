@@ -11,11 +11,10 @@ import time
 import numpy as np
 
 from ..cli import counted, EXIT_STATUS, fail, millimetres, Parser, program, warn, writable_file
-from ..core.base.errors import LinkageError
-from ..core.base.finite import all_finite, is_finite_number
-from ..core.base.limits import check_position_count, positions_needed
-from ..core.model.scene import load_scene, SceneError
-from ..core.solve.kinematics import Continuation, METHODS, sweep, travel_range
+from ..core.base import (all_finite, check_position_count, is_finite_number, LinkageError,
+                         positions_needed)
+from ..core.model import load_scene, SceneError
+from ..core.solve import Continuation, METHODS, sweep, travel_range
 from ..core.warmup import compile_if_cold
 
 PROG = 'linkage-sweep'
@@ -52,7 +51,7 @@ def table(result, scene=None, with_rack=False, elements=None):
     if scene is not None:
         columns.append(alignment_table(scene, result))
     if elements is not None:
-        from ..core.measure.elements import element_table, element_values
+        from ..core.measure import element_table, element_values
         columns.append(element_table(elements, element_values(
             elements, result.wheel_center, result.rotation, result.rack)))
     # (n, width) each: -1 cannot be inferred from a table of no rows
@@ -62,9 +61,8 @@ def table(result, scene=None, with_rack=False, elements=None):
 
 def alignment_table(scene, result):
     """Return the ALIGNMENT_COLUMNS of a Sweep, shape (n, len(ALIGNMENT_COLUMNS))."""
-    from ..core.measure.alignment import alignment
-    from ..core.measure.kingpin import geometric_kingpin
-    from ..core.solve.mechanism import compile_scene
+    from ..core.measure import alignment, geometric_kingpin
+    from ..core.solve import compile_scene
     a = alignment(scene, compile_scene(scene), result.wheel_center, result.rotation,
                   result.rack)
     k = geometric_kingpin(scene, result.joints, result.wheel_center, a.contact_patch,
@@ -81,7 +79,7 @@ def alignment_table(scene, result):
 
 def header(scene=None, with_rack=False, elements=None):
     """Return the column names of table(result, scene, with_rack, elements)."""
-    from ..core.measure.elements import element_columns
+    from ..core.measure import element_columns
     return COLUMNS + (RACK_COLUMNS if with_rack else []) + (
         ALIGNMENT_COLUMNS if scene is not None else []) + (
         element_columns(elements) if elements is not None else [])
