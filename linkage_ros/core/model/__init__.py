@@ -2,8 +2,9 @@
 model: what a file declares.
 
 Scenes (scene.py: parser and checks; constraint.py), their elements, mounts and kingpin as
-declared, vehicles and their axles (an anti-roll bar's declaration is model/anti_roll_bar.py,
-loaded only for a file that has one), YAML reading, field checks and the bundled files. Imports
+declared, vehicles and their axles (vehicle_axles.py and an anti-roll bar's declaration,
+anti_roll_bar.py, load only for a file that has them: AxleSpec and VehicleAxles are read
+from here lazily), YAML reading, field checks and the bundled files. Imports
 base only; a declaration never imports the solver (one exception left: scene.py's singular-
 design warning asks solve.mechanism).
 """
@@ -17,7 +18,6 @@ from .mounts import Mount, parse_mount
 from .scene import (link_polylines, load_scene, mirror, parse_scene, resolve_scene_path, safe_stem,
                     Scene, translate, UNITS_TO_MM)
 from .vehicle import load_vehicle, Vehicle
-from .vehicle_axles import AxleSpec, VehicleAxles
 from .yaml_file import FILE_LIMIT_BYTES, parse_yaml, read_yaml, SceneError, VALUES_LIMIT
 
 __all__ = ['AxleSpec', 'bundled_scenes', 'check_kingpin', 'config_dir', 'Constraint', 'Element',
@@ -26,3 +26,12 @@ __all__ = ['AxleSpec', 'bundled_scenes', 'check_kingpin', 'config_dir', 'Constra
            'parse_scene', 'parse_yaml', 'read_yaml', 'resolve_scene_path', 'safe_stem', 'Scene',
            'scene_dir', 'SceneError', 'translate', 'UNITS_TO_MM', 'VALUES_LIMIT', 'Vehicle',
            'vehicle_dir', 'VehicleAxles']
+LAZY = ('AxleSpec', 'VehicleAxles')   # vehicle_axles.py: loaded by a vehicle file with axles
+
+
+def __getattr__(name):
+    """Return AxleSpec or VehicleAxles, loading vehicle_axles.py only when asked (PEP 562)."""
+    if name in LAZY:
+        from . import vehicle_axles
+        return getattr(vehicle_axles, name)
+    raise AttributeError(f'module {__name__!r} has no attribute {name!r}')
