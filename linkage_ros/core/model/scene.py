@@ -406,7 +406,8 @@ def mirror(scene: Scene) -> Scene:
                  third_point=scene.third_point * flip, constraints=constraints,
                  travel=scene.travel, wheel_radius=scene.wheel_radius,
                  description=scene.description, extras=scene.extras, warnings=scene.warnings,
-                 elements=tuple(e.transformed(flip, 0.0) for e in scene.elements))
+                 elements=tuple(e.transformed(flip, 0.0) for e in scene.elements),
+                 kingpin=scene.kingpin)   # joints named by index: the same on either side
 
 
 def translate(scene: Scene, offset: ArrayLike) -> Scene:
