@@ -28,13 +28,12 @@ from __future__ import annotations
 from typing import Callable, NamedTuple, TYPE_CHECKING
 
 from .cdr import float64_cdr, pose_stamped_cdr
-from .core.geometry import M_PER_MM
-from .core.kinematics import Continuation, Solution
-from .core.status import Status
+from .core.base import M_PER_MM, Status
+from .core.solve import Continuation, Solution
 from .health import Health
 
 if TYPE_CHECKING:
-    from .core.scene import Scene
+    from .core.model import Scene
 
 # output name (relative to the corner's namespace): ROS 2 type, in publishing order
 ANSWER_TYPES = {'wheel_carrier_pose': 'geometry_msgs/msg/PoseStamped',

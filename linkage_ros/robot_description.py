@@ -4,7 +4,7 @@ The robot description (URDF) of a scene or a vehicle, for RViz, Foxglove and Rer
     robot_description({'': scene}, frame_id='base_link', name='five_link') -> URDF text
     robot_description({'front_left/': scene, ...}, 'base_link', 'demo_vehicle')
 
-One URDF link per body of linkage_ros.core.bodies (carrier, wheel, each link, arm and strut
+One URDF link per body of linkage_ros.core.measure.bodies (carrier, wheel, each link, arm and strut
 of every corner), named as its TF frame, under the root link frame_id. URDF describes trees,
 not the closed loops of a suspension: every body hangs from the root by a `floating` joint
 (its origin the body's design frame), so that a viewer places it by the /tf the node
@@ -25,11 +25,11 @@ import xml.etree.ElementTree as ElementTree
 
 import numpy as np
 
-from .core.bodies import Bodies, corner_bodies, frame_along
-from .core.geometry import M_PER_MM
+from .core.base import M_PER_MM
+from .core.measure import Bodies, corner_bodies, frame_along
 
 if TYPE_CHECKING:
-    from .core.scene import Scene
+    from .core.model import Scene
 
 LINK_RADIUS = 0.018     # of the corner's reach: links, arms and the carrier's arms
 JOINT_RADIUS = 0.035    # of the reach: the spheres at the joints

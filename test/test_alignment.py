@@ -1,9 +1,8 @@
 """Exact derivatives and the alignment set, checked against finite differences of sweeps."""
 
-from linkage_ros.core.alignment import alignment
-from linkage_ros.core.kinematics import Continuation, sweep, travel_range
-from linkage_ros.core.mechanism import compile_scene
-from linkage_ros.core.scene import load_scene
+from linkage_ros.core.measure import alignment
+from linkage_ros.core.model import load_scene
+from linkage_ros.core.solve import compile_scene, Continuation, sweep, travel_range
 import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation

@@ -1,5 +1,7 @@
 """
-The geometric kingpin (core.kingpin) beside the instantaneous steer axis (core.alignment).
+The geometric kingpin beside the instantaneous steer axis.
+
+core.measure.kingpin beside core.measure.alignment.
 
 Checked against two published Lotus Suspension Analysis printouts (test/resources, sources in
 each file), against the ball-joint coordinates of the solved positions, and against a
@@ -8,12 +10,10 @@ least-squares closest approach for five_link's virtual ball joints.
 
 from pathlib import Path
 
-from linkage_ros.core.alignment import alignment, contact_patch
 from linkage_ros.core.axle import Axle, solve_axle
-from linkage_ros.core.kinematics import sweep
-from linkage_ros.core.kingpin import geometric_kingpin, kingpin_points
-from linkage_ros.core.mechanism import compile_scene
-from linkage_ros.core.scene import load_scene, mirror, parse_scene, SceneError
+from linkage_ros.core.measure import alignment, contact_patch, geometric_kingpin, kingpin_points
+from linkage_ros.core.model import load_scene, mirror, parse_scene, SceneError
+from linkage_ros.core.solve import compile_scene, sweep
 import numpy as np
 import pytest
 import yaml

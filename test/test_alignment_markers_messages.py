@@ -1,9 +1,9 @@
 """The alignment and marker message builders, pure: no DDS."""
 
 from builtin_interfaces.msg import Time
-from linkage_ros.core.alignment import alignment
-from linkage_ros.core.kinematics import Continuation
-from linkage_ros.core.scene import load_scene
+from linkage_ros.core.measure import alignment
+from linkage_ros.core.model import load_scene
+from linkage_ros.core.solve import Continuation
 from linkage_ros.ros import messages
 from linkage_ros.ros.markers import marker_array, marker_points
 import numpy as np

@@ -1,5 +1,5 @@
 """
-Axle quantities (core.axle) against computations of their own, on every bundled scene.
+Axle quantities (core.axle.axle) against computations of their own, on every bundled scene.
 
 Each bundled scene is made an axle with its mirror image as the right corner. The roll
 centre, the anti quantities and the Ackermann percentage of solve_axle (exact velocities by
@@ -11,12 +11,11 @@ sweeps of each corner at the rack.
 
 import math
 
-from linkage_ros.core.alignment import contact_patch
 from linkage_ros.core.axle import Axle, solve_axle, wheel_travels
-from linkage_ros.core.kinematics import sweep
-from linkage_ros.core.mechanism import compile_scene
-from linkage_ros.core.scene import bundled_scenes, load_scene, mirror
-from linkage_ros.core.status import Status
+from linkage_ros.core.base import Status
+from linkage_ros.core.measure import contact_patch
+from linkage_ros.core.model import bundled_scenes, load_scene, mirror
+from linkage_ros.core.solve import compile_scene, sweep
 import numpy as np
 import pytest
 
@@ -238,7 +237,7 @@ def pivoting_scene(axis):
     Two carrier points on circles about the axis, a third on a sphere centred on it; wheel
     radius 330 mm. An axis along x makes a swing axle, one along y a trailing arm.
     """
-    from linkage_ros.core.scene import parse_scene
+    from linkage_ros.core.model import parse_scene
     return parse_scene({
         'units': 'mm', 'side': 'left', 'wheel_radius': 330,
         'carrier': {'wheel_center': [0.0, 760.0, 300.0], 'spin_axis_point': [0.0, 660.0, 300.0]},

@@ -7,10 +7,8 @@ import subprocess
 import sys
 
 from linkage_ros.core import warmup
-from linkage_ros.core.axle import solve_axle
-from linkage_ros.core.scene import SceneError
-from linkage_ros.core.vehicle import load_vehicle
-from linkage_ros.core.vehicle_axles import axle_of
+from linkage_ros.core.axle import axle_of, solve_axle
+from linkage_ros.core.model import load_vehicle, SceneError
 from linkage_ros.tools.axle import main
 import numpy as np
 import pytest
@@ -170,10 +168,10 @@ def test_a_vehicle_without_axles_loads_and_imports_no_axle_code(tmp_path):
     path = tmp_path / 'car.yaml'
     path.write_text('name: car\ncorners:\n  fl: {scene: double_wishbone}\n'
                     '  fr: {scene: double_wishbone, mirror: true}\n')
-    code = ('import sys\nfrom linkage_ros.core.vehicle import load_vehicle\n'
+    code = ('import sys\nfrom linkage_ros.core.model.vehicle import load_vehicle\n'
             f'vehicle = load_vehicle({str(path)!r})\n'
-            'print(vehicle.axles, sorted(m for m in ("linkage_ros.core.vehicle_axles", '
-            '"linkage_ros.core.axle") if m in sys.modules))\n')
+            'print(vehicle.axles, sorted(m for m in ("linkage_ros.core.model.vehicle_axles", '
+            '"linkage_ros.core.axle.axle") if m in sys.modules))\n')
     done = subprocess.run([sys.executable, '-c', code], capture_output=True, text=True)
     assert (done.returncode, done.stdout) == (0, 'None []\n'), done.stderr
     assert load_vehicle('demo_vehicle').axles.wheelbase == 2800.0

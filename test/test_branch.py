@@ -12,11 +12,9 @@ travel 0, then travel).
 from pathlib import Path
 
 from linkage_ros.bench import reference
-from linkage_ros.core import kernel
-from linkage_ros.core.kinematics import Continuation, METHODS, sweep
-from linkage_ros.core.mechanism import compile_scene
-from linkage_ros.core.scene import load_scene
-from linkage_ros.core.status import Status
+from linkage_ros.core.base import Status
+from linkage_ros.core.model import load_scene
+from linkage_ros.core.solve import compile_scene, Continuation, kernel, METHODS, sweep
 import numpy as np
 import pytest
 

@@ -9,10 +9,9 @@ weak spot "out-of-reach commands are expensive" (7 ms each, limits found again e
 import math
 from pathlib import Path
 
-from linkage_ros.core.errors import LinkageError
-from linkage_ros.core.kinematics import Continuation, METHODS, sweep
-from linkage_ros.core.scene import load_scene
-from linkage_ros.core.status import Status
+from linkage_ros.core.base import LinkageError, Status
+from linkage_ros.core.model import load_scene
+from linkage_ros.core.solve import Continuation, METHODS, sweep
 import numpy as np
 import pytest
 

@@ -10,10 +10,9 @@ the solver's tolerance and a finite pose, or refused with a Status.
 import math
 
 from hypothesis import example, given, HealthCheck, settings, strategies as st
-from linkage_ros.core.bundled import scene_dir
-from linkage_ros.core.kinematics import Continuation
-from linkage_ros.core.scene import load_scene
-from linkage_ros.core.status import Status
+from linkage_ros.core.base import Status
+from linkage_ros.core.model import load_scene, scene_dir
+from linkage_ros.core.solve import Continuation
 import numpy as np
 import pytest
 

@@ -12,10 +12,10 @@ import io
 from pathlib import Path
 import re
 
-from linkage_ros.core.elements import element_values, ElementValues, prepare, values_at
-from linkage_ros.core.kinematics import Continuation, sweep, travel_range
-from linkage_ros.core.scene import bundled_scenes, load_scene, mirror, translate, UNITS_TO_MM
-from linkage_ros.core.vehicle import load_vehicle
+from linkage_ros.core.measure import element_values, ElementValues, prepare, values_at
+from linkage_ros.core.model import (bundled_scenes, load_scene, load_vehicle, mirror, translate,
+                                    UNITS_TO_MM)
+from linkage_ros.core.solve import Continuation, sweep, travel_range
 from linkage_ros.tools.sweep import main
 import numpy as np
 import pytest
@@ -257,9 +257,8 @@ def test_the_python_of_doc_elements_runs_as_written(capsys):
 
 def spring_through_its_body_point(tmp_path, travel=40.0):
     """Return double_wishbone with its spring's body point where its seat is at travel (mm)."""
-    from linkage_ros.core.mechanism import compile_scene
-    from linkage_ros.core.motion import guidance_rows, pose_batch
-    from linkage_ros.core.mounts import mount_motion, mount_table
+    from linkage_ros.core.measure import guidance_rows, mount_motion, mount_table, pose_batch
+    from linkage_ros.core.solve import compile_scene
     scene = load_scene('double_wishbone')
     mech = compile_scene(scene)
     at = sweep(scene, [travel])

@@ -3,9 +3,9 @@
 from pathlib import Path
 
 from hypothesis import given, HealthCheck, settings, strategies as st
-from linkage_ros.core.elements import element_values
-from linkage_ros.core.kinematics import sweep
-from linkage_ros.core.scene import load_scene, SceneError
+from linkage_ros.core.measure import element_values
+from linkage_ros.core.model import load_scene, SceneError
+from linkage_ros.core.solve import sweep
 from linkage_ros.tools.sweep import main
 import numpy as np
 import pytest

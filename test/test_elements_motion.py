@@ -1,15 +1,14 @@
 """
-The carrier's exact velocity and acceleration per travel (core/motion.py).
+The carrier's exact velocity and acceleration per travel (core/measure/motion.py).
 
 Checked against central differences of solved poses, and the guidance rows it reads against
 the mechanism's own Jacobian.
 """
 
-from linkage_ros.core.kinematics import sweep
-from linkage_ros.core.mechanism import compile_scene, linearize
-from linkage_ros.core.motion import carrier_motion, guidance_rows, pose_batch
-from linkage_ros.core.mounts import Mount, mount_motion, mount_table
-from linkage_ros.core.scene import bundled_scenes, load_scene
+from linkage_ros.core.measure import (carrier_motion, guidance_rows, mount_motion, mount_table,
+                                      pose_batch)
+from linkage_ros.core.model import bundled_scenes, load_scene, Mount
+from linkage_ros.core.solve import compile_scene, linearize, sweep
 import numpy as np
 import pytest
 

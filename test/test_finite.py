@@ -1,14 +1,14 @@
 """
 Finiteness and quaternions, each written once in the core.
 
-The one test of finiteness (linkage_ros.core.finite) and the one quaternion conversion of each
-direction (linkage_ros.core.geometry), against Python's and an independent construction.
+The one test of finiteness (linkage_ros.core.base.finite) and the one quaternion conversion of each
+direction (linkage_ros.core.base.geometry), against Python's and an independent construction.
 """
 
 import math
 
-from linkage_ros.core.finite import all_finite, is_finite_number
-from linkage_ros.core.geometry import exp_so3, matrix_from_quaternion, quaternion_from_matrix
+from linkage_ros.core.base import (all_finite, exp_so3, is_finite_number, matrix_from_quaternion,
+                                   quaternion_from_matrix)
 import numpy as np
 import pytest
 

@@ -11,8 +11,7 @@ from pathlib import Path
 import subprocess
 import sys
 
-from linkage_ros.core.scene import load_scene
-from linkage_ros.core.vehicle import load_vehicle
+from linkage_ros.core.model import load_scene, load_vehicle
 from linkage_ros.ros.corner import corner_outputs
 from linkage_ros.ros.parameters import PARAMETERS
 from linkage_ros.tools.foxglove_layout import foxglove_layout

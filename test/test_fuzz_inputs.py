@@ -14,11 +14,9 @@ import tempfile
 import tracemalloc
 
 from hypothesis import given, HealthCheck, settings, strategies as st
-from linkage_ros.core.errors import LinkageError
-from linkage_ros.core.kinematics import travel_range
-from linkage_ros.core.limits import MAX_POSITIONS, positions_needed
-from linkage_ros.core.scene import load_scene, safe_stem, SceneError
-from linkage_ros.core.vehicle import load_vehicle
+from linkage_ros.core.base import LinkageError, MAX_POSITIONS, positions_needed
+from linkage_ros.core.model import load_scene, load_vehicle, safe_stem, SceneError
+from linkage_ros.core.solve import travel_range
 from linkage_ros.record.mcap_reader import Bag, read_bag, RecordingError
 from linkage_ros.record.mcap_writer import McapRecorder
 import pytest

@@ -11,7 +11,7 @@ scene's range (|travel| <= 50 mm) must be solved; non-finite or beyond 1 m must 
 import math
 
 from hypothesis import given, HealthCheck, settings, strategies as st
-from linkage_ros.core.scene import load_scene
+from linkage_ros.core.model import load_scene
 import pytest
 
 JOINT = 'wheel'

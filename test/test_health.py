@@ -7,8 +7,8 @@ period summarising it, and a report at once for a failed command or a change of 
 
 import math
 
-from linkage_ros.core.kinematics import Continuation
-from linkage_ros.core.scene import load_scene
+from linkage_ros.core.model import load_scene
+from linkage_ros.core.solve import Continuation
 from linkage_ros.health import ERROR, Health, OK, WARN
 import pytest
 

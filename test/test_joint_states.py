@@ -5,8 +5,8 @@ The parameter travel_joint names the joint whose position is the wheel travel (m
 answers carry the JointState's header stamp, not the time of receipt.
 """
 
-from linkage_ros.core.kinematics import sweep
-from linkage_ros.core.scene import load_scene
+from linkage_ros.core.model import load_scene
+from linkage_ros.core.solve import sweep
 from linkage_ros.ros.messages import status_values
 from linkage_ros.ros.node import QOS
 from linkage_ros.ros.testing import spin_until, stamp_ns

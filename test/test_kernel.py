@@ -11,11 +11,11 @@ stress scene, float64 round-off alone is 1.7e-9 mm, so the bound scales with the
 import hashlib
 from pathlib import Path
 
-from linkage_ros.core import body_kernel, element_kernel, kernel, state
-from linkage_ros.core.geometry import camber_toe, matrix_from_quaternion
-from linkage_ros.core.kinematics import Continuation, sweep
-from linkage_ros.core.mechanism import carrier_points, length_errors, linearize
-from linkage_ros.core.scene import bundled_scenes, load_scene
+from linkage_ros.core.base import camber_toe, matrix_from_quaternion, so3
+from linkage_ros.core.model import bundled_scenes, load_scene
+from linkage_ros.core.solve import (body_kernel, Continuation, element_kernel, jacobian_kernel,
+                                    kernel, state, sweep)
+from linkage_ros.core.solve.mechanism import carrier_points, length_errors, linearize
 from linkage_ros.study import pose_kernel, variant_kernel
 import numpy as np
 import pytest
@@ -83,7 +83,9 @@ def test_a_kernel_module_names_the_digest_of_each_file_it_compiles_in(module, co
                                                                       attribute):
     # numba's cache follows each file alone: a module that compiles another file's functions
     # in (so3.py's rotations, jacobian_kernel.py's linear algebra) must change when it does.
-    digest = hashlib.sha256((Path(kernel.__file__).parent / compiled_in).read_bytes()).hexdigest()
+    source = {'so3.py': so3, 'jacobian_kernel.py': jacobian_kernel,
+              'kernel.py': kernel}[compiled_in]
+    digest = hashlib.sha256(Path(source.__file__).read_bytes()).hexdigest()
     name = Path(module.__file__).name
     assert getattr(module, attribute) == digest, (
         f"{compiled_in} changed: set {attribute} = '{digest}' in {name}, so that numba "

@@ -4,12 +4,11 @@ from pathlib import Path
 import subprocess
 import sys
 
-from linkage_ros.core import paper_method, pose_newton
-from linkage_ros.core.geometry import camber_toe, exp_so3, trilaterate
-from linkage_ros.core.kinematics import Continuation, METHODS, sweep, travel_range
-from linkage_ros.core.mechanism import carrier_points, compile_scene, linearize
-from linkage_ros.core.scene import bundled_scenes, load_scene, mirror
-from linkage_ros.core.status import Status
+from linkage_ros.core.base import camber_toe, exp_so3, Status, trilaterate
+from linkage_ros.core.model import bundled_scenes, load_scene, mirror
+from linkage_ros.core.solve import (Continuation, METHODS, paper_method, pose_newton, sweep,
+                                    travel_range)
+from linkage_ros.core.solve.mechanism import carrier_points, compile_scene, linearize
 import numpy as np
 import pytest
 import yaml
@@ -228,8 +227,8 @@ def test_large_jump_is_walked_in_substeps_to_the_same_pose():
 
 
 def test_the_core_package_imports_nothing_of_ros_mcap_rerun_or_matplotlib():
-    code = ('import sys, linkage_ros, linkage_ros.core, linkage_ros.core.alignment, '
-            'linkage_ros.core.vehicle, linkage_ros.tools.sweep; '
+    code = ('import sys, linkage_ros, linkage_ros.core, linkage_ros.core.measure.alignment, '
+            'linkage_ros.core.model.vehicle, linkage_ros.tools.sweep; '
             'print(sorted(m for m in ("rclpy", "mcap", "rerun", "matplotlib") '
             'if m in sys.modules))')
     out = subprocess.run([sys.executable, '-c', code], capture_output=True, text=True, check=True)

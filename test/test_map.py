@@ -11,12 +11,10 @@ from pathlib import Path
 import subprocess
 import sys
 
-from linkage_ros.core.axle import solve_axle
-from linkage_ros.core.kinematics import Continuation, Sweep
-from linkage_ros.core.mechanism import carrier_points
-from linkage_ros.core.scene import load_scene
-from linkage_ros.core.vehicle import load_vehicle
-from linkage_ros.core.vehicle_axles import axle_of
+from linkage_ros.core.axle import axle_of, solve_axle
+from linkage_ros.core.model import load_scene, load_vehicle
+from linkage_ros.core.solve import Continuation, Sweep
+from linkage_ros.core.solve.mechanism import carrier_points
 from linkage_ros.tools.kinematic_map import main
 from linkage_ros.tools.sweep import header, table
 import numpy as np
@@ -156,7 +154,7 @@ def test_parquet_without_pyarrow_names_the_extra_to_install(tmp_path):
 
 def test_an_axle_map_holds_what_the_axle_module_solves_at_each_pair_of_travels(tmp_path,
                                                                                capsys):
-    # The reference: core.axle.solve_axle, its own continuation, at the heave and roll that
+    # The reference: core.axle.axle.solve_axle, its own continuation, at the heave and roll that
     # give each (left, right) pair: heave (l + r) / 2, tan(roll) = (r - l) / design track.
     code, err = run_map(tmp_path, capsys, 'demo_vehicle', '--axle', 'front', '--travel',
                         '-60:60:30', '--format', 'csv,npz,parquet')

@@ -15,8 +15,8 @@ import sys
 from conftest import connect, PARAMS_FILE, Probe, spin_until, stamp_ns
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
 from geometry_msgs.msg import PoseStamped
-from linkage_ros.core.kinematics import Continuation, sweep
-from linkage_ros.core.scene import load_scene, SceneError
+from linkage_ros.core.model import load_scene, SceneError
+from linkage_ros.core.solve import Continuation, sweep
 from linkage_ros.ros.messages import status_values
 from linkage_ros.ros.node import PARAMETERS, QOS, QOS_DEPTH, SuspensionNode
 import numpy as np
@@ -543,7 +543,7 @@ def test_a_recording_holds_the_text_of_its_scene_file(ros_context, tmp_path, mon
 
 def test_a_vehicle_recording_holds_the_vehicle_file_and_each_corners_scene(ros_context,
                                                                            tmp_path):
-    from linkage_ros.core.vehicle import load_vehicle
+    from linkage_ros.core.model import load_vehicle
     node = SuspensionNode(context=ros_context, parameter_overrides=[
         Parameter('vehicle', value='demo_vehicle'),
         Parameter('record_mcap', value=str(tmp_path / 'run.mcap'))])

@@ -10,10 +10,9 @@ poses the core's Continuation solves for the same commands, in the same order.
 import math
 
 from diagnostic_msgs.msg import DiagnosticStatus
-from linkage_ros.core.elements import element_values
-from linkage_ros.core.kinematics import Continuation
-from linkage_ros.core.scene import load_scene
-from linkage_ros.core.vehicle import load_vehicle
+from linkage_ros.core.measure import element_values
+from linkage_ros.core.model import load_scene, load_vehicle
+from linkage_ros.core.solve import Continuation
 from linkage_ros.ros.node import QOS
 from linkage_ros.ros.testing import spin_until
 import numpy as np

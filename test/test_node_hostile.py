@@ -10,8 +10,7 @@ node lost all four corners with it).
 
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
 from geometry_msgs.msg import PoseStamped
-from linkage_ros.core.scene import load_scene
-from linkage_ros.core.vehicle import load_vehicle
+from linkage_ros.core.model import load_scene, load_vehicle
 from linkage_ros.ros.messages import status_values
 from linkage_ros.ros.qos import QOS
 from linkage_ros.ros.testing import spin_until

@@ -12,7 +12,7 @@ import signal
 import subprocess
 
 from conftest import connect, Probe, spin_until
-from linkage_ros.core.scene import load_scene
+from linkage_ros.core.model import load_scene
 from linkage_ros.ros.node import PARAMETERS
 from linkage_ros.ros.testing import node_script
 import pytest
@@ -86,7 +86,7 @@ def test_a_mistake_is_one_line_and_status_2(args, says):
 ])
 def test_an_output_that_is_an_input_or_the_other_output_is_refused_untouched(
         tmp_path, monkeypatch, output, other, says):
-    from linkage_ros.core.vehicle import load_vehicle
+    from linkage_ros.core.model import load_vehicle
     monkeypatch.chdir(tmp_path)
     # run.yaml: a copy of a bundled scene or vehicle file (or nothing yet, for two outputs),
     # named once relatively and once by its absolute path: compared resolved, one file.

@@ -2,7 +2,7 @@
 suspension_node's axle roll centres (parameter vehicle, a vehicle file with axles) over DDS.
 
 geometry_msgs/PointStamped on <axle>/roll_centre, m, in the vehicle frame. The expected
-values are core.axle's axle_quantities (the batch path of linkage-axle, Jacobians linearized
+values are core.axle.axle's axle_quantities (the batch path of linkage-axle, Jacobians linearized
 there) at the two poses the core's Continuations solve for the same commands, in order.
 """
 
@@ -12,11 +12,9 @@ import sys
 
 from geometry_msgs.msg import PointStamped
 from linkage_ros.cdr import point_stamped_cdr
-from linkage_ros.core.axle import axle_quantities, roll_centre_of_poses, solve_axle
-from linkage_ros.core.kinematics import Continuation
-from linkage_ros.core.mechanism import linearize
-from linkage_ros.core.vehicle import load_vehicle
-from linkage_ros.core.vehicle_axles import axle_of
+from linkage_ros.core.axle import axle_of, axle_quantities, roll_centre_of_poses, solve_axle
+from linkage_ros.core.model import load_vehicle
+from linkage_ros.core.solve import Continuation, linearize
 from linkage_ros.ros.node import QOS
 from linkage_ros.ros.testing import spin_until
 import numpy as np
@@ -211,8 +209,8 @@ def test_a_vehicle_without_axles_imports_and_publishes_no_roll_centre(tmp_path, 
                     '  fr: {scene: double_wishbone, mirror: true}\n')
     code = f"""
 import sys
-from linkage_ros.ros.testing import init_context, rclpy_try_shutdown
 from linkage_ros.ros.node import SuspensionNode
+from linkage_ros.ros.testing import init_context, rclpy_try_shutdown
 from rclpy.parameter import Parameter
 context = init_context({domain_id})
 node = SuspensionNode(context=context, parameter_overrides=[
@@ -221,7 +219,7 @@ node.corners['fl'].answer(10.0, None, (0, 0), '')
 topics = [name for name, _ in node.get_publisher_names_and_types_by_node(
     node.get_name(), node.get_namespace())]
 print(node.roll_centres, [t for t in topics if 'roll_centre' in t],
-      sorted(m for m in ('linkage_ros.ros.roll_centres', 'linkage_ros.core.axle')
+      sorted(m for m in ('linkage_ros.ros.roll_centres', 'linkage_ros.core.axle.axle')
              if m in sys.modules))
 node.destroy_node()
 rclpy_try_shutdown(context)

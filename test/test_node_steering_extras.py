@@ -9,9 +9,9 @@ commands, solved in the same order.
 import math
 
 from diagnostic_msgs.msg import DiagnosticStatus
-from linkage_ros.core.alignment import alignment
-from linkage_ros.core.kinematics import Continuation
-from linkage_ros.core.scene import load_scene
+from linkage_ros.core.measure import alignment
+from linkage_ros.core.model import load_scene
+from linkage_ros.core.solve import Continuation
 from linkage_ros.ros import messages
 from linkage_ros.ros.markers import marker_points
 from linkage_ros.ros.node import QOS, SuspensionNode

@@ -7,8 +7,8 @@ from the core for the vehicle's corner scenes (right corners are the left scenes
 
 from diagnostic_msgs.msg import DiagnosticArray
 from geometry_msgs.msg import PoseStamped
-from linkage_ros.core.kinematics import Continuation
-from linkage_ros.core.vehicle import load_vehicle
+from linkage_ros.core.model import load_vehicle
+from linkage_ros.core.solve import Continuation
 from linkage_ros.ros.messages import status_values
 from linkage_ros.ros.node import QOS, SuspensionNode
 from linkage_ros.ros.testing import spin_until

@@ -9,8 +9,8 @@ import math
 
 from conftest import connect, Probe, spin_until
 from diagnostic_msgs.msg import DiagnosticStatus
-from linkage_ros.core.kinematics import sweep
-from linkage_ros.core.scene import load_scene
+from linkage_ros.core.model import load_scene
+from linkage_ros.core.solve import sweep
 from linkage_ros.ros.messages import status_values
 import numpy as np
 import pytest
@@ -229,7 +229,7 @@ def test_a_new_scene_keeps_the_elements_topic_and_publishes_its_own_elements(
         suspension_node, probe, client):
     # five_link's damper and spring, then macpherson's strut, on the one elements publisher
     # (its subscribers stay matched across the change)
-    from linkage_ros.core.elements import element_values
+    from linkage_ros.core.measure import element_values
     from sensor_msgs.msg import JointState
     node = suspension_node()
     got = []

@@ -12,9 +12,9 @@ import threading
 
 from conftest import spin_until
 from diagnostic_msgs.msg import DiagnosticStatus
-from linkage_ros.core.errors import LinkageError
-from linkage_ros.core.kinematics import Continuation
-from linkage_ros.core.scene import load_scene
+from linkage_ros.core.base import LinkageError
+from linkage_ros.core.model import load_scene
+from linkage_ros.core.solve import Continuation
 from linkage_ros.ros.messages import status_values
 from linkage_ros.ros.node import QOS, SuspensionNode
 import pytest
@@ -131,7 +131,7 @@ def test_commands_are_answered_while_a_new_scene_loads_and_the_request_waits_for
         suspension_node, probe, client, monkeypatch):
     # The loader is held until the test lets it go: a large scene (0.5 MB took 1-4 s) that
     # loaded on the executor would hold every command back as long.
-    import linkage_ros.core.scene as scenes
+    import linkage_ros.core.model as scenes
     load, release = scenes.load_scene, threading.Event()
 
     def held_load(name):

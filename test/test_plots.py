@@ -9,7 +9,7 @@ makes this fail until the picture is made again and committed.
 
 from pathlib import Path
 
-from linkage_ros.core.scene import load_scene
+from linkage_ros.core.model import load_scene
 from linkage_ros.tools.plot import camber_toe_figure, main
 from matplotlib.testing.compare import compare_images
 import pytest

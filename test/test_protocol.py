@@ -15,8 +15,8 @@ import sys
 
 from builtin_interfaces.msg import Time
 from linkage_ros.cdr import float64_of, from_cdr
-from linkage_ros.core.scene import load_scene
-from linkage_ros.core.status import Status
+from linkage_ros.core.base import Status
+from linkage_ros.core.model import load_scene
 from linkage_ros.protocol import Responder
 from linkage_ros.record.mcap_writer import McapRecorder
 from linkage_ros.ros import messages

@@ -1,4 +1,8 @@
-"""The registry of quantities (core/quantities.py): every output names only what it declares."""
+"""
+The registry of quantities (core/measure/quantities.py).
+
+Every output names only what it declares.
+"""
 
 import csv
 import json
@@ -6,9 +10,9 @@ from pathlib import Path
 import re
 
 from linkage_ros.core import quantities as registry
-from linkage_ros.core.alignment import alignment
-from linkage_ros.core.kinematics import Continuation
-from linkage_ros.core.scene import load_scene
+from linkage_ros.core.measure import alignment
+from linkage_ros.core.model import load_scene
+from linkage_ros.core.solve import Continuation
 from linkage_ros.protocol import ANSWER_TYPES
 from linkage_ros.record import rerun_draw
 from linkage_ros.ros import corner, messages
@@ -79,7 +83,7 @@ def test_templates_find_concrete_names_and_nothing_else():
     assert registry.quantity('right_toe_ground_deg').name == '{side}_toe_ground_deg'
     assert registry.quantity('arb_ratio_left_deg_per_mm').name == 'arb_ratio_{side}_deg_per_mm'
     assert not registry.known('middle_toe_deg') and not registry.known('camber')
-    assert registry.element_columns('s', rate=False) == ['s_length_mm', 's_ratio']
+    assert registry.columns_of_element('s', rate=False) == ['s_length_mm', 's_ratio']
 
 
 def test_si_names_are_one_per_quantity():
@@ -89,7 +93,8 @@ def test_si_names_are_one_per_quantity():
 
 def test_doc_quantities_md_is_the_registry():
     assert (ROOT / 'doc' / 'quantities.md').read_text() == registry.markdown_table(), (
-        'doc/quantities.md is stale: python -m linkage_ros.core.quantities > doc/quantities.md')
+        'doc/quantities.md is stale: '
+        'python -m linkage_ros.core.measure.quantities > doc/quantities.md')
 
 
 # --- the outputs ------------------------------------------------------------------------------

@@ -20,8 +20,8 @@ import textwrap
 from conftest import connect, Probe, spin_until   # test/conftest.py: launch-free ROS helpers
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
 from geometry_msgs.msg import PoseStamped
-from linkage_ros.core.kinematics import sweep
-from linkage_ros.core.scene import load_scene
+from linkage_ros.core.model import load_scene
+from linkage_ros.core.solve import sweep
 from linkage_ros.record.interfaces import message_definition, SEPARATOR, share_dirs
 from linkage_ros.record.mcap_reader import read_bag, RecordingError
 from linkage_ros.record.mcap_writer import McapRecorder

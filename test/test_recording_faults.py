@@ -213,7 +213,7 @@ def test_a_recording_that_cannot_start_writing_is_refused_at_once():
 MIRROR_WITHOUT_ROOM_CHECK = """
 import resource, signal, sys
 from std_msgs.msg import Float64
-from linkage_ros.core.scene import load_scene
+from linkage_ros.core.model import load_scene
 import linkage_ros.record.rerun_view as rerun_view
 rerun_view.lack_of_room = lambda path, room=0: ''
 signal.signal(signal.SIGXFSZ, signal.SIG_IGN)

@@ -12,7 +12,7 @@ import os
 import subprocess
 import sys
 
-from linkage_ros.core.scene import load_scene
+from linkage_ros.core.model import load_scene
 from linkage_ros.record.errors import RecordingError
 from linkage_ros.record.mcap_writer import McapRecorder
 from linkage_ros.record.rerun_view import RerunRecorder

@@ -10,8 +10,8 @@ import math
 from pathlib import Path
 
 from linkage_ros.bench import peers, reference
-from linkage_ros.core.kinematics import sweep, travel_range
-from linkage_ros.core.scene import load_scene
+from linkage_ros.core.model import load_scene
+from linkage_ros.core.solve import sweep, travel_range
 import numpy as np
 import pytest
 from test_stability import stress_scene, TOGGLE_LIMIT_MM

@@ -366,7 +366,7 @@ def test_a_sweep_stores_the_text_of_its_scene_file(tmp_path):
 
 def test_a_vehicle_recording_is_solved_with_the_corner_its_topic_names(tmp_path, capsys):
     from linkage_ros import Continuation
-    from linkage_ros.core.vehicle import load_vehicle
+    from linkage_ros.core.model import load_vehicle
     text = (ROOT / 'config' / 'vehicles' / 'demo_vehicle.yaml').read_text()
     bag, out = tmp_path / 'car.mcap', tmp_path / 'out.mcap'
     write_stored(bag, {'linkage_ros': {'vehicle_yaml': text}}, [0.01, 0.02],
@@ -384,7 +384,7 @@ def test_a_vehicle_recording_is_solved_with_the_corner_its_topic_names(tmp_path,
 
 def test_a_stored_scene_with_an_alias_chain_is_refused_in_one_line(tmp_path, capsys):
     # A "billion laughs" chain: 10 levels of 10 aliases stand for 1e10 values, refused by the
-    # loader's bound on values (core.yaml_file.VALUES_LIMIT) before anything is expanded.
+    # loader's bound on values (core.model.yaml_file.VALUES_LIMIT) before anything is expanded.
     levels = ['l0: &l0 [x, x, x, x, x, x, x, x, x, x]'] + [
         f'l{i}: &l{i} [' + ', '.join([f'*l{i - 1}'] * 10) + ']' for i in range(1, 10)]
     bag = tmp_path / 'run.mcap'

@@ -12,7 +12,7 @@ from pathlib import Path
 import shutil
 import struct
 
-from linkage_ros.core.scene import load_scene
+from linkage_ros.core.model import load_scene
 from linkage_ros.tools.replay import main
 from mcap.reader import make_reader
 from mcap.writer import Writer

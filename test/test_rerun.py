@@ -12,9 +12,9 @@ from pathlib import Path
 import subprocess
 import sys
 
-from linkage_ros.core.geometry import carrier_points, matrix_from_quaternion
-from linkage_ros.core.kinematics import sweep, travel_range
-from linkage_ros.core.scene import link_polylines, load_scene
+from linkage_ros.core.base import carrier_points, matrix_from_quaternion
+from linkage_ros.core.model import link_polylines, load_scene
+from linkage_ros.core.solve import sweep, travel_range
 from linkage_ros.record.rerun_draw import link_points, wheel_circle
 from linkage_ros.record.rerun_view import RerunRecorder
 from linkage_ros.tools.rerun_convert import main
@@ -179,7 +179,7 @@ def test_blueprint_opens_on_a_3d_view_beside_three_plots(example_rrd):
 
 def test_a_vehicle_recording_shows_every_corner_in_one_3d_view_beside_the_plots(tmp_path):
     from std_msgs.msg import Float64
-    from linkage_ros.core.vehicle import load_vehicle
+    from linkage_ros.core.model import load_vehicle
     corners = load_vehicle('demo_vehicle').corners
     out = tmp_path / 'vehicle.rrd'
     with RerunRecorder(out, corners=corners) as viewer:

@@ -13,8 +13,7 @@ import struct
 
 from linkage_ros import cdr
 from linkage_ros.cli import safe_name
-from linkage_ros.core.scene import load_scene
-from linkage_ros.core.vehicle import load_vehicle
+from linkage_ros.core.model import load_scene, load_vehicle
 from linkage_ros.record import label_layout
 from linkage_ros.record.rerun_draw import eye, labelled_points
 from linkage_ros.record.rerun_view import RerunRecorder

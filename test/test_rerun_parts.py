@@ -8,7 +8,7 @@ A run whose scene changed while the node ran (plain: each part drawn with its ow
 back with Rerun's RrdReader.
 """
 
-from linkage_ros.core.scene import load_scene
+from linkage_ros.core.model import load_scene
 from linkage_ros.record.mcap_writer import McapRecorder
 from linkage_ros.record.rerun_draw import HIDDEN_SCALE
 from linkage_ros.record.rerun_tf import HIDDEN

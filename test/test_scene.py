@@ -3,7 +3,8 @@
 import copy
 from pathlib import Path
 
-from linkage_ros.core.scene import bundled_scenes, load_scene, mirror, SceneError
+from linkage_ros.core.model import (bundled_scenes, KingpinPoint, load_scene, mirror,
+                                    SceneError)
 import numpy as np
 import pytest
 import yaml
@@ -344,3 +345,15 @@ def test_a_scene_name_gives_a_file_stem_that_stays_in_its_folder(tmp_path, name,
     assert scene.file_stem == stem
     out = tmp_path / f'{scene.file_stem}_sweep.mcap'
     assert out.resolve().parent == tmp_path.resolve()
+
+
+def test_a_scenes_kingpin_key_is_kept_as_a_typed_field_of_two_joints():
+    # kingpin: [UpperArm, [Lateral, TrailingLink]]: a ball joint and a virtual one (two links)
+    scene = load_scene('chrono_generic_multilink')
+    names = [c.name for c in scene.constraints]
+    upper, lower = scene.kingpin
+    assert upper == KingpinPoint('carrier', (names.index('UpperArm'),))
+    assert lower == KingpinPoint('virtual', tuple(sorted((names.index('Lateral'),
+                                                          names.index('TrailingLink')))))
+    assert mirror(scene).kingpin == scene.kingpin
+    assert load_scene('double_wishbone').kingpin is None   # no key: the default axis

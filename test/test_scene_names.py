@@ -13,8 +13,7 @@ import subprocess
 import sys
 import threading
 
-from linkage_ros.core.scene import load_scene, SceneError
-from linkage_ros.core.vehicle import load_vehicle
+from linkage_ros.core.model import load_scene, load_vehicle, SceneError
 import pytest
 from test_scene import VALID
 import yaml

@@ -9,8 +9,8 @@ exactly the alignment given: a spin-axis point rounded to 0.1 mm gives 0.79988 d
 import copy
 import math
 
-from linkage_ros.core.kinematics import sweep
-from linkage_ros.core.scene import mirror, parse_scene, SceneError
+from linkage_ros.core.model import mirror, parse_scene, SceneError
+from linkage_ros.core.solve import sweep
 import numpy as np
 import pytest
 

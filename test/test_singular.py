@@ -12,12 +12,11 @@ from pathlib import Path
 import subprocess
 import sys
 
-from linkage_ros.core import arclength, paper_method, pose_newton
-from linkage_ros.core.kinematics import Continuation, METHODS, sweep, travel_range
-from linkage_ros.core.mechanism import (compile_scene, design_condition, design_jacobian,
-                                        linearize, SINGULAR_CONDITION)
-from linkage_ros.core.scene import bundled_scenes, load_scene
-from linkage_ros.core.status import Status
+from linkage_ros.core.base import Status
+from linkage_ros.core.model import bundled_scenes, load_scene
+from linkage_ros.core.solve import (arclength, compile_scene, Continuation, design_condition,
+                                    design_jacobian, linearize, METHODS, paper_method, pose_newton,
+                                    SINGULAR_CONDITION, sweep, travel_range)
 import numpy as np
 import pytest
 
@@ -135,7 +134,7 @@ def test_no_bundled_or_stress_scene_is_warned_of_as_singular(name):
 def test_a_scene_load_compiles_no_kernel_on_a_cold_cache(tmp_path):
     # The warning is computed at every load, before the node compiles the kernels in a child
     # process (interruptibly): the load itself must not compile one (5 s, uninterruptible).
-    script = ('from linkage_ros.core.scene import load_scene; import sys; '
+    script = ('from linkage_ros.core.model.scene import load_scene; import sys; '
               'print(len(load_scene(sys.argv[1]).warnings))')
     env = {**os.environ, 'NUMBA_CACHE_DIR': str(tmp_path / 'cache')}
     done = subprocess.run([sys.executable, '-c', script, str(SINGULAR)], env=env,

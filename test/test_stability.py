@@ -16,9 +16,9 @@ from diagnostic_msgs.msg import DiagnosticStatus
 from hypothesis import assume, example, given, HealthCheck, settings, strategies as st
 from linkage_ros.bench import reference
 from linkage_ros.bench.stress import hardpoint_count, perturbed, random_walk
-from linkage_ros.core.kinematics import Continuation, Settings, sweep, travel_range
-from linkage_ros.core.pose_newton import FREE
-from linkage_ros.core.scene import bundled_scenes, load_scene, SceneError
+from linkage_ros.core.model import bundled_scenes, load_scene, SceneError
+from linkage_ros.core.solve import Continuation, Settings, sweep, travel_range
+from linkage_ros.core.solve.pose_newton import FREE
 from linkage_ros.ros.messages import status_values
 import numpy as np
 import pytest

@@ -5,8 +5,8 @@ import subprocess
 import sys
 import time
 
-from linkage_ros.core.kinematics import sweep
-from linkage_ros.core.scene import load_scene
+from linkage_ros.core.model import load_scene
+from linkage_ros.core.solve import sweep
 from linkage_ros.study.fit import fit
 from linkage_ros.study.targets import load_targets
 import numpy as np

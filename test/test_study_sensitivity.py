@@ -7,12 +7,9 @@ again (hardpoints.scene_data_with and the loader, compile_scene, the batched swe
 Nothing of the study's equations or jets is on that path.
 """
 
-from linkage_ros.core import jets, kernel
-from linkage_ros.core.bundled import bundled_scenes
-from linkage_ros.core.continuation import Continuation
-from linkage_ros.core.kinematics import sweep
-from linkage_ros.core.mechanism import compile_scene
-from linkage_ros.core.scene import load_scene, parse_scene, with_points
+from linkage_ros.core.base import jets
+from linkage_ros.core.model import bundled_scenes, load_scene, parse_scene, with_points
+from linkage_ros.core.solve import compile_scene, Continuation, kernel, sweep
 from linkage_ros.study.hardpoints import load_design, scene_data_with
 from linkage_ros.study.quantities import quantities, SWEEP_COLUMNS
 from linkage_ros.study.sensitivity import sensitivities, sweep_column_rates

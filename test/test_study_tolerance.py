@@ -9,12 +9,8 @@ from pathlib import Path
 import subprocess
 import sys
 
-from linkage_ros.core import kernel
-from linkage_ros.core.continuation import Continuation
-from linkage_ros.core.errors import LinkageError
-from linkage_ros.core.geometry import camber_toe
-from linkage_ros.core.kinematics import sweep
-from linkage_ros.core.mechanism import compile_scene, lengthened, radii
+from linkage_ros.core.base import camber_toe, LinkageError
+from linkage_ros.core.solve import compile_scene, Continuation, kernel, lengthened, radii, sweep
 from linkage_ros.study.executor import executor
 from linkage_ros.study.hardpoints import load_design, scene_with
 from linkage_ros.study.tables import TOLERANCE_COLUMNS

@@ -8,8 +8,8 @@ import subprocess
 import sys
 
 from diagnostic_msgs.msg import DiagnosticStatus
-from linkage_ros.core.kinematics import sweep
-from linkage_ros.core.scene import load_scene
+from linkage_ros.core.model import load_scene
+from linkage_ros.core.solve import sweep
 from linkage_ros.ros import testing
 import numpy as np
 import pytest

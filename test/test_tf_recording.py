@@ -12,8 +12,8 @@ import sys
 import xml.etree.ElementTree as ElementTree
 
 from conftest import spin_until
-from linkage_ros.core.kinematics import sweep
-from linkage_ros.core.scene import load_scene
+from linkage_ros.core.model import load_scene
+from linkage_ros.core.solve import sweep
 from mcap.reader import make_reader
 from mcap_ros2.decoder import DecoderFactory
 import numpy as np
@@ -131,8 +131,8 @@ def test_with_tf_off_the_recording_holds_no_tf_and_the_node_imports_none_of_it(d
     code = f"""
 import sys
 import rclpy
-from linkage_ros.ros.testing import init_context
 from linkage_ros.ros.node import SuspensionNode
+from linkage_ros.ros.testing import init_context
 from rclpy.parameter import Parameter
 context = init_context({domain_id})
 node = SuspensionNode(context=context, parameter_overrides=[

@@ -12,9 +12,8 @@ import sys
 import xml.etree.ElementTree as ElementTree
 
 from linkage_ros.cdr import transforms_of
-from linkage_ros.core.kinematics import Continuation
-from linkage_ros.core.scene import load_scene
-from linkage_ros.core.vehicle import load_vehicle
+from linkage_ros.core.model import load_scene, load_vehicle
+from linkage_ros.core.solve import Continuation
 from linkage_ros.robot_description import robot_description, rotation_of_rpy, rpy
 from linkage_ros.ros.tf import CornerFrames, static_cdr
 import numpy as np

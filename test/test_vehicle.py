@@ -2,9 +2,8 @@
 
 from pathlib import Path
 
-from linkage_ros.core.kinematics import sweep
-from linkage_ros.core.scene import SceneError
-from linkage_ros.core.vehicle import load_vehicle
+from linkage_ros.core.model import load_vehicle, SceneError
+from linkage_ros.core.solve import sweep
 import numpy as np
 import pytest
 
@@ -111,7 +110,7 @@ def test_a_misspelt_top_level_key_is_named_before_corners_is_said_missing(tmp_pa
 
 
 def test_axle_keys_are_read_into_axles_and_free_keys_kept_in_extras(tmp_path):
-    # wheelbase, cg_height and axles are core.vehicle_axles'; description, x_... the user's
+    # wheelbase, cg_height and axles are core.model.vehicle_axles'; description, x_... the user's
     path = tmp_path / 'car.yaml'
     path.write_text('wheelbase: 2800\ncg_height: 550\n'
                     'axles: {front: {left: front_left, right: front_right}}\n'

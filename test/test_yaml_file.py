@@ -13,9 +13,8 @@ from pathlib import Path
 import subprocess
 import sys
 
-from linkage_ros.core.scene import load_scene, SceneError
-from linkage_ros.core.vehicle import load_vehicle
-from linkage_ros.core.yaml_file import FILE_LIMIT_BYTES, read_yaml, VALUES_LIMIT
+from linkage_ros.core.model import (FILE_LIMIT_BYTES, load_scene, load_vehicle, read_yaml,
+                                    SceneError, VALUES_LIMIT)
 import pytest
 
 ROOT = Path(__file__).resolve().parent.parent

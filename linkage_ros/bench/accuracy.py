@@ -37,8 +37,8 @@ from .peers import entries
 from .report import level_table, plot_front, progress, report, write_csv
 from .stress import stress_lines
 from ..cli import EXIT_STATUS, fail, Parser, program, writable_file
-from ..core.kinematics import travel_range
-from ..core.scene import bundled_scenes, load_scene, SceneError
+from ..core.model import bundled_scenes, load_scene, SceneError
+from ..core.solve import travel_range
 from ..core.warmup import compile_if_cold
 
 TOLS = (1e-3, 1e-6, 1e-8, 1e-9, 1e-10, 1e-12)     # mm

@@ -21,9 +21,7 @@ from scipy.optimize import least_squares, root
 from scipy.spatial.transform import Rotation
 
 from .reference import build, equations, exp_so3, LD, PoseModel
-from ..core import paper_method
-from ..core.kinematics import Continuation, sweep
-from ..core.mechanism import compile_scene, linearize
+from ..core.solve import compile_scene, Continuation, linearize, paper_method, sweep
 
 
 class CoreSolver:

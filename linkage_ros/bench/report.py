@@ -17,7 +17,7 @@ import scipy
 
 from .peers import exudyn_version
 from ..cli import save_figure
-from ..core.kinematics import Settings
+from ..core.solve import Settings
 
 LEVELS = (1e-3, 1e-6, 1e-9, 1e-12)                      # mm: accuracy levels of the summary
 GOAL_US, GOAL_ERROR = 20.0, 1e-9    # the goal: 1e-9 mm in at most 20 us per position

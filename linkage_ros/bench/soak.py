@@ -27,9 +27,8 @@ from rclpy.parameter import Parameter
 
 from ..cdr import float64_cdr, pose_of
 from ..cli import EXIT_STATUS, Parser, program
-from ..core.errors import LinkageError
-from ..core.finite import all_finite
-from ..core.scene import load_scene
+from ..core.base import all_finite, LinkageError
+from ..core.model import load_scene
 from ..core.warmup import compile_if_cold
 from ..ros.isolation import init_context
 from ..ros.messages import status_values

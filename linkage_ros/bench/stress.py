@@ -12,9 +12,8 @@ import numpy as np
 
 from . import reference
 from .report import progress
-from ..core.continuation import MIN_STEP
-from ..core.kinematics import Continuation, Settings, sweep, travel_range
-from ..core.scene import bundled_scenes, config_dir, load_scene, parse_scene
+from ..core.model import bundled_scenes, config_dir, load_scene, parse_scene
+from ..core.solve import Continuation, MIN_STEP, Settings, sweep, travel_range
 
 STRESS_DIR = config_dir() / 'stress'
 

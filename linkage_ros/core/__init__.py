@@ -1,8 +1,15 @@
 """
 The kinematics of a suspension corner, ROS-free.
 
-Scene and vehicle files, the mechanism, the compiled solver kernels, the paper's method,
-continuation, alignment.
+Five layers, each importing only from those before it, each with its face (__init__.__all__):
+
+    base/      errors, Status, finiteness, limits, geometry, so3
+    model/     what a file declares: scenes, elements, mounts, kingpin, vehicles, anti-roll bar
+    solve/     the mechanism, the compiled kernels, Newton, continuation, the sweep
+    measure/   what is measured from a solution: alignment, kingpin, motion, elements, bodies
+    axle/      two corners together: heave, roll, roll centre, anti quantities, the bar's values
+
+warmup.py sits above them all (it compiles every layer's kernels).
 
 Imports numpy, scipy, PyYAML and numba only. The public names:
 
@@ -12,10 +19,9 @@ Imports numpy, scipy, PyYAML and numba only. The public names:
     LinkageError                                         base of every bad-input error
 """
 
-from .errors import LinkageError
-from .kinematics import Continuation, Settings, Solution, Sweep, sweep
-from .scene import load_scene, Scene, SceneError
-from .status import Status
+from .base import LinkageError, Status
+from .model import load_scene, Scene, SceneError
+from .solve import Continuation, Settings, Solution, Sweep, sweep
 
 __all__ = ['Continuation', 'LinkageError', 'load_scene', 'Scene', 'SceneError', 'Settings',
            'Solution', 'Status', 'Sweep', 'sweep']

@@ -1,7 +1,7 @@
 """
 The first compile of the numerical kernels: tell whether it is due, say so once, do it.
 
-numba compiles the kernels (KERNEL_MODULES: linkage_ros.core.so3, jacobian_kernel, kernel,
+numba compiles the kernels (KERNEL_MODULES: linkage_ros.core.base.so3, jacobian_kernel, kernel,
 element_kernel, body_kernel) on first use (about 20 s) and keeps the machine code in its
 on-disk cache (NUMBA_CACHE_DIR, else __pycache__ beside each module); later processes load it
 in well under a second. A program calls, before its first solve:
@@ -32,9 +32,9 @@ import subprocess
 import sys
 
 # The modules of numba-compiled functions (each one's own cache files).
-KERNEL_MODULES = ('linkage_ros.core.so3', 'linkage_ros.core.jacobian_kernel',
-                  'linkage_ros.core.kernel', 'linkage_ros.core.element_kernel',
-                  'linkage_ros.core.body_kernel')
+KERNEL_MODULES = ('linkage_ros.core.base.so3', 'linkage_ros.core.solve.jacobian_kernel',
+                  'linkage_ros.core.solve.kernel', 'linkage_ros.core.solve.element_kernel',
+                  'linkage_ros.core.solve.body_kernel')
 MESSAGE = 'compiling the numerical kernels, once, about 20 s'
 _said = False
 
@@ -96,9 +96,9 @@ def compile_kernels() -> None:
     """Solve along every path the programs take, so that every kernel is compiled and cached."""
     import numpy as np
 
-    from .alignment import alignment
-    from .kinematics import Continuation, sweep
-    from .scene import load_scene
+    from .measure.alignment import alignment
+    from .model.scene import load_scene
+    from .solve.kinematics import Continuation, sweep
     steered = load_scene('double_wishbone')     # a steer: rack link: the rack paths too
     for method in ('fast', 'paper'):
         for scene in (load_scene('five_link'), steered):
@@ -117,14 +117,14 @@ def _compile_elements_and_axles(scene) -> None:
     """Solve the elements of a scene that has some, its carrier's motion, an axle, its frames."""
     import numpy as np
 
-    from .axle import slopes, solve_axle
-    from .bodies import body_poses, corner_bodies
-    from .elements import element_values, prepare, values_at
-    from .kinematics import Continuation, sweep
-    from .motion import carrier_motion, guidance_rows, pose_batch
-    from .mounts import Mount, mount_motion, mount_table
-    from .vehicle import load_vehicle
-    from .vehicle_axles import axle_of
+    from .axle.axle import axle_of, slopes, solve_axle
+    from .measure.bodies import body_poses, corner_bodies
+    from .measure.elements import element_values, prepare, values_at
+    from .measure.motion import carrier_motion, guidance_rows, pose_batch
+    from .measure.mounts import mount_motion, mount_table
+    from .model.mounts import Mount
+    from .model.vehicle import load_vehicle
+    from .solve.kinematics import Continuation, sweep
     result = sweep(scene, np.linspace(-20.0, 20.0, 5))
     element_values(scene, result.wheel_center, result.rotation)
     cont = Continuation(scene)

@@ -1,6 +1,6 @@
 """The error of the recording modules: a file that cannot be written or read, a type unknown."""
 
-from ..core.errors import LinkageError
+from ..core.base import LinkageError
 
 
 class RecordingError(LinkageError):

@@ -51,7 +51,7 @@ def share_dirs():
     AMENT_PREFIX_PATH entries, then sys.prefix, then the package's config/interfaces (the
     definitions it ships for packages that may not be installed: tf2_msgs).
     """
-    from ..core.bundled import config_dir
+    from ..core.model import config_dir
     prefixes = [p for p in os.environ.get('AMENT_PREFIX_PATH', '').split(os.pathsep) if p]
     dirs = []
     for share in [Path(prefix) / 'share' for prefix in prefixes + [sys.prefix]] + [

@@ -20,7 +20,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..core.geometry import unit
+from ..core.base import unit
 
 if TYPE_CHECKING:
     from collections.abc import Sequence

@@ -35,11 +35,10 @@ from rerun.components import LineStrip3DBatch
 from rerun.encodings import Vec3DBatch
 
 from .label_layout import place_labels
-from ..core.geometry import (camber_toe, carrier_points, matrix_from_quaternion, perpendicular,
-                             unit)
-from ..core.kinematics import sweep, travel_range
-from ..core.quantities import title
-from ..core.scene import link_polylines
+from ..core.base import camber_toe, carrier_points, matrix_from_quaternion, perpendicular, unit
+from ..core.measure import title
+from ..core.model import link_polylines
+from ..core.solve import sweep, travel_range
 
 if TYPE_CHECKING:
     from collections.abc import Sequence
@@ -47,12 +46,12 @@ if TYPE_CHECKING:
 
     from numpy.typing import ArrayLike
 
-    from ..core.scene import Scene
+    from ..core.model import Scene
 
 APP_ID = 'linkage_ros'
 TIME = 'ros_time'
 SEQUENCE = 'command'
-# plot name (a registry quantity, core/quantities.py): its title, 'camber (deg)'
+# plot name (a registry quantity, core/measure/quantities.py): its title, 'camber (deg)'
 SERIES = {name: title(name) for name in ('travel_mm', 'camber_deg', 'toe_deg', 'rack_mm')}
 WHEEL_SEGMENTS = 72
 # Drawing sizes (mm): thin enough not to hide the joints of a 1 m wide corner.
@@ -73,7 +72,7 @@ EYE_DISTANCE = 1.7      # times the size of the scene's bounding box
 
 def link_points(scene: Scene, joints: ArrayLike) -> np.ndarray:
     """
-    Return the link polylines (core.scene.link_polylines) of many poses as one array.
+    Return the link polylines (core.model.scene.link_polylines) of many poses as one array.
 
     joints (n, m, 3) mm -> (n, sum of polyline lengths, 3) mm, polylines one after another
     in constraint order.

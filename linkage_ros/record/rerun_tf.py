@@ -35,8 +35,7 @@ import rerun.blueprint as rrb
 
 from .rerun_draw import APP_ID, EYE_DIRECTION, EYE_DISTANCE, framed, TIME
 from ..cdr import CdrError, float64_of, string_of, transforms_of
-from ..core.errors import LinkageError
-from ..core.geometry import unit
+from ..core.base import LinkageError, unit
 
 if TYPE_CHECKING:
     from .mcap_reader import Bag

@@ -23,12 +23,12 @@ from .errors import RecordingError
 from .output_file import claim, whereabouts
 from .rerun_draw import new_recording, send_hidden, send_poses, send_values
 from ..cdr import CdrError, float64_of, pose_of, to_cdr
-from ..core.geometry import MM_PER_M
+from ..core.base import MM_PER_M
 
 if TYPE_CHECKING:
     from os import PathLike
 
-    from ..core.scene import Scene
+    from ..core.model import Scene
 
 
 def topic_role(topic: str) -> str | None:

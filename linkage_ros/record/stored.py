@@ -16,12 +16,10 @@ from pathlib import Path
 import tempfile
 from typing import TYPE_CHECKING
 
-from ..core.scene import parse_scene, SceneError
-from ..core.yaml_file import FILE_LIMIT_BYTES, parse_yaml
+from ..core.model import FILE_LIMIT_BYTES, parse_scene, parse_yaml, SceneError
 
 if TYPE_CHECKING:
-    from ..core.scene import Scene
-    from ..core.vehicle import Vehicle
+    from ..core.model import Scene, Vehicle
 
 RECORD = 'linkage_ros'
 SCENE_KEY, VEHICLE_KEY = 'scene_yaml', 'vehicle_yaml'
@@ -44,7 +42,7 @@ def load_stored(metadata: dict, where: str) -> Scene | Vehicle | None:
 
 
 def _parsed(text, origin):
-    """Return the data of stored YAML text, within the bounds of a file (core.yaml_file)."""
+    """Return the data of stored YAML text, within the bounds of a file (core.model.yaml_file)."""
     size = len(text.encode())
     if size > FILE_LIMIT_BYTES:
         raise SceneError(origin, 'file', f'{size:,} bytes, over the limit of '
@@ -59,7 +57,7 @@ def _vehicle(stored, where):
     Each corner's scene is written where the vehicle file names it (a relative path, kept
     inside a temporary folder); bundled names need no file.
     """
-    from ..core.vehicle import load_vehicle
+    from ..core.model import load_vehicle
     origin = f'{where} (its {VEHICLE_KEY})'
     data = _parsed(stored[VEHICLE_KEY], origin)
     with tempfile.TemporaryDirectory() as folder:

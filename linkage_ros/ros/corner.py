@@ -41,8 +41,8 @@ if TYPE_CHECKING:
     from rclpy.node import Node
     from rclpy.publisher import Publisher
 
-    from ..core.kinematics import Solution
-    from ..core.scene import Scene
+    from ..core.model import Scene
+    from ..core.solve import Solution
 
 FLOAT64 = 'std_msgs/msg/Float64'
 JOINT_STATE = 'sensor_msgs/msg/JointState'
@@ -193,7 +193,7 @@ class Corner:
                 self.node.destroy_publisher(self.extras.pop(name)[0])
 
     def _alignment(self, solution: Solution, stamp: tuple[int, int]):
-        from ..core.alignment import alignment
+        from ..core.measure import alignment
         return messages.alignment_array(alignment(self.scene, self.solver.mech,
                                                   solution.wheel_center, solution.rotation,
                                                   solution.rack))

@@ -2,7 +2,7 @@
 A corner's springs, dampers and lengths on suspension_node: lengths and motion ratios per answer.
 
     pub elements   sensor_msgs/JointState   one message per answered command, only for a scene
-                                            with elements (linkage_ros.core.elements):
+                                            with elements (linkage_ros.core.measure.elements):
         header     the answer's stamp, frame_id
         name       the scene's element names, in the scene's order
         position   each element's length, m
@@ -21,15 +21,14 @@ from __future__ import annotations
 from typing import Callable, TYPE_CHECKING
 
 from ..cdr import joint_state_cdr
-from ..core.elements import prepare, values_at
-from ..core.geometry import M_PER_MM
+from ..core.base import M_PER_MM
+from ..core.measure import prepare, values_at
 
 if TYPE_CHECKING:
     import numpy as np
 
-    from ..core.kinematics import Solution
-    from ..core.mechanism import Mechanism
-    from ..core.scene import Scene
+    from ..core.model import Scene
+    from ..core.solve import Mechanism, Solution
 
 TOPIC = 'elements'
 

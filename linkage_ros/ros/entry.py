@@ -31,7 +31,7 @@ from .node import SuspensionNode
 from .parameters import help_lines
 from ..cli import held_stderr
 from ..core import warmup
-from ..core.errors import LinkageError
+from ..core.base import LinkageError
 
 if TYPE_CHECKING:
     from rclpy.node import Node

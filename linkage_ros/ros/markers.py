@@ -8,7 +8,8 @@ Imported by the node only when its parameter markers is true. Two markers, in fr
     ns 'joints' (id 1) SPHERE_LIST: the carrier joints, in the scene's constraint order
 
 Carrier joints are M + R (b0 - M0) (wheel centre M, rotation R relative to design, design
-joint b0 and centre M0): core.geometry.carrier_points, drawn as core.scene.link_polylines.
+joint b0 and centre M0): core.base.geometry.carrier_points, drawn as
+core.model.scene.link_polylines.
 """
 
 from geometry_msgs.msg import Point
@@ -16,8 +17,8 @@ import numpy as np
 from std_msgs.msg import ColorRGBA
 from visualization_msgs.msg import Marker, MarkerArray
 
-from ..core.geometry import carrier_points, M_PER_MM
-from ..core.scene import link_polylines
+from ..core.base import carrier_points, M_PER_MM
+from ..core.model import link_polylines
 
 LINE_WIDTH = 0.004     # of the scene size: thin lines that stay visible at any scene scale
 JOINT_SIZE = 0.015     # sphere diameter, of the scene size
@@ -29,7 +30,7 @@ def link_segments(scene, joints):
     """
     Return line-list point pairs (k, 3) mm of the links, arms and struts for joints (m, 3) mm.
 
-    A pair goes from each body point of a polyline (core.scene.link_polylines: its ends) to
+    A pair goes from each body point of a polyline (core.model.scene.link_polylines: its ends) to
     its joint (the second point).
     """
     pairs = []

@@ -28,8 +28,8 @@ from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
 from std_msgs.msg import Float64MultiArray, MultiArrayDimension, MultiArrayLayout
 
 from ..cdr import float64_of
-from ..core.geometry import M_PER_MM, MM_PER_M
-from ..core.quantities import quantity, TOPICS
+from ..core.base import M_PER_MM, MM_PER_M
+from ..core.measure import quantity, TOPICS
 
 if TYPE_CHECKING:
     from collections.abc import Iterable
@@ -37,7 +37,7 @@ if TYPE_CHECKING:
     from builtin_interfaces.msg import Time
     from sensor_msgs.msg import JointState
 
-    from ..core.alignment import Alignment
+    from ..core.measure import Alignment
     from ..health import Health
 
 
@@ -67,7 +67,7 @@ def joint_travel_mm(msg: JointState, joint: str) -> float | None:
     return float(msg.position[index]) * MM_PER_M
 
 
-# The alignment message's fields are the registry's (core/quantities.TOPICS['alignment']), in
+# The alignment message's fields are the registry's (core/measure/quantities.TOPICS['alignment']), in
 # that order: table name -> (Alignment attribute, column or None).
 _ATTRIBUTES = {
     'camber_gain_deg_per_mm': ('camber_gain', None),
@@ -95,7 +95,7 @@ def alignment_array(alignment: Alignment) -> Float64MultiArray:
     """
     Return the alignment set of one solved position as a Float64MultiArray in SI.
 
-    alignment is a linkage_ros.core.alignment.Alignment with n = 1. data[i] is the field
+    alignment is a linkage_ros.core.measure.alignment.Alignment with n = 1. data[i] is the field
     named by layout.dim[i].label (one dimension of size 1 per field, labels and order of
     ALIGNMENT_FIELDS). NaN where a field is undefined (no steer axis without a steer: rack
     link, no contact patch without a wheel radius).

@@ -1,7 +1,7 @@
 """
 suspension_node: wheel travel in; wheel-carrier pose, camber, toe and solver health out.
 
-A thin adapter over the kinematics core (linkage_ros.core.kinematics.Continuation): each
+A thin adapter over the kinematics core (linkage_ros.core.solve.kinematics.Continuation): each
 command is solved from the last good pose (large jumps walked in substeps of max_step_mm),
 turned into SI messages by linkage_ros.ros.messages, and published. Outputs answer a stamped
 input (JointState) with its header stamp, a Float64 with the node clock's time of receipt
@@ -49,8 +49,8 @@ robot_description transient local, depth 1; each takes qos_overrides.<topic>... 
 TF (ros/tf_outputs.py) is imported only while parameter tf is true; /tf and /tf_static are
 published where tf2_msgs imports, and recorded everywhere.
 
-With parameter vehicle (a vehicle file, linkage_ros.core.vehicle) the node serves every corner:
-each Corner (ros/corner.py) has its own Continuation and the topics above under its name
+With parameter vehicle (a vehicle file, linkage_ros.core.model.vehicle) the node serves every
+corner: each Corner (ros/corner.py) has its own Continuation and the topics above under its name
 (front_left/wheel_travel, ...; steering_rack only where the corner steers), one diagnostic
 status per corner named after it; parameter scene is then not used. Corners whose vehicle entry
 names a travel_joint (and rack_joint) are also answered from one joint_states topic: every
@@ -82,10 +82,10 @@ from .qos import clock_qos, latched_qos, offered, publisher, QOS, QOS_DEPTH, sub
 from .runtime import RuntimeParameters
 from .sinks import check_outputs, open_sinks, recording_metadata, Sinks
 from ..cdr import CdrError, from_cdr, to_cdr, type_name
-from ..core.errors import LinkageError
-from ..core.scene import load_scene
+from ..core.base import LinkageError
+from ..core.model import load_scene
 
-__all__ = ['NODE_NAME', 'PARAMETERS', 'QOS', 'QOS_DEPTH', 'SuspensionNode', 'main', 'run']
+__all__ = ['NODE_NAME', 'PARAMETERS', 'QOS', 'QOS_DEPTH', 'SuspensionNode']
 
 NODE_NAME = 'suspension_kinematics'
 BAD_COMMAND_PERIOD = 5.0   # s: the console names each kind of bad command at most this often
@@ -113,7 +113,7 @@ def load_corners(params: dict) -> Corners:
         scene = load_scene(params['scene'])
         return Corners({'': (scene, '', '')}, {'scene_yaml': scene.source},
                        {'scene file': scene.source}, scene.name)
-    from ..core.vehicle import load_vehicle
+    from ..core.model import load_vehicle
     vehicle = load_vehicle(params['vehicle'])
     scenes = {f'{name}/': (scene, *vehicle.joints.get(name, ('', '')))
               for name, scene in vehicle.corners.items()}
@@ -422,15 +422,3 @@ class SuspensionNode(Node):
                  self._topics(corners, params, every=True).items()}
         for name, problem in unknown_overrides(self, known).items():
             raise LinkageError(f'parameter {name}', problem)
-
-
-def main(args: list[str] | None = None) -> int:
-    """Run suspension_node (linkage_ros.ros.entry.main, where installs made before it point)."""
-    from .entry import main as entry_main
-    return entry_main(args)
-
-
-def run(node: Node) -> int:
-    """Spin node until SIGINT or SIGTERM (linkage_ros.ros.entry.run)."""
-    from .entry import run as entry_run
-    return entry_run(node)

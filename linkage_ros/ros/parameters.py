@@ -28,9 +28,9 @@ from rcl_interfaces.msg import FloatingPointRange, IntegerRange, ParameterDescri
 from rclpy.parameter import Parameter
 
 from .qos import check_overrides, MAX_DEPTH, QOS_DEPTH
-from ..core.errors import LinkageError
-from ..core.fields import name_problem
-from ..core.kinematics import METHODS
+from ..core.base import LinkageError
+from ..core.model import name_problem
+from ..core.solve import METHODS
 
 if TYPE_CHECKING:
     from rclpy.node import Node

@@ -30,7 +30,7 @@ from typing import TYPE_CHECKING
 from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
 from rclpy.qos_overriding_options import QoSOverridingOptions
 
-from ..core.errors import LinkageError
+from ..core.base import LinkageError
 
 if TYPE_CHECKING:
     from rclpy.node import Node

@@ -5,7 +5,7 @@ Each axle's roll centre on suspension_node, for a vehicle file with axles.
         header   the answer's stamp, frame_id (the vehicle frame)
         point    the roll centre in m: y and z where the front-view lines through the two
                  contact patches, square to the patches' velocities under their own wheel's
-                 travel, meet (linkage_ros.core.axle.roll_centre, doc/axle.md); x midway
+                 travel, meet (linkage_ros.core.axle.axle.roll_centre, doc/axle.md); x midway
                  between the two contact patches
 
 When it is published: once both of the axle's corners have been answered with a pose (each
@@ -32,15 +32,15 @@ import numpy as np
 from .qos import publisher
 from ..cdr import point_stamped_cdr
 from ..core.axle import roll_centre_of_poses
-from ..core.geometry import M_PER_MM
+from ..core.base import M_PER_MM
 
 if TYPE_CHECKING:
     from rclpy.node import Node
     from rclpy.qos import QoSProfile
 
     from .corner import Corner, Outlet
-    from ..core.kinematics import Solution
-    from ..core.vehicle_axles import VehicleAxles
+    from ..core.model import VehicleAxles
+    from ..core.solve import Solution
 
 TOPIC = 'roll_centre'
 

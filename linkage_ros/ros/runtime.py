@@ -43,7 +43,7 @@ from rclpy.parameter import Parameter
 
 from .parameters import checked, FIXED, PARAMETERS, unknown_parameter
 from ..cdr import to_cdr
-from ..core.errors import LinkageError
+from ..core.base import LinkageError
 
 if TYPE_CHECKING:
     from rclpy.node import Node
@@ -260,6 +260,6 @@ class SceneLoad:
 
     @staticmethod
     def load(name):
-        """Load the scene of a name or path (core.scene.load_scene, read when called)."""
-        from ..core import scene
-        return scene.load_scene(name)
+        """Load the scene of a name or path (core.model.load_scene, read when called)."""
+        from ..core import model
+        return model.load_scene(name)

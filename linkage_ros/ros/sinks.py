@@ -33,12 +33,12 @@ from pathlib import Path
 from typing import Callable, TYPE_CHECKING
 
 from ..cli import missing_package, writable_file
-from ..core.errors import LinkageError
+from ..core.base import LinkageError
 
 if TYPE_CHECKING:
     from rclpy.qos import QoSProfile
 
-    from ..core.scene import Scene
+    from ..core.model import Scene
 
 OUTPUTS = ('record_mcap', 'rerun_rrd')
 ABOUT = ('scene', 'vehicle', 'method', 'frame_id', 'max_step_mm')

@@ -6,7 +6,7 @@ TF of a solved corner: /tf per answer, /tf_static of the design-fixed frames, as
     static_cdr([frames, ...], stamp)      tf2_msgs/TFMessage: every corner's wheel frame
     tf2_msgs_missing()                    why live /tf cannot be published here ('' if it can)
 
-Frames (linkage_ros.core.bodies): per corner the carrier '<prefix>wheel_carrier' (the
+Frames (linkage_ros.core.measure.bodies): per corner the carrier '<prefix>wheel_carrier' (the
 wheel_carrier_pose the node answers: its transform from frame_id is that pose, bit for bit),
 one frame per link, arm and strut '<prefix><constraint name>', all children of frame_id, and
 the wheel '<prefix>wheel', fixed to the carrier, on /tf_static. prefix: '' for a node of one
@@ -24,12 +24,12 @@ import importlib
 from typing import TYPE_CHECKING
 
 from ..cdr import tf_message_cdr
-from ..core.bodies import body_poses, corner_bodies
-from ..core.geometry import M_PER_MM, quaternion_from_matrix
+from ..core.base import M_PER_MM, quaternion_from_matrix
+from ..core.measure import body_poses, corner_bodies
 
 if TYPE_CHECKING:
-    from ..core.kinematics import Solution
-    from ..core.scene import Scene
+    from ..core.model import Scene
+    from ..core.solve import Solution
 
 TF_TYPE = 'tf2_msgs/msg/TFMessage'
 TF_TOPIC, TF_STATIC_TOPIC = '/tf', '/tf_static'

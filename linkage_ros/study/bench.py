@@ -24,9 +24,8 @@ from .quantities import SWEEP_COLUMNS
 from .sensitivity import pose_derivative, sensitivities, sweep_column_rates
 from .targets import load_targets
 from .tolerance import batches, problem, sigmas, solve_batch
-from ..core.continuation import Continuation
-from ..core.kinematics import sweep
-from ..core.scene import scene_dir
+from ..core.model import scene_dir
+from ..core.solve import Continuation, sweep
 
 TRAVELS = np.linspace(-50.0, 50.0, 11)
 BUMP_STEER = """scene: double_wishbone
@@ -98,7 +97,7 @@ def bench_sensitivity(repeats):
 
 def _kernel_only(scene, table, repeats):
     """Return the CPU time of pose_kernel.sweep_rates_many at one pose, inputs prepared."""
-    from ..core.mechanism import compile_scene, linearize
+    from ..core.solve import compile_scene, linearize
     mech, layout = compile_scene(scene), scene.layout
     center, rotation = table.wheel_center, table.rotation
     jac = np.ascontiguousarray(linearize(mech, center, rotation)[1])

@@ -10,7 +10,7 @@ from __future__ import annotations
 import sys
 
 from ..cli import counted, EXIT_STATUS, fail, millimetres, Parser, program, warn, writable_file
-from ..core.errors import LinkageError
+from ..core.base import LinkageError
 
 PROG = 'linkage-study'
 COMMANDS = ('sensitivity', 'tolerance', 'fit')
@@ -136,7 +136,7 @@ def main(argv: list[str] | None = None) -> int:
     """Run linkage-study: 0 when done, 1 if something is out of reach, 2 for a mistake."""
     args = parse_args(argv)
     from .commands import run_fit, run_sensitivity, run_tolerance
-    from ..core.scene import SceneError
+    from ..core.model import SceneError
     try:
         check(args)
         command = {'sensitivity': run_sensitivity, 'tolerance': run_tolerance,

@@ -15,8 +15,8 @@ from .executor import executor, Progress
 from .hardpoints import load_design
 from .tables import SENSITIVITY_COLUMNS, TOLERANCE_COLUMNS, write_table
 from ..cli import counted
-from ..core.errors import LinkageError
-from ..core.yaml_file import read_yaml
+from ..core.base import LinkageError
+from ..core.model import read_yaml
 
 PROG = 'linkage-study'
 POOL_FROM = 16   # batches (of 4096 variants, about 0.3 s each) that repay starting processes
@@ -121,7 +121,7 @@ def report(targets, result, say) -> int:
 
 
 def _scale(targets):
-    from ..core.scene import UNITS_TO_MM
+    from ..core.model import UNITS_TO_MM
     return UNITS_TO_MM[targets.design.scene.units]
 
 

@@ -22,7 +22,7 @@ import sys
 import time
 from typing import Callable, Iterator, Sequence
 
-from ..core.errors import LinkageError
+from ..core.base import LinkageError
 
 CONNECT_TIMEOUT = 5.0   # s: a scheduler that does not answer by then is unreachable
 PROGRESS_PERIOD = 1.0   # s between progress lines when stderr is not a terminal

@@ -28,7 +28,7 @@ from .executor import in_process
 from .hardpoints import scene_with
 from .sensitivity import sensitivities
 from .targets import Targets
-from ..core.errors import LinkageError
+from ..core.base import LinkageError
 
 PENALTY = 1e6   # each residual of a design that does not assemble over the travels
 

@@ -17,7 +17,7 @@ import numpy as np
 import yaml
 
 from .hardpoints import scene_data_with
-from ..core.scene import load_scene, UNITS_TO_MM
+from ..core.model import load_scene, UNITS_TO_MM
 
 
 def _flow_lists(dumper, data):

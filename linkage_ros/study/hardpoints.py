@@ -21,13 +21,12 @@ from typing import Any, TYPE_CHECKING
 
 import numpy as np
 
-from ..core.errors import LinkageError
-from ..core.scene import (link_fraction, parse_scene, resolve_scene_path, UNITS_TO_MM,
+from ..core.base import LinkageError
+from ..core.model import (link_fraction, parse_scene, read_yaml, resolve_scene_path, UNITS_TO_MM,
                           with_points)
-from ..core.yaml_file import read_yaml
 
 if TYPE_CHECKING:
-    from ..core.scene import Scene
+    from ..core.model import Scene
 
 AXES = ('x', 'y', 'z')
 

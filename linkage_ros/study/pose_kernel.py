@@ -20,9 +20,9 @@ a0 = (M0 - N0) / |M0 - N0|: da = omega x a + R da0. Columns SWEEP_COLUMNS, per m
 from numba import njit
 import numpy as np
 
-from ..core import kernel
-from ..core.jacobian_kernel import factor, solve
-from ..core.so3 import rotate
+from ..core.base.so3 import rotate
+from ..core.solve import kernel
+from ..core.solve.jacobian_kernel import factor, solve
 
 # sha256 of so3.py and of jacobian_kernel.py, whose rotate and LU (factor, solve) are
 # compiled in here: numba's cache follows each file alone (test_kernel checks them)

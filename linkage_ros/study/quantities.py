@@ -18,15 +18,14 @@ import numpy as np
 
 from .equations import jacobian, rack_column
 from .hardpoints import link_fractions
-from ..core import jets as jt
-from ..core.kingpin import kingpin_points
-from ..core.mechanism import geometry_of
-from ..core.quantities import columns, element_columns
+from ..core.base import jets as jt
+from ..core.measure import columns, columns_of_element, kingpin_points
+from ..core.solve import geometry_of
 
 if TYPE_CHECKING:
-    from ..core.scene import Scene
+    from ..core.model import Scene
 
-# Names from the registry (core/quantities.py), as linkage-sweep's columns
+# Names from the registry (core/measure/quantities.py), as linkage-sweep's columns
 SWEEP_COLUMNS = tuple(columns('wheel'))
 ALIGNMENT_COLUMNS = tuple(columns('alignment', 'kingpin'))
 KINGPIN_COLUMNS = tuple(columns('kingpin'))
@@ -37,7 +36,7 @@ E_Z = np.array([0.0, 0.0, 1.0])
 def element_names(scene: Scene) -> list[str]:
     """Return the element quantities a scene has (length, ratio, force of a spring)."""
     return [c for e in scene.elements
-            for c in element_columns(e.name, e.has_rate, wheel_rate=False)]
+            for c in columns_of_element(e.name, e.has_rate, wheel_rate=False)]
 
 
 def quantities(scene: Scene, points, center, rotation, rack: float = 0.0,

@@ -25,16 +25,14 @@ import numpy as np
 
 from .equations import free, residuals
 from .quantities import ALIGNMENT_COLUMNS, element_names, quantities, SWEEP_COLUMNS
-from ..core import jets as jt, kernel
-from ..core.errors import LinkageError
-from ..core.kinematics import sweep
-from ..core.mechanism import compile_scene, geometry_of, is_singular, linearize, radii
-from ..core.status import Status
+from ..core.base import jets as jt
+from ..core.base import LinkageError, Status
+from ..core.solve import compile_scene, geometry_of, is_singular, kernel, linearize, radii, sweep
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
 
-    from ..core.scene import Scene
+    from ..core.model import Scene
 
 
 class Sensitivity(NamedTuple):

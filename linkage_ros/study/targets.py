@@ -24,11 +24,8 @@ import numpy as np
 
 from .hardpoints import AXES, Design, load_design
 from .sensitivity import available
-from ..core.bundled import bundled_scenes
-from ..core.fields import FREE_KEYS
-from ..core.kinematics import travel_range
-from ..core.scene import SceneError, UNITS_TO_MM
-from ..core.yaml_file import read_yaml
+from ..core.model import bundled_scenes, FREE_KEYS, read_yaml, SceneError, UNITS_TO_MM
+from ..core.solve import travel_range
 
 KEYS = ('scene', 'free', 'targets')
 TARGET_KEYS = ('quantity', 'travel', 'value', 'weight', 'tolerance')

@@ -34,13 +34,10 @@ from .executor import in_process
 from .hardpoints import AXES, Design
 from .quantities import SWEEP_COLUMNS
 from .sensitivity import length_rates, sweep_column_rates
-from ..core import state
-from ..core.continuation import Continuation
-from ..core.errors import LinkageError
-from ..core.geometry import camber_toe
-from ..core.kinematics import sweep
-from ..core.mechanism import compile_scene, equation_table, geometry_of, lengthened, linearize
-from ..core.scene import with_points
+from ..core.base import camber_toe, LinkageError
+from ..core.model import with_points
+from ..core.solve import (compile_scene, Continuation, equation_table, geometry_of, lengthened,
+                          linearize, state, sweep)
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike

@@ -1,7 +1,7 @@
 """
 A compiled solve batched over mechanism variants: each variant at n travels, from the design's.
 
-numba-compiled (njit, cache=True) like core/kernel.py, whose step_many and walk it calls, and
+numba-compiled (njit, cache=True) like core/solve/kernel.py, whose step_many and walk it calls, and
 so3.py's rotations: numba's disk cache follows each file alone, and would keep running an old
 step after an edit of kernel.py, so the digests of both files are written here (KERNEL_DIGEST,
 SO3_DIGEST; test_kernel says the values to set). One call solves V variants, each its own
@@ -22,12 +22,12 @@ from typing import NamedTuple
 from numba import njit
 import numpy as np
 
-from ..core import kernel
-from ..core.quantities import columns
-from ..core.so3 import camber_toe, rotate
+from ..core.base.so3 import camber_toe, rotate
+from ..core.measure import columns
+from ..core.solve import kernel
 
 # sha256 of the files compiled in (test_kernel checks them)
-KERNEL_DIGEST = 'fa8249ccb5b6780ef7decee46ed6ec3b0a868bd994ce59b6ab2f4586ace03f12'
+KERNEL_DIGEST = 'aac551c5ae7e0ce7eefb2d02eae639375599903a43e8c3ba5170f5430657f31f'
 SO3_DIGEST = '63b60c6921d8498a47cf8a0a86bdda0a2f05c7473f028ff5e6d7b18de31758ea'
 # What out holds per (variant, travel), in order: the registry's 'wheel' quantities (camber,
 # toe, wheel centre x, y, z; camber and toe in rad here, deg in tables)

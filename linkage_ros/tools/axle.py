@@ -16,11 +16,9 @@ import numpy as np
 
 from ..cli import EXIT_STATUS, fail, Parser, program, warn, writable_file
 from ..core.axle import ACKERMANN_MIN_STEER, solve_axle, wheel_travels
-from ..core.errors import LinkageError
-from ..core.finite import all_finite, is_finite_number
-from ..core.kinematics import sweep, travel_range
-from ..core.scene import SceneError
-from ..core.vehicle import load_vehicle
+from ..core.base import all_finite, is_finite_number, LinkageError
+from ..core.model import load_vehicle, SceneError
+from ..core.solve import sweep, travel_range
 from ..core.warmup import compile_if_cold
 
 PROG = 'linkage-axle'
@@ -221,7 +219,7 @@ def main(argv: list[str] | None = None) -> int:
     """Run linkage-axle: 0 when done, 1 if a position is out of reach, 2 for a mistake."""
     args = parse_args(argv)
     try:
-        from ..core.vehicle_axles import axle_of
+        from ..core.axle import axle_of
         vehicle = load_vehicle(args.vehicle)
         axle = axle_of(vehicle, args.axle)
         heave, roll, rack = positions(args, axle)

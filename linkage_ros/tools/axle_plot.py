@@ -16,10 +16,8 @@ import sys
 import numpy as np
 
 from ..cli import fail, plot_problem, save_figure, warn
-from ..core.axle import solve_axle
-from ..core.scene import link_polylines, SceneError
-from ..core.vehicle import load_vehicle
-from ..core.vehicle_axles import axle_of
+from ..core.axle import axle_of, solve_axle
+from ..core.model import link_polylines, load_vehicle, SceneError
 from ..core.warmup import compile_if_cold
 
 PROG = 'linkage-plot'

@@ -17,11 +17,10 @@ import json
 import sys
 
 from .. import cli
-from ..core.errors import LinkageError
-from ..core.geometry import M_PER_MM
+from ..core.base import LinkageError, M_PER_MM
 
 PROG = 'linkage-foxglove'
-TEMPLATE = 'foxglove_layout.json'     # in the package's config folder (core.bundled)
+TEMPLATE = 'foxglove_layout.json'     # in the package's config folder (core.model.bundled)
 # plot panel: (topic's last name, the message path after it) of what it draws. Travel is
 # drawn as the wheel centre's z of the answers: a vehicle commanded by joint_states has no
 # wheel_travel messages, and every answer has a pose.
@@ -43,7 +42,7 @@ exit status:
 
 def template() -> dict:
     """Return the layout every generated one starts from (config/foxglove_layout.json)."""
-    from ..core.bundled import config_dir
+    from ..core.model import config_dir
     return json.loads((config_dir() / TEMPLATE).read_text(encoding='utf-8'))
 
 

@@ -22,11 +22,9 @@ import yaml
 from .map_files import FORMATS, UNREACHED, write_map, write_unreached
 from .map_grid import axle_grid_map, AXLE_QUANTITIES, corner_map, Grid, GridMap, quantities
 from ..cli import EXIT_STATUS, fail, Parser, program, warn
-from ..core.errors import LinkageError
-from ..core.finite import all_finite
-from ..core.scene import load_scene
-from ..core.vehicle import load_vehicle, vehicle_dir
-from ..core.vehicle_axles import axle_of
+from ..core.axle import axle_of
+from ..core.base import all_finite, LinkageError
+from ..core.model import load_scene, load_vehicle, vehicle_dir
 from ..core.warmup import compile_if_cold
 
 PROG = 'linkage-map'
@@ -44,7 +42,7 @@ EPILOG = """writes into DIR, per corner (the scene's name, or the vehicle's corn
 The quantities are linkage-sweep's columns with --alignment and --elements, in mm and deg.
 With --axle NAME instead: <NAME>_axle.* over left_travel_mm x right_travel_mm (rack 0),
 roll_centre_y_mm, roll_centre_z_mm, roll_centre_height_mm, track_mm and both wheels'
-camber and toe (core/axle.py). Loading a map into an interpolating lookup: doc/maps.md.
+camber and toe (core/axle/axle.py). Loading a map into an interpolating lookup: doc/maps.md.
 
 examples:
   linkage-map double_wishbone --out maps

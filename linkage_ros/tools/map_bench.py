@@ -13,8 +13,8 @@ import time
 
 import numpy as np
 
-from ..core.elements import element_values, prepare, values_at
-from ..core.kinematics import Continuation, sweep
+from ..core.measure import element_values, prepare, values_at
+from ..core.solve import Continuation, sweep
 
 SIZES = (161, 1610, 16100)
 

@@ -9,7 +9,7 @@ are NaN and listed with the reason, never extrapolated.
 
 An axle's map is over (left travel, right travel) at rack 0: the corners move independently,
 so it combines the two wheels' columns; only the roll centre couples them, through a
-function of both wheels' contact patches and their velocities (axle_map; core.axle's).
+function of both wheels' contact patches and their velocities (axle_map; core.axle.axle's).
 """
 
 from __future__ import annotations
@@ -20,19 +20,17 @@ from typing import Callable, NamedTuple, TYPE_CHECKING
 import numpy as np
 
 from .sweep import header, table
-from ..core.alignment import contact_patch
-from ..core.kinematics import sweep, travel_range
-from ..core.mechanism import compile_scene
-from ..core.pose_newton import tangent
-from ..core.quantities import columns
+from ..core.measure import columns, contact_patch
+from ..core.solve import compile_scene, sweep, tangent, travel_range
 
 if TYPE_CHECKING:
     from ..core.axle import Axle
-    from ..core.scene import Scene
+    from ..core.model import Scene
 
 AXES = ('travel_mm', 'rack_mm')
 SKIPPED = ('iterations',)   # how the solver got there, not a quantity of the position
-# the registry's roll centre and track, then both wheels' camber and toe (core/quantities.py)
+# the registry's roll centre and track, then both wheels' camber and toe
+# (core/measure/quantities.py)
 AXLE_QUANTITIES = tuple(columns('roll_centre', 'axle_wheel'))
 
 
@@ -170,7 +168,7 @@ def axle_map(left: WheelColumn, right: WheelColumn,
 
     roll_centre(patch (n, 2, 3), patch_velocity (n, 2, 3)) -> (n, 2): the roll centre's
     (y, z) mm from both wheels (column 0 left, 1 right); height(point (n, 2), patch (n, 2, 3))
-    -> (n,): its height above the ground through the patches (core.axle's functions).
+    -> (n,): its height above the ground through the patches (core.axle.axle's functions).
     """
     nl, nr = len(left.travel), len(right.travel)
     patch = np.stack(np.broadcast_arrays(left.patch[:, None], right.patch[None, :]), axis=2)

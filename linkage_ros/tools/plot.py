@@ -22,9 +22,8 @@ import numpy as np
 
 from ..cli import (counted, EXIT_STATUS, fail, Parser, plot_problem, program, save_figure,
                    warn)
-from ..core.bundled import scene_dir
-from ..core.kinematics import sweep, travel_range
-from ..core.scene import load_scene, SceneError
+from ..core.model import load_scene, scene_dir, SceneError
+from ..core.solve import sweep, travel_range
 from ..core.warmup import compile_if_cold
 
 
@@ -118,8 +117,8 @@ def plot_alignment(scenes, path, results=None):
     matplotlib.use('Agg')
     import matplotlib.pyplot as plt
 
-    from ..core.alignment import alignment
-    from ..core.mechanism import compile_scene
+    from ..core.measure import alignment
+    from ..core.solve import compile_scene
 
     fig, axes = plt.subplots(2, 4, figsize=(16, 7), sharex=True)
     for scene, result in zip(scenes, results or swept(scenes)):

@@ -41,7 +41,7 @@ from .replay_commands import (load_changed_scenes, METADATA, parameter_changes,
                               read_commands, seconds, stored_scene, stored_text, SWEEP_HZ)
 from .. import cli
 from ..cli import counted
-from ..core.errors import LinkageError
+from ..core.base import LinkageError
 from ..core.warmup import compile_if_cold
 
 PROGRESS_PERIOD = 1.0   # s between progress lines
@@ -124,7 +124,7 @@ def run(args):
         cli.check_input(bag_path)
     scene = None
     if args.command != 'copy' and (args.scene or not bag_path):
-        from ..core.scene import load_scene
+        from ..core.model import load_scene
         scene = load_scene(args.scene or 'five_link')
     output = None
     if args.command in ('solve', 'sweep', 'copy'):
@@ -145,7 +145,7 @@ def run(args):
             if scene is not None:
                 print(f'{PROG}: the scene stored in {bag_path}: {scene.name}', file=sys.stderr)
             else:
-                from ..core.scene import load_scene
+                from ..core.model import load_scene
                 scene = load_scene('five_link')
     if scene is not None:
         cli.warn(PROG, scene.warnings)
@@ -237,8 +237,8 @@ def _warn(read, verb):
 
 
 def _publish(args, commands, source, status):
-    from ..record.interfaces import qualified
     from .replay_publish import check_rate, publish_commands
+    from ..record.interfaces import qualified
     check_rate(commands, args.rate)
     if not commands:
         print(f'{PROG}: nothing to publish: no commands', file=sys.stderr)
@@ -271,9 +271,9 @@ def _copy(args, output):
 
 
 def _solve(args, commands, scene, source, output, stored, status, changed=((), {})):
+    from .replay_solve import latched_topics, solve_commands
     from ..record.interfaces import qualified
     from ..record.mcap_writer import McapRecorder
-    from .replay_solve import latched_topics, solve_commands
     print(f'{PROG}: {scene.name}: solving {counted(len(commands), "command")} from {source} on '
           f'{qualified(args.topic)}, method {args.method}', file=sys.stderr)
     custom = {'scene': scene.name, 'method': args.method, 'source': Path(source).name}

@@ -17,8 +17,8 @@ import textwrap
 
 from .replay_commands import DEFAULT_TOPIC, SWEEP_HZ
 from .. import cli
-from ..core.finite import is_finite_number
-from ..core.kinematics import METHODS
+from ..core.base import is_finite_number
+from ..core.solve import METHODS
 
 PROG = 'linkage-replay'
 FRAME_ID = 'base_link'

@@ -22,9 +22,8 @@ import math
 from pathlib import Path
 import time
 
-from ..core.errors import LinkageError
-from ..core.finite import is_finite_number
-from ..core.kinematics import travel_range
+from ..core.base import is_finite_number, LinkageError
+from ..core.solve import travel_range
 from ..record.stored import RECORD as METADATA
 
 FLOAT64 = 'std_msgs/msg/Float64'
@@ -256,7 +255,7 @@ def load_changed_scenes(changes):
     Returns ({scene parameter value: Scene}, None), or with (Change, error) for the first
     change whose scene does not load here (a file of the recording's machine, say).
     """
-    from ..core.scene import load_scene
+    from ..core.model import load_scene
     scenes = {}
     for change in changes:
         name = change.values.get('scene')
@@ -277,7 +276,7 @@ def stored_scene(bag, topic):
     namespace (/front_left/wheel_travel: front_left). Raises SceneError naming the bag for
     stored content that does not load.
     """
-    from ..core.scene import Scene, SceneError
+    from ..core.model import Scene, SceneError
     from ..record.stored import load_stored
     loaded = load_stored(bag.metadata, str(bag.path))
     if loaded is None or isinstance(loaded, Scene):

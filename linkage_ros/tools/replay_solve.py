@@ -20,7 +20,7 @@ import sys
 import time
 
 from .replay_commands import DEFAULT_TOPIC, FLOAT64, stamp_of
-from ..core.errors import LinkageError
+from ..core.base import LinkageError
 from ..protocol import Responder
 
 DIAGNOSTIC_ARRAY = 'diagnostic_msgs/msg/DiagnosticArray'
@@ -127,13 +127,13 @@ def solve_commands(commands, scene, method, sinks, topic=DEFAULT_TOPIC, progress
 
     Returns the number of commands that could not be solved.
     """
+    from .replay_commands import PARAMETER_EVENT, PARAMETER_EVENTS, RACK, rack_topic
     from ..cdr import float64_cdr, string_cdr, to_cdr
     from ..record.interfaces import qualified
     from ..robot_description import robot_description
     from ..ros import messages
     from ..ros.element_outputs import TOPIC as ELEMENTS_TOPIC
     from ..ros.tf import static_cdr, TF_STATIC_TOPIC, TF_TOPIC, TF_TYPE
-    from .replay_commands import PARAMETER_EVENT, PARAMETER_EVENTS, RACK, rack_topic
     defaults = node_defaults()
     topic = qualified(topic)
     rack = rack_topic(topic)

@@ -37,9 +37,8 @@ import math
 import sys
 
 from .. import cli
-from ..core.errors import LinkageError
-from ..core.scene import load_scene, Scene
-from ..core.vehicle import load_vehicle
+from ..core.base import LinkageError
+from ..core.model import load_scene, load_vehicle, Scene
 from ..core.warmup import compile_if_cold
 from ..record.stored import load_stored
 

@@ -20,7 +20,7 @@ from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
-    from ..core.scene import Scene
+    from ..core.model import Scene
     from ..record.mcap_reader import Bag, BagMessage
 
 JOINT_STATE = 'sensor_msgs/msg/JointState'

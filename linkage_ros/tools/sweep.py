@@ -11,17 +11,17 @@ import time
 import numpy as np
 
 from ..cli import counted, EXIT_STATUS, fail, millimetres, Parser, program, warn, writable_file
-from ..core.errors import LinkageError
-from ..core.finite import all_finite, is_finite_number
-from ..core.kinematics import Continuation, METHODS, sweep, travel_range
-from ..core.limits import check_position_count, positions_needed
-from ..core.quantities import columns
-from ..core.scene import load_scene, SceneError
+from ..core.base import (all_finite, check_position_count, is_finite_number, LinkageError,
+                         positions_needed)
+from ..core.measure import columns
+from ..core.model import load_scene, SceneError
+from ..core.solve import Continuation, METHODS, sweep, travel_range
 from ..core.warmup import compile_if_cold
 
 PROG = 'linkage-sweep'
-# The columns, each declared once in the registry (core/quantities.py), in the table's order:
-# always COLUMNS; RACK_COLUMNS with --rack/--grid; ALIGNMENT_COLUMNS with --alignment.
+# The columns, each declared once in the registry (core/measure/quantities.py), in the
+# table's order: always COLUMNS; RACK_COLUMNS with --rack/--grid; ALIGNMENT_COLUMNS with
+# --alignment.
 COLUMNS = columns('travel', 'wheel', 'rotation', 'solver')
 RACK_COLUMNS = columns('rack')
 ALIGNMENT_COLUMNS = columns('alignment', 'kingpin')
@@ -43,7 +43,7 @@ def table(result, scene=None, with_rack=False, elements=None):
     if scene is not None:
         columns.append(alignment_table(scene, result))
     if elements is not None:
-        from ..core.elements import element_table, element_values
+        from ..core.measure import element_table, element_values
         columns.append(element_table(elements, element_values(
             elements, result.wheel_center, result.rotation, result.rack)))
     # (n, width) each: -1 cannot be inferred from a table of no rows
@@ -53,9 +53,8 @@ def table(result, scene=None, with_rack=False, elements=None):
 
 def alignment_table(scene, result):
     """Return the ALIGNMENT_COLUMNS of a Sweep, shape (n, len(ALIGNMENT_COLUMNS))."""
-    from ..core.alignment import alignment
-    from ..core.kingpin import geometric_kingpin
-    from ..core.mechanism import compile_scene
+    from ..core.measure import alignment, geometric_kingpin
+    from ..core.solve import compile_scene
     a = alignment(scene, compile_scene(scene), result.wheel_center, result.rotation,
                   result.rack)
     k = geometric_kingpin(scene, result.joints, result.wheel_center, a.contact_patch,
@@ -72,7 +71,7 @@ def alignment_table(scene, result):
 
 def header(scene=None, with_rack=False, elements=None):
     """Return the column names of table(result, scene, with_rack, elements)."""
-    from ..core.elements import element_columns
+    from ..core.measure import element_columns
     return COLUMNS + (RACK_COLUMNS if with_rack else []) + (
         ALIGNMENT_COLUMNS if scene is not None else []) + (
         element_columns(elements) if elements is not None else [])
@@ -241,7 +240,7 @@ def main(argv: list[str] | None = None) -> int:
         return fail(PROG, f'{args.csv or "stdout"}: cannot write the table '
                           f'({exc.strerror or exc})')
     if args.elements:
-        from ..core.elements import crossing_notes, element_values
+        from ..core.measure import crossing_notes, element_values
         warn(PROG, crossing_notes(scene, np.concatenate([r.travel for r in results]),
                                   np.concatenate([element_values(
                                       scene, r.wheel_center, r.rotation, r.rack).length

@@ -28,7 +28,7 @@ import tempfile
 import time
 
 from .. import cli
-from ..core.bundled import config_dir
+from ..core.model import config_dir
 
 PROG = 'linkage-tf2-msgs'
 EXAMPLE = """example:

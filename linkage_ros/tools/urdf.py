@@ -10,7 +10,7 @@ carrier), so that RViz, Foxglove or Rerun place each body by the node's /tf.
 import sys
 
 from .. import cli
-from ..core.errors import LinkageError
+from ..core.base import LinkageError
 
 PROG = 'linkage-urdf'
 EPILOG = """frames and links: <corner>/wheel_carrier, <corner>/wheel, <corner>/<constraint

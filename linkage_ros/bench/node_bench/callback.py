@@ -10,7 +10,7 @@ import rclpy
 from .driver import sine
 from .tables import progress, table, us
 from ...cdr import float64_cdr
-from ...core.scene import load_scene
+from ...core.model import load_scene
 from ...ros.isolation import init_context
 
 

@@ -45,8 +45,8 @@ from .start import bench_start, start_once
 from .tables import progress
 from .vehicle import bench_vehicle
 from ...cli import EXIT_STATUS, Parser, program, writable_file
-from ...core.errors import LinkageError
-from ...core.scene import load_scene
+from ...core.base import LinkageError
+from ...core.model import load_scene
 from ...core.warmup import compile_if_cold
 from ...ros.isolation import environment_domain_id
 

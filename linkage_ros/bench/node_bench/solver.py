@@ -14,8 +14,8 @@ from .tables import progress, table, us
 def bench_core(args):
     """One command at a time: Continuation.solve beside exudyn, alternating rounds."""
     from .. import peers
-    from ...core.kinematics import Continuation
-    from ...core.scene import load_scene
+    from ...core.model import load_scene
+    from ...core.solve import Continuation
     scene = load_scene(args.scene)
     count = args.count * args.scale
     travels = 60.0 * np.sin(np.arange(count) * 0.0125)      # mm, steps of up to 0.75 mm

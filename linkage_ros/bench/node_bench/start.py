@@ -10,7 +10,7 @@ import numpy as np
 
 from .processes import node_script, Target
 from .tables import progress, table
-from ...core.scene import config_dir
+from ...core.model import config_dir
 
 QUICK_DISCOVERY = config_dir() / 'fastdds_quick_discovery.xml'
 

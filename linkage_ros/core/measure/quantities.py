@@ -13,12 +13,12 @@ through its template.
 
     quantity('camber_deg').si_name       -> 'camber_rad'
     columns('travel', 'wheel')           -> ['travel_mm', 'camber_deg', 'toe_deg', ...]
-    element_columns('spring', rate=True) -> ['spring_length_mm', 'spring_ratio', ...]
+    columns_of_element('spring', rate=True) -> ['spring_length_mm', 'spring_ratio', ...]
     TOPICS['alignment']                  -> the table names of the alignment message's fields
 
 Data only: this module imports nothing of the package (it sits at the bottom of core).
 doc/quantities.md is markdown_table() (test/test_quantities.py checks it); to write it again:
-python -m linkage_ros.core.quantities > doc/quantities.md
+python -m linkage_ros.core.measure.quantities > doc/quantities.md
 """
 
 from __future__ import annotations
@@ -118,7 +118,7 @@ _DECLARED = (
     _q('residual_mm', 'mm', '', 'solver', 'largest constraint violation of the solved pose'),
     _q('iterations', '1', '', 'solver', 'Newton iterations of the last continuation step'),
     _q('rack_mm', 'mm', '+ = rack to the left', 'rack', 'steering rack travel', _STEER_AXIS),
-    # the alignment set (linkage-sweep --alignment; core/alignment.py)
+    # the alignment set (linkage-sweep --alignment; core/measure/alignment.py)
     _q('camber_gain_deg_per_mm', 'deg/mm', '+ = camber grows in bump', 'alignment',
        'd camber / d travel'),
     _q('bump_steer_deg_per_mm', 'deg/mm', '+ = toe-in grows in bump', 'alignment',
@@ -151,7 +151,7 @@ _DECLARED = (
     _q('screw_axis_y', '1', '', 'alignment', "carrier's instantaneous screw axis, unit y"),
     _q('screw_axis_z', '1', '', 'alignment', "carrier's instantaneous screw axis, unit z"),
     _q('screw_pitch_mm_per_rad', 'mm/rad', '', 'alignment', 'pitch of that screw axis'),
-    # the geometric kingpin (core/kingpin.py), beside the instantaneous steer axis
+    # the geometric kingpin (core/measure/kingpin.py), beside the instantaneous steer axis
     _q('caster_geometric_deg', 'deg', '+ = top rearward', 'kingpin',
        'caster of the geometric kingpin axis', 'a kingpin'),
     _q('kingpin_inclination_geometric_deg', 'deg', '+ = top inboard', 'kingpin',
@@ -163,7 +163,7 @@ _DECLARED = (
     _q('kingpin_offset_wheel_centre_geometric_mm', 'mm', '+ = axis inboard', 'kingpin',
        "lateral distance from the wheel centre to the axis at the wheel centre's height",
        'a kingpin'),
-    # per element of a scene (linkage-sweep --elements; core/elements.py)
+    # per element of a scene (linkage-sweep --elements; core/measure/elements.py)
     _q('{element}_length_mm', 'mm', '', 'element', "the element's length"),
     _q('{element}_ratio', '1', '+ = lengthens in bump', 'element',
        'motion ratio d length / d travel'),
@@ -171,7 +171,7 @@ _DECLARED = (
        'a spring rate'),
     _q('{element}_wheel_rate_N_per_mm', 'N/mm', '', 'element',
        "the spring's rate at the wheel", 'a spring rate'),
-    # an axle (linkage-axle, linkage-map; core/axle.py)
+    # an axle (linkage-axle, linkage-map; core/axle/axle.py)
     _q('heave_mm', 'mm', '+ = bump', 'axle', 'both wheels travel by the heave'),
     _q('roll_deg', 'deg', '+ = right side down', 'axle', 'body roll over the ground'),
     _q('{side}_travel_mm', 'mm', '+ = bump', 'axle', "each wheel's travel"),
@@ -201,7 +201,7 @@ _DECLARED = (
        'a rack'),
     _q('ackermann_pct', '%', '', 'axle_steer', 'Ackermann of the two steers',
        'a rack, wheel_radius, wheelbase'),
-    # an axle's anti-roll bar (core/anti_roll_bar.py)
+    # an axle's anti-roll bar (core/axle/anti_roll_bar.py)
     _q('arb_{side}_angle_deg', 'deg', '', 'anti_roll_bar',
        "each arm's angle about the bar's axis, directed to the left", 'an anti_roll_bar'),
     _q('arb_twist_deg', 'deg', '', 'anti_roll_bar', 'left minus right arm angle',
@@ -253,7 +253,7 @@ def quantity(name: str) -> Quantity:
     for pattern, q in _TEMPLATES:
         if pattern.match(name):
             return q
-    raise KeyError(f'{name!r} is no quantity of linkage_ros.core.quantities')
+    raise KeyError(f'{name!r} is no quantity of linkage_ros.core.measure.quantities')
 
 
 def known(name: str) -> bool:
@@ -285,7 +285,7 @@ def columns(*groups: str) -> list[str]:
     return [n for template in names(*groups) for n in sides(template)]
 
 
-def element_columns(element: str, rate: bool, wheel_rate: bool = True) -> list[str]:
+def columns_of_element(element: str, rate: bool, wheel_rate: bool = True) -> list[str]:
     """
     Return an element's columns: length and ratio; with a spring rate, force (and wheel rate).
 
@@ -305,7 +305,7 @@ def markdown_table() -> str:
     """Return the registry as doc/quantities.md (a markdown table per group)."""
     lines = ['# Quantities', '',
              'Every quantity an output of linkage_ros names, from its registry',
-             '(`linkage_ros/core/quantities.py`; this file is `markdown_table()`, and',
+             '(`linkage_ros/core/measure/quantities.py`; this file is `markdown_table()`, and',
              '`test/test_quantities.py` checks that it matches). Tables are in the table unit,',
              'with the unit in the name; ROS messages are in SI: SI value = table value x factor,',
              'labelled by the SI name. `{element}` stands for each element of a scene,',
@@ -327,5 +327,5 @@ def markdown_table() -> str:
     return '\n'.join(lines + topics) + '\n'
 
 
-if __name__ == '__main__':   # python -m linkage_ros.core.quantities > doc/quantities.md
+if __name__ == '__main__':   # python -m linkage_ros.core.measure.quantities > doc/quantities.md
     print(markdown_table(), end='')

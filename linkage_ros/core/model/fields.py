@@ -16,9 +16,9 @@ import unicodedata
 
 import numpy as np
 
-from .finite import is_finite_number
-from .limits import LENGTH_LIMIT_MM, within_length_limit
 from .yaml_file import SceneError
+from ..base.finite import is_finite_number
+from ..base.limits import LENGTH_LIMIT_MM, within_length_limit
 
 if TYPE_CHECKING:
     from collections.abc import Collection

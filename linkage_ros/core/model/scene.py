@@ -22,14 +22,17 @@ import numpy as np
 
 # bundled_scenes, config_dir and scene_dir are also read from here, where they were.
 from .bundled import bundled_scenes, config_dir, resolve, scene_dir  # noqa: F401
-from .errors import LinkageError
+from .constraint import Constraint, EQUATIONS_PER_TYPE  # noqa: F401 (also read from here)
+from .elements import parse_elements
 from .fields import Fields, FREE_KEYS
-from .geometry import perpendicular, unit
+from .kingpin import check_kingpin, KEY as KINGPIN_KEY
 # LENGTH_LIMIT_MM, SceneError and within_length_limit are also read from here, where they were.
-from .limits import LENGTH_LIMIT_MM, positions_needed, within_length_limit  # noqa: F401
-from .mechanism import (compile_points, design_condition, Layout, layout_of, Mechanism,
-                        SINGULAR_CONDITION)
 from .yaml_file import read_yaml, SceneError  # noqa: F401 (SceneError: kept here)
+from ..base.errors import LinkageError
+from ..base.geometry import perpendicular, unit
+from ..base.limits import LENGTH_LIMIT_MM, positions_needed, within_length_limit  # noqa: F401
+from ..solve.mechanism import (compile_points, design_condition, Layout, layout_of, Mechanism,
+                               SINGULAR_CONDITION)
 
 if TYPE_CHECKING:
     from collections.abc import Sequence
@@ -38,7 +41,6 @@ if TYPE_CHECKING:
     from numpy.typing import ArrayLike
 
 UNITS_TO_MM = {'mm': 1.0, 'm': 1000.0}
-EQUATIONS_PER_TYPE = {'sphere': 1, 'circle': 2, 'line': 2}
 SIDES = ('left', 'right')
 # Relative size (to the scene's largest dimension) below which two points are "coincident"
 # and a triangle or arm is "too thin" to define a frame.
@@ -62,29 +64,6 @@ ALL_CONSTRAINT_KEYS = ('name', 'type', 'base', 'axis', 'carrier', 'steer')
 
 
 @dataclass(frozen=True)
-class Constraint:
-    """
-    One guidance constraint of the carrier, in mm, vehicle frame, design position.
-
-    type 'sphere': carrier point keeps its distance to base[0] (binary link, eq. 2).
-    type 'circle': carrier point turns about the axis base[0]-base[1] (revolute arm, eqs. 3-4).
-    type 'line': the carrier-fixed line through the carrier point and base[0] keeps passing
-    through base[0] (MacPherson strut top mount).
-    """
-
-    name: str
-    type: str             # noqa: A003 (the scene files' key; public field of Constraint)
-    base: np.ndarray      # (k, 3): k = 1 for sphere and line, 2 for circle
-    carrier: np.ndarray   # (3,)
-    steer: str = ''
-
-    @property
-    def equations(self) -> int:
-        """How many guidance equations the constraint gives: sphere 1, circle 2, line 2."""
-        return EQUATIONS_PER_TYPE[self.type]
-
-
-@dataclass(frozen=True)
 class Scene:
     """A validated suspension corner. Lengths in mm, vehicle frame, design position."""
 
@@ -104,6 +83,8 @@ class Scene:
     # scene_warnings). The programs print them once on stderr; the node logs them.
     warnings: tuple[str, ...] = field(default=(), compare=False)
     elements: tuple = ()          # springs, dampers, lengths (elements.Element), mm
+    # the `kingpin` key, checked (kingpin.KingpinPoint upper, lower); None: the default axis
+    kingpin: tuple | None = None
 
     @property
     def side_sign(self) -> float:
@@ -246,17 +227,17 @@ def parse_scene(data: Any, source: str = '<scene>') -> Scene:
     _check_third_point(check, wheel_center, spin_point, third_point, constraints,
                        'carrier.third_point' if given_p is not None else 'carrier',
                        given_p is not None, scene_size)
-    if data.get('kingpin') is not None:   # a misspelt joint fails on load, not in a sweep
-        from .kingpin import check_kingpin
-        check_kingpin(source, data['kingpin'], constraints)
-    from .elements import parse_elements   # here: elements.py reads SceneError from here
+    kingpin = None   # a misspelt joint fails on load, not in a sweep
+    if data.get(KINGPIN_KEY) is not None:
+        kingpin = check_kingpin(source, data[KINGPIN_KEY], constraints)
     scene = Scene(name=check.name(data, 'name') or Path(source).stem, source=source,
                   side=side, units=units, wheel_center=wheel_center, spin_axis_point=spin_point,
                   third_point=third_point, constraints=constraints, travel=travel,
                   wheel_radius=radius, description=check.text(data, 'description').strip(),
                   extras={k: v for k, v in data.items()
                           if k not in SCENE_KEYS and k != 'description'},
-                  elements=parse_elements(check, data.get('elements'), constraints))
+                  elements=parse_elements(check, data.get('elements'), constraints),
+                  kingpin=kingpin)
     return replace(scene, warnings=scene_warnings(scene))
 
 
@@ -467,7 +448,8 @@ def mirror(scene: Scene) -> Scene:
                  third_point=scene.third_point * flip, constraints=constraints,
                  travel=scene.travel, wheel_radius=scene.wheel_radius,
                  description=scene.description, extras=scene.extras, warnings=scene.warnings,
-                 elements=tuple(e.transformed(flip, 0.0) for e in scene.elements))
+                 elements=tuple(e.transformed(flip, 0.0) for e in scene.elements),
+                 kingpin=scene.kingpin)   # joints named by index: the same on either side
 
 
 def translate(scene: Scene, offset: ArrayLike) -> Scene:

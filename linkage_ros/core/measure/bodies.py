@@ -37,12 +37,12 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from . import body_kernel
-from .geometry import perpendicular, unit
+from ..base.geometry import perpendicular, unit
+from ..solve import body_kernel
 
 if TYPE_CHECKING:
-    from .kinematics import Solution
-    from .scene import Scene
+    from ..model.scene import Scene
+    from ..solve.kinematics import Solution
 
 CARRIER, WHEEL = 'wheel_carrier', 'wheel'
 KINDS = {'sphere': 'link', 'circle': 'arm', 'line': 'strut'}

@@ -15,7 +15,7 @@ sensor_msgs/JointState that carry the corner's wheel travel and, for a corner wh
 a steer: rack link, the steering rack: suspension_node then answers every named corner of a
 joint_states message at once. Errors raise SceneError naming the vehicle file and the field;
 a key the format does not know is one (with the closest known key suggested). The vehicle's
-axle keys (wheelbase, cg_height, axles) are read by core.axle, not here: they are kept in
+axle keys (wheelbase, cg_height, axles) are read by core.axle.axle, not here: they are kept in
 Vehicle.extras with the free keys (description, source, notes, x_...).
 """
 
@@ -27,10 +27,10 @@ from typing import TYPE_CHECKING
 
 from .bundled import is_bare_name, resolve, vehicle_dir  # noqa: F401 (vehicle_dir: kept here)
 from .fields import Fields
-from .finite import is_finite_number
-from .limits import LENGTH_LIMIT_MM, within_length_limit
 from .scene import load_scene, mirror, resolve_scene_path, SceneError, translate, UNITS_TO_MM
 from .yaml_file import read_yaml
+from ..base.finite import is_finite_number
+from ..base.limits import LENGTH_LIMIT_MM, within_length_limit
 
 if TYPE_CHECKING:
     from os import PathLike

@@ -32,7 +32,7 @@ from numba import njit
 import numpy as np
 
 from .jacobian_kernel import condition, determinant, FREE, solve_free  # noqa: F401 FREE
-from .so3 import camber_toe, quaternion, rotate, turn
+from ..base.so3 import camber_toe, quaternion, rotate, turn
 
 # sha256 of so3.py (test_kernel checks it and says the value to set after an edit there)
 SO3_DIGEST = '63b60c6921d8498a47cf8a0a86bdda0a2f05c7473f028ff5e6d7b18de31758ea'

@@ -11,10 +11,8 @@ take the kingpin as the line through two points of the suspension:
                       closest approach of the two link lines (the midpoint of their common
                       perpendicular), which moves on the carrier as it travels
 
-A scene names its kingpin with the key `kingpin: [UPPER, LOWER]`, each entry a constraint name
-(a circle's or sphere's carrier joint, a line's top mount) or a pair of link names (a virtual
-ball joint), e.g. `kingpin: [[upper_front, upper_rear], [lower_front, lower_rear]]`. Without
-the key, two circles or a circle and a line give the axis; other scenes have none.
+A scene names its kingpin (model/kingpin.py, Scene.kingpin); this module measures the axis
+through those two points at solved positions.
 
 The instantaneous steer axis (the screw axis of the carrier under rack input, alignment.py) is
 the other convention; doc/alignment.md compares them. Frames and units: vehicle frame (x
@@ -28,25 +26,11 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .yaml_file import SceneError
+from .alignment import ground_point
+from ..model.kingpin import KingpinPoint
 
 if TYPE_CHECKING:
-    from .scene import Constraint, Scene
-
-KEY = 'kingpin'
-
-
-@dataclass(frozen=True)
-class KingpinPoint:
-    """
-    One end of the kingpin: a joint of the scene, or the virtual joint of two links.
-
-    constraints holds one index (a joint) or two (a pair of links); kind is 'carrier' (the
-    constraint's carrier point), 'base' (a strut's top mount) or 'virtual'.
-    """
-
-    kind: str
-    constraints: tuple[int, ...]
+    from ..model.scene import Scene
 
 
 @dataclass(frozen=True)
@@ -67,12 +51,11 @@ def kingpin_points(scene: Scene) -> tuple[KingpinPoint, KingpinPoint] | None:
     """
     Return the (upper, lower) kingpin points of a scene, or None if it has no kingpin.
 
-    From its `kingpin` key, else from two circles (the higher ball joint upper) or a line and
-    a circle. Raises SceneError (file, key) for a key that names no such joint.
+    From its `kingpin` key (Scene.kingpin, checked on load), else from two circles (the higher
+    ball joint upper) or a line and a circle.
     """
-    spec = scene.extras.get(KEY)
-    if spec is not None:
-        return check_kingpin(scene.source, spec, scene.constraints)
+    if scene.kingpin is not None:
+        return scene.kingpin
     kinds = [c.type for c in scene.constraints]
     circles = [i for i, kind in enumerate(kinds) if kind == 'circle']
     lines = [i for i, kind in enumerate(kinds) if kind == 'line']
@@ -82,44 +65,6 @@ def kingpin_points(scene: Scene) -> tuple[KingpinPoint, KingpinPoint] | None:
     if len(circles) == 1 and len(lines) == 1:
         return KingpinPoint('base', (lines[0],)), KingpinPoint('carrier', (circles[0],))
     return None
-
-
-def check_kingpin(source: str, spec: object,
-                  constraints: tuple[Constraint, ...]) -> tuple[KingpinPoint, KingpinPoint]:
-    """Validate a scene's `kingpin` value; return its (upper, lower) points or raise."""
-    names = {c.name: i for i, c in enumerate(constraints)}
-    if not isinstance(spec, list) or len(spec) != 2:
-        raise SceneError(source, KEY, 'expected [UPPER, LOWER]: two joint names, or pairs '
-                         f'of link names for virtual ball joints, got {spec!r}')
-    points = tuple(_point(source, f'{KEY}[{k}]', entry, names, constraints)
-                   for k, entry in enumerate(spec))
-    if points[0] == points[1]:
-        raise SceneError(source, KEY, 'names the same joint twice: a kingpin needs two')
-    return points
-
-
-def _point(source, where, entry, names, constraints):
-    if isinstance(entry, str):
-        index = _index(source, where, entry, names)
-        return KingpinPoint('base' if constraints[index].type == 'line' else 'carrier', (index,))
-    if not isinstance(entry, list) or len(entry) != 2 or entry[0] == entry[1]:
-        raise SceneError(source, where, 'expected a joint name or a pair of two link names '
-                         f'[a, b], got {entry!r}')
-    pair = tuple(_index(source, f'{where}[{k}]', name, names) for k, name in enumerate(entry))
-    for k, index in enumerate(pair):
-        if constraints[index].type != 'sphere':
-            raise SceneError(source, f'{where}[{k}]', f'{entry[k]} is a '
-                             f'{constraints[index].type}, not a link (sphere): a virtual ball '
-                             'joint is where two link lines pass closest')
-    return KingpinPoint('virtual', tuple(sorted(pair)))
-
-
-def _index(source, where, name, names):
-    if not isinstance(name, str) or name not in names:
-        known = ', '.join(names)
-        raise SceneError(source, where, f'{name!r} is not a constraint of the scene '
-                         f'(constraints: {known})')
-    return names[name]
 
 
 def point_positions(scene: Scene, point: KingpinPoint, joints: np.ndarray,
@@ -172,7 +117,6 @@ def geometric_kingpin(scene: Scene, joints: np.ndarray, center: np.ndarray,
     ground is the horizontal plane through each patch. Scenes without a kingpin give NaN.
     """
     joints, center = np.asarray(joints, dtype=float), np.atleast_2d(center)
-    from .alignment import ground_point   # here: checking a scene's key needs no solver
     points = kingpin_points(scene)
     if points is None:
         nan = np.full(len(center), np.nan)

@@ -27,14 +27,14 @@ from typing import Any, NamedTuple, TYPE_CHECKING
 import numpy as np
 
 from . import arclength, jacobian_kernel, kernel, paper_method, pose_newton, state
-from .errors import LinkageError
-from .finite import is_finite_number
 from .mechanism import (carrier_points, compile_scene, linearize, scaled_condition,
                         SINGULAR_CONDITION)
-from .status import Status
+from ..base.errors import LinkageError
+from ..base.finite import is_finite_number
+from ..base.status import Status
 
 if TYPE_CHECKING:
-    from .scene import Scene
+    from ..model.scene import Scene
 
 METHODS = ('paper', 'fast')
 ARC_TOL = 1e-9       # mm: residual tolerance on the arclength path to a travel limit

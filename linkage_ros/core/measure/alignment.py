@@ -19,15 +19,15 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .geometry import cross
-from .mechanism import linearize, rack_derivative
-from .pose_newton import rack_slope_of, slope_of
+from ..base.geometry import cross
+from ..solve.mechanism import linearize, rack_derivative
+from ..solve.pose_newton import rack_slope_of, slope_of
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
 
-    from .mechanism import Mechanism
-    from .scene import Scene
+    from ..model.scene import Scene
+    from ..solve.mechanism import Mechanism
 
 
 @dataclass(frozen=True)

@@ -9,7 +9,7 @@ The axles of a vehicle file, and the vehicle-level data that axle quantities nee
       rear:  {left: rear_left, right: rear_right, brake_share: 0.4, drive_share: 1.0,
               brakes: outboard}
 
-An axle may also have an anti_roll_bar (core/anti_roll_bar.py, doc/anti_roll_bar.md), whose
+An axle may also have an anti_roll_bar (core/axle/anti_roll_bar.py, doc/anti_roll_bar.md), whose
 module is imported only for a file that has one.
 
 An axle is front or rear, and names the vehicle's left and right corners. brake_share and
@@ -32,9 +32,7 @@ from .scene import LENGTH_LIMIT_MM, SceneError, within_length_limit
 
 if TYPE_CHECKING:
     from .anti_roll_bar import AntiRollBar
-    from .axle import Axle
     from .scene import Scene
-    from .vehicle import Vehicle
 
 AXLE_NAMES = ('front', 'rear')
 BRAKES = ('outboard', 'inboard')
@@ -151,18 +149,3 @@ def _length(path, data, key, scale):
         raise SceneError(path, key, f'expected a positive length within {LENGTH_LIMIT_MM:g} '
                          f'mm, got {value!r}')
     return float(value) * scale
-
-
-def axle_of(vehicle: Vehicle, name: str) -> Axle:
-    """Return the named axle of a vehicle as an Axle, or raise SceneError naming the file."""
-    from .axle import Axle
-    data = vehicle.axles
-    if data is None or name not in data.axles:
-        known = ', '.join(data.axles) if data is not None and data.axles else 'none'
-        raise SceneError(vehicle.source, 'axles', f'no axle {name!r} (axles: {known})')
-    spec = data.axles[name]
-    return Axle(left=vehicle.corners[spec.left], right=vehicle.corners[spec.right],
-                name=name, front=name == 'front', wheelbase=data.wheelbase,
-                cg_height=data.cg_height, brake_share=spec.brake_share,
-                drive_share=spec.drive_share, brakes=spec.brakes,
-                anti_roll_bar=spec.anti_roll_bar)

@@ -18,13 +18,13 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .geometry import frame_from_points, local_coordinates, trilaterate
+from ..base.geometry import frame_from_points, local_coordinates, trilaterate
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
 
     from .mechanism import Mechanism
-    from .scene import Scene
+    from ..model.scene import Scene
 
 
 @dataclass(frozen=True)

@@ -23,12 +23,13 @@ from typing import NamedTuple, TYPE_CHECKING
 
 import numpy as np
 
-from . import geometry, jacobian_kernel, jets as jt, kernel
+from . import jacobian_kernel, kernel
+from ..base import geometry, jets as jt
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
 
-    from .scene import Scene
+    from ..model.scene import Scene
 
 # Beyond this scaled condition number (scaled_condition) a position counts as singular: the
 # Jacobian then holds about 4 significant digits of 16, and its null direction (the motion

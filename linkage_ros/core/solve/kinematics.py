@@ -21,15 +21,15 @@ import numpy as np
 
 from . import kernel, state
 from .continuation import Continuation, METHODS, Settings, Solution
-from .finite import all_finite
-from .geometry import camber_toe, quaternion_from_matrix
 from .mechanism import carrier_points, length_errors
-from .status import Status
+from ..base.finite import all_finite
+from ..base.geometry import camber_toe, quaternion_from_matrix
+from ..base.status import Status
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
 
-    from .scene import Scene
+    from ..model.scene import Scene
 
 __all__ = ['Continuation', 'METHODS', 'Settings', 'Solution', 'Sweep', 'sweep', 'travel_range']
 

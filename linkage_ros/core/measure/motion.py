@@ -30,15 +30,15 @@ from typing import NamedTuple, TYPE_CHECKING
 
 import numpy as np
 
-from . import element_kernel
-from .element_kernel import Poses, Rows
-from .mechanism import linearize
+from ..solve import element_kernel
+from ..solve.element_kernel import Poses, Rows
+from ..solve.mechanism import linearize
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
 
-    from .mechanism import Mechanism
-    from .scene import Scene
+    from ..model.scene import Scene
+    from ..solve.mechanism import Mechanism
 
 
 class CarrierMotion(NamedTuple):

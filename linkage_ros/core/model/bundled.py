@@ -17,7 +17,7 @@ from .yaml_file import SceneError
 if TYPE_CHECKING:
     from os import PathLike
 
-SOURCE_CONFIG = Path(__file__).resolve().parents[2] / 'config'   # in a source checkout
+SOURCE_CONFIG = Path(__file__).resolve().parents[3] / 'config'   # in a source checkout
 
 
 def config_dir() -> Path:

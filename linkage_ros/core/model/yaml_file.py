@@ -26,7 +26,7 @@ from typing import Any, TYPE_CHECKING
 
 import yaml
 
-from .errors import LinkageError
+from ..base.errors import LinkageError
 
 if TYPE_CHECKING:
     from os import PathLike

@@ -38,18 +38,20 @@ from typing import Any, TYPE_CHECKING
 
 import numpy as np
 
-from . import jacobian_kernel
-from .alignment import contact_patch
-from .geometry import camber_toe, cross
-from .kinematics import sweep
-from .mechanism import compile_scene, linearize
-from .status import Status
+from ..base.geometry import camber_toe, cross
+from ..base.status import Status
+from ..measure.alignment import contact_patch
+from ..model.yaml_file import SceneError
+from ..solve import jacobian_kernel
+from ..solve.kinematics import sweep
+from ..solve.mechanism import compile_scene, linearize
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
 
-    from .mechanism import Mechanism
-    from .scene import Scene
+    from ..model.scene import Scene
+    from ..model.vehicle import Vehicle
+    from ..solve.mechanism import Mechanism
 
 SIDES = ('left', 'right')
 # Mean steer (rad) below which Ackermann is NaN. Its denominator, the ideal difference
@@ -279,9 +281,9 @@ def axle_quantities(axle: Axle, heave: np.ndarray, roll: np.ndarray, rack: np.nd
     bar, notes = None, missing_radius_notes(axle)
     if axle.anti_roll_bar is not None:
         from .anti_roll_bar import bar_notes, bar_values
-        bar = bar_values(axle, axle.anti_roll_bar, roll, rack, center, rotation,
-                         tuple(jacobians))
-        notes += bar_notes(axle, bar)
+        bar = bar_values(axle.scenes, axle.mechanisms, axle.design_track, axle.anti_roll_bar,
+                         roll, rack, center, rotation, tuple(jacobians))
+        notes += bar_notes(axle.name, bar)
     return {
         'camber': camber, 'toe': toe, 'camber_ground': camber_ground, 'toe_ground': toe_ground,
         'contact_patch': patch, 'patch_velocity': v_patch, 'center_velocity': v_center,
@@ -420,3 +422,17 @@ def missing_radius_notes(axle: Axle) -> tuple[str, ...]:
     return tuple(f'{s.name} ({s.source}) has no wheel_radius: no contact patch, so no roll '
                  'centre, track, contact-patch anti-dive or Ackermann'
                  for s in axle.scenes if not s.wheel_radius > 0)
+
+
+def axle_of(vehicle: Vehicle, name: str) -> Axle:
+    """Return the named axle of a vehicle as an Axle, or raise SceneError naming the file."""
+    data = vehicle.axles
+    if data is None or name not in data.axles:
+        known = ', '.join(data.axles) if data is not None and data.axles else 'none'
+        raise SceneError(vehicle.source, 'axles', f'no axle {name!r} (axles: {known})')
+    spec = data.axles[name]
+    return Axle(left=vehicle.corners[spec.left], right=vehicle.corners[spec.right],
+                name=name, front=name == 'front', wheelbase=data.wheelbase,
+                cg_height=data.cg_height, brake_share=spec.brake_share,
+                drive_share=spec.drive_share, brakes=spec.brakes,
+                anti_roll_bar=spec.anti_roll_bar)

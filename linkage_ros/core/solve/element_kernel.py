@@ -23,7 +23,7 @@ from numba import njit
 import numpy as np
 
 from .jacobian_kernel import factor, solve
-from .so3 import rotate
+from ..base.so3 import rotate
 
 # sha256 of so3.py (test_kernel checks it, as kernel.SO3_DIGEST)
 SO3_DIGEST = '63b60c6921d8498a47cf8a0a86bdda0a2f05c7473f028ff5e6d7b18de31758ea'

@@ -20,9 +20,9 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .geometry import exp_so3
 from .mechanism import is_singular, linearize
-from .status import Status
+from ..base.geometry import exp_so3
+from ..base.status import Status
 
 if TYPE_CHECKING:
     from .mechanism import Mechanism
