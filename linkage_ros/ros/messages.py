@@ -68,7 +68,8 @@ def joint_travel_mm(msg: JointState, joint: str) -> float | None:
 
 
 # The alignment message's fields are the registry's
-# (core/measure/quantities.TOPICS['alignment']), in that order: table name -> (Alignment attribute, column or None).
+# (core/measure/quantities.TOPICS['alignment']), in that order: table name -> (Alignment
+# attribute, column or None).
 _ATTRIBUTES = {
     'camber_gain_deg_per_mm': ('camber_gain', None),
     'bump_steer_deg_per_mm': ('bump_steer', None),
