@@ -12,13 +12,14 @@ import signal
 import subprocess
 import sys
 
-from conftest import connect, PARAMS_FILE, Probe, spin_until, stamp_ns
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
 from geometry_msgs.msg import PoseStamped
 from linkage_ros.core.kinematics import Continuation, sweep
 from linkage_ros.core.scene import load_scene, SceneError
 from linkage_ros.ros.messages import status_values
 from linkage_ros.ros.node import PARAMETERS, QOS, QOS_DEPTH, SuspensionNode
+from linkage_ros.ros.testing import connect, live_tf_topics, node_warnings, Probe, spin_until, \
+    stamp_ns
 import numpy as np
 import pytest
 from rclpy.parameter import Parameter
@@ -26,6 +27,7 @@ from rclpy.serialization import deserialize_message
 from std_msgs.msg import Float64
 import yaml
 
+PARAMS_FILE = Path(__file__).resolve().parent.parent / 'config' / 'suspension.yaml'   # bundled
 TRAVELS_M = [0.02, 0.045, -0.03, -0.0625, 0.0, 0.07]     # jumps up to 132 mm between commands
 BAD_COMMANDS_M = {'nan': math.nan, 'inf': math.inf, '-inf': -math.inf,
                   'beyond bump': 1.0, 'beyond rebound': -1.0}
@@ -459,10 +461,10 @@ def test_qos_depth_is_the_depth_of_every_topic_of_the_node(suspension_node):
                            qos_depth=7)
     own = [e for e in [*node.subscriptions, *node.publishers]
            if e.topic_name not in ('/parameter_events', '/rosout')]
-    assert sorted(e.topic_name for e in own) == [
+    assert sorted(e.topic_name for e in own) == sorted({
         '/alignment', '/camber', '/diagnostics', '/elements', '/joint_states',
-        '/robot_description', '/steering_rack', '/tf', '/tf_static', '/toe',
-        '/wheel_carrier_pose', '/wheel_travel']
+        '/robot_description', '/steering_rack', '/toe', '/wheel_carrier_pose',
+        '/wheel_travel'} | live_tf_topics())
     latched = ('/robot_description', '/tf_static')     # transient local, the last one only
     assert {e.qos_profile.depth for e in own if e.topic_name not in latched} == {7}
     assert {e.qos_profile.depth for e in own if e.topic_name in latched} == {1}
@@ -504,14 +506,14 @@ def test_a_scene_s_warnings_are_logged_once_at_start_as_warnings(ros_context, ca
     node = SuspensionNode(context=ros_context, parameter_overrides=[
         Parameter('scene', value=str(singular))])
     node.destroy_node()
-    warned = [line for line in capfd.readouterr().err.splitlines() if '[WARN]' in line]
+    warned = node_warnings(capfd.readouterr().err)
     assert len(warned) == 1
     assert warned[0].endswith(f'[suspension_kinematics]: {scene.warnings[0]}')
 
 
 def test_a_sound_scene_logs_no_warning(ros_context, capfd):
     SuspensionNode(context=ros_context).destroy_node()
-    assert '[WARN]' not in capfd.readouterr().err
+    assert node_warnings(capfd.readouterr().err) == []
 
 
 def recording_custom_data(path):

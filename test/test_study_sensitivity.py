@@ -106,7 +106,13 @@ def test_the_equations_written_on_hardpoints_are_compile_scenes_table():
         scene = load_scene(name)
         layout = layout_of(scene)
         built = table(layout, geometry(layout, hardpoint_values(scene)))
-        np.testing.assert_array_equal(built, compile_scene(scene).equations, err_msg=name)
+        compiled = compile_scene(scene).equations
+        # Two code paths from the same hardpoints: the operations (and BLAS's summation order,
+        # which depends on the processor's kernel) differ, so entries agree to round-off: a
+        # few ulp of each column's scale (mm coordinates and lengths, unit directions ~1).
+        scale = np.maximum(np.abs(compiled).max(axis=0), 1.0)
+        off = np.abs(built - compiled) / (np.finfo(float).eps * scale)
+        assert off.max() <= 8.0, f'{name}: {off.max():.1f} ulp of the column scale'
 
 
 def test_the_quantities_written_on_hardpoints_reproduce_linkage_sweeps_table():
