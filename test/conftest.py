@@ -25,9 +25,11 @@ The inner loop is `pytest -m "not ros and not process and not slow"`.
 """
 
 import ast
+import functools
 import inspect
 import os
 from pathlib import Path
+import sys
 import textwrap
 
 from linkage_ros.ros.isolation import enter_private_network, environment_domain_id, \
@@ -45,8 +47,10 @@ ROS_FIXTURES = {'ros_context', 'localhost_context', 'executor', 'localhost_execu
 # (workers=, processes=: a pool or a Dask cluster of processes)
 PROCESS_NAMES = {'subprocess', 'node_process', 'NodeProcess', 'Popen', 'multiprocessing',
                  'ProcessPoolExecutor', 'workers', 'processes'}
-# Names whose use starts ROS without a fixture.
+# Names whose use starts ROS without a fixture; and what a module that does says (a program's
+# main that a test calls, such as linkage-soak's).
 ROS_NAMES = {'init_context', 'rclpy', 'SuspensionNode', 'start_suspension_node'}
+STARTS_ROS = ('rclpy.init', 'init_context', 'EventsExecutor', 'create_node')
 # The longest tests of the inner loop (pytest --durations), by file and name without
 # parameters: each more than 9 s on a machine shared by several runs (2 s and more alone);
 # together half its time. A name that no longer exists in its file is an error, so that a rename
@@ -123,6 +127,16 @@ def _names_used(function):
     return {getattr(n, fields[type(n)]) for n in ast.walk(tree) if type(n) in fields} - {None}
 
 
+@functools.lru_cache(maxsize=None)
+def _starts_ros(module_name):
+    """Tell whether a module's own source starts ROS (STARTS_ROS)."""
+    try:
+        source = inspect.getsource(sys.modules[module_name])
+    except (KeyError, OSError, TypeError):
+        return False
+    return any(text in source for text in STARTS_ROS)
+
+
 class _Uses:
     """What the functions of one test module use, their module's own functions followed."""
 
@@ -161,7 +175,9 @@ def pytest_collection_modifyitems(config, items):
                 if getattr(definition.func, '__module__', None) == module.__name__:
                     names |= uses[module].names(definition.func)
         fixtures = set(item.fixturenames)
-        if fixtures & ROS_FIXTURES or names & ROS_NAMES:
+        imported = {getattr(getattr(module, n, None), '__module__', None) for n in names}
+        if (fixtures & ROS_FIXTURES or names & ROS_NAMES
+                or any(_starts_ros(m) for m in imported if m and m != module.__name__)):
             item.add_marker(pytest.mark.ros)
         if 'node_process' in fixtures or names & PROCESS_NAMES:
             item.add_marker(pytest.mark.process)
