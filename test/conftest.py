@@ -19,8 +19,6 @@ need not say it and a new test is marked as soon as it uses the fixture or the c
     process  it starts a process: the node_process fixture, or subprocess in the test, in a
              fixture it uses, or in a function of its module that it calls
     slow     one of the longest of the rest (SLOW below, measured with --durations)
-    tf2_msgs it needs tf2_msgs (live /tf), which the pip route without a compiler lacks: it is
-             skipped there, saying why
 The inner loop is `pytest -m "not ros and not process and not slow"`.
 """
 
@@ -28,7 +26,6 @@ import ast
 import functools
 import inspect
 import os
-from pathlib import Path
 import sys
 import textwrap
 
@@ -160,7 +157,7 @@ class _Uses:
 
 @pytest.hookimpl(tryfirst=True)     # before -m reads the marks
 def pytest_collection_modifyitems(config, items):
-    """Mark each test ros, process, slow and tf2_msgs by what it uses (see the docstring)."""
+    """Mark each test ros, process and slow by what it uses (see the module docstring)."""
     uses, found = {}, {}
     for item in items:
         module = getattr(item, 'module', None)
@@ -181,7 +178,7 @@ def pytest_collection_modifyitems(config, items):
             item.add_marker(pytest.mark.ros)
         if 'node_process' in fixtures or names & PROCESS_NAMES:
             item.add_marker(pytest.mark.process)
-        file = Path(item.fspath).name
+        file = item.path.name
         found[file] = module
         if (item.originalname or item.name) in SLOW.get(file, ()):
             item.add_marker(pytest.mark.slow)
@@ -190,10 +187,3 @@ def pytest_collection_modifyitems(config, items):
         if lost:
             raise pytest.UsageError(f'test/conftest.py: SLOW names {lost}, which {file} no '
                                     'longer has')
-    if any(item.get_closest_marker('tf2_msgs') for item in items):
-        from linkage_ros.ros.tf import tf2_msgs_missing
-        why = tf2_msgs_missing()
-        if why:
-            for item in items:
-                if item.get_closest_marker('tf2_msgs'):
-                    item.add_marker(pytest.mark.skip(reason=why))
