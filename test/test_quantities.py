@@ -9,8 +9,8 @@ import json
 from pathlib import Path
 import re
 
-from linkage_ros.core.measure import quantities as registry
 from linkage_ros.core.measure import alignment
+from linkage_ros.core.measure import quantities as registry
 from linkage_ros.core.model import load_scene
 from linkage_ros.core.solve import Continuation
 from linkage_ros.protocol import ANSWER_TYPES
