@@ -180,6 +180,43 @@ def save_figure(fig, path, dpi):
         raise OSError(exc.errno, exc.strerror, str(path)) from None
 
 
+@contextlib.contextmanager
+def whole_file(path, mode: str = 'w', suffix: str = '', **kwargs):
+    """
+    Yield a stream onto a new file beside path, renamed to path once the body is done.
+
+    What is written so is whole or absent: a full disk, a quota or a file-size limit met on
+    the way (or any error in the body) leaves path as it was, removes the new file and
+    raises; an OSError is raised again naming path. stream.name is the new file's path
+    (suffix: its ending, for a reader that goes by it), e.g. to check it before the rename.
+    """
+    target = Path(path)
+    try:
+        fd, temporary = tempfile.mkstemp(prefix=f'.{target.name}.', suffix=f'.partial{suffix}',
+                                         dir=target.parent or '.')
+    except OSError as exc:
+        raise OSError(exc.errno, exc.strerror, str(path)) from None
+    try:
+        os.fchmod(fd, 0o666 & ~_umask())   # as open() would have made it, not mkstemp's 0600
+        os.close(fd)
+        with open(temporary, mode, **kwargs) as stream:
+            yield stream
+        os.replace(temporary, target)
+    except BaseException as exc:
+        with contextlib.suppress(OSError):
+            os.unlink(temporary)
+        if isinstance(exc, OSError) and not isinstance(exc, BrokenPipeError):
+            raise OSError(exc.errno, exc.strerror, str(path)) from None
+        raise
+
+
+def _umask() -> int:
+    """Return the process's umask (read by setting it, and set back at once)."""
+    mask = os.umask(0o022)
+    os.umask(mask)
+    return mask
+
+
 def counted(count: int, noun: str) -> str:
     """Say a count with its noun in the right number: '1 position', '3 positions'."""
     return f'{count} {noun}' + ('' if count == 1 else 's')
