@@ -9,7 +9,8 @@ from __future__ import annotations
 
 import sys
 
-from ..cli import counted, EXIT_STATUS, fail, millimetres, Parser, program, warn, writable_file
+from ..cli import (counted, EXIT_STATUS, fail, millimetres, Parser, program, same_file, warn,
+                   writable_file)
 from ..core.errors import LinkageError
 
 PROG = 'linkage-study'
@@ -92,11 +93,9 @@ def check(args) -> None:
     """Refuse values no study can use, and outputs that cannot be written (LinkageError)."""
     outputs = [('--out', getattr(args, 'out', None)), ('--plot', getattr(args, 'plot', None)),
                ('-o', getattr(args, 'output', None))]
-    for option, path in outputs:
-        problem = path and writable_file(path, tuple(i for i in (
-            getattr(args, 'scene', None), getattr(args, 'targets', None)) if i))
-        if problem:
-            raise LinkageError(option, problem)
+    inputs = tuple(i for i in (getattr(args, 'scene', None), getattr(args, 'targets', None),
+                               getattr(args, 'tolerances', None)) if i)
+    check_outputs([(o, p) for o, p in outputs if p], inputs)
     if args.command == 'tolerance':
         if not args.sigma > 0:   # NaN too
             raise LinkageError('--sigma', f'must be a number of mm above 0, got {args.sigma:g}')
@@ -111,6 +110,23 @@ def check(args) -> None:
             _need('pyarrow', '--out .parquet', 'study')
         if option == '--plot' and path:
             _need('matplotlib', '--plot', 'plot')
+
+
+def check_outputs(outputs, inputs) -> None:
+    """
+    Refuse an output that cannot be written, is an input, or is another output.
+
+    outputs: (option, path) pairs; inputs: the paths read. Raises LinkageError naming the
+    option (run_fit checks -o again once the targets file has named its scene).
+    """
+    for k, (option, path) in enumerate(outputs):
+        problem = writable_file(path, inputs)
+        if problem:
+            raise LinkageError(option, problem)
+        for other, earlier in outputs[:k]:
+            if same_file(path, earlier):
+                raise LinkageError(option, f'{path} is also the output of {other}; give '
+                                   'another file name')
 
 
 def _need(module, feature, extra):

@@ -84,6 +84,9 @@ def run_fit(args, say) -> int:
     from .targets import load_targets
     targets = load_targets(args.targets)
     say('', targets.design.scene.warnings)
+    from .cli import check_outputs   # the scene the targets name is an input too
+    check_outputs([('-o', args.output)] + ([('--plot', args.plot)] if args.plot else []),
+                  (args.targets, targets.design.scene.source))
     with executor(args.scheduler, args.workers or None) as run:
         result = fit(targets, args.starts, args.seed,
                      run if args.starts > 1 or args.scheduler else None)
@@ -109,20 +112,15 @@ def report(targets, result, say) -> int:
             f'{np.max(np.abs(before)):.6g} -> {worst:.6g}, rms '
             f'{np.sqrt(np.mean(before ** 2)):.6g} -> {np.sqrt(np.mean(after ** 2)):.6g}{judged}')
     moved = ', '.join(f'{name} {offset:+.4g}' for name, offset in
-                      zip(targets.names(), result.offsets / _scale(targets)))
+                      zip(targets.names(), result.offsets))
     backed = (f', {counted(result.unassembled, "step")} backed off from designs that do not '
               'assemble' if result.unassembled else '')
-    say(f'moved (scene units): {moved}; {result.evaluations} evaluations, {result.jacobians} '
+    say(f'moved (mm): {moved}; {result.evaluations} evaluations, {result.jacobians} '
         f'Jacobians{backed}; {result.message}')
     if unmet:
         say(f'{counted(unmet, "target")} cannot be met within the bounds (the best design '
             'found is written)')
     return unmet
-
-
-def _scale(targets):
-    from ..core.scene import UNITS_TO_MM
-    return UNITS_TO_MM[targets.design.scene.units]
 
 
 def _finite(values, option):
