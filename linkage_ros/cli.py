@@ -22,6 +22,7 @@ import tempfile
 
 DONE, DAMAGED, MISTAKE = 0, 1, 2
 READER_GONE = 128 + signal.SIGPIPE   # the status of cat when its reader stops (| head)
+INTERRUPTED = 128 + signal.SIGINT    # the status of a shell's command ended by Ctrl-C
 OUTPUT_ERRORS = (errno.ENOSPC, errno.EDQUOT, errno.EFBIG)   # a disk, a quota, ulimit -f
 
 EXIT_STATUS = ('2 a mistake in the command: an unknown option, a bad value, a missing or '

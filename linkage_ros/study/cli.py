@@ -9,9 +9,10 @@ from __future__ import annotations
 
 import sys
 
-from ..cli import (counted, EXIT_STATUS, fail, millimetres, Parser, program, same_file, warn,
-                   writable_file)
+from ..cli import (counted, EXIT_STATUS, fail, INTERRUPTED, millimetres, Parser, program,
+                   same_file, warn, writable_file)
 from ..core.errors import LinkageError
+from ..core.limits import LENGTH_LIMIT_MM
 
 PROG = 'linkage-study'
 COMMANDS = ('sensitivity', 'tolerance', 'fit')
@@ -97,8 +98,10 @@ def check(args) -> None:
                                getattr(args, 'tolerances', None)) if i)
     check_outputs([(o, p) for o, p in outputs if p], inputs)
     if args.command == 'tolerance':
-        if not args.sigma > 0:   # NaN too
-            raise LinkageError('--sigma', f'must be a number of mm above 0, got {args.sigma:g}')
+        if not 0 < args.sigma <= LENGTH_LIMIT_MM:   # NaN too; beyond, variants overflow
+            raise LinkageError('--sigma', f'must be a number of mm above 0 and at most '
+                               f'{LENGTH_LIMIT_MM:g} (the length limit of a scene), got '
+                               f'{args.sigma:g}')
         if args.samples < 2:
             raise LinkageError('--samples', f'must be at least 2, got {args.samples}')
     if getattr(args, 'workers', 0) < 0:
@@ -151,6 +154,9 @@ def main(argv: list[str] | None = None) -> int:
         return command(args, say)
     except (LinkageError, SceneError) as exc:
         return fail(PROG, exc)
+    except KeyboardInterrupt:   # Ctrl-C: the local workers are stopped already (executor)
+        print(f'{PROG}: interrupted', file=sys.stderr)
+        return INTERRUPTED
     except BrokenPipeError:
         raise   # stdout's reader went away: program() ends quietly
     except OSError as exc:   # an output that became unwritable on the way

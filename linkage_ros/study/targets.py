@@ -24,7 +24,7 @@ from typing import NamedTuple
 import numpy as np
 
 from .hardpoints import AXES, Design, load_design
-from .sensitivity import available
+from .sensitivity import available, did_you_mean
 from ..core.bundled import bundled_scenes
 from ..core.fields import FREE_KEYS
 from ..core.kinematics import travel_count, travel_range
@@ -140,7 +140,7 @@ def _target(item, where, have, design, fail):
     quantity = item.get('quantity')
     if quantity not in have:
         fail(f'{where}.quantity', f'{quantity!r} is not a quantity of the scene '
-             f'{design.scene.name} (its quantities: {", ".join(have)})')
+             f'{design.scene.name}{did_you_mean(quantity, have)} (its quantities: {", ".join(have)})')
     span = item.get('travel')
     if not isinstance(span, list) or len(span) != 3:
         fail(f'{where}.travel', f'expected [FROM, TO, STEP] in mm, got {span!r}')

@@ -24,13 +24,14 @@ import numpy as np
 
 from . import variant_kernel
 from .equations import geometry, layout_of, table
-from .executor import in_process
+from .executor import in_process, Items
 from .hardpoints import AXES, Design, scene_with
 from .quantities import SWEEP_COLUMNS
 from .sensitivity import sweep_column_rates
 from ..core.continuation import Continuation
 from ..core.errors import LinkageError
 from ..core.kinematics import sweep
+from ..core.limits import LENGTH_LIMIT_MM
 from ..core.scene import SceneError
 
 if TYPE_CHECKING:
@@ -91,8 +92,9 @@ def sigmas(design: Design, sigma: float, overrides: dict | None = None) -> np.nd
 
 def _sd(where, value):
     if isinstance(value, bool) or not isinstance(value, (int, float)) \
-            or not (np.isfinite(value) and value >= 0):
-        raise LinkageError(where, f'a standard deviation is a number of mm >= 0, got {value!r}')
+            or not (np.isfinite(value) and 0 <= value <= LENGTH_LIMIT_MM):
+        raise LinkageError(where, f'a standard deviation is a number of mm >= 0 and at most '
+                           f'{LENGTH_LIMIT_MM:g}, got {value!r}')
     return float(value)
 
 
@@ -108,9 +110,9 @@ def problem(design: Design, sigma: np.ndarray, samples: int, travels: ArrayLike,
                    tuple(controls))
 
 
-def batches(prob: Problem) -> list[tuple[Problem, int]]:
+def batches(prob: Problem) -> Items:
     """Return the work items: (problem, batch index), BATCH variants each (the last fewer)."""
-    return [(prob, i) for i in range((prob.samples + BATCH - 1) // BATCH)]
+    return Items(prob, (prob.samples + BATCH - 1) // BATCH)
 
 
 def perturbed(prob: Problem, index: int) -> np.ndarray:
