@@ -1,8 +1,10 @@
 """
-linkage-study at its limits: studies too large, schedulers that do not answer, Ctrl-C, values
-out of range. Each is one line on stderr (status 2; 130 for Ctrl-C), never a traceback.
+linkage-study at its limits: too large, a scheduler that does not answer, Ctrl-C, bad values.
+
+Each is one line on stderr (status 2; 130 for Ctrl-C), never a traceback.
 """
 
+import os
 from pathlib import Path
 import signal
 import socket
@@ -109,7 +111,7 @@ def test_a_scheduler_address_without_a_port_number_is_one_line_and_no_traceback(
     status, out, err = run(*TOLERANCE, '--samples', '100', '--scheduler',
                            'tcp://127.0.0.1:notaport')
     assert status == 2 and 'Traceback' not in err and len(err.splitlines()) == 1
-    assert err == ("linkage-study: --scheduler: expected tcp://HOST:PORT (PORT a number up to "
+    assert err == ('linkage-study: --scheduler: expected tcp://HOST:PORT (PORT a number up to '
                    "65535), got 'tcp://127.0.0.1:notaport'\n")
 
 
@@ -123,7 +125,6 @@ def test_ctrl_c_during_a_study_ends_it_at_once_with_status_130_and_no_traceback(
         lines.append(line)
         if 'batches (' in line and not line.startswith('linkage-study: [....'):
             break
-    import os
     os.killpg(study.pid, signal.SIGINT)
     rest = study.communicate(timeout=60)[1]
     assert study.returncode == 130, lines + [rest]

@@ -140,7 +140,8 @@ def _target(item, where, have, design, fail):
     quantity = item.get('quantity')
     if quantity not in have:
         fail(f'{where}.quantity', f'{quantity!r} is not a quantity of the scene '
-             f'{design.scene.name}{did_you_mean(quantity, have)} (its quantities: {", ".join(have)})')
+             f'{design.scene.name}{did_you_mean(quantity, have)} (its quantities: '
+             f'{", ".join(have)})')
     span = item.get('travel')
     if not isinstance(span, list) or len(span) != 3:
         fail(f'{where}.travel', f'expected [FROM, TO, STEP] in mm, got {span!r}')
