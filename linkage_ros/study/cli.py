@@ -98,10 +98,11 @@ def check(args) -> None:
                                getattr(args, 'tolerances', None)) if i)
     check_outputs([(o, p) for o, p in outputs if p], inputs)
     if args.command == 'tolerance':
-        if not 0 < args.sigma <= LENGTH_LIMIT_MM:   # NaN too; beyond, variants overflow
-            raise LinkageError('--sigma', f'must be a number of mm above 0 and at most '
-                               f'{LENGTH_LIMIT_MM:g} (the length limit of a scene), got '
-                               f'{args.sigma:g}')
+        if not args.sigma > 0:   # NaN too
+            raise LinkageError('--sigma', f'must be a number of mm above 0, got {args.sigma:g}')
+        if args.sigma > LENGTH_LIMIT_MM:   # the variants' arithmetic would overflow
+            raise LinkageError('--sigma', f'must be at most {LENGTH_LIMIT_MM:g} mm (the length '
+                               f'limit of a scene), got {args.sigma:g}')
         if args.samples < 2:
             raise LinkageError('--samples', f'must be at least 2, got {args.samples}')
     if getattr(args, 'workers', 0) < 0:
