@@ -14,14 +14,13 @@ function of both wheels' contact patches and their velocities (axle_map; core.ax
 
 from __future__ import annotations
 
-import math
 from typing import Callable, NamedTuple, TYPE_CHECKING
 
 import numpy as np
 
 from .sweep import header, table
 from ..core.measure import columns, contact_patch
-from ..core.solve import compile_scene, sweep, tangent, travel_range
+from ..core.solve import compile_scene, sweep, tangent, travel_count, travel_range
 
 if TYPE_CHECKING:
     from ..core.axle import Axle
@@ -42,11 +41,9 @@ class Grid(NamedTuple):
     step: float
 
     @property
-    def count(self) -> int:
-        """Return how many values travel_range gives (the stop is always included)."""
-        steps = math.floor(abs(self.stop - self.start) / self.step + 1e-9)
-        return steps + 1 + (self.start + math.copysign(self.step * steps,
-                                                       self.stop - self.start) != self.stop)
+    def count(self) -> float:
+        """Return how many values travel_range gives (the stop always in); inf: uncountable."""
+        return travel_count(self.start, self.stop, self.step)
 
     def values(self) -> np.ndarray:
         """Return the grid's points as an array of count floats, mm, ascending."""
