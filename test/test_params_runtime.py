@@ -236,9 +236,9 @@ def test_a_new_scene_keeps_the_elements_topic_and_publishes_its_own_elements(
     got = []
     probe.node.create_subscription(JointState, '/elements', got.append, 100)
     corner = node.corners['']
-    before = corner.extras['elements'][0]
+    before = corner.publishers['elements']
     assert client.set(scene='macpherson') == [(True, '')]
-    assert corner.extras['elements'][0] is before
+    assert corner.publishers['elements'] is before
     assert_answers(probe, 'macpherson', [0.03])
     assert spin_until(probe.executor, lambda: got)
     scene = load_scene('macpherson')
