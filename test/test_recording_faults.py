@@ -168,17 +168,24 @@ from linkage_ros.record.mcap_writer import McapRecorder, RecordingError
 signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
 resource.setrlimit(resource.RLIMIT_FSIZE, ({limit}, {limit}))
 recorder = McapRecorder(sys.argv[1], chunk_size=10**9, flush_period=0.05)
+raised = None
 for i in range(20000):   # one chunk, never full: only the flush thread writes
-    recorder.record('/wheel_travel', 'std_msgs/msg/Float64', Float64(data=i * 1e-6), i, i)
+    try:   # the thread may meet the error between two records: the next one raises it
+        recorder.record('/wheel_travel', 'std_msgs/msg/Float64', Float64(data=i * 1e-6), i, i)
+    except RecordingError as exc:
+        raised = exc
+        break
     if i % 100 == 99:
         time.sleep(0.01)
     if recorder.error:
         break
 print(i, recorder.error)
-try:
-    recorder.record('/wheel_travel', 'std_msgs/msg/Float64', Float64(data=0.0), i, i)
-except RecordingError as exc:
-    print(exc)
+if raised is None:
+    try:
+        recorder.record('/wheel_travel', 'std_msgs/msg/Float64', Float64(data=0.0), i, i)
+    except RecordingError as exc:
+        raised = exc
+print(raised)
 recorder.close()
 recorder.close()
 """
