@@ -25,9 +25,6 @@ DEEP_ON_PURPOSE = {'linkage_ros.study.equations', 'linkage_ros.study.pose_kernel
                    'linkage_ros.study.variant_kernel', 'linkage_ros.study.quantities',
                    'linkage_ros.study.sensitivity', 'linkage_ros.study.tolerance',
                    'linkage_ros.bench.peers'}
-# Imports up a layer that remain, each with its reason (issue 28 item 4 removes this one: the
-# Scene will carry its hardpoint table, from which the design condition is computed).
-UPWARD_LEFT = {('linkage_ros.core.model.scene', 'linkage_ros.core.solve.mechanism')}
 # each layer of core/ and the layers below it that it may import from
 ALLOWED = {
     'base': {'base'},
@@ -132,21 +129,14 @@ def test_the_graph_reads_the_core_layers_it_checks():
 
 
 def test_no_module_of_the_package_is_in_an_import_circle():
-    # UPWARD_LEFT's pair is the one circle left (mechanism names the Scene type it compiles)
-    graph = {m: targets - {t for u, t in UPWARD_LEFT if u == m} for m, targets in GRAPH.items()}
-    assert _circles(graph) == []
-
-
-def test_the_only_circle_left_is_the_upward_import_named_in_upward_left():
-    assert _circles(GRAPH) == [sorted(m for pair in UPWARD_LEFT for m in pair)]
+    assert _circles(GRAPH) == []
 
 
 @pytest.mark.parametrize('layer', sorted(ALLOWED))
 def test_a_core_layer_imports_only_from_itself_and_the_layers_below(layer):
     upward = sorted((m, t) for m, targets in GRAPH.items() if _layer(m) == layer
                     for t in targets
-                    if t.startswith('linkage_ros.core') and _layer(t) not in ALLOWED[layer]
-                    and (m, t) not in UPWARD_LEFT)
+                    if t.startswith('linkage_ros.core') and _layer(t) not in ALLOWED[layer])
     assert upward == []
 
 

@@ -300,3 +300,29 @@ def test_a_singular_scene_is_drawn_with_its_warning_and_no_traceback(tmp_path, c
     warning = f'linkage-rerun: warning: {load_scene(singular).warnings[0]}\n'
     assert capsys.readouterr().err.count(warning) == 1
     assert rows(out)[('/suspension/carrier', False)] == 161     # every recorded pose
+
+
+TF_SCHEMA = ('tf2_msgs/msg/TFMessage', 'ros2msg', 'geometry_msgs/TransformStamped[] transforms\n')
+URDF = ('<robot name="{name}"><link name="base_link"/><link name="{child}"/>'
+        '<joint name="j" type="floating"><parent link="base_link"/><child link="{child}"/>'
+        '</joint></robot>')
+
+
+@pytest.mark.parametrize('name, child', [
+    ('bad\x01name', 'carrier'),           # a control character: no XML holds it
+    ('five_link', 'carrier\x00cut'),      # NUL: cuts a C string, and no XML holds it
+])
+def test_a_recorded_urdf_or_frame_with_a_control_character_is_one_line_not_a_traceback(
+        tmp_path, capsys, name, child):
+    # issue 27 item 6: such names cannot be loaded any more, but a bag made elsewhere, or by
+    # an older version, may hold them; linkage-rerun --tf names the problem (status 2)
+    bag = write(tmp_path / 'run.mcap',
+                {'/robot_description': STRING, '/tf': TF_SCHEMA},
+                [('/robot_description', cdr.string_cdr(URDF.format(name=name, child=child))),
+                 ('/tf', cdr.tf_message_cdr((0, 1), ['base_link'], [child],
+                                            [[0.0, 0.0, 0.1]], [[0.0, 0.0, 0.0, 1.0]]))])
+    status = rerun_convert.main([str(bag), '--tf', '-o', str(tmp_path / 'run.rrd')])
+    err = capsys.readouterr().err
+    assert status == 2, err
+    assert len(err.strip().splitlines()) == 1 and 'Traceback' not in err
+    assert 'U+000' in err and 'control' in err   # the character, by its code point

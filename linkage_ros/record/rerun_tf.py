@@ -28,6 +28,8 @@ import math
 from pathlib import Path
 import tempfile
 from typing import TYPE_CHECKING
+import unicodedata
+from xml.etree import ElementTree
 
 import numpy as np
 import rerun as rr
@@ -36,6 +38,7 @@ import rerun.blueprint as rrb
 from .rerun_draw import APP_ID, EYE_DIRECTION, EYE_DISTANCE, framed, TIME
 from ..cdr import CdrError, float64_of, string_of, transforms_of
 from ..core.base import LinkageError, unit
+from ..core.model import name_problem
 
 if TYPE_CHECKING:
     from .mcap_reader import Bag
@@ -61,6 +64,16 @@ def convert_tf(bag: Bag, output: str | Path, recording_id: str | None = None) ->
         raise LinkageError(str(bag.path), 'no /robot_description and /tf to draw from (the '
                            'node records them with its parameter tf on, its default; so does '
                            'linkage-replay)')
+    for when, description in descriptions:   # Rerun's URDF reader would raise
+        problem = urdf_problem(description)
+        if problem:
+            raise LinkageError(str(bag.path), f'the /robot_description recorded at {when} ns '
+                               f'{problem}: not drawn')
+    for child, rows in [*dynamic.items(), *((c, [r]) for c, r in static.items())]:
+        for name in {child, *(r[1] if len(r) > 3 else r[0] for r in rows)}:
+            problem = name_problem(name)
+            if problem:
+                raise LinkageError(str(bag.path), f'a frame of its /tf: {problem}: not drawn')
     parts = len(descriptions) > 1
     if parts:
         dynamic = _hidden_out_of_part(dynamic)
@@ -106,6 +119,19 @@ def convert_tf(bag: Bag, output: str | Path, recording_id: str | None = None) ->
             'frames': len(dynamic) + len(static),
             'transforms': sum(1 for rows in dynamic.values() for r in rows if len(r) == 4),
             'plotted values': sum(len(rows) for rows in plots.values())}
+
+
+def urdf_problem(text: str) -> str:
+    """Say why text cannot be drawn as a URDF (its characters, or not XML); '' if it can."""
+    bad = sorted({c for c in text if unicodedata.category(c)[0] == 'C' and c not in '\t\n\r'})
+    if bad:
+        return (f"holds {', '.join(f'U+{ord(c):04X}' for c in bad)}: control or unassigned "
+                'characters, which no URDF (XML) holds')
+    try:
+        ElementTree.fromstring(text)
+    except ElementTree.ParseError as exc:
+        return f'is not XML ({exc})'
+    return ''
 
 
 def _robot(k, parts):

@@ -5,8 +5,8 @@ Scenes (scene.py: parser and checks; constraint.py), their elements, mounts and 
 declared, vehicles and their axles (vehicle_axles.py and an anti-roll bar's declaration,
 anti_roll_bar.py, load only for a file that has them: AxleSpec and VehicleAxles are read
 from here lazily), YAML reading, field checks and the bundled files. Imports
-base only; a declaration never imports the solver (one exception left: scene.py's singular-
-design warning asks solve.mechanism).
+base only; a declaration never imports the solver (solve/mechanism.py registers the
+singular-design check into scene.CHECKS).
 """
 
 from .bundled import bundled_scenes, config_dir, scene_dir, vehicle_dir

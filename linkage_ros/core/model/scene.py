@@ -16,7 +16,7 @@ from functools import cached_property
 import math
 from pathlib import Path
 import re
-from typing import Any, TYPE_CHECKING
+from typing import Any, Callable, TYPE_CHECKING
 
 import numpy as np
 
@@ -26,13 +26,12 @@ from .constraint import Constraint, EQUATIONS_PER_TYPE  # noqa: F401 (also read 
 from .elements import parse_elements
 from .fields import Fields, FREE_KEYS
 from .kingpin import check_kingpin, KEY as KINGPIN_KEY
+from .layout import Layout, layout_of
 # LENGTH_LIMIT_MM, SceneError and within_length_limit are also read from here, where they were.
 from .yaml_file import read_yaml, SceneError  # noqa: F401 (SceneError: kept here)
 from ..base.errors import LinkageError
 from ..base.geometry import perpendicular, unit
 from ..base.limits import LENGTH_LIMIT_MM, positions_needed, within_length_limit  # noqa: F401
-from ..solve.mechanism import (compile_points, design_condition, Layout, layout_of, Mechanism,
-                               SINGULAR_CONDITION)
 
 if TYPE_CHECKING:
     from collections.abc import Sequence
@@ -140,13 +139,8 @@ class Scene:
 
     @cached_property
     def layout(self) -> Layout:
-        """Return the row map of the guidance equations into points (mechanism.layout_of)."""
+        """Return the row map of the guidance equations into points (layout.layout_of)."""
         return layout_of(self)
-
-    @cached_property
-    def mechanism(self) -> Mechanism:
-        """Return the scene compiled for the solvers, once (mechanism.compile_scene)."""
-        return compile_points(self)
 
     def to_mm(self, value: float | np.ndarray) -> float | np.ndarray:
         """Convert a length (or an array of them) from the scene's units to mm."""
@@ -241,6 +235,16 @@ def parse_scene(data: Any, source: str = '<scene>') -> Scene:
     return replace(scene, warnings=scene_warnings(scene))
 
 
+# Checks of a loaded scene that need a layer above this one (solve/mechanism.py registers the
+# singular-design check): a declaration never imports the solver. linkage_ros.core imports
+# solve, so every scene is parsed with them in place.
+CHECKS: list[Callable[[Scene], tuple[str, ...]]] = []
+
+
+def _checked(scene: Scene) -> tuple[str, ...]:
+    return tuple(line for check in CHECKS for line in check(scene))
+
+
 def scene_warnings(scene: Scene) -> tuple[str, ...]:
     """
     Return what looks wrong in a scene that loads, one line each, naming its file.
@@ -256,7 +260,7 @@ def scene_warnings(scene: Scene) -> tuple[str, ...]:
                   abs(scene.wheel_center[1])))
     odd = [(said, size) for said, size in sizes if not low <= size <= high]
     if not odd:
-        return singular_design_warnings(scene)
+        return _checked(scene)
     guess = ''
     if scene.units == 'm' and all(size > high for _, size in odd):
         guess = ': a file written in mm but labelled units: m?'
@@ -265,24 +269,7 @@ def scene_warnings(scene: Scene) -> tuple[str, ...]:
     verb = 'is' if len(odd) == 1 else 'are'
     return (f'{scene.source}: {" and ".join(said for said, _ in odd)} {verb} outside '
             f'{low:g}-{high:g} mm, implausible for a road vehicle{guess} (solved as given)',
-            ) + singular_design_warnings(scene)
-
-
-def singular_design_warnings(scene: Scene) -> tuple[str, ...]:
-    """
-    Return a warning if the design position itself is singular, else ().
-
-    Singular: the scaled condition number of the guidance equations there
-    (mechanism.design_condition, numpy only: no kernel is compiled or loaded) is beyond
-    mechanism.SINGULAR_CONDITION, or not finite. Such a scene loads, and every travel but 0
-    is then out of reach with Status.SINGULAR.
-    """
-    condition = design_condition(scene)
-    if condition <= SINGULAR_CONDITION:   # False for NaN
-        return ()
-    return (f'{scene.source}: the design position is singular (scaled condition number '
-            f'{condition:.3g}, beyond {SINGULAR_CONDITION:g}): the links do not determine the '
-            "carrier's motion (two links alike?); only travel 0 can be solved",)
+            ) + _checked(scene)
 
 
 def _spin_axis_point(check, carrier, wheel_center, side, constraints):

@@ -25,6 +25,8 @@ import numpy as np
 
 from . import jacobian_kernel, kernel
 from ..base import geometry, jets as jt
+from ..model.layout import Layout, layout_of  # noqa: F401 (also read from here)
+from ..model.scene import CHECKS
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
@@ -37,24 +39,8 @@ if TYPE_CHECKING:
 SINGULAR_CONDITION = 1e12
 # line_normals: the spin axis helps build a strut's normals unless nearly parallel to it
 HELPER_SINE = 0.1
-
-
-class Layout(NamedTuple):
-    """
-    A scene's 5 equation rows as indices into its hardpoint table (Scene.points).
-
-    Sphere rows first (each link, then an arm's two axis points), then a strut's two rows.
-    The layout follows from the constraint types alone; the geometry from the points.
-    """
-
-    carrier: np.ndarray      # (5,) int: hardpoint of the row's carrier point
-    base: np.ndarray         # (5,) int: hardpoint of its body point (A, an axis point, T)
-    line: np.ndarray         # (5,) bool: a strut line row
-    normal: np.ndarray       # (5,) int: which of the strut's two normals (line rows)
-    steer: np.ndarray        # (5,) 1.0 where the body point moves with the rack
-    center: int              # hardpoint index of wheel_center
-    spin: int                # hardpoint index of spin_axis_point
-    constraint: np.ndarray   # (5,) int: index into scene.constraints of the row
+# where a Scene keeps its Mechanism (compile_scene)
+COMPILED = '_mechanism'
 
 
 class Geometry(NamedTuple):
@@ -95,27 +81,6 @@ class Mechanism:
         return [(int(self.equation_point[i]), row[kernel.BASE:kernel.BASE + 3],
                  row[kernel.NORMAL:kernel.NORMAL + 3])
                 for i, row in enumerate(self.equations) if row[kernel.KIND] == kernel.LINE]
-
-
-def layout_of(scene: Scene) -> Layout:
-    """Return the row map of a scene: sphere rows first, then the strut's two rows each."""
-    names = scene.point_names
-    spheres, lines = [], []
-    for index, c in enumerate(scene.constraints):
-        joint = names.index(f'{c.name}.carrier')
-        steer = 1.0 if c.steer == 'rack' else 0.0
-        if c.type == 'line':
-            top = names.index(f'{c.name}.base')
-            lines += [(joint, top, True, 0, 0.0, index), (joint, top, True, 1, 0.0, index)]
-        else:
-            ends = ('axis0', 'axis1') if c.type == 'circle' else ('base',)
-            spheres += [(joint, names.index(f'{c.name}.{end}'), False, 0, steer, index)
-                        for end in ends]
-    rows = list(zip(*(spheres + lines)))
-    return Layout(np.array(rows[0]), np.array(rows[1]), np.array(rows[2], dtype=bool),
-                  np.array(rows[3]), np.array(rows[4], dtype=float),
-                  names.index('wheel_center'), names.index('spin_axis_point'),
-                  np.array(rows[5]))
 
 
 def geometry_of(layout: Layout, points) -> Geometry:
@@ -211,10 +176,14 @@ def compile_scene(scene: Scene) -> Mechanism:
     """
     Return the Mechanism of a Scene, compiled from its hardpoint table once.
 
-    The Scene (frozen) keeps it (Scene.mechanism, which calls compile_points): every solver
-    of one scene shares one Mechanism, whose arrays nobody writes.
+    The Scene (frozen) keeps it beside its other derived values (its instance dict, as
+    functools.cached_property does): every solver of one scene shares one Mechanism, whose
+    arrays nobody writes. A moved design (model.with_points) is another Scene, compiled anew.
     """
-    return scene.mechanism
+    mech = scene.__dict__.get(COMPILED)
+    if mech is None:
+        mech = scene.__dict__[COMPILED] = compile_points(scene)
+    return mech
 
 
 def compile_points(scene: Scene) -> Mechanism:
@@ -352,3 +321,23 @@ def design_jacobian(mech: Mechanism) -> np.ndarray:
     to_top = base - mech.design_center - r
     return np.where(sphere, np.hstack((d, np.cross(r, d))),
                     np.hstack((-normal, np.cross(normal, to_top) - np.cross(r, normal))))
+
+
+def singular_design_warnings(scene: Scene) -> tuple[str, ...]:
+    """
+    Return a warning if the design position itself is singular, else ().
+
+    Singular: the scaled condition number of the guidance equations there
+    (mechanism.design_condition, numpy only: no kernel is compiled or loaded) is beyond
+    mechanism.SINGULAR_CONDITION, or not finite. Such a scene loads, and every travel but 0
+    is then out of reach with Status.SINGULAR.
+    """
+    condition = design_condition(scene)
+    if condition <= SINGULAR_CONDITION:   # False for NaN
+        return ()
+    return (f'{scene.source}: the design position is singular (scaled condition number '
+            f'{condition:.3g}, beyond {SINGULAR_CONDITION:g}): the links do not determine the '
+            "carrier's motion (two links alike?); only travel 0 can be solved",)
+
+
+CHECKS.append(singular_design_warnings)   # every scene load asks it (model/scene.py)
