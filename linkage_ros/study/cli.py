@@ -9,23 +9,26 @@ from __future__ import annotations
 
 import sys
 
-from ..cli import counted, EXIT_STATUS, fail, millimetres, Parser, program, warn, writable_file
-from ..core.base import LinkageError
+from ..cli import (counted, EXIT_STATUS, fail, millimetres, Parser, program, SPAN, span, warn,
+                   writable_file)
+from ..core.base import LinkageError, positions_needed
 
 PROG = 'linkage-study'
 COMMANDS = ('sensitivity', 'tolerance', 'fit')
 
 EPILOG = """examples:
-  linkage-study sensitivity five_link --travel -50 0 50 --out five_link_sensitivity.csv
+  linkage-study sensitivity five_link --travel -50:50:50 -o five_link_sensitivity.csv
   linkage-study tolerance five_link --sigma 0.05 --samples 10000 --travel -50 0 50
   linkage-study fit targets.yaml -o fitted.yaml --plot fit.png
-  linkage-study tolerance five_link --sigma 0.1 --samples 1000000 --travel -50 0 50 \\
-      --scheduler tcp://127.0.0.1:8786 --out tolerance.parquet
+  linkage-study tolerance five_link --sigma 0.1 --samples 1000000 --travel -50:50:50 \\
+      --scheduler tcp://127.0.0.1:8786 -o tolerance.parquet
 
 Hardpoints are named <constraint>.base, <constraint>.axis0, <constraint>.axis1,
 <constraint>.carrier, wheel_center and spin_axis_point; quantities as linkage-sweep's columns
 (camber_deg, toe_deg, wheel_center_x_mm, ..., the alignment set, <element>_length_mm, ...).
-Tables go to stdout as CSV, or to --out (CSV, or Parquet for a name ending in .parquet).
+Tables go to stdout as CSV, or to -o (CSV, or Parquet for a name ending in .parquet).
+--travel takes travels and ranges FROM:TO:STEP (TO included), in any mix. Old spelling kept
+for one release, with a note: --out.
 
 exit status: 0 done; 1 done, but a travel or a variant is out of reach, or a fit leaves a
 target with a tolerance unmet (said on stderr); """ + EXIT_STATUS
@@ -45,9 +48,11 @@ def parser() -> Parser:
     two = sub('tolerance', 'tolerance stack-up: first order and Monte Carlo')
     for p in (one, two):
         p.add_argument('scene', help='bundled scene name or path to a scene file')
-        p.add_argument('--travel', nargs='+', type=millimetres, required=True, metavar='T',
-                       help='travels, mm (+ = bump)')
-        p.add_argument('--out', help='write the table here (.csv, or .parquet); default stdout')
+        p.add_argument('--travel', nargs='+', type=span, required=True, metavar=SPAN,
+                       help='travels, mm (+ = bump): values, ranges, or both')
+        p.add_argument('-o', '--output', dest='out', metavar='FILE',
+                       help='write the table here (.csv, or .parquet); default stdout')
+        p.old('--out', dest='out', metavar='FILE', new='-o/--output')
     one.add_argument('--rack', type=millimetres, default=0.0,
                      help='steering rack travel, mm (default 0)')
     one.add_argument('--quantity', nargs='+', metavar='Q',
@@ -94,12 +99,25 @@ def parse_args(argv):
         top.error(f'unrecognized arguments: {" ".join(extra)}')
     if args.command is None:
         top.error(f'give a command: {", ".join(COMMANDS)}')
+    if getattr(args, 'travel', None):
+        args.travel = travels(args.travel)
     return args
+
+
+def travels(spans) -> list[float]:
+    """Return the travels (mm) of the --travel values and ranges, in the order given."""
+    from ..core.solve import travel_range
+    try:
+        for given in spans:
+            positions_needed(*given, '--travel')   # before a range too long is made
+    except LinkageError as exc:
+        sys.exit(fail(PROG, exc))
+    return [float(t) for given in spans for t in travel_range(*given)]
 
 
 def check(args) -> None:
     """Refuse values no study can use, and outputs that cannot be written (LinkageError)."""
-    outputs = [('--out', getattr(args, 'out', None)), ('--plot', getattr(args, 'plot', None)),
+    outputs = [('-o', getattr(args, 'out', None)), ('--plot', getattr(args, 'plot', None)),
                ('-o', getattr(args, 'output', None))]
     for option, path in outputs:
         problem = path and writable_file(path, tuple(i for i in (
@@ -116,8 +134,8 @@ def check(args) -> None:
     if args.command == 'fit' and args.starts < 1:
         raise LinkageError('--starts', f'must be at least 1, got {args.starts}')
     for option, path in outputs:
-        if option == '--out' and path and path.endswith('.parquet'):
-            _need('pyarrow', '--out .parquet', 'study')
+        if option == '-o' and path and path.endswith('.parquet'):
+            _need('pyarrow', '-o .parquet', 'study')
         if option == '--plot' and path:
             _need('matplotlib', '--plot', 'plot')
 
