@@ -5,11 +5,11 @@ set -u
 cd "$(dirname "$0")/.." && export ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST
 step() { echo "=== $*"; }
 step sweep double_wishbone
-.venv/bin/linkage-sweep double_wishbone --from -40 --to 40 --step 10 --csv double_wishbone.csv; echo "rc=$?"; head -2 double_wishbone.csv
+.venv/bin/linkage-sweep double_wishbone --travel -40:40:10 -o double_wishbone.csv; echo "rc=$?"; head -2 double_wishbone.csv
 step sweep out of reach
-.venv/bin/linkage-sweep five_link --from 0 --to 1000 --step 100 > /dev/null; echo "rc=$?"
+.venv/bin/linkage-sweep five_link --travel 0:1000:100 > /dev/null; echo "rc=$?"
 step kinematic map
-.venv/bin/linkage-map double_wishbone --out maps; echo "rc=$?"; ls maps
+.venv/bin/linkage-map double_wishbone -o maps; echo "rc=$?"; ls maps
 step misspelt parameter
 .venv/bin/suspension_node --ros-args -p sceen:=macpherson; echo "rc=$?"
 step python snippet
@@ -68,7 +68,7 @@ step axle, roll centre picture
 .venv/bin/linkage-axle demo_vehicle --axle front > axle.csv; echo "rc=$?"; head -2 axle.csv
 .venv/bin/linkage-plot roll-centre roll_centre.png; echo "rc=$?"
 step studies
-.venv/bin/linkage-study sensitivity five_link --travel -50 0 50 --out five_link_sensitivity.csv; echo "rc=$?"
+.venv/bin/linkage-study sensitivity five_link --travel -50 0 50 -o five_link_sensitivity.csv; echo "rc=$?"
 .venv/bin/linkage-study tolerance five_link --sigma 0.05 --samples 10000 --travel -50 0 50 > tolerance.csv; echo "rc=$?"
 .venv/bin/linkage-study fit config/study/bump_steer_targets.yaml -o double_wishbone_fitted.yaml; echo "rc=$?"
 step git status

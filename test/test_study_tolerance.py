@@ -189,7 +189,7 @@ def test_a_length_the_scene_lacks_is_refused_naming_its_lengths():
 def test_linkage_study_tolerance_writes_the_table_a_progress_bar_and_the_picture(tmp_path):
     status, out, err = run('tolerance', 'five_link', '--sigma', '0.05', '--samples', '500',
                            '--travel', '-20', '0', '20', '--seed', '1', '--plot',
-                           str(tmp_path / 'tolerance.png'), '--out', str(tmp_path / 't.csv'))
+                           str(tmp_path / 'tolerance.png'), '-o', str(tmp_path / 't.csv'))
     assert status == 0, err
     lines = (tmp_path / 't.csv').read_text().splitlines()
     assert lines[0] == ','.join(TOLERANCE_COLUMNS) and len(lines) == 1 + 3 * 5
