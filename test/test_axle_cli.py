@@ -142,8 +142,8 @@ def test_a_bad_axle_is_one_line_naming_the_file_and_the_key_with_status_2(
 @pytest.mark.parametrize('argv, says', [
     (['--axle', 'middle'], "axles: no axle 'middle' (axles: front, rear)"),
     (['--roll', '50'], '--roll: |roll| must stay below 45 deg, got 50'),
-    (['--heave', '1:2'], "argument --heave: expected FROM[:TO:STEP], finite numbers with STEP "
-     "> 0, got '1:2'"),
+    (['--heave', '1:2'], 'argument --heave: expected FROM[:TO:STEP], finite numbers with '
+     "STEP > 0, got '1:2'"),
     (['--roll', '-1:1:0'], 'argument --roll: expected FROM[:TO:STEP]'),
     (['--rack', 'x'], 'argument --rack: expected FROM[:TO:STEP]'),
     (['--axle', 'rear', '--rack', '5'], 'demo_vehicle rear axle: no corner has a steer: rack'),

@@ -191,7 +191,7 @@ def replay_mistakes(tmp_path, foreign_bag):
         (['sweep', '--hz', '0'], 'argument --hz: must be a finite number above 0, got 0'),
         (['sweep', '--travel', '0:1:-1'], 'argument --travel: expected FROM[:TO:STEP], finite '
          "numbers with STEP > 0, got '0:1:-1'"),
-        (['sweep', '--travel', 'inf'], "argument --travel: expected FROM[:TO:STEP], finite "
+        (['sweep', '--travel', 'inf'], 'argument --travel: expected FROM[:TO:STEP], finite '
          "numbers with STEP > 0, got 'inf'"),
         (['sweep', '--travel', '-80mm'], "argument --travel: '-80mm': give FROM[:TO:STEP] as "
          'plain numbers, without a unit'),

@@ -187,7 +187,7 @@ def test_linkage_bench_sweep_times_the_sweep_of_linkage_sweep(capsys):
 
 
 @pytest.mark.parametrize('argv, says', [
-    (['sweep', 'five_link', '--rounds', '0'], "argument --rounds: expected a whole number of "
+    (['sweep', 'five_link', '--rounds', '0'], 'argument --rounds: expected a whole number of '
      "rounds >= 1, got '0'"),
     (['axle', '--rounds'], "argument --rounds: expected a whole number of rounds >= 1, got ''"),
     (['magic'], "unknown benchmark 'magic': choose one of accuracy, node, soak, sweep, axle, "

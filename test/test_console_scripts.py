@@ -61,7 +61,6 @@ def test_an_unknown_option_is_one_line_naming_it_with_status_2(name, tmp_path):
     ('linkage-node-bench', ['--plot', 'x.png', '--only', 'core,sweep'],
      '--plot draws the latency section: add latency to --only'),
     ('linkage-bench', ['-o', 'setup.py'], '-o: setup.py is a file, not a folder'),
-    ('linkage-bench', ['accuracy', '-o', 'setup.py'], '-o: setup.py is a file, not a folder'),
     ('linkage-bench', ['--scenes', 'nowhere'], 'nowhere: scene: no such file'),
     ('linkage-bench', ['--entries', 'magic'], "--entries: unknown ['magic']"),
     ('linkage-soak', ['--scene', 'nowhere'], 'nowhere: scene: no such file'),

@@ -105,7 +105,7 @@ def parse_args(argv):
 
 
 def travels(spans) -> list[float]:
-    """Return the travels (mm) of the --travel values and ranges, in the order given."""
+    """Return every travel, mm, of --travel's values and ranges (Spans), in the order given."""
     from ..core.solve import travel_range
     try:
         for given in spans:

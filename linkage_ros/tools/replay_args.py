@@ -144,7 +144,7 @@ def _options(parser, command):
     if command in ('sweep', 'publish', 'bench'):
         which = 'sweep: ' if source else ''
         option('--travel', type=cli.span, metavar=cli.SPAN,
-               help=f"{which}travels, mm: FROM:TO:STEP (TO included) or one value (default: "
+               help=f'{which}travels, mm: FROM:TO:STEP (TO included) or one value (default: '
                "the scene's travel block)")
         for name, dest, number in (('--from', 'start', _number(millimetres=True)),
                                    ('--to', 'stop', _number(millimetres=True)),

@@ -117,7 +117,7 @@ def parse_args(argv, rounds=0):
     parser = Parser('linkage-sweep', __doc__, EPILOG)
     parser.add_argument('scene', help='bundled scene name (e.g. five_link) or path to a YAML file')
     parser.add_argument('--travel', type=span, metavar=SPAN,
-                        help="wheel travel, mm, + = bump: one value or a range (default: the "
+                        help='wheel travel, mm, + = bump: one value or a range (default: the '
                         "scene's travel block)")
     parser.old('--from', dest='start', type=millimetres, new='--travel FROM:TO:STEP')
     parser.old('--to', dest='stop', type=millimetres, new='--travel FROM:TO:STEP')
