@@ -66,7 +66,7 @@ step urdf and rerun from tf
 .venv/bin/linkage-foxglove demo_vehicle -o demo_vehicle_layout.json; echo "rc=$?"
 step axle, roll centre picture
 .venv/bin/linkage-axle demo_vehicle --axle front > axle.csv; echo "rc=$?"; head -2 axle.csv
-.venv/bin/linkage-plot roll-centre roll_centre.png; echo "rc=$?"
+.venv/bin/linkage-plot roll-centre -o roll_centre.png; echo "rc=$?"
 step studies
 .venv/bin/linkage-study sensitivity five_link --travel -50 0 50 -o five_link_sensitivity.csv; echo "rc=$?"
 .venv/bin/linkage-study tolerance five_link --sigma 0.05 --samples 10000 --travel -50 0 50 > tolerance.csv; echo "rc=$?"

@@ -13,7 +13,7 @@ import io
 from linkage_ros import cli
 from linkage_ros.bench import cli as bench_cli
 from linkage_ros.study import cli as study_cli
-from linkage_ros.tools import axle, kinematic_map, replay, sweep
+from linkage_ros.tools import axle, kinematic_map, plot, replay, sweep
 from mcap.reader import make_reader
 import numpy as np
 import pytest
@@ -223,3 +223,24 @@ def test_linkage_bench_without_a_subcommand_runs_accuracy_and_notes_it(capsys, m
     assert bench_cli.main(['--quick']) == 0 and given == [(['--quick'], 'linkage-bench')]
     assert capsys.readouterr().err == note('linkage-bench', 'linkage-bench without a '
                                            'subcommand', 'linkage-bench accuracy')
+
+
+def test_plot_writes_to_output_with_scenes_on_either_side(tmp_path, capsys):
+    status, _, err = outcome(plot.main, ['camber-toe', 'five_link', '-o', str(tmp_path / 'a.png'),
+                                         'double_wishbone'], capsys)
+    assert status == 0 and (tmp_path / 'a.png').stat().st_size > 0
+    assert err == f'linkage-plot: wrote {tmp_path / "a.png"}\n'
+
+
+def test_plot_without_an_output_is_one_line_naming_o(capsys):
+    status, out, err = outcome(plot.main, ['alignment'], capsys)
+    assert (status, out) == (2, '')
+    assert err == ('linkage-plot: error: -o/--output OUT.png is required (see linkage-plot '
+                   '--help)\n')
+
+
+def test_plot_output_as_the_old_path_still_writes_and_notes_o(tmp_path, capsys):
+    status, _, err = outcome(plot.main, ['camber-toe', str(tmp_path / 'b.png'), 'five_link'],
+                             capsys)
+    assert status == 0 and (tmp_path / 'b.png').stat().st_size > 0
+    assert err.startswith(note('linkage-plot', 'OUT.png as a PATH', '-o/--output OUT.png'))
