@@ -67,9 +67,15 @@ step urdf and rerun from tf
 step axle, roll centre picture
 .venv/bin/linkage-axle demo_vehicle --axle front > axle.csv; echo "rc=$?"; head -2 axle.csv
 .venv/bin/linkage-plot roll-centre -o roll_centre.png; echo "rc=$?"
+.venv/bin/linkage-axle demo_vehicle --axle front --heave -40:40:20 -o front_heave.csv; echo "rc=$?"
+.venv/bin/linkage-axle demo_vehicle --axle front --heave 0 --roll -4:4:4 | cut -d, -f2,20,21,26; echo "rc=$?"
 step studies
 .venv/bin/linkage-study sensitivity five_link --travel -50 0 50 -o five_link_sensitivity.csv; echo "rc=$?"
 .venv/bin/linkage-study tolerance five_link --sigma 0.05 --samples 10000 --travel -50 0 50 > tolerance.csv; echo "rc=$?"
 .venv/bin/linkage-study fit config/study/bump_steer_targets.yaml -o double_wishbone_fitted.yaml; echo "rc=$?"
+step one vocabulary: --travel/--rack FROM[:TO:STEP], -o, linkage-bench SUBCOMMAND
+.venv/bin/linkage-sweep double_wishbone --travel -40:40:40 --rack -10:10:10 -o grid.csv; echo "rc=$?"; wc -l grid.csv
+.venv/bin/linkage-bench sweep five_link --travel -10:10:10 --rounds 1; echo "rc=$?"
+.venv/bin/linkage-bench --help | head -1; echo "rc=$?"
 step git status
 git status --short
