@@ -210,9 +210,10 @@ def test_linkage_bench_help_names_every_subcommand(capsys):
 def test_an_old_benchmark_program_runs_its_subcommand_and_notes_the_new_one(
         entry, prog, old, command, capsys, monkeypatch):
     given = []
-    monkeypatch.setitem(bench_cli.COMMANDS, command, lambda argv: given.append(argv) or 0)
+    monkeypatch.setitem(bench_cli.COMMANDS, command,
+                        lambda argv, prog: given.append((argv, prog)) or 0)
     monkeypatch.setattr('sys.argv', [prog, '--seed', '3'])
-    assert entry() == 0 and given == [['--seed', '3']]
+    assert entry() == 0 and given == [(['--seed', '3'], prog)]
     assert capsys.readouterr().err == note(prog, old, f'linkage-bench {command}')
 
 

@@ -37,14 +37,14 @@ def _accuracy(argv, prog=f'{PROG} accuracy'):
     return main(argv, prog=prog)
 
 
-def _node(argv):
+def _node(argv, prog=f'{PROG} node'):
     from .node_bench.cli import main
-    return main(argv)
+    return main(argv, prog=prog)
 
 
-def _soak(argv):
+def _soak(argv, prog=f'{PROG} soak'):
     from .soak import main
-    return main(argv)
+    return main(argv, prog=prog)
 
 
 def _study(argv):
@@ -110,7 +110,7 @@ def _old(prog, old, command, argv):
     """Run an earlier spelling of linkage-bench COMMAND; after it, note the new spelling."""
     run = COMMANDS[command]
     # --help and a mistake exit here, without the note; their lines name the old program
-    status = run(argv, prog=prog) if command == 'accuracy' else run(argv)
+    status = run(argv, prog=prog)
     if status != MISTAKE:
         deprecated(prog, old, f'{PROG} {command}')
     return status
