@@ -130,8 +130,8 @@ def test_a_grid_too_large_for_memory_is_one_line_saying_what_it_needs(tmp_path, 
 
 @pytest.mark.parametrize('argv, said', [
     (['--rack', '0:10:5'], 'linkage-map: --rack: no corner has a steer: rack link'),
-    (['--travel', '10:0:0'], 'linkage-map: --travel: FROM, TO, STEP must be finite and '
-                             "STEP > 0, got '10:0:0'"),
+    (['--travel', '10:0:0'], 'linkage-map: --travel: expected FROM[:TO:STEP], finite '
+                             "numbers with STEP > 0, got '10:0:0'"),
     (['--format', 'csv,xlsx'], 'linkage-map: --format: unknown format xlsx'),
 ])
 def test_a_mistake_is_one_line_and_status_2(tmp_path, capsys, argv, said):
@@ -143,7 +143,7 @@ def test_parquet_without_pyarrow_names_the_extra_to_install(tmp_path):
     # pyarrow made unimportable in a fresh interpreter (None in sys.modules fails the import).
     code = ('import sys; sys.modules["pyarrow"] = None; '
             'from linkage_ros.tools.kinematic_map import main; '
-            f'sys.exit(main(["five_link", "--out", {str(tmp_path)!r}, '
+            f'sys.exit(main(["five_link", "-o", {str(tmp_path)!r}, '
             '"--format", "npz,parquet"]))')
     done = subprocess.run([sys.executable, '-c', code], capture_output=True, text=True)
     assert done.returncode == 2

@@ -7,6 +7,7 @@ and fitting hardpoints to target curves.
 
 from __future__ import annotations
 
+import argparse
 import sys
 
 from ..cli import (counted, EXIT_STATUS, fail, millimetres, Parser, program, SPAN, span, warn,
@@ -48,7 +49,7 @@ def parser() -> Parser:
     two = sub('tolerance', 'tolerance stack-up: first order and Monte Carlo')
     for p in (one, two):
         p.add_argument('scene', help='bundled scene name or path to a scene file')
-        p.add_argument('--travel', nargs='+', type=span, required=True, metavar=SPAN,
+        p.add_argument('--travel', nargs='+', required=True, metavar=SPAN,
                        help='travels, mm (+ = bump): values, ranges, or both')
         p.add_argument('-o', '--output', dest='out', metavar='FILE',
                        help='write the table here (.csv, or .parquet); default stdout')
@@ -104,14 +105,16 @@ def parse_args(argv):
     return args
 
 
-def travels(spans) -> list[float]:
-    """Return every travel, mm, of --travel's values and ranges (Spans), in the order given."""
+def travels(texts) -> list[float]:
+    """Return every travel, mm, of --travel's values and ranges, in the order given."""
     from ..core.solve import travel_range
     try:
+        spans = [span(text) for text in texts]
         for given in spans:
             positions_needed(*given, '--travel')   # before a range too long is made
-    except LinkageError as exc:
-        sys.exit(fail(PROG, exc))
+    except (argparse.ArgumentTypeError, LinkageError) as exc:
+        sys.exit(fail(PROG, f'--travel: {exc}' if isinstance(exc, argparse.ArgumentTypeError)
+                      else exc))
     return [float(t) for given in spans for t in travel_range(*given)]
 
 
