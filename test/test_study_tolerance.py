@@ -226,7 +226,7 @@ def test_a_tolerances_file_with_a_tie_rod_length_gives_the_static_toe_spread(tmp
     (['--sigma', '-1'], '--sigma: must be a number of mm above 0, got -1'),
     (['--sigma', 'nan'], '--sigma: must be a number of mm above 0, got nan'),
     (['--samples', '1'], '--samples: must be at least 2, got 1'),
-    (['--travel', 'inf'], "linkage-study: --travel: expected FROM[:TO:STEP], finite numbers "
+    (['--travel', 'inf'], 'linkage-study: --travel: expected FROM[:TO:STEP], finite numbers '
      "with STEP > 0, got 'inf'"),
     (['--scene', 'nowhere'], 'nowhere: scene: no such file'),
     (['--tolerances', 'sd.yaml'], 'not_a_point: not a hardpoint of the scene five_link'),
