@@ -1,30 +1,46 @@
 #!/bin/bash
-# Run the README's commands as written, from the root of a checkout where command 1 has run
-# (by hand, not in CI: it starts nodes and takes about 2 minutes). Usage: bash .ci/readme_commands.sh
+# Run the commands of README.md and doc/*.md as written, from the root of a checkout where
+# command 1 has run (by hand, not in CI: it starts nodes and takes a few minutes).
+# Usage: bash .ci/readme_commands.sh          the commands, but the long ones
+#        LONG=1 bash .ci/readme_commands.sh   also the benchmarks, the soak and the screenshots
+# Not run here: command 2 and the inner-loop pytest (the suite: .ci/run runs it), the colcon
+# route of doc/node.md (.ci/run runs it), the linkage-plot commands that rewrite the committed
+# pictures (test/test_plots.py and test/test_axle_plot.py run them into a temporary folder),
+# and the Python of doc/maps.md, doc/elements.md and doc/testing.md (test/test_map_doc.py,
+# test/test_elements.py and test/test_plugin_example.py run it). Not run even with LONG=1: the
+# node benchmarks at --scale 10 and 100 of doc/benchmarks.md (20 to 36 min each) and
+# `rerun FILE.rrd`, which opens a window.
 set -u
 cd "$(dirname "$0")/.." && export ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST
 step() { echo "=== $*"; }
+# pyblock FILE TEXT: the ```python block of FILE that holds TEXT
+pyblock() {
+    .venv/bin/python - "$1" "$2" <<'PY'
+import re
+import sys
+blocks = re.findall(r'```python\n(.*?)```', open(sys.argv[1]).read(), re.S)
+print(next(b for b in blocks if sys.argv[2] in b), end='')
+PY
+}
+step warmup
+.venv/bin/python -m linkage_ros.core.warmup; echo "rc=$?"
 step sweep double_wishbone
 .venv/bin/linkage-sweep double_wishbone --travel -40:40:10 -o double_wishbone.csv; echo "rc=$?"; head -2 double_wishbone.csv
 step sweep out of reach
 .venv/bin/linkage-sweep five_link --travel 0:1000:100 > /dev/null; echo "rc=$?"
+step sweep elements
+.venv/bin/linkage-sweep double_wishbone --travel -40:40:40 --elements 2>/dev/null | cut -d, -f1,13-; echo "rc=${PIPESTATUS[0]}"
 step kinematic map
 .venv/bin/linkage-map double_wishbone -o maps; echo "rc=$?"; ls maps
 step misspelt parameter
 .venv/bin/suspension_node --ros-args -p sceen:=macpherson; echo "rc=$?"
-step python snippet
-.venv/bin/python -c "
-from linkage_ros import Continuation, load_scene, sweep
-
-scene = load_scene('five_link')
-table = sweep(scene, range(-80, 81))              # mm -> Sweep: arrays over the positions
-solution = Continuation(scene).solve(12.5)        # one command, mm -> Solution
-print(solution.camber, solution.wheel_center)     # rad, mm (vehicle frame)
-"; echo "rc=$?"
+step python snippet of README.md
+pyblock README.md 'Continuation(scene).solve' > readme_snippet.py
+.venv/bin/python readme_snippet.py; echo "rc=$?"; rm readme_snippet.py
 step node with params file + drive.py
 .venv/bin/suspension_node --ros-args --params-file config/suspension.yaml > node.log 2>&1 &
 NODE=$!
-sed -n '/^# drive.py/,/^rclpy.try_shutdown()/p' README.md > drive.py
+sed -n '/^# drive.py/,/^rclpy.try_shutdown()/p' doc/node.md > drive.py
 .venv/bin/python drive.py; echo "rc=$?"
 kill -INT $NODE; wait $NODE; echo "node rc=$?"
 step node recording
@@ -54,7 +70,7 @@ unset FASTRTPS_DEFAULT_PROFILES_FILE
 step set params while the node runs
 .venv/bin/suspension_node > node6.log 2>&1 &
 NODE=$!
-sed -n '/^# set_params.py/,/^rclpy.try_shutdown()/p' README.md > set_params.py
+sed -n '/^# set_params.py/,/^rclpy.try_shutdown()/p' doc/node.md > set_params.py
 .venv/bin/python set_params.py; echo "rc=$?"
 kill -INT $NODE; wait $NODE; echo "node rc=$?"
 step qos presets
@@ -64,18 +80,37 @@ step urdf and rerun from tf
 .venv/bin/linkage-urdf five_link -o five_link.urdf; echo "rc=$?"
 .venv/bin/linkage-rerun bags/five_link_sweep.mcap --tf -o five_link_tf.rrd; echo "rc=$?"
 .venv/bin/linkage-foxglove demo_vehicle -o demo_vehicle_layout.json; echo "rc=$?"
-step axle, roll centre picture
+step axle, anti-roll bar, roll centre picture
+.venv/bin/linkage-axle demo_vehicle --axle front --heave -40:40:20 -o front_heave.csv; echo "rc=$?"; cut -d, -f1,2,6,7,8,9,11,17 front_heave.csv | head -3
+.venv/bin/linkage-axle demo_vehicle --axle front --heave 0 --roll -4:4:4 | cut -d, -f2,20,21,26; echo "rc=${PIPESTATUS[0]}"
+.venv/bin/linkage-axle demo_vehicle --axle front --heave 0 --roll -4:4:2 | cut -d, -f2,20-; echo "rc=${PIPESTATUS[0]}"
 .venv/bin/linkage-axle demo_vehicle --axle front > axle.csv; echo "rc=$?"; head -2 axle.csv
 .venv/bin/linkage-plot roll-centre -o roll_centre.png; echo "rc=$?"
-.venv/bin/linkage-axle demo_vehicle --axle front --heave -40:40:20 -o front_heave.csv; echo "rc=$?"
-.venv/bin/linkage-axle demo_vehicle --axle front --heave 0 --roll -4:4:4 | cut -d, -f2,20,21,26; echo "rc=$?"
+pyblock doc/axle.md 'solve_axle(axle' > axle_snippet.py
+.venv/bin/python axle_snippet.py; echo "rc=$?"; rm axle_snippet.py
 step studies
 .venv/bin/linkage-study sensitivity five_link --travel -50 0 50 -o five_link_sensitivity.csv; echo "rc=$?"
-.venv/bin/linkage-study tolerance five_link --sigma 0.05 --samples 10000 --travel -50 0 50 > tolerance.csv; echo "rc=$?"
-.venv/bin/linkage-study fit config/study/bump_steer_targets.yaml -o double_wishbone_fitted.yaml; echo "rc=$?"
-step one vocabulary: --travel/--rack FROM[:TO:STEP], -o, linkage-bench SUBCOMMAND
-.venv/bin/linkage-sweep double_wishbone --travel -40:40:40 --rack -10:10:10 -o grid.csv; echo "rc=$?"; wc -l grid.csv
-.venv/bin/linkage-bench sweep five_link --travel -10:10:10 --rounds 1; echo "rc=$?"
-.venv/bin/linkage-bench --help | head -1; echo "rc=$?"
+.venv/bin/linkage-study tolerance five_link --sigma 0.05 --samples 100000 --travel -50 -25 0 25 50 --plot tolerance.png > tolerance.csv; echo "rc=$?"
+.venv/bin/linkage-study tolerance five_link --sigma 1 --tolerances config/study/five_link_tie_rod_length.yaml --samples 4096 --travel -50 0 50 > tolerance_lengths.csv; echo "rc=$?"; head -3 tolerance_lengths.csv
+.venv/bin/linkage-study fit config/study/bump_steer_targets.yaml -o double_wishbone_fitted.yaml --plot fit.png; echo "rc=$?"
+step study on a local dask cluster
+.venv/bin/dask scheduler --host 127.0.0.1 --port 8786 --no-dashboard > dask_scheduler.log 2>&1 &
+timeout 60 bash -c 'until (echo > /dev/tcp/127.0.0.1/8786) 2> /dev/null; do sleep 0.2; done'
+.venv/bin/dask worker tcp://127.0.0.1:8786 --nworkers 2 --nthreads 1 --no-dashboard > dask_worker.log 2>&1 &
+.venv/bin/linkage-study tolerance five_link --sigma 0.05 --samples 1000000 --travel -50 -25 0 25 50 --scheduler tcp://127.0.0.1:8786 -o tolerance.parquet; echo "rc=$?"
+kill %2 %1; wait; echo done
+if [ "${LONG:-0}" = 1 ]; then
+    step benchmarks
+    .venv/bin/pip install -q -e '.[bench]'; echo "rc=$?"
+    .venv/bin/linkage-bench map double_wishbone --rounds 20 > /dev/null; echo "rc=$?"
+    .venv/bin/linkage-bench axle demo_vehicle --axle front --rounds 21 > /dev/null; echo "rc=$?"
+    .venv/bin/linkage-bench axle demo_vehicle --axle rear --roll -3:3:0.5 --heave -40:40:10 --rounds 11 > /dev/null; echo "rc=$?"
+    .venv/bin/linkage-bench accuracy --quick -o bench-report; echo "rc=$?"
+    ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST .venv/bin/linkage-bench node --plot node_latency.png > node_bench.csv; echo "rc=$?"
+    ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST .venv/bin/linkage-bench soak > soak.csv; echo "rc=$?"
+    step screenshots '(they rewrite the committed pictures: git diff bags/ shows the change)'
+    RUST_LOG=error xvfb-run -a -s '-screen 0 3200x1600x24' .venv/bin/rerun --screenshot-to bags/five_link_tf.png --window-size 1400x700 five_link_tf.rrd; echo "rc=$?"
+    RUST_LOG=error xvfb-run -a -s '-screen 0 3200x1600x24' .venv/bin/rerun --screenshot-to bags/five_link_rerun.png --window-size 1400x700 five_link_sweep.rrd; echo "rc=$?"
+fi
 step git status
 git status --short

@@ -22,8 +22,11 @@ import sys
 import tempfile
 from typing import NamedTuple
 
+from .core.base import LinkageError
+
 DONE, DAMAGED, MISTAKE = 0, 1, 2
 READER_GONE = 128 + signal.SIGPIPE   # the status of cat when its reader stops (| head)
+INTERRUPTED = 128 + signal.SIGINT    # the status of a shell's command ended by Ctrl-C
 OUTPUT_ERRORS = (errno.ENOSPC, errno.EDQUOT, errno.EFBIG)   # a disk, a quota, ulimit -f
 
 EXIT_STATUS = ('2 a mistake in the command: an unknown option, a bad value, a missing or '
@@ -246,6 +249,43 @@ def save_figure(fig, path, dpi):
         raise OSError(exc.errno, exc.strerror, str(path)) from None
 
 
+@contextlib.contextmanager
+def whole_file(path, mode: str = 'w', suffix: str = '', **kwargs):
+    """
+    Yield a stream onto a new file beside path, renamed to path once the body is done.
+
+    What is written so is whole or absent: a full disk, a quota or a file-size limit met on
+    the way (or any error in the body) leaves path as it was, removes the new file and
+    raises; an OSError is raised again naming path. stream.name is the new file's path
+    (suffix: its ending, for a reader that goes by it), e.g. to check it before the rename.
+    """
+    target = Path(path)
+    try:
+        fd, temporary = tempfile.mkstemp(prefix=f'.{target.name}.', suffix=f'.partial{suffix}',
+                                         dir=target.parent or '.')
+    except OSError as exc:
+        raise OSError(exc.errno, exc.strerror, str(path)) from None
+    try:
+        os.fchmod(fd, 0o666 & ~_umask())   # as open() would have made it, not mkstemp's 0600
+        os.close(fd)
+        with open(temporary, mode, **kwargs) as stream:
+            yield stream
+        os.replace(temporary, target)
+    except BaseException as exc:
+        with contextlib.suppress(OSError):
+            os.unlink(temporary)
+        if isinstance(exc, OSError) and not isinstance(exc, BrokenPipeError):
+            raise OSError(exc.errno, exc.strerror, str(path)) from None
+        raise
+
+
+def _umask() -> int:
+    """Return the process's umask (read by setting it, and set back at once)."""
+    mask = os.umask(0o022)
+    os.umask(mask)
+    return mask
+
+
 def counted(count: int, noun: str) -> str:
     """Say a count with its noun in the right number: '1 position', '3 positions'."""
     return f'{count} {noun}' + ('' if count == 1 else 's')
@@ -371,3 +411,20 @@ def missing_package(exc: ImportError, feature: str) -> str:
         return (f'{feature} needs the ROS 2 Python packages ({module} is not installed): '
                 "pip install -e '.[ros]' (in a linkage_ros checkout)")
     return f'{feature} needs the Python module {module or exc}, which cannot be imported'
+
+
+def check_outputs(outputs, inputs) -> None:
+    """
+    Refuse an output that cannot be written, is an input, or is another output.
+
+    outputs: (option, path) pairs; inputs: the paths read. Raises LinkageError naming the
+    option (run_fit checks -o again once the targets file has named its scene).
+    """
+    for k, (option, path) in enumerate(outputs):
+        problem = writable_file(path, inputs)
+        if problem:
+            raise LinkageError(option, problem)
+        for other, earlier in outputs[:k]:
+            if same_file(path, earlier):
+                raise LinkageError(option, f'{path} is also the output of {other}; give '
+                                   'another file name')

@@ -4,28 +4,37 @@ How suspension_node answers a corner's commands, without ROS: the node and linka
     responder = Responder(scene, method='fast', max_step_mm=5.0, condition_warn=1e4,
                           frame_id='base_link', status_name='suspension_kinematics: five_link',
                           period_ns=10**9)
+    responder.set_outputs(alignment=False, markers=False, frames=None)   # the extras turned on
+    responder.outputs                     # [Output]: what a solved command publishes, in order
     due = responder.due(now_ns)           # a periodic report due by now? (its time, or None)
     reply = responder.answer(travel_mm, rack_mm, stamp, sent)
-    reply.outputs                         # [(output name, type name, CDR bytes)] to publish
+    reply.outputs                         # [(output name, type name, CDR bytes or message)]
     reply.report                          # /diagnostics must say so at once
     new.follow(responder)                 # new settings or scene: take over its Health
 
 One command: solved by continuation from the last good pose (Continuation); a solved command
-is answered by wheel_carrier_pose (geometry_msgs/PoseStamped: wheel centre in m, carrier
-rotation relative to design), camber and toe (std_msgs/Float64, rad), stamped with stamp; a
+is answered by every output of OUTPUTS that its scene and switches turn on (outputs_of), in
+the table's order: wheel_carrier_pose (geometry_msgs/PoseStamped: wheel centre in m, carrier
+rotation relative to design), camber and toe (std_msgs/Float64, rad), then the extras:
+alignment, markers, the scene's elements, the corner's TF frames, all stamped with stamp. A
 command that cannot be solved (NaN, infinite, out of reach) gets no answer and keeps the last
 good pose. Every command is counted into the corner's Health (linkage_ros.health), whose
 status goes to /diagnostics at once for a failure or a change of level, and every diagnostic
 period (period_ns) of the clock the caller gives: the node's timer, or a recording's timeline.
+The roll centre of a vehicle's axle is not a corner's output: it needs both corners' poses
+(ros/roll_centres.py listens to both).
 
 ROS-free: this module imports the core, cdr (the answer's CDR bytes) and the Health logic,
-never rclpy or a message package; a DiagnosticStatus is built from responder.health by
-linkage_ros.ros.messages.health_status.
+never rclpy or a message package. The elements' JointState and the TF frames are CDR bytes
+(ros/element_outputs.py, ros/tf.py, themselves ROS-free); the alignment and markers outputs
+are rclpy messages, so their builders (ros/messages.py, ros/markers.py) are imported only
+once they are turned on, which only the node does. A DiagnosticStatus is built from
+responder.health by linkage_ros.ros.messages.health_status.
 """
 
 from __future__ import annotations
 
-from typing import Callable, NamedTuple, TYPE_CHECKING
+from typing import Any, Callable, NamedTuple, TYPE_CHECKING
 
 from .cdr import float64_cdr, pose_stamped_cdr
 from .core.base import M_PER_MM, Status
@@ -34,16 +43,56 @@ from .health import Health
 
 if TYPE_CHECKING:
     from .core.model import Scene
+    from .ros.tf import CornerFrames
 
-# output name (relative to the corner's namespace): ROS 2 type, in publishing order
-ANSWER_TYPES = {'wheel_carrier_pose': 'geometry_msgs/msg/PoseStamped',
-                'camber': 'std_msgs/msg/Float64', 'toe': 'std_msgs/msg/Float64'}
+SOLVED = 'solved'       # Output.when of the outputs of every solved command
+
+
+class Output(NamedTuple):
+    """One output of an answered command: its topic, its type and what turns it on."""
+
+    name: str           # relative to the corner's namespace, or absolute ('/tf')
+    type_name: str      # the ROS 2 type
+    when: str           # SOLVED: always; 'elements': a scene with elements; else the switch
+    content: str        # what it holds
+
+
+# Every output of a solved command, in publishing order: the pose first (what a controller
+# waits for), then camber and toe, then the extras. Read by the node (ros/corner.py: its
+# publishers and topic list), linkage-replay (tools/replay_solve.py) and the Responder.
+OUTPUTS = (
+    Output('wheel_carrier_pose', 'geometry_msgs/msg/PoseStamped', SOLVED,
+           'wheel centre (m, frame_id), carrier rotation relative to design'),
+    Output('camber', 'std_msgs/msg/Float64', SOLVED, 'rad, + = top outboard'),
+    Output('toe', 'std_msgs/msg/Float64', SOLVED, 'rad, + = toe-in'),
+    Output('alignment', 'std_msgs/msg/Float64MultiArray', 'alignment',
+           'the alignment set in SI (ros/messages.alignment_array)'),
+    Output('markers', 'visualization_msgs/msg/MarkerArray', 'markers',
+           'links and joints (ros/markers.py)'),
+    Output('elements', 'sensor_msgs/msg/JointState', 'elements',
+           "the scene's elements: lengths (m) and motion ratios (ros/element_outputs.py)"),
+    Output('/tf', 'tf2_msgs/msg/TFMessage', 'tf',
+           "the frames of the corner's bodies (ros/tf.py)"),
+)
+# output name: ROS 2 type, of the outputs of every solved command
+ANSWER_TYPES = {o.name: o.type_name for o in OUTPUTS if o.when == SOLVED}
+
+
+def outputs_of(scene: Scene, switches: dict[str, Any]) -> list[Output]:
+    """
+    Return the outputs a solved command of scene publishes, in publishing order.
+
+    switches: {'alignment': bool, 'markers': bool, 'tf': bool} (the node's parameters of
+    those names; a missing one is off). elements: on for a scene with elements.
+    """
+    on = {**switches, SOLVED: True, 'elements': bool(scene.elements)}
+    return [output for output in OUTPUTS if on.get(output.when)]
 
 
 def answer_outputs(solution: Solution, stamp: tuple[int, int],
                    frame_id: str) -> list[tuple[str, str, bytes]]:
     """
-    Return the messages answering one solved command: [(output name, type name, CDR bytes)].
+    Return the messages answering every solved command: [(output name, type name, CDR bytes)].
 
     In publishing order, the pose first (what a controller waits for): wheel_carrier_pose
     (geometry_msgs/PoseStamped: the wheel centre in m in frame_id, the carrier's rotation
@@ -61,15 +110,37 @@ def answer_outputs(solution: Solution, stamp: tuple[int, int],
             ('toe', ANSWER_TYPES['toe'], float64_cdr(solution.toe))]
 
 
+def extra_builder(name: str, responder: Responder) -> Callable[[Solution, tuple], Any]:
+    """
+    Return build(solution, stamp) of the extra output name for responder's corner.
+
+    Each is imported only here, once it is turned on: the alignment and markers builders need
+    the ROS message packages, the elements and TF ones only cdr.
+    """
+    scene, frame_id, solver = responder.scene, responder.frame_id, responder.solver
+    if name == 'alignment':
+        from .ros.messages import alignment_builder
+        return alignment_builder(scene, solver.mech, frame_id)
+    if name == 'markers':
+        from .ros.markers import markers_builder
+        return markers_builder(scene, frame_id)
+    if name == 'elements':
+        from .ros.element_outputs import elements_builder
+        return elements_builder(scene, solver.mech, frame_id, lambda: solver.jacobian)
+    if name == '/tf':
+        return responder.frames.tf_cdr
+    raise ValueError(f'no output {name!r} (outputs: {", ".join(o.name for o in OUTPUTS)})')
+
+
 class Reply(NamedTuple):
     """
     What answering one command gives.
 
     solution: the core's Solution (mm, rad; status says why it failed). outputs: [(output
-    name, type name, CDR bytes)] in publishing order (the pose first: a controller waits for
-    it), empty for a command that was not solved. sent: what was sent, for a failed command
-    ('/wheel_travel 0.5 m'), else ''. report: /diagnostics must say so at once (the command
-    failed, or the level changed).
+    name, type name, CDR bytes or rclpy message)] in publishing order (Responder.outputs: the
+    pose first, a controller waits for it), empty for a command that was not solved. sent:
+    what was sent, for a failed command ('/wheel_travel 0.5 m'), else ''. report:
+    /diagnostics must say so at once (the command failed, or the level changed).
     """
 
     solution: Solution
@@ -103,6 +174,29 @@ class Responder:
         if self.period <= 0:
             raise ValueError(f'period_ns must be above 0, got {period_ns!r}')
         self._next = None if start_ns is None else int(start_ns) + self.period
+        self.switches = {'alignment': False, 'markers': False}
+        self.frames: CornerFrames | None = None
+        self.outputs: list[Output] = []
+        self._extras: list[tuple[str, str, Callable]] = []
+        self.set_outputs()
+
+    def set_outputs(self, alignment: bool | None = None, markers: bool | None = None,
+                    frames: CornerFrames | None | bool = False) -> None:
+        """
+        Turn the extra outputs on or off (None, or frames False: as they are).
+
+        alignment, markers: the node's parameters of those names; frames: the corner's TF
+        frames (ros/tf.CornerFrames, in the corner's namespace), or None for no /tf. The
+        scene's elements are published for a scene with elements.
+        """
+        for name, value in (('alignment', alignment), ('markers', markers)):
+            if value is not None:
+                self.switches[name] = bool(value)
+        if frames is not False:
+            self.frames = frames
+        self.outputs = outputs_of(self.scene, {**self.switches, 'tf': self.frames is not None})
+        self._extras = [(o.name, o.type_name, extra_builder(o.name, self))
+                        for o in self.outputs if o.when != SOLVED]
 
     def answer(self, travel_mm: float | None, rack_mm: float | None,
                stamp: tuple[int, int], sent: str | Callable[[], str] = '') -> Reply:
@@ -120,6 +214,8 @@ class Responder:
         solution = self.solver.solve(travel, rack_mm)
         if solution.success:
             outputs, said = answer_outputs(solution, stamp, self.frame_id), ''
+            for name, type_name, build in self._extras:
+                outputs.append((name, type_name, build(solution, stamp)))
         else:
             outputs, said = [], sent() if callable(sent) else sent
         return Reply(solution, outputs, said, self.health.add(solution, said))
@@ -142,16 +238,20 @@ class Responder:
         What the node's corner (ros/corner.Corner.configure and set_scene) and linkage-replay
         do on a change of parameters: one home.
 
-        Its Health goes on counting (with this condition_warn), and its report times (a
-        period started keeps its end). The same scene: this solver takes over the pose old
-        holds (its state and the travel limits found: Continuation.take_pose), not walked
-        again from design, which new settings might not manage (a max_step_mm too short for
-        the way back). Another scene: the corner restarts from its design position, and the
-        Health says so in its message.
+        Its extra outputs stay as old had them (the frames: old's, until set_outputs gives those of
+        a new scene). Its Health goes on counting (with this condition_warn), and its report times
+        (a period started keeps its end). The same scene: this solver takes over the pose old holds
+        (its state and the travel limits found: Continuation.take_pose), not walked again from
+        design, which new settings might not manage (a max_step_mm too short for the way back).
+        Another scene: the corner restarts from its design position, and the Health says so in its
+        message.
         """
         health = self.health = old.health
         health.condition_warn = self.condition_warn
         self._next = old._next
+        # its extras too: the frames are old's until the caller gives those of a new scene
+        self.switches = dict(old.switches)
+        self.set_outputs(frames=old.frames)
         if self.scene is old.scene:
             self.solver.take_pose(old.solver)
             return

@@ -1,4 +1,4 @@
-"""linkage-plot roll-centre: the README's axle picture, and its one-line mistakes."""
+"""linkage-plot roll-centre: the axle picture of doc/axle.md, and its one-line mistakes."""
 
 from pathlib import Path
 
@@ -8,10 +8,12 @@ import pytest
 
 ROOT = Path(__file__).resolve().parent.parent
 PICTURE = 'bags/plots/roll_centre.png'
+DOCS = '\n'.join(page.read_text()
+                 for page in [ROOT / 'README.md', *sorted((ROOT / 'doc').glob('*.md'))])
 
 
-def test_the_readme_roll_centre_picture_is_what_its_command_makes(tmp_path):
-    assert f'linkage-plot roll-centre -o {PICTURE}' in (ROOT / 'README.md').read_text()
+def test_the_roll_centre_picture_of_the_docs_is_what_its_command_makes(tmp_path):
+    assert f'linkage-plot roll-centre -o {PICTURE}' in DOCS
     again = tmp_path / 'roll_centre.png'
     assert main(['roll-centre', '-o', str(again)]) == 0
     assert compare_images(str(ROOT / PICTURE), str(again), tol=1.0) is None

@@ -11,14 +11,17 @@ from pathlib import Path
 import signal
 import subprocess
 import sys
+from typing import NamedTuple
 
-from conftest import connect, PARAMS_FILE, Probe, spin_until, stamp_ns
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
 from geometry_msgs.msg import PoseStamped
+from linkage_ros.core.base import Status
 from linkage_ros.core.model import load_scene, SceneError
 from linkage_ros.core.solve import Continuation, sweep
 from linkage_ros.ros.messages import status_values
 from linkage_ros.ros.node import PARAMETERS, QOS, QOS_DEPTH, SuspensionNode
+from linkage_ros.ros.testing import connect, live_tf_topics, node_warnings, Probe, spin_until, \
+    stamp_ns
 import numpy as np
 import pytest
 from rclpy.parameter import Parameter
@@ -26,12 +29,12 @@ from rclpy.serialization import deserialize_message
 from std_msgs.msg import Float64
 import yaml
 
+PARAMS_FILE = Path(__file__).resolve().parent.parent / 'config' / 'suspension.yaml'   # bundled
 TRAVELS_M = [0.02, 0.045, -0.03, -0.0625, 0.0, 0.07]     # jumps up to 132 mm between commands
 BAD_COMMANDS_M = {'nan': math.nan, 'inf': math.inf, '-inf': -math.inf,
                   'beyond bump': 1.0, 'beyond rebound': -1.0}
-BAD_WHY = {'nan': 'not a finite number', 'inf': 'not a finite number',
-           '-inf': 'not a finite number', 'beyond bump': 'out of reach',
-           'beyond rebound': 'out of reach'}
+BAD_KIND = {'nan': Status.NOT_FINITE, 'inf': Status.NOT_FINITE, '-inf': Status.NOT_FINITE,
+            'beyond bump': Status.OUT_OF_REACH, 'beyond rebound': Status.OUT_OF_REACH}
 
 
 def core(scene_name, travels_m, method='fast'):
@@ -78,14 +81,24 @@ def report_after(probe, commands):
     return status_values(probe.statuses[-1])
 
 
+class Record(NamedTuple):
+    """One message a sink was given: CDR bytes of type_name on topic, and its times (ns)."""
+
+    topic: str
+    type_name: str
+    data: bytes
+    receive_ns: int
+    publish_ns: int
+
+
 class ListSink:
-    """A sink that keeps what it is given: (topic, type_name, msg, receive_ns, publish_ns)."""
+    """A sink that keeps what it is given, as Records."""
 
     def __init__(self):
         self.records, self.closed = [], 0
 
-    def record(self, topic, type_name, msg, receive_ns, publish_ns):
-        self.records.append((topic, type_name, msg, receive_ns, publish_ns))
+    def record(self, topic, type_name, data, receive_ns, publish_ns):
+        self.records.append(Record(topic, type_name, data, receive_ns, publish_ns))
 
     def close(self):
         self.closed += 1
@@ -114,7 +127,7 @@ def test_each_pose_carries_the_time_its_command_was_received(suspension_node, ex
     expected = core('five_link', [0.01, 0.02])
     probe.send(0.01, 0.02)
     assert spin_until(executor, lambda: probe.answered(expected))
-    received = [r[3] for r in sink.records if r[0] == '/wheel_travel']
+    received = [r.receive_ns for r in sink.records if r.topic == '/wheel_travel']
     pose_stamps = [stamp_ns(p.header.stamp) for p in probe.poses]
     assert pose_stamps == received and pose_stamps[0] < pose_stamps[1]
 
@@ -133,17 +146,22 @@ def test_a_large_jump_is_walked_in_substeps_of_max_step_mm(suspension_node, exec
 def test_bad_command_publishes_no_pose_and_an_error_saying_why_at_once(
         suspension_node, executor, probe, bad):
     sink = ListSink()
-    suspension_node(diagnostic_period=HOUR, sinks=[sink])
+    node = suspension_node(diagnostic_period=HOUR, sinks=[sink])
+    kinds = []          # the Status of each command the node answered, in order
+    health = node.corners[''].health
+    add = health.add
+    health.add = lambda solution, *args: kinds.append(solution.status) or add(solution, *args)
     expected = core('five_link', [0.02, 0.03])
     probe.send(0.02, BAD_COMMANDS_M[bad], 0.03)
     # At once: the ERROR of the bad command, then OK again with the good one that follows.
     assert spin_until(executor, lambda: len(probe.statuses) == 2 and probe.answered(expected))
     error, after = probe.statuses
     assert (error.level, after.level) == (DiagnosticStatus.ERROR, DiagnosticStatus.OK)
-    assert BAD_WHY[bad] in error.message
+    assert kinds == [Status.OK, BAD_KIND[bad], Status.OK]     # the kind, by its code
+    assert error.message                                       # and why, for people
     assert status_values(error)['failures'] == '1'
     # Each pose carries its command's stamp: the two poses are those of the good commands.
-    received = [r[3] for r in sink.records if r[0] == '/wheel_travel']
+    received = [r.receive_ns for r in sink.records if r.topic == '/wheel_travel']
     assert [stamp_ns(p.header.stamp) for p in probe.poses] == [received[0], received[2]]
     assert [len(probe.poses), len(probe.cambers), len(probe.toes)] == [2, 2, 2]
     assert_outputs_equal_core(probe, expected)
@@ -272,17 +290,15 @@ def test_every_command_and_published_message_reaches_each_sink(suspension_node, 
                 ('/wheel_travel', 'std_msgs/msg/Float64'),
                 ('/diagnostics', 'diagnostic_msgs/msg/DiagnosticArray')]
     for sink in sinks:
-        assert [(topic, type_name) for topic, type_name, *_ in sink.records] == expected
+        assert [(r.topic, r.type_name) for r in sink.records] == expected
     # Sinks get CDR bytes; rclpy's own deserializer reads them back.
-    command = sinks[0].records[2][:2] + (deserialize_message(sinks[0].records[2][2], Float64),
-                                         *sinks[0].records[2][3:])
-    pose = sinks[0].records[3][:2] + (deserialize_message(sinks[0].records[3][2], PoseStamped),
-                                      *sinks[0].records[3][3:])
-    assert command[2].data == 0.02
-    assert pose[2].pose.position == probe.poses[0].pose.position
-    stamp = pose[2].header.stamp
-    assert command[3] == stamp.sec * 10**9 + stamp.nanosec      # received at the stamp
-    assert all(r[3] <= r[4] for r in sinks[0].records)         # received before published
+    command, pose = sinks[0].records[2:4]
+    assert deserialize_message(command.data, Float64).data == 0.02     # the bits sent
+    pose_msg = deserialize_message(pose.data, PoseStamped)
+    assert pose_msg.pose.position == probe.poses[0].pose.position     # the same message
+    stamp = pose_msg.header.stamp
+    assert command.receive_ns == stamp.sec * 10**9 + stamp.nanosec     # received at the stamp
+    assert all(r.receive_ns <= r.publish_ns for r in sinks[0].records)   # received, published
 
 
 def test_destroying_the_node_closes_its_sinks_once(suspension_node, executor):
@@ -459,10 +475,10 @@ def test_qos_depth_is_the_depth_of_every_topic_of_the_node(suspension_node):
                            qos_depth=7)
     own = [e for e in [*node.subscriptions, *node.publishers]
            if e.topic_name not in ('/parameter_events', '/rosout')]
-    assert sorted(e.topic_name for e in own) == [
+    assert sorted(e.topic_name for e in own) == sorted({
         '/alignment', '/camber', '/diagnostics', '/elements', '/joint_states',
-        '/robot_description', '/steering_rack', '/tf', '/tf_static', '/toe',
-        '/wheel_carrier_pose', '/wheel_travel']
+        '/robot_description', '/steering_rack', '/toe', '/wheel_carrier_pose',
+        '/wheel_travel'} | live_tf_topics())
     latched = ('/robot_description', '/tf_static')     # transient local, the last one only
     assert {e.qos_profile.depth for e in own if e.topic_name not in latched} == {7}
     assert {e.qos_profile.depth for e in own if e.topic_name in latched} == {1}
@@ -504,14 +520,14 @@ def test_a_scene_s_warnings_are_logged_once_at_start_as_warnings(ros_context, ca
     node = SuspensionNode(context=ros_context, parameter_overrides=[
         Parameter('scene', value=str(singular))])
     node.destroy_node()
-    warned = [line for line in capfd.readouterr().err.splitlines() if '[WARN]' in line]
+    warned = node_warnings(capfd.readouterr().err)
     assert len(warned) == 1
     assert warned[0].endswith(f'[suspension_kinematics]: {scene.warnings[0]}')
 
 
 def test_a_sound_scene_logs_no_warning(ros_context, capfd):
     SuspensionNode(context=ros_context).destroy_node()
-    assert '[WARN]' not in capfd.readouterr().err
+    assert node_warnings(capfd.readouterr().err) == []
 
 
 def recording_custom_data(path):

@@ -11,10 +11,9 @@ from pathlib import Path
 import signal
 import subprocess
 
-from conftest import connect, Probe, spin_until
 from linkage_ros.core.model import load_scene
 from linkage_ros.ros.node import PARAMETERS
-from linkage_ros.ros.testing import node_script
+from linkage_ros.ros.testing import connect, node_script, Probe, spin_until
 import pytest
 
 

@@ -16,11 +16,10 @@ import signal
 import subprocess
 import time
 
-from conftest import spin_until
 from geometry_msgs.msg import PoseStamped
 from linkage_ros.core import warmup
 from linkage_ros.ros.qos import QOS
-from linkage_ros.ros.testing import node_script
+from linkage_ros.ros.testing import node_script, spin_until
 import pytest
 from std_msgs.msg import Float64
 

@@ -10,13 +10,13 @@ import os
 from pathlib import Path
 import threading
 
-from conftest import spin_until
 from diagnostic_msgs.msg import DiagnosticStatus
 from linkage_ros.core.base import LinkageError
 from linkage_ros.core.model import load_scene
 from linkage_ros.core.solve import Continuation
 from linkage_ros.ros.messages import status_values
 from linkage_ros.ros.node import QOS, SuspensionNode
+from linkage_ros.ros.testing import spin_until
 import pytest
 from rcl_interfaces.srv import SetParameters
 from rclpy.parameter import Parameter

@@ -1,10 +1,11 @@
 """
-The README's pictures are what their commands make today, from the repository's data.
+The pictures of README.md and doc/ are what their commands make today.
 
-Each is made again here into a temporary folder by the command printed under it in the
-README, and compared with the committed file (matplotlib's image comparison, RMS of the
-pixel difference): a change of the solver, the scenes or the plotting that moves a curve
-makes this fail until the picture is made again and committed.
+Each is made again here, from the repository's data, into a temporary folder by the command
+printed under it in the README or a page of doc/, and compared with the committed file
+(matplotlib's image comparison, RMS of the pixel difference): a change of the solver, the
+scenes or the plotting that moves a curve makes this fail until the picture is made again and
+committed.
 """
 
 from pathlib import Path
@@ -15,7 +16,8 @@ from matplotlib.testing.compare import compare_images
 import pytest
 
 ROOT = Path(__file__).resolve().parent.parent
-README = (ROOT / 'README.md').read_text()
+DOCS = '\n'.join(page.read_text()
+                 for page in [ROOT / 'README.md', *sorted((ROOT / 'doc').glob('*.md'))])
 
 
 @pytest.mark.parametrize('picture, args', [
@@ -25,7 +27,7 @@ README = (ROOT / 'README.md').read_text()
 ])
 def test_a_readme_picture_is_what_its_command_makes(tmp_path, picture, args):
     command = f"linkage-plot {' '.join(args)} -o {picture}"
-    assert command in README, f'the README shows no command {command!r} under {picture}'
+    assert command in DOCS, f'README.md and doc/ show no command {command!r} under {picture}'
     again = tmp_path / Path(picture).name
     assert main([args[0], *[str(ROOT / a) for a in args[1:]], '-o', str(again)]) == 0
     assert compare_images(str(ROOT / picture), str(again), tol=1.0) is None

@@ -79,10 +79,12 @@ def responder_run(condition_warn, stream=STREAM):
         reply = responder.answer(travel * 1000.0, None, divmod(t, S),
                                  f'/wheel_travel {travel!r} m')
         if reply.outputs:
+            # five_link has elements: the node publishes them after pose, camber and toe
             assert [(n, kind) for n, kind, _ in reply.outputs] == [
                 ('wheel_carrier_pose', 'geometry_msgs/msg/PoseStamped'),
-                ('camber', 'std_msgs/msg/Float64'), ('toe', 'std_msgs/msg/Float64')]
-            pose, camber, toe = (data for _, _, data in reply.outputs)
+                ('camber', 'std_msgs/msg/Float64'), ('toe', 'std_msgs/msg/Float64'),
+                ('elements', 'sensor_msgs/msg/JointState')]
+            pose, camber, toe = (data for _, _, data in reply.outputs[:3])
             answers.append((pose_key(from_cdr('geometry_msgs/msg/PoseStamped', pose)),
                             float64_of(camber), float64_of(toe)))
         if reply.report:
@@ -192,7 +194,8 @@ def test_the_answer_reads_back_by_rclpy_as_the_solution_at_every_frame_id_paddin
                               frame_id=frame_id, status_name=NAME, period_ns=S)
         for travel in (-40.0, 0.0, 12.5, 40.0):
             reply = responder.answer(travel, None, (1_700_000_000, 123))
-            (_, _, pose), (_, _, camber), (_, _, toe) = reply.outputs
+            # then double_wishbone's elements (test_outputs.py)
+            (_, _, pose), (_, _, camber), (_, _, toe) = reply.outputs[:3]
             pose = deserialize_message(pose, PoseStamped)
             assert (pose.header.stamp.sec, pose.header.stamp.nanosec) == (1_700_000_000, 123)
             assert pose.header.frame_id == frame_id

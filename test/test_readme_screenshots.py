@@ -1,15 +1,17 @@
-"""The README's Rerun screenshot recipes: the pointer starts off the viewer's window."""
+"""The Rerun screenshot recipes of doc/: the pointer starts off the viewer's window."""
 
 from pathlib import Path
 import re
 
 import pytest
 
-README = (Path(__file__).resolve().parent.parent / 'README.md').read_text()
-RECIPES = [line for line in README.splitlines() if line.startswith('RUST_LOG=error xvfb-run')]
+ROOT = Path(__file__).resolve().parent.parent
+DOCS = '\n'.join(page.read_text()
+                 for page in [ROOT / 'README.md', *sorted((ROOT / 'doc').glob('*.md'))])
+RECIPES = [line for line in DOCS.splitlines() if line.startswith('RUST_LOG=error xvfb-run')]
 
 
-def test_the_readme_has_its_two_screenshot_recipes():
+def test_the_docs_have_their_two_screenshot_recipes():
     assert len(RECIPES) == 2
 
 

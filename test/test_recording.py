@@ -17,7 +17,6 @@ import subprocess
 import sys
 import textwrap
 
-from conftest import connect, Probe, spin_until   # test/conftest.py: launch-free ROS helpers
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
 from geometry_msgs.msg import PoseStamped
 from linkage_ros.core.model import load_scene
@@ -25,6 +24,7 @@ from linkage_ros.core.solve import sweep
 from linkage_ros.record.interfaces import message_definition, SEPARATOR, share_dirs
 from linkage_ros.record.mcap_reader import read_bag, RecordingError
 from linkage_ros.record.mcap_writer import McapRecorder
+from linkage_ros.ros.testing import connect, Probe, spin_until
 from mcap.reader import make_reader
 from mcap.stream_reader import breakup_chunk, StreamReader
 from mcap_ros2.decoder import DecoderFactory

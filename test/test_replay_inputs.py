@@ -251,7 +251,7 @@ def test_an_output_that_is_the_scene_file_is_refused(tmp_path, capsys):
 
 @pytest.mark.parametrize('name, expected', [
     ('../escaped', 'escaped_sweep.mcap'),
-    ('/tmp/absolute', 'tmp_absolute_sweep.mcap'),
+    ('a/../../tmp/absolute', 'a_.._.._tmp_absolute_sweep.mcap'),   # (a leading / is refused)
     ('..', 'scene_sweep.mcap'),
     ('front left (v2)', 'front_left_v2_sweep.mcap'),
 ])

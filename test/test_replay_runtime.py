@@ -6,8 +6,8 @@ the expected values: the replay must give what the node gave, command for comman
 read back with mcap + mcap_ros2 (test_replay.decoded), not the project's reader.
 """
 
-from conftest import spin_until
 from linkage_ros.record.mcap_writer import McapRecorder
+from linkage_ros.ros.testing import spin_until
 from linkage_ros.tools.replay import main
 import numpy as np
 import pytest

@@ -108,8 +108,8 @@ def test_reported_condition_number_is_that_of_an_independent_jacobian(travel):
 
 def test_node_warns_near_the_toggle_with_its_default_condition_warn(ros_context, executor,
                                                                     probe):
-    from conftest import spin_until
     from linkage_ros.ros.node import SuspensionNode
+    from linkage_ros.ros.testing import spin_until
     path = str(STRESS / 'trailing_arm_toggle.yaml')
     executor.add_node(SuspensionNode(context=ros_context, parameter_overrides=[
         Parameter('scene', value=path), Parameter('diagnostic_period', value=3600.0)]))

@@ -149,3 +149,53 @@ def test_an_unreachable_scheduler_is_said_within_seconds_with_status_2(tmp_path)
     assert err.count('\n') == 1 and 'cannot reach the Dask scheduler tcp://127.0.0.1:9' in err
     assert took < 60, took   # 5 s to connect, plus starting Python on a busy machine
     assert sorted(p.name for p in tmp_path.iterdir()) == ['targets.yaml']
+
+
+METRE_SCENE = """scene: chrono_generic_doublewishbone
+free:
+  LowerControlArm.axis0: {z: [-1.0e1, 10]}
+targets:
+  - {quantity: toe_deg, travel: [-20, 20, 10], value: 0.0}
+"""
+
+
+def test_travels_and_bounds_of_targets_are_mm_in_a_metre_scene(tmp_path):
+    # Before, they were read in the scene's units: travel [-20, 20, 10] m, bounds +-10 m;
+    # and -1.0e1 was text to YAML 1.1.
+    (tmp_path / 'targets.yaml').write_text(METRE_SCENE)
+    targets = load_targets(tmp_path / 'targets.yaml')
+    assert targets.design.scene.units == 'm'
+    assert targets.targets[0].travel.tolist() == [-20.0, -10.0, 0.0, 10.0, 20.0]
+    assert (targets.lower.tolist(), targets.upper.tolist()) == ([-10.0], [10.0])
+
+
+def test_the_bundled_targets_keep_the_camber_gain_of_the_design():
+    # Its comment says the fit keeps the camber gain: the value asked is the design's.
+    from linkage_ros.study.sensitivity import sensitivities
+    targets = load_targets(Path(__file__).parent.parent / 'config' / 'study'
+                           / 'bump_steer_targets.yaml')
+    gain = targets.targets[1]
+    assert gain.quantity == 'camber_gain_deg_per_mm' and gain.travel.tolist() == [0.0]
+    design = sensitivities(targets.design.scene, [0.0], wanted=(gain.quantity,))
+    # the file gives it to 5 significant digits: within half a unit of the 5th
+    assert abs(gain.value[0] - design.nominal[0, 0]) <= 5e-7
+
+
+def test_fit_does_not_write_over_the_scene_its_targets_name(tmp_path):
+    scene = tmp_path / 'mine.yaml'
+    scene.write_text((Path(__file__).parent.parent / 'config' / 'scenes'
+                      / 'double_wishbone.yaml').read_text())
+    before = scene.read_text()
+    (tmp_path / 'targets.yaml').write_text(BUMP_STEER.replace('double_wishbone', 'mine.yaml'))
+    status, out, err = run('fit', 'targets.yaml', '-o', 'mine.yaml', cwd=tmp_path)
+    assert status == 2 and out == '', err
+    assert err == f'linkage-study: -o: mine.yaml is the input {scene}; give another file name\n'
+    assert scene.read_text() == before
+
+
+def test_fit_plot_and_scene_cannot_be_one_file(tmp_path):
+    (tmp_path / 'targets.yaml').write_text(BUMP_STEER)
+    status, out, err = run('fit', 'targets.yaml', '-o', 'a.yaml', '--plot', 'a.yaml',
+                           cwd=tmp_path)
+    assert (status, err) == (2, 'linkage-study: -o: a.yaml is also the output of --plot; '
+                                'give another file name\n')

@@ -11,9 +11,9 @@ import subprocess
 import sys
 import xml.etree.ElementTree as ElementTree
 
-from conftest import spin_until
 from linkage_ros.core.model import load_scene
 from linkage_ros.core.solve import sweep
+from linkage_ros.ros.testing import spin_until
 from mcap.reader import make_reader
 from mcap_ros2.decoder import DecoderFactory
 import numpy as np

@@ -141,3 +141,40 @@ def test_a_bare_name_is_the_bundled_vehicle_whatever_the_current_folder_holds(
     assert list(load_vehicle('demo_vehicle').corners) == [
         'front_left', 'front_right', 'rear_left', 'rear_right']
     assert list(load_vehicle('./demo_vehicle').corners) == ['rear_left']
+
+
+AXLE = 'axles: {front: {left: front_left, right: front_right}}\n'
+
+
+@pytest.mark.parametrize('left_offset, right_offset, said', [
+    # a right corner at +y: the mirrored scene moved 1520 mm left (coincident wheels)
+    ([0, 0, 0], [0, 1520, 0], r'axles\.front\.right: corner front_right is a right wheel '
+                              r'with its centre at y = 760 mm: a right wheel is at -y'),
+    # a negative track: the left corner moved across
+    ([0, -1520, 0], [0, 0, 0], r'axles\.front\.left: corner front_left is a left wheel with '
+                               r'its centre at y = -760 mm'),
+    # front and rear of one side taken for an axle: 2800 mm apart in x
+    ([1400, 0, 0], [-1400, 0, 0], r'axles\.front: the wheel centres of front_left and '
+                                  r'front_right are 2800 mm apart in x, more than 0\.1 x '
+                                  r'their track of 1520 mm'),
+    ([0, 0, 0], [0, -400, 0], r'apart in y \(middle off the centre plane\)'),
+])
+def test_an_axle_that_is_no_mirrored_pair_is_refused_at_load(tmp_path, left_offset,
+                                                             right_offset, said):
+    # Before, such an axle loaded: coincident wheels gave a NaN roll centre at a solved point.
+    path = tmp_path / 'car.yaml'
+    path.write_text(AXLE + 'corners:\n'
+                    f'  front_left: {{scene: double_wishbone, offset: {left_offset}}}\n'
+                    f'  front_right: {{scene: double_wishbone, mirror: true, '
+                    f'offset: {right_offset}}}\n')
+    with pytest.raises(SceneError, match=said):
+        load_vehicle(path)
+
+
+def test_an_axle_of_a_corner_and_its_mirror_image_loads_with_its_track(tmp_path):
+    path = tmp_path / 'car.yaml'
+    path.write_text(AXLE + 'corners:\n  front_left: {scene: double_wishbone}\n'
+                    '  front_right: {scene: double_wishbone, mirror: true}\n')
+    corners = load_vehicle(path).corners
+    assert corners['front_left'].wheel_center[1] - corners['front_right'].wheel_center[1] \
+        == pytest.approx(1520.0, abs=1e-9)

@@ -182,3 +182,9 @@ def test_a_file_with_more_values_than_a_scene_holds_is_refused(tmp_path):
     assert path.stat().st_size < FILE_LIMIT_BYTES
     assert refusal(load_scene, path).endswith(
         f'more than {VALUES_LIMIT:,} values (a scene holds a few hundred)')
+
+
+def test_a_number_with_a_point_and_an_unsigned_exponent_is_a_number(tmp_path):
+    # YAML 1.1 (PyYAML) reads -1.0e9 as text: a fit bound of -1.0e9 was "expected a number"
+    assert read_yaml(written(tmp_path, 'a: -1.0e9\nb: .5e3\nc: 1.e2\nd: 2.5E-1\ne: 1.0e\n')) \
+        == {'a': -1.0e9, 'b': 500.0, 'c': 100.0, 'd': 0.25, 'e': '1.0e'}

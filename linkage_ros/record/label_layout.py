@@ -9,8 +9,8 @@ blueprint's eye, Rerun's perspective of FOV_Y), so the boxes can be laid out for
 label is drawn at an anchor point of its own, moved off its point (above, beside, further
 down) until its box is clear of every box placed before and of every point, or left out if
 no place near its point is clear. A moved label stays within a few label heights of its
-point. Screen sizes are for a 3D view VIEW_PX high (the README's 1400 x 700 window); in a
-smaller window the boxes are relatively larger and may touch.
+point. Screen sizes are for a 3D view VIEW_PX high (the 1400 x 700 window of
+doc/recording.md); in a smaller window the boxes are relatively larger and may touch.
 """
 
 from __future__ import annotations

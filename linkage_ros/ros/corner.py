@@ -20,13 +20,17 @@ position (set_scene), or turns its alignment and markers on or off (set_outputs)
 stay, and its elements topic follows the scene (a scene with elements has one). With TF on,
 the node gives it frames (ros/tf.CornerFrames): every answer then also sends the frames of its
 bodies to the outlet's transforms().
+
+What a solved command publishes is its Responder's list (protocol.OUTPUTS, outputs_of: the
+pose, camber, toe, then the extras turned on), published in that order, each on the corner's
+publisher of that name ('/tf' through the outlet's transforms()).
 """
 
 from __future__ import annotations
 
+from functools import partial
 from typing import Callable, Protocol, TYPE_CHECKING
 
-from builtin_interfaces.msg import Time
 from geometry_msgs.msg import PoseStamped
 from sensor_msgs.msg import JointState
 from std_msgs.msg import Float64, Float64MultiArray
@@ -35,7 +39,7 @@ from visualization_msgs.msg import MarkerArray
 from . import messages
 from .qos import publisher, subscription, topic_qos
 from ..cdr import CdrError, float64_of, from_cdr
-from ..protocol import Responder
+from ..protocol import OUTPUTS, outputs_of, Responder, SOLVED
 
 if TYPE_CHECKING:
     from rclpy.node import Node
@@ -46,7 +50,12 @@ if TYPE_CHECKING:
 
 FLOAT64 = 'std_msgs/msg/Float64'
 JOINT_STATE = 'sensor_msgs/msg/JointState'
-OUTPUTS = {'wheel_carrier_pose': PoseStamped, 'camber': Float64, 'toe': Float64}
+# the message classes of the outputs' publishers (protocol.OUTPUTS; /tf: ros/tf_outputs.py)
+MESSAGES = {'geometry_msgs/msg/PoseStamped': PoseStamped, 'std_msgs/msg/Float64': Float64,
+            'std_msgs/msg/Float64MultiArray': Float64MultiArray,
+            'visualization_msgs/msg/MarkerArray': MarkerArray,
+            'sensor_msgs/msg/JointState': JointState}
+TF = '/tf'
 UNDECODABLE = 'undecodable'   # the kind of a bad command whose bytes do not decode
 
 
@@ -91,8 +100,8 @@ class Corner:
         self.responder = self._responder(scene, params)
         self.travel_joint, self.rack_joint = travel_joint, rack_joint   # vehicle joint_states
         self.qos = topic_qos(params['qos_depth'])
-        self.publishers = {name: publisher(node, kind, prefix + name, self.qos)
-                           for name, kind in OUTPUTS.items()}
+        self.publishers = {}    # output name -> its publisher, for the outputs on
+        self.sends = {}         # output name -> function(message): publishes it
         self.listening = []     # what it takes, for the start-up line
         travel = subscription(node, Float64, prefix + 'wheel_travel', self.on_travel, self.qos,
                               raw=True)
@@ -106,13 +115,21 @@ class Corner:
             self.listening.append(f'{self.joints_topic} (joint {self.joint}, m)')
         self.rack_topic = None
         self._listen_to_rack()
-        self.extras = {}   # output name -> (publisher, function(solution, stamp) -> message)
-        self.frames = None  # ros/tf.CornerFrames while TF is on (the node sets it)
         # function(corner, solution, stamp) called after every answer, solved or not (the
         # vehicle's axles: ros/roll_centres.py)
         self.listeners = []
         self.set_outputs(params)
-        self._set_elements()
+
+    @property
+    def frames(self):
+        """Return the corner's CornerFrames (ros/tf.py) while TF is on, else None."""
+        return self.responder.frames
+
+    @frames.setter
+    def frames(self, frames) -> None:
+        # the node's TF (ros/tf_outputs.py) gives and takes them: /tf is published with them
+        self.responder.set_outputs(frames=frames)
+        self._set_publishers()
 
     def _responder(self, scene: Scene, params: dict) -> Responder:
         # The node's answering protocol, shared with linkage-replay; the node's own timer
@@ -153,7 +170,7 @@ class Corner:
         self.scene = scene
         self._follow(scene, params)
         self._listen_to_rack()
-        self._set_elements()
+        self._set_publishers()
 
     def _follow(self, scene: Scene, params: dict) -> None:
         """Answer with a new Responder for scene and params, as linkage-replay does."""
@@ -162,46 +179,28 @@ class Corner:
         self.responder.follow(old)
         self.health = self.responder.health
 
-    def _set_elements(self) -> None:
-        """
-        Publish the scene's elements (ros/element_outputs.py) if it has some, else not.
-
-        A new scene with elements keeps the publisher (its subscribers stay matched) and gets
-        a new build; one without them removes it.
-        """
-        old = self.extras.pop('elements', None)
-        if not self.scene.elements:
-            if old is not None:
-                self.node.destroy_publisher(old[0])
-            return
-        from .element_outputs import TOPIC, elements_builder
-        out = old[0] if old is not None else publisher(self.node, JointState,
-                                                       self.prefix + TOPIC, self.qos)
-        self.extras['elements'] = (out, elements_builder(self.scene, self.solver.mech,
-                                                         self.frame_id,
-                                                         lambda: self.solver.jacobian))
-
     def set_outputs(self, params: dict) -> None:
         """Turn the alignment and markers outputs on or off, as params say."""
-        builders = {'alignment': (Float64MultiArray, self._alignment),
-                    'markers': (MarkerArray, self._markers)}
-        for name, (kind, build) in builders.items():
-            if params[name] and name not in self.extras:
-                self.extras[name] = (publisher(self.node, kind, self.prefix + name, self.qos),
-                                     build)
-            elif not params[name] and name in self.extras:
-                self.node.destroy_publisher(self.extras.pop(name)[0])
+        self.responder.set_outputs(alignment=params['alignment'], markers=params['markers'])
+        self._set_publishers()
 
-    def _alignment(self, solution: Solution, stamp: tuple[int, int]):
-        from ..core.measure import alignment
-        return messages.alignment_array(alignment(self.scene, self.solver.mech,
-                                                  solution.wheel_center, solution.rotation,
-                                                  solution.rack))
+    def _set_publishers(self) -> None:
+        """
+        Have a publisher for each output of the responder's, and none for any other.
 
-    def _markers(self, solution: Solution, stamp: tuple[int, int]):
-        from .markers import marker_array
-        return marker_array(self.scene, solution, Time(sec=stamp[0], nanosec=stamp[1]),
-                            self.frame_id)
+        A publisher kept (the elements of a new scene with elements) keeps its subscribers
+        matched; /tf goes to the outlet's transforms().
+        """
+        outputs = {o.name: o for o in self.responder.outputs}
+        for name in [n for n in self.publishers if n not in outputs]:
+            self.node.destroy_publisher(self.publishers.pop(name))
+        for name, output in outputs.items():
+            if name != TF and name not in self.publishers:
+                self.publishers[name] = publisher(self.node, MESSAGES[output.type_name],
+                                                  self.prefix + name, self.qos)
+        self.sends = {name: self.outlet.transforms if name == TF
+                      else partial(self.outlet.publish, self.publishers[name])
+                      for name in outputs}
 
     def on_travel(self, data: bytes) -> None:
         self._float64_command(self.travel_topic, data, rack=False)
@@ -245,22 +244,16 @@ class Corner:
 
         travel_mm and rack_mm: the command (None = unchanged); stamp: (sec, nanosec) of the
         answer; sent: a function that says what was sent where (e.g. '/wheel_travel 0.5 m'),
-        called for the messages about a bad command. A solved command publishes the pose,
-        camber and toe (then the extras turned on and the frames, with TF on); a failed one
-        publishes nothing and goes to
-        the console (the outlet throttles it). A failure or a change of level goes to
-        /diagnostics at once.
+        called for the messages about a bad command. A solved command publishes the
+        Responder's outputs in its order (the pose, camber and toe, then the extras turned
+        on); a failed one publishes nothing and goes to the console (the outlet throttles it).
+        A failure or a change of level goes to /diagnostics at once.
         """
         reply = self.responder.answer(travel_mm, rack_mm, stamp, sent)
-        solution = reply.solution
+        solution, sends = reply.solution, self.sends
         for name, _, data in reply.outputs:
-            self.outlet.publish(self.publishers[name], data)
-        if solution.success:
-            for out, build in self.extras.values():
-                self.outlet.publish(out, build(solution, stamp))
-            if self.frames is not None:
-                self.outlet.transforms(self.frames.tf_cdr(solution, stamp))
-        else:
+            sends[name](data)
+        if not solution.success:
             self.outlet.bad_command(reply.sent, solution.status, solution.message)
         for listener in self.listeners:
             listener(self, solution, stamp)
@@ -286,14 +279,14 @@ def corner_topics(scene: Scene, params: dict, prefix: str = '') -> list[str]:
 
     /diagnostics and the vehicle's joint_states are not among them.
     """
-    names = ['wheel_travel', *OUTPUTS]
+    outputs = [o.name for o in outputs_of(scene, params) if o.name != TF]
+    always = [o.name for o in OUTPUTS if o.when == SOLVED]
+    names = ['wheel_travel', *always]
     if params['travel_joint']:
         names.append('joint_states')
     if scene.steered:
         names.append('steering_rack')
-    names += [name for name in ('alignment', 'markers') if params[name]]
-    if scene.elements:
-        names.append('elements')
+    names += [name for name in outputs if name not in always]
     return [prefix + name for name in names]
 
 

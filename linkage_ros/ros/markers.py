@@ -12,6 +12,7 @@ joint b0 and centre M0): core.base.geometry.carrier_points, drawn as
 core.model.scene.link_polylines.
 """
 
+from builtin_interfaces.msg import Time
 from geometry_msgs.msg import Point
 import numpy as np
 from std_msgs.msg import ColorRGBA
@@ -49,6 +50,14 @@ def marker_array(scene, solution, stamp, frame_id):
     spheres = _marker('joints', 1, Marker.SPHERE_LIST, joints, stamp, frame_id, JOINT_COLOR)
     spheres.scale.x = spheres.scale.y = spheres.scale.z = JOINT_SIZE * size
     return MarkerArray(markers=[links, spheres])
+
+
+def markers_builder(scene, frame_id):
+    """Return build(solution, stamp (sec, nanosec)) -> marker_array: the markers output."""
+    def build(solution, stamp):
+        return marker_array(scene, solution, Time(sec=stamp[0], nanosec=stamp[1]), frame_id)
+
+    return build
 
 
 def marker_points(marker):

@@ -13,6 +13,8 @@ conversion happens here and only here:
     diagnostics(statuses, stamp)                       -> DiagnosticArray
     alignment_array(alignment)                         -> Float64MultiArray: ALIGNMENT_FIELDS
                                                           in SI, named by the layout's labels
+    alignment_builder(scene, mech, frame_id)           -> build(solution, stamp): the
+                                                          alignment output (protocol.OUTPUTS)
 
 The answer to a solved command (pose, camber, toe as CDR bytes) is built by
 linkage_ros.protocol.answer_outputs, which the node and linkage-replay share; a failed
@@ -108,6 +110,17 @@ def alignment_array(alignment: Alignment) -> Float64MultiArray:
     layout = MultiArrayLayout(dim=[MultiArrayDimension(label=label, size=1, stride=1)
                                    for label in ALIGNMENT_FIELDS])
     return Float64MultiArray(layout=layout, data=data)
+
+
+def alignment_builder(scene, mech, frame_id):
+    """Return build(solution, stamp) -> alignment_array of a corner's solved position."""
+    from ..core.measure import alignment
+
+    def build(solution, stamp):
+        return alignment_array(alignment(scene, mech, solution.wheel_center, solution.rotation,
+                                         solution.rack))
+
+    return build
 
 
 def alignment_values(msg: Float64MultiArray) -> dict[str, float]:

@@ -10,9 +10,9 @@ from __future__ import annotations
 import argparse
 import sys
 
-from ..cli import (counted, EXIT_STATUS, fail, millimetres, Parser, program, SPAN, span, warn,
-                   writable_file)
-from ..core.base import LinkageError, positions_needed
+from ..cli import (check_outputs, counted, EXIT_STATUS, fail, INTERRUPTED, millimetres, Parser,
+                   program, SPAN, span, warn)
+from ..core.base import LENGTH_LIMIT_MM, LinkageError, positions_needed
 
 PROG = 'linkage-study'
 COMMANDS = ('sensitivity', 'tolerance', 'fit')
@@ -122,14 +122,15 @@ def check(args) -> None:
     """Refuse values no study can use, and outputs that cannot be written (LinkageError)."""
     outputs = [('-o', getattr(args, 'out', None)), ('--plot', getattr(args, 'plot', None)),
                ('-o', getattr(args, 'output', None))]
-    for option, path in outputs:
-        problem = path and writable_file(path, tuple(i for i in (
-            getattr(args, 'scene', None), getattr(args, 'targets', None)) if i))
-        if problem:
-            raise LinkageError(option, problem)
+    inputs = tuple(i for i in (getattr(args, 'scene', None), getattr(args, 'targets', None),
+                               getattr(args, 'tolerances', None)) if i)
+    check_outputs([(o, p) for o, p in outputs if p], inputs)
     if args.command == 'tolerance':
         if not args.sigma > 0:   # NaN too
             raise LinkageError('--sigma', f'must be a number of mm above 0, got {args.sigma:g}')
+        if args.sigma > LENGTH_LIMIT_MM:   # the variants' arithmetic would overflow
+            raise LinkageError('--sigma', f'must be at most {LENGTH_LIMIT_MM:g} mm (the length '
+                               f'limit of a scene), got {args.sigma:g}')
         if args.samples < 2:
             raise LinkageError('--samples', f'must be at least 2, got {args.samples}')
     if getattr(args, 'workers', 0) < 0:
@@ -165,6 +166,9 @@ def main(argv: list[str] | None = None) -> int:
         return command(args, say)
     except (LinkageError, SceneError) as exc:
         return fail(PROG, exc)
+    except KeyboardInterrupt:   # Ctrl-C: the local workers are stopped already (executor)
+        print(f'{PROG}: interrupted', file=sys.stderr)
+        return INTERRUPTED
     except BrokenPipeError:
         raise   # stdout's reader went away: program() ends quietly
     except OSError as exc:   # an output that became unwritable on the way

@@ -7,19 +7,26 @@ LinkageError (SceneError) for a mistake, which the program turns into one line, 
 
 from __future__ import annotations
 
+import os
 import sys
 
 import numpy as np
 
 from .executor import executor, Progress
 from .hardpoints import load_design
+from .quantities import SWEEP_COLUMNS
 from .tables import SENSITIVITY_COLUMNS, TOLERANCE_COLUMNS, write_table
-from ..cli import counted
+from ..cli import check_outputs, counted
 from ..core.base import LinkageError
 from ..core.model import read_yaml
 
 PROG = 'linkage-study'
 POOL_FROM = 16   # batches (of 4096 variants, about 0.3 s each) that repay starting processes
+# Measured on five_link, 40,960 variants x 3 travels, one process: 32 B of memory per value
+# kept (the batches' results, their concatenation, the deviations, a percentile's copy), and
+# 13 us per variant at one travel (rounded up).
+VALUE_BYTES = 32
+SECONDS_PER_SOLVE = 15e-6
 
 
 def run_sensitivity(args, say) -> int:
@@ -55,6 +62,7 @@ def run_tolerance(args, say) -> int:
         raise LinkageError(args.tolerances, 'expected a mapping POINT: SD or POINT: {x, y, z}')
     prob = problem(design, sigmas(design, args.sigma, overrides), args.samples, args.travel,
                    args.seed, length_sigmas(design, overrides))
+    hours = _check_size(args.samples, len(prob.travels), args.workers)
     count = len(batches(prob))
     # without --workers, a pool of local processes only for work that repays their start
     with executor(args.scheduler, args.workers or None,
@@ -62,7 +70,7 @@ def run_tolerance(args, say) -> int:
         where = f' on {args.scheduler}' if args.scheduler else ''
         say(f'{design.scene.name}: {args.samples} variants x '
             f'{counted(len(prob.travels), "travel")} in {count} '
-            f'batch{"es" if count != 1 else ""}{where}')
+            f'batch{"es" if count != 1 else ""}{where}{hours}')
         result = tolerance(prob, run, Progress(PROG, count, 'batches'))
     write_table(args.out, TOLERANCE_COLUMNS, rows(result), sys.stdout)
     if args.plot:
@@ -77,6 +85,30 @@ def run_tolerance(args, say) -> int:
     return 0
 
 
+def _check_size(samples: int, travels: int, workers: int) -> str:
+    """
+    Refuse a Monte Carlo study whose values do not fit in memory (LinkageError, --samples).
+
+    Returns what its time is estimated at, ' (about 3.2 h on 2 cores)', when it is a
+    minute or more ('' otherwise): told before it starts, not found out after.
+    """
+    from ..tools.map_memory import memory_room, Need
+    values = samples * travels * len(SWEEP_COLUMNS)
+    need = Need(samples * travels, VALUE_BYTES * values, VALUE_BYTES * values)
+    room = memory_room()
+    if room is not None and room.wanted(need) > room.size:
+        raise LinkageError('--samples', f'{samples:,} variants x {counted(travels, "travel")} '
+                           f'need about {room.wanted(need) / 1e9:,.1f} GB of memory and '
+                           f'{room.size / 1e9:,.1f} GB is available ({room.limit}): take '
+                           'fewer samples or travels')
+    cores = workers or os.cpu_count() or 1
+    seconds = samples * travels * SECONDS_PER_SOLVE / cores
+    if seconds < 60:
+        return ''
+    took = f'{seconds / 3600:.1f} h' if seconds >= 3600 else f'{seconds / 60:.0f} min'
+    return f' (about {took} on {counted(cores, "local core")}, by {SECONDS_PER_SOLVE:g} s a solve)'
+
+
 def run_fit(args, say) -> int:
     """linkage-study fit: fit, write the scene, say before/after per target, the picture."""
     from .fit import fit
@@ -84,6 +116,8 @@ def run_fit(args, say) -> int:
     from .targets import load_targets
     targets = load_targets(args.targets)
     say('', targets.design.scene.warnings)
+    check_outputs([('-o', args.output)] + ([('--plot', args.plot)] if args.plot else []),
+                  (args.targets, targets.design.scene.source))
     with executor(args.scheduler, args.workers or None) as run:
         result = fit(targets, args.starts, args.seed,
                      run if args.starts > 1 or args.scheduler else None)
@@ -109,20 +143,15 @@ def report(targets, result, say) -> int:
             f'{np.max(np.abs(before)):.6g} -> {worst:.6g}, rms '
             f'{np.sqrt(np.mean(before ** 2)):.6g} -> {np.sqrt(np.mean(after ** 2)):.6g}{judged}')
     moved = ', '.join(f'{name} {offset:+.4g}' for name, offset in
-                      zip(targets.names(), result.offsets / _scale(targets)))
+                      zip(targets.names(), result.offsets))
     backed = (f', {counted(result.unassembled, "step")} backed off from designs that do not '
               'assemble' if result.unassembled else '')
-    say(f'moved (scene units): {moved}; {result.evaluations} evaluations, {result.jacobians} '
+    say(f'moved (mm): {moved}; {result.evaluations} evaluations, {result.jacobians} '
         f'Jacobians{backed}; {result.message}')
     if unmet:
         say(f'{counted(unmet, "target")} cannot be met within the bounds (the best design '
             'found is written)')
     return unmet
-
-
-def _scale(targets):
-    from ..core.model import UNITS_TO_MM
-    return UNITS_TO_MM[targets.design.scene.units]
 
 
 def _finite(values, option):

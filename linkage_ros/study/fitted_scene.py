@@ -10,13 +10,11 @@ reference table left out. It is read back before it is kept: a fitted scene alwa
 
 from __future__ import annotations
 
-import os
-from pathlib import Path
-
 import numpy as np
 import yaml
 
 from .hardpoints import scene_data_with
+from ..cli import whole_file
 from ..core.model import load_scene, UNITS_TO_MM
 
 
@@ -66,14 +64,7 @@ def write_fitted(path: str, targets, result) -> None:
     data['name'] = f'{targets.design.scene.name}_fitted'
     text = ''.join(f'# {line}\n' for line in header(targets, result))
     text += yaml.dump(data, Dumper=_Dumper, sort_keys=False, allow_unicode=True, width=99)
-    target = Path(path)
-    temporary = target.with_name(f'.{target.stem}.partial.yaml')
-    temporary.write_text(text)
-    loaded = False
-    try:
-        load_scene(temporary)
-        loaded = True
-    finally:
-        if not loaded:
-            temporary.unlink()
-    os.replace(temporary, target)
+    with whole_file(path, suffix='.yaml') as stream:   # renamed once whole and loaded
+        stream.write(text)
+        stream.flush()
+        load_scene(stream.name)

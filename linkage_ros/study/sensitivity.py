@@ -19,6 +19,7 @@ Exact to rounding (the only error is the pose's residual, 1e-10 mm): no finite d
 
 from __future__ import annotations
 
+import difflib
 from typing import NamedTuple, TYPE_CHECKING
 
 import numpy as np
@@ -63,9 +64,18 @@ def check_quantities(scene: Scene, wanted) -> tuple[str, ...]:
         return have
     for name in wanted:
         if name not in have:
-            raise LinkageError(name, f'not a quantity of the scene {scene.name} (its '
-                               f'quantities: {", ".join(have)})')
+            raise LinkageError(name, f'not a quantity of the scene {scene.name}'
+                               f'{did_you_mean(name, have)} (its quantities: '
+                               f'{", ".join(have)})')
     return tuple(wanted)
+
+
+def did_you_mean(name: object, have: tuple[str, ...]) -> str:
+    """Return ' (did you mean camber_deg?)' for a quantity named without its unit or misspelt."""
+    text = str(name)
+    close = [h for h in have if h.startswith(f'{text}_')][:1] or \
+        difflib.get_close_matches(text, have, n=1)
+    return f' (did you mean {close[0]}?)' if close else ''
 
 
 def pose_derivative(scene: Scene, points: np.ndarray, center: np.ndarray,

@@ -3,15 +3,16 @@ The targets file of a fit: which hardpoint coordinates may move, and the curves 
 
     scene: double_wishbone            # bundled name, or a path (relative to this file)
     free:                             # coordinates that may move, bounds relative to design
-      tie_rod.base: {x: [-30, 30], y: [-30, 30], z: [-30, 30]}     # scene units
-    targets:                          # curves over travel: [FROM, TO, STEP] in scene units
+      tie_rod.base: {x: [-30, 30], y: [-30, 30], z: [-30, 30]}     # mm
+    targets:                          # curves over travel: [FROM, TO, STEP] in mm
       - {quantity: toe_deg, travel: [-50, 50, 5], value: 0.0, weight: 1.0}
       - {quantity: camber_gain_deg_per_mm, travel: [0, 0, 1], value: -0.02, weight: 10.0,
          tolerance: 0.001}
 
 value: a constant or a list, one per travel; weight: default 1; tolerance (optional, the
 quantity's unit): the largest error that counts as met. A point may also be given as
-`{x: [lo, hi]}` alone (the other axes stay) or as `[lo, hi]` (every axis). Every mistake
+`{x: [lo, hi]}` alone (the other axes stay) or as `[lo, hi]` (every axis). Bounds and
+travels are in mm whatever the scene's units, as every length of linkage-study. Every mistake
 raises SceneError naming the file, the field and the problem.
 """
 
@@ -23,11 +24,12 @@ from typing import NamedTuple
 import numpy as np
 
 from .hardpoints import AXES, Design, load_design
-from .sensitivity import available
-from ..core.model import bundled_scenes, FREE_KEYS, read_yaml, SceneError, UNITS_TO_MM
-from ..core.solve import travel_range
+from .sensitivity import available, did_you_mean
+from ..core.model import bundled_scenes, FREE_KEYS, read_yaml, SceneError
+from ..core.solve import travel_count, travel_range
 
 KEYS = ('scene', 'free', 'targets')
+MOST_TRAVELS = 10_000   # per target: each is a solve and a row of the Jacobian
 TARGET_KEYS = ('quantity', 'travel', 'value', 'weight', 'tolerance')
 
 
@@ -73,13 +75,12 @@ def load_targets(path: str) -> Targets:
         if key not in data:
             fail(key, 'missing')
     design = _design(source, data['scene'], fail)
-    scale = UNITS_TO_MM[design.scene.units]
-    free, lower, upper = _free(design, data['free'], scale, fail)
+    free, lower, upper = _free(design, data['free'], fail)
     have = available(design.scene)
     items = data['targets']
     if not isinstance(items, list) or not items:
         fail('targets', 'expected a list of targets {quantity, travel, value, weight}')
-    targets = tuple(_target(item, f'targets[{i}]', have, scale, design, fail)
+    targets = tuple(_target(item, f'targets[{i}]', have, design, fail)
                     for i, item in enumerate(items))
     return Targets(source, design, tuple(free), np.array(lower), np.array(upper), targets)
 
@@ -98,7 +99,7 @@ def _number(value, where, fail):
     return float(value)
 
 
-def _free(design, free, scale, fail):
+def _free(design, free, fail):
     if not isinstance(free, dict) or not free:
         fail('free', 'expected a mapping of points to bounds, e.g. tie_rod.base: '
              '{x: [-30, 30], y: [-30, 30], z: [-30, 30]}')
@@ -113,8 +114,8 @@ def _free(design, free, scale, fail):
             if axis not in AXES:
                 fail(f'{where}.{axis}', 'not an axis (x, y or z)')
             if not isinstance(pair, list) or len(pair) != 2:
-                fail(f'{where}.{axis}', f'expected bounds [min, max] relative to the design '
-                     f'({design.scene.units}), got {pair!r}')
+                fail(f'{where}.{axis}', f'expected bounds [min, max] in mm relative to the '
+                     f'design, got {pair!r}')
             low, high = (_number(v, f'{where}.{axis}', fail) for v in pair)
             if low > high:
                 fail(f'{where}.{axis}', f'min {low:g} is above max {high:g}')
@@ -122,12 +123,12 @@ def _free(design, free, scale, fail):
                 fail(f'{where}.{axis}', f'min and max are both {low:g}: leave the axis out '
                      'to keep it where it is')
             coordinates.append((design.names.index(name), AXES.index(axis)))
-            lower.append(low * scale)
-            upper.append(high * scale)
+            lower.append(low)
+            upper.append(high)
     return coordinates, lower, upper
 
 
-def _target(item, where, have, scale, design, fail):
+def _target(item, where, have, design, fail):
     if not isinstance(item, dict):
         fail(where, 'expected a mapping {quantity, travel, value, weight}')
     for key in item:
@@ -136,16 +137,18 @@ def _target(item, where, have, scale, design, fail):
     quantity = item.get('quantity')
     if quantity not in have:
         fail(f'{where}.quantity', f'{quantity!r} is not a quantity of the scene '
-             f'{design.scene.name} (its quantities: {", ".join(have)})')
+             f'{design.scene.name}{did_you_mean(quantity, have)} (its quantities: '
+             f'{", ".join(have)})')
     span = item.get('travel')
     if not isinstance(span, list) or len(span) != 3:
-        fail(f'{where}.travel', f'expected [FROM, TO, STEP] ({design.scene.units}), got {span!r}')
-    start, stop, step = (_number(v, f'{where}.travel', fail) * scale for v in span)
+        fail(f'{where}.travel', f'expected [FROM, TO, STEP] in mm, got {span!r}')
+    start, stop, step = (_number(v, f'{where}.travel', fail) for v in span)
     if not step > 0:
         fail(f'{where}.travel', 'STEP must be above 0')
+    count = travel_count(start, stop, step)   # counted before any is made
+    if count > MOST_TRAVELS:
+        fail(f'{where}.travel', f'{count:.6g} travels: at most {MOST_TRAVELS} per target')
     travels = travel_range(start, stop, step)
-    if len(travels) > 10_000:
-        fail(f'{where}.travel', f'{len(travels)} travels: at most 10000 per target')
     value = item.get('value')
     if isinstance(value, list):
         if len(value) != len(travels):

@@ -30,11 +30,11 @@ from typing import NamedTuple, TYPE_CHECKING
 import numpy as np
 
 from . import variant_kernel
-from .executor import in_process
+from .executor import in_process, Items
 from .hardpoints import AXES, Design
 from .quantities import SWEEP_COLUMNS
 from .sensitivity import length_rates, sweep_column_rates
-from ..core.base import camber_toe, LinkageError
+from ..core.base import camber_toe, LENGTH_LIMIT_MM, LinkageError
 from ..core.model import with_points
 from ..core.solve import (compile_scene, Continuation, equation_table, geometry_of, lengthened,
                           linearize, state, sweep)
@@ -127,8 +127,9 @@ def length_sigmas(design: Design, overrides: dict | None = None) -> np.ndarray:
 
 def _sd(where, value):
     if isinstance(value, bool) or not isinstance(value, (int, float)) \
-            or not (np.isfinite(value) and value >= 0):
-        raise LinkageError(where, f'a standard deviation is a number of mm >= 0, got {value!r}')
+            or not (np.isfinite(value) and 0 <= value <= LENGTH_LIMIT_MM):
+        raise LinkageError(where, f'a standard deviation is a number of mm >= 0 and at most '
+                           f'{LENGTH_LIMIT_MM:g}, got {value!r}')
     return float(value)
 
 
@@ -160,9 +161,9 @@ def problem(design: Design, sigma: np.ndarray, samples: int, travels: ArrayLike,
                    np.asarray(lengths, dtype=float))
 
 
-def batches(prob: Problem) -> list[tuple[Problem, int]]:
+def batches(prob: Problem) -> Items:
     """Return the work items: (problem, batch index), BATCH variants each (the last fewer)."""
-    return [(prob, i) for i in range((prob.samples + BATCH - 1) // BATCH)]
+    return Items(prob, (prob.samples + BATCH - 1) // BATCH)
 
 
 def perturbed(prob: Problem, index: int) -> tuple[np.ndarray, np.ndarray | None]:

@@ -17,6 +17,7 @@ import numpy as np
 
 from ..cli import fail, plot_problem, save_figure, warn
 from ..core.axle import axle_of, solve_axle
+from ..core.measure import patch_offset
 from ..core.model import link_polylines, load_vehicle, SceneError
 from ..core.warmup import compile_if_cold
 
@@ -58,8 +59,7 @@ def draw_wheel(ax, scene):
     radius = scene.wheel_radius
     axis = scene.wheel_center - scene.spin_axis_point
     axis = axis / np.linalg.norm(axis)
-    up = np.array([0.0, 0.0, 1.0]) - axis[2] * axis
-    up = up / np.linalg.norm(up)
+    up = -np.array(patch_offset(*axis, 1.0))   # unit, square to the axis: the patch's way
     corners = [scene.wheel_center + a * radius * up + b * 0.3 * radius * axis
                for a, b in ((1, 1), (1, -1), (-1, -1), (-1, 1), (1, 1))]
     corners = np.array(corners)

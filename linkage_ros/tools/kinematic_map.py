@@ -10,6 +10,7 @@ NaN and listed in out_of_reach.csv, never extrapolated (doc/maps.md).
 
 import argparse
 from functools import partial
+import math
 import os
 from pathlib import Path
 import re
@@ -20,9 +21,10 @@ from typing import Callable, NamedTuple
 import numpy as np
 import yaml
 
-from .map_files import FORMATS, UNREACHED, write_map, write_unreached
+from .map_files import FORMATS, map_files, UNREACHED, write_map, write_unreached
 from .map_grid import axle_grid_map, AXLE_QUANTITIES, corner_map, Grid, GridMap, quantities
-from ..cli import EXIT_STATUS, fail, Parser, program, SPAN, span, warn
+from .map_memory import memory_needed, memory_room
+from ..cli import EXIT_STATUS, fail, Parser, program, same_file, SPAN, span, warn
 from ..core.axle import axle_of
 from ..core.base import LinkageError
 from ..core.model import load_scene, load_vehicle, vehicle_dir
@@ -31,9 +33,6 @@ from ..core.warmup import compile_if_cold
 PROG = 'linkage-map'
 GRID_OPTIONS = ('--travel', '--rack')
 DEFAULT_RACK = Grid(-40.0, 40.0, 5.0)   # mm, steered corners when --rack is not given
-# Bytes a grid point needs per quantity while its corner is solved and written: the map's
-# array, the rows of one rack's sweep and the copy a writer makes (float64 each).
-BYTES_PER_VALUE = 3 * 8
 
 EPILOG = """writes into DIR, per corner (the scene's name, or the vehicle's corner names):
   <corner>.csv      long form: corner,travel_mm,rack_mm,quantity,value (exact floats)
@@ -100,9 +99,13 @@ def joined_grids(argv):
 def grid_option(text, option):
     """Read FROM[:TO:STEP] (mm) into a Grid; LinkageError naming the option if it is not one."""
     try:
-        return Grid(*span(text))
+        grid = Grid(*span(text))
     except argparse.ArgumentTypeError as exc:
         raise LinkageError(option, str(exc)) from None
+    if grid.count == math.inf:
+        raise LinkageError(option, f'{text}: more than 2**52 points, too many to make; take '
+                           'a larger STEP or a shorter range')
+    return grid
 
 
 def load_target(target):
@@ -126,9 +129,10 @@ def _is_vehicle(path):
 
 
 class Job(NamedTuple):
-    """One map to make: its name, grid size, quantities and how to solve it."""
+    """One map to make: its kind and name, grid size, quantities and how to solve it."""
 
-    name: str
+    kind: str          # 'corner' or 'axle'
+    name: str          # the corner's or the axle's
     shape: tuple[int, int]
     quantities: int
     solve: Callable[[], GridMap]
@@ -145,7 +149,7 @@ def corner_jobs(corners, args):
     for name, scene in corners.items():
         travels = travel or Grid(*scene.travel)
         racks = (rack or DEFAULT_RACK) if scene.steered else None
-        jobs.append(Job(name, (travels.count, racks.count if racks else 1),
+        jobs.append(Job('corner', name, (travels.count, racks.count if racks else 1),
                         len(quantities(scene)),
                         partial(solve_corner, scene, travels, racks, name)))
     return jobs
@@ -161,7 +165,7 @@ def axle_job(vehicle, args):
                            'map its steered corners without --axle for the rack')
     axle = axle_of(vehicle, args.axle)
     travel = grid_option(args.travel, '--travel') if args.travel else Grid(*axle.left.travel)
-    return Job(f'{axle.name} axle', (travel.count, travel.count), len(AXLE_QUANTITIES),
+    return Job('axle', axle.name, (travel.count, travel.count), len(AXLE_QUANTITIES),
                partial(solve_axle, axle, travel))
 
 
@@ -175,26 +179,39 @@ def solve_axle(axle, travel):
     return axle_grid_map(axle, travel.values())
 
 
-def memory_needed(jobs):
-    """Return (grid points, bytes) the maps need; counted, nothing allocated."""
-    points = sum(job.shape[0] * job.shape[1] for job in jobs)
-    return points, max(job.shape[0] * job.shape[1] * job.quantities * BYTES_PER_VALUE
-                       for job in jobs)
+def check_memory(jobs, formats):
+    """Refuse maps that need more memory than this process may take (LinkageError)."""
+    need = memory_needed(jobs, 'parquet' in formats)
+    room = memory_room()
+    if room is not None and room.wanted(need) > room.size:
+        raise LinkageError('grid', f'{need.points:,} points need about '
+                           f'{_gb(room.wanted(need))} of memory and {_gb(room.size)} is '
+                           f'available ({room.limit}): take a larger --travel or --rack '
+                           'step, or a shorter range')
 
 
-def memory_available():
-    """Return the bytes of memory available (MemAvailable), or None if unknown."""
-    try:
-        with open('/proc/meminfo') as stream:
-            for line in stream:
-                if line.startswith('MemAvailable:'):
-                    return int(line.split()[1]) * 1024
-    except OSError:
-        pass
-    try:
-        return os.sysconf('SC_AVPHYS_PAGES') * os.sysconf('SC_PAGE_SIZE')
-    except (ValueError, OSError):
-        return None
+def check_names(folder, jobs, formats, inputs):
+    """
+    Refuse outputs that would replace an input or each other (LinkageError naming both).
+
+    inputs: the files read (the scene or vehicle file and the corners' scene files).
+    """
+    unreached = folder / UNREACHED
+    written = {}
+    for job in jobs:
+        for path in map_files(folder, job.kind, job.name, formats):
+            if path == unreached or path in written:
+                other = 'the list of points out of reach' if path == unreached else \
+                    f'the map of {written[path]}'
+                what = 'axle' if job.kind == 'axle' else 'scene or corner'
+                raise LinkageError('-o', f'the map of {job.name} would be {path}, which '
+                                   f'is {other}: rename the {what}')
+            written[path] = job.name
+    for path in [*written, unreached]:
+        for source in inputs:
+            if same_file(str(path), source):
+                raise LinkageError('-o', f'writing {path} would replace the input '
+                                   f'{source}: give another -o folder')
 
 
 def formats_option(text):
@@ -247,14 +264,11 @@ def main(argv: list[str] | None = None, rounds: int = 0) -> int:
             from .map_bench import benchmark
             compile_if_cold(PROG)
             return benchmark(corners, args.benchmark)
-        points, need = memory_needed(jobs)
-        available = memory_available()
-        if available is not None and need > available:
-            raise LinkageError('grid', f'{points:,} points need about {_gb(need)} of memory '
-                               f'and {_gb(available)} is available: take a larger --travel '
-                               'or --rack step, or a shorter range')
-        formats = formats_option(args.format)
+        formats = formats_option(args.format)   # pyarrow first: its memory is then in use
+        check_memory(jobs, formats)
         folder = output_folder(args.out)
+        check_names(folder, jobs, formats, [args.target, *(
+            [vehicle.source] if vehicle else []), *(s.source for s in corners.values())])
     except LinkageError as exc:
         return fail(PROG, exc)
     compile_if_cold(PROG)
@@ -264,12 +278,13 @@ def main(argv: list[str] | None = None, rounds: int = 0) -> int:
         maps.append(job.solve())
         written = write_map(folder, maps[-1], formats)
         first, second = (n.replace('_mm', '').replace('_', ' ') for n in maps[-1].axis_names)
-        print(f'{PROG}: {job.name}: {job.shape[0]} x {job.shape[1]} ({first} x {second}) '
+        label = job.name if job.kind == 'corner' else f'{job.name} axle'
+        print(f'{PROG}: {label}: {job.shape[0]} x {job.shape[1]} ({first} x {second}) '
               f'grid points, {len(maps[-1].quantities)} quantities, solved in '
               f'{time.perf_counter() - started:.2f} s -> '
               f'{", ".join(str(p) for p in written)}', file=sys.stderr)
         if maps[-1].undefined:
-            print(f'{PROG}: {job.name}: left out, not defined here: '
+            print(f'{PROG}: {label}: left out, not defined here: '
                   f'{", ".join(maps[-1].undefined)}', file=sys.stderr)
     lost = write_unreached(folder / UNREACHED, maps)
     if lost:

@@ -11,7 +11,8 @@ For a corner over (travel, rack), in files named for it:
     out_of_reach.csv  corner,travel_mm,rack_mm,reason of every point left NaN
 
 An axle's map is the same over (left_travel_mm, right_travel_mm), in <axle>_axle.* files.
-pyarrow (the map extra) is imported only when Parquet is asked for.
+pyarrow (the map extra) is imported only when Parquet is asked for. Each file is written
+under a temporary name and renamed when whole (cli.whole_file): a full disk leaves no cut file.
 """
 
 from __future__ import annotations
@@ -22,6 +23,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from ..cli import whole_file
+
 if TYPE_CHECKING:
     from .map_grid import GridMap
 
@@ -29,18 +32,22 @@ FORMATS = ('csv', 'npz', 'parquet')
 UNREACHED = 'out_of_reach.csv'
 
 
-def stem(grid: GridMap) -> str:
+def stem(kind: str, name: str) -> str:
     """Return the file name stem of a map: the corner's name, or <axle>_axle."""
-    return grid.name if grid.kind == 'corner' else f'{grid.name}_axle'
+    return name if kind == 'corner' else f'{name}_axle'
+
+
+def map_files(folder: Path, kind: str, name: str, formats: tuple[str, ...]) -> list[Path]:
+    """Return the files a map of kind ('corner', 'axle') and name is written to."""
+    return [folder / f'{stem(kind, name)}.{fmt}' for fmt in formats]
 
 
 def write_map(folder: Path, grid: GridMap, formats: tuple[str, ...]) -> list[Path]:
     """Write a map in each of formats into folder; return the files written."""
     writers = {'csv': write_long_csv, 'npz': write_npz, 'parquet': write_parquet}
-    paths = []
-    for kind in formats:
-        paths.append(folder / f'{stem(grid)}.{kind}')
-        writers[kind](paths[-1], grid)
+    paths = map_files(folder, grid.kind, grid.name, formats)
+    for fmt, path in zip(formats, paths):
+        writers[fmt](path, grid)
     return paths
 
 
@@ -49,13 +56,14 @@ def write_npz(path: Path, grid: GridMap) -> None:
     arrays = {name: np.ascontiguousarray(grid.values[:, :, i])
               for i, name in enumerate(grid.quantities)}
     axes = dict(zip(grid.axis_names, grid.axes))
-    np.savez(path, **axes, **arrays)
+    with whole_file(path, 'wb') as stream:
+        np.savez(stream, **axes, **arrays)
 
 
 def write_long_csv(path: Path, grid: GridMap) -> None:
     """Write one value a line, grid point by grid point (first axis, then second), exact."""
     names = grid.quantities
-    with open(path, 'w') as stream:
+    with whole_file(path) as stream:
         stream.write(f'{grid.kind},{",".join(grid.axis_names)},quantity,value\n')
         for i, first in enumerate(grid.axes[0].tolist()):
             for j, second in enumerate(grid.axes[1].tolist()):
@@ -71,13 +79,14 @@ def write_parquet(path: Path, grid: GridMap) -> None:
     first, second = np.meshgrid(*grid.axes, indexing='ij')
     columns = dict(zip(grid.axis_names, (first.ravel(), second.ravel())))
     columns.update((name, grid.values[:, :, i].ravel()) for i, name in enumerate(grid.quantities))
-    pq.write_table(pa.table(columns), path)
+    with whole_file(path, 'wb') as stream:
+        pq.write_table(pa.table(columns), stream)
 
 
 def write_unreached(path: Path, maps: list[GridMap]) -> int:
     """List every solve out of reach (its corner, travel and rack), with why; return how many."""
     count = 0
-    with open(path, 'w', newline='') as stream:
+    with whole_file(path, newline='') as stream:
         writer = csv.writer(stream, lineterminator='\n')
         writer.writerow(['corner', 'travel_mm', 'rack_mm', 'reason'])
         for grid in maps:

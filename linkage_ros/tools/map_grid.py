@@ -9,19 +9,20 @@ are NaN and listed with the reason, never extrapolated.
 
 An axle's map is over (left travel, right travel) at rack 0: the corners move independently,
 so it combines the two wheels' columns; only the roll centre couples them, through a
-function of both wheels' contact patches and their velocities (axle_map; core.axle.axle's).
+function of both wheels' contact patches and their velocities (axle_map; the axle table's and
+the node's, core/axle/roll_centre.py).
 """
 
 from __future__ import annotations
 
-import math
-from typing import Callable, NamedTuple, TYPE_CHECKING
+from typing import NamedTuple, TYPE_CHECKING
 
 import numpy as np
 
 from .sweep import header, table
-from ..core.measure import columns, contact_patch
-from ..core.solve import compile_scene, sweep, tangent, travel_range
+from ..core.axle import height_above_ground, patch_motion, roll_centre
+from ..core.measure import columns
+from ..core.solve import compile_scene, sweep, tangent, travel_count, travel_range
 
 if TYPE_CHECKING:
     from ..core.axle import Axle
@@ -42,11 +43,9 @@ class Grid(NamedTuple):
     step: float
 
     @property
-    def count(self) -> int:
-        """Return how many values travel_range gives (the stop is always included)."""
-        steps = math.floor(abs(self.stop - self.start) / self.step + 1e-9)
-        return steps + 1 + (self.start + math.copysign(self.step * steps,
-                                                       self.stop - self.start) != self.stop)
+    def count(self) -> float:
+        """Return how many values travel_range gives (the stop always in); inf: uncountable."""
+        return travel_count(self.start, self.stop, self.step)
 
     def values(self) -> np.ndarray:
         """Return the grid's points as an array of count floats, mm, ascending."""
@@ -153,22 +152,18 @@ def wheel_column(scene: Scene, travels: np.ndarray, corner: str = '') -> WheelCo
             continue
         camber[done], toe[done] = np.degrees(result.camber), np.degrees(result.toe)
         if scene.wheel_radius:
-            patch[done] = contact_patch(result.wheel_center, result.rotation @ mech.spin_axis,
-                                        scene.wheel_radius)
             v, w = tangent(mech, result.wheel_center, result.rotation)   # exact, per mm
-            velocity[done] = v + np.cross(w, patch[done] - result.wheel_center)
+            patch[done], velocity[done] = patch_motion(
+                result.wheel_center, result.rotation @ mech.spin_axis, scene.wheel_radius, v, w)
     return WheelColumn(travels, patch, velocity, camber, toe, unreached)
 
 
-def axle_map(left: WheelColumn, right: WheelColumn,
-             roll_centre: Callable[[np.ndarray, np.ndarray], np.ndarray],
-             height: Callable[[np.ndarray, np.ndarray], np.ndarray]) -> dict[str, np.ndarray]:
+def axle_map(left: WheelColumn, right: WheelColumn) -> dict[str, np.ndarray]:
     """
     Return an axle's quantities (AXLE_QUANTITIES) over (left travel, right travel), (nl, nr).
 
-    roll_centre(patch (n, 2, 3), patch_velocity (n, 2, 3)) -> (n, 2): the roll centre's
-    (y, z) mm from both wheels (column 0 left, 1 right); height(point (n, 2), patch (n, 2, 3))
-    -> (n,): its height above the ground through the patches (core.axle.axle's functions).
+    The roll centre and its height above the ground from both wheels' patches and their
+    velocities, by the axle table's functions (core/axle/roll_centre.py).
     """
     nl, nr = len(left.travel), len(right.travel)
     patch = np.stack(np.broadcast_arrays(left.patch[:, None], right.patch[None, :]), axis=2)
@@ -179,7 +174,7 @@ def axle_map(left: WheelColumn, right: WheelColumn,
     grid = np.ones((nl, nr))
     return {'roll_centre_y_mm': centre[:, 0].reshape(nl, nr),
             'roll_centre_z_mm': centre[:, 1].reshape(nl, nr),
-            'roll_centre_height_mm': height(centre, patch).reshape(nl, nr),
+            'roll_centre_height_mm': height_above_ground(centre, patch).reshape(nl, nr),
             'track_mm': (patch[:, 0, 1] - patch[:, 1, 1]).reshape(nl, nr),
             'left_camber_deg': left.camber[:, None] * grid,
             'right_camber_deg': right.camber[None, :] * grid,
@@ -188,9 +183,8 @@ def axle_map(left: WheelColumn, right: WheelColumn,
 
 def axle_grid_map(axle: Axle, travels: np.ndarray) -> GridMap:
     """Solve an axle's map over (left travel, right travel), both over travels (mm)."""
-    from ..core.axle import height_above_ground, roll_centre
     left, right = wheel_column(axle.left, travels), wheel_column(axle.right, travels)
-    found = axle_map(left, right, roll_centre, height_above_ground)
+    found = axle_map(left, right)
     values = np.stack([found[q] for q in AXLE_QUANTITIES], axis=2)
     return defined_only(GridMap('axle', axle.name, ('left_travel_mm', 'right_travel_mm'),
                                 (travels, travels), list(AXLE_QUANTITIES), values,

@@ -1,5 +1,5 @@
 """
-linkage-plot: the pictures of the README, as PNG files (needs matplotlib: the plot extra).
+linkage-plot: the pictures of README.md and doc/, as PNG files (needs matplotlib: the plot extra).
 
     linkage-plot camber-toe -o OUT.png [SCENE ...]   camber and toe against travel
     linkage-plot alignment -o OUT.png [SCENE ...]    the alignment set against travel

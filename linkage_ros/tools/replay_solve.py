@@ -11,7 +11,8 @@ every period of it. As the node with TF on (its default), the recording also car
 command (linkage_ros.ros.tf, built without tf2_msgs); a scene with elements, their JointState
 per solved command (ros/element_outputs.py), as the node publishes it. Rack commands and the
 node's run-time parameter changes (a new scene, new solver settings) are replayed in their
-recorded order, as the node took them.
+recorded order, as the node took them. What a solved command publishes is the Responder's
+list, as on the node (protocol.OUTPUTS).
 """
 
 import math
@@ -24,7 +25,6 @@ from ..core.base import LinkageError
 from ..protocol import Responder
 
 DIAGNOSTIC_ARRAY = 'diagnostic_msgs/msg/DiagnosticArray'
-JOINT_STATE = 'sensor_msgs/msg/JointState'
 DIAGNOSTICS_TOPIC = '/diagnostics'
 DESCRIPTION_TOPIC = '/robot_description'
 
@@ -53,7 +53,7 @@ def status_name(scene):
 
 class _Corner:
     """
-    The corner a replay answers as: its Responder, frames and elements build, for its scene.
+    The corner a replay answers as: its Responder and TF frames, for its scene.
 
     change() takes the node's run-time parameter changes as ros/runtime.py applies them.
     """
@@ -75,13 +75,10 @@ class _Corner:
                                    period_ns=int(round(s['diagnostic_period'] * 1e9)))
         if old is not None:
             self.responder.follow(old)
+        # the node's outputs with its defaults: TF on, alignment and markers off; the
+        # scene's elements for a scene with elements (protocol.OUTPUTS)
         self.frames = CornerFrames(scene, s['frame_id'], self.prefix)
-        self.elements = None
-        if scene.elements:     # the node's elements topic (ros/element_outputs.py)
-            from ..ros.element_outputs import elements_builder
-            solver = self.responder.solver
-            self.elements = elements_builder(scene, solver.mech, s['frame_id'],
-                                             lambda: solver.jacobian)
+        self.responder.set_outputs(frames=self.frames)
 
     def change(self, values, scenes, time_ns):
         """
@@ -132,8 +129,7 @@ def solve_commands(commands, scene, method, sinks, topic=DEFAULT_TOPIC, progress
     from ..record.interfaces import qualified
     from ..robot_description import robot_description
     from ..ros import messages
-    from ..ros.element_outputs import TOPIC as ELEMENTS_TOPIC
-    from ..ros.tf import static_cdr, TF_STATIC_TOPIC, TF_TOPIC, TF_TYPE
+    from ..ros.tf import static_cdr, TF_STATIC_TOPIC, TF_TYPE
     defaults = node_defaults()
     topic = qualified(topic)
     rack = rack_topic(topic)
@@ -188,13 +184,9 @@ def solve_commands(commands, scene, method, sinks, topic=DEFAULT_TOPIC, progress
         reply = responder.answer(None if command.kind == RACK else value_mm,
                                  value_mm if command.kind == RACK else None, divmod(t, 10**9),
                                  lambda: f'{name} {command.travel!r} m')
-        for output, type_name, data in reply.outputs:
-            emit(f'{namespace}/{output}', type_name, data, t)
-        if reply.solution.success and corner.elements is not None:
-            emit(f'{namespace}/{ELEMENTS_TOPIC}', JOINT_STATE,
-                 corner.elements(reply.solution, divmod(t, 10**9)), t)
-        if reply.solution.success:
-            emit(TF_TOPIC, TF_TYPE, corner.frames.tf_cdr(reply.solution, divmod(t, 10**9)), t)
+        for output, type_name, data in reply.outputs:     # the node's list, in its order
+            emit(output if output.startswith('/') else f'{namespace}/{output}', type_name,
+                 data, t)
         failures += not reply.solution.success
         if reply.report:
             report(t)

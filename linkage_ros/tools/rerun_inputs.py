@@ -8,7 +8,7 @@ What linkage-rerun draws beyond a bag's own topics: the parts of a run, and join
 
 A node whose scene was changed while it ran (SetParameters, recorded on /parameter_events)
 answered each part of its run with another scene: each part is drawn with its own. The
-README's vehicle input is one sensor_msgs/JointState on joint_states for every corner (the
+vehicle input of doc/node.md is one sensor_msgs/JointState on joint_states for every corner (the
 vehicle file names each corner's travel_joint and rack_joint): its positions are drawn as
 the corners' travel and rack, as if they had come on their wheel_travel and steering_rack.
 """

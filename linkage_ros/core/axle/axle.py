@@ -13,8 +13,9 @@ Quantities at every position, from the exact velocities of the implicit function
 (pose_newton.slope_of, compiled for a batch: jacobian_kernel.slope_many), no finite differences:
   roll centre     the front-view intersection of the two lines through the contact patches
                   square to the patches' velocities under their own wheel's travel (the
-                  patch taken as a point of the carrier); its vehicle-frame y and its height
-                  above the ground (the line through the two contact patches)
+                  patch taken as a point of the carrier; roll_centre.py, which the node and
+                  the maps use too); its vehicle-frame y and its height above the ground (the
+                  line through the two contact patches)
   camber, toe     of each wheel relative to the body and to the ground (body rolled by phi)
   track           between the contact patches
   anti-dive, -lift, -squat (%): 100 sign (v_x / v_z) (L / h) share (Milliken and Milliken,
@@ -38,7 +39,8 @@ from typing import Any, TYPE_CHECKING
 
 import numpy as np
 
-from ..base.geometry import camber_toe, cross
+from .roll_centre import height_above_ground, patch_motion, roll_centre
+from ..base.geometry import camber_toe
 from ..base.status import Status
 from ..measure.alignment import contact_patch
 from ..model.yaml_file import SceneError
@@ -273,8 +275,8 @@ def axle_quantities(axle: Axle, heave: np.ndarray, roll: np.ndarray, rack: np.nd
         else:
             camber_ground[:, k], toe_ground[:, k] = camber[:, k], toe[:, k]
         if scene.wheel_radius > 0:
-            patch[:, k] = contact_patch(wheel_center, axis, scene.wheel_radius)
-            v_patch[:, k] = v_center[:, k] + cross(omega[:, k], patch[:, k] - wheel_center)
+            patch[:, k], v_patch[:, k] = patch_motion(wheel_center, axis, scene.wheel_radius,
+                                                      v_center[:, k], omega[:, k])
     track = patch[:, 0, 1] - patch[:, 1, 1]
     centre = roll_centre(patch, v_patch)
     steer = -np.array([s.side_sign for s in axle.scenes]) * toe   # yaw, + = to the left
@@ -314,73 +316,6 @@ def roll_about_x(vector: np.ndarray, roll: np.ndarray) -> np.ndarray:
     c, s = np.cos(roll), np.sin(roll)
     return np.column_stack((vector[:, 0], c * vector[:, 1] - s * vector[:, 2],
                             s * vector[:, 1] + c * vector[:, 2]))
-
-
-def roll_centre(patch: np.ndarray, velocity: np.ndarray) -> np.ndarray:
-    """
-    Return the roll centre (n, 2): its (y, z) in the vehicle frame, mm.
-
-    patch (n, 2, 3): left and right contact patches; velocity (n, 2, 3): their velocities
-    under their own wheel's travel. In the front view each patch's line runs square to its
-    velocity, v_y (y - p_y) + v_z (z - p_z) = 0; the roll centre is where the two meet (NaN
-    for parallel lines).
-    """
-    vy, vz = velocity[..., 1], velocity[..., 2]
-    rhs = vy * patch[..., 1] + vz * patch[..., 2]
-    det = vy[:, 0] * vz[:, 1] - vy[:, 1] * vz[:, 0]
-    with np.errstate(divide='ignore', invalid='ignore'):
-        return np.column_stack(((rhs[:, 0] * vz[:, 1] - rhs[:, 1] * vz[:, 0]) / det,
-                                (vy[:, 0] * rhs[:, 1] - vy[:, 1] * rhs[:, 0]) / det))
-
-
-def roll_centre_of_poses(radius: np.ndarray, spin_axis: np.ndarray, center: np.ndarray,
-                         rotation: np.ndarray, jac: np.ndarray) -> np.ndarray:
-    """
-    Return the roll centre (3,) mm of one pose of each wheel: suspension_node's, per answer.
-
-    x midway between the two contact patches, (y, z) as roll_centre gives them (NaN for
-    parallel lines); the patches' velocities from the Jacobians (jacobian_kernel.slope_many), as
-    axle_quantities has them. radius (2,) mm; spin_axis (2, 3): the design unit spin axes
-    (Mechanism.spin_axis); center (2, 3) mm, rotation (2, 3, 3) (or each a pair of arrays),
-    jac (2, 5, 6) C-contiguous: the wheels' poses and Jacobians (Continuation.jacobian), left
-    then right. In scalars: a node's answer cannot afford numpy's cost per call on arrays of
-    two (about 20 calls of several microseconds each).
-    """
-    free = np.empty((2, 5))
-    jacobian_kernel.slope_many(jac, free)
-    x, lines = 0.0, []
-    for k in range(2):
-        cx, cy, cz = center[k].tolist()
-        (r0, r1, r2), s = rotation[k].tolist(), spin_axis[k].tolist()
-        az = r2[0] * s[0] + r2[1] * s[1] + r2[2] * s[2]
-        ux = -az * (r0[0] * s[0] + r0[1] * s[1] + r0[2] * s[2])   # up, square to the axis
-        uy = -az * (r1[0] * s[0] + r1[1] * s[1] + r1[2] * s[2])
-        uz = 1.0 - az * az
-        scale = radius[k] / math.sqrt(ux * ux + uy * uy + uz * uz)
-        dx, dy, dz = -scale * ux, -scale * uy, -scale * uz        # patch - centre
-        vx, vy, wx, wy, wz = free[k].tolist()                     # v_z = 1
-        velocity_y, velocity_z = vy + wz * dx - wx * dz, 1.0 + wx * dy - wy * dx
-        patch_y, patch_z = cy + dy, cz + dz
-        x += 0.5 * (cx + dx)
-        lines.append((velocity_y, velocity_z, velocity_y * patch_y + velocity_z * patch_z))
-    (ay, az_, ar), (by, bz, br) = lines
-    det = ay * bz - by * az_
-    if det == 0.0:
-        return np.array([x, math.nan, math.nan])
-    return np.array([x, (ar * bz - br * az_) / det, (ay * br - by * ar) / det])
-
-
-def height_above_ground(point: np.ndarray, patch: np.ndarray) -> np.ndarray:
-    """
-    Return the heights (n,) mm of front-view points (n, 2) (y, z) above the ground.
-
-    The ground is the line through the two contact patches (n, 2, 3) (the body rolls and
-    heaves over it); the height is the distance from that line, + above.
-    """
-    ground = patch[:, 0, 1:] - patch[:, 1, 1:]            # right patch to left patch
-    ground = ground / np.linalg.norm(ground, axis=1, keepdims=True)
-    offset = point - patch[:, 1, 1:]
-    return ground[:, 0] * offset[:, 1] - ground[:, 1] * offset[:, 0]
 
 
 def anti_percent(velocity: np.ndarray, front: bool, wheelbase: float, cg_height: float,

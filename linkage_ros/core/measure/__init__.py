@@ -8,7 +8,7 @@ unit and sign). Imports base, model and solve.
 """
 
 from . import quantities
-from .alignment import Alignment, alignment, contact_patch
+from .alignment import Alignment, alignment, contact_patch, patch_offset
 from .bodies import Bodies, body_poses, corner_bodies, frame_along
 from .elements import (crossing_notes, element_columns, element_table, element_values,
                        ElementModel, ElementValues, prepare, values_at)
@@ -21,5 +21,5 @@ __all__ = ['Alignment', 'alignment', 'Bodies', 'body_poses', 'carrier_motion', '
            'columns_of_element', 'contact_patch', 'corner_bodies', 'crossing_notes',
            'element_columns', 'element_table', 'element_values', 'ElementModel', 'ElementValues',
            'frame_along', 'geometric_kingpin', 'GeometricKingpin', 'guidance_rows',
-           'kingpin_points', 'mount_motion', 'mount_table', 'pose_batch', 'prepare', 'quantities',
-           'quantity', 'title', 'TOPICS', 'values_at']
+           'kingpin_points', 'mount_motion', 'mount_table', 'patch_offset', 'pose_batch',
+           'prepare', 'quantities', 'quantity', 'title', 'TOPICS', 'values_at']

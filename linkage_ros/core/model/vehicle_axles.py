@@ -37,6 +37,10 @@ if TYPE_CHECKING:
 AXLE_NAMES = ('front', 'rear')
 BRAKES = ('outboard', 'inboard')
 AXLE_KEYS = ('left', 'right', 'brake_share', 'drive_share', 'brakes', 'anti_roll_bar')
+# How far an axle's wheel centres may be from mirror images of each other, as a fraction of
+# the track: in x and z, and the axle's middle off the centre plane y = 0. Beyond it the two
+# corners are not one axle (a roll centre, a track and an Ackermann need a transverse pair).
+AXLE_SKEW = 0.1
 
 
 @dataclass(frozen=True)
@@ -119,6 +123,7 @@ def _axle(path, name, spec, corners, scale):
             raise SceneError(path, f'{where}.{side}', f'corner {corner} is a '
                              f'{corners[corner].side} wheel (mirror: true makes a right one)')
         sides.append(corner)
+    _check_pair(path, where, sides, [corners[c].wheel_center for c in sides])
     shares = [_share(path, f'{where}.{key}', spec.get(key, 0.0))
               for key in ('brake_share', 'drive_share')]
     brakes = spec.get('brakes', 'outboard')
@@ -131,6 +136,29 @@ def _axle(path, name, spec, corners, scale):
         bar = parse_bar(str(path), f'{where}.anti_roll_bar', spec['anti_roll_bar'],
                         (corners[sides[0]], corners[sides[1]]), scale)
     return AxleSpec(name, *sides, *shares, brakes, bar)
+
+
+def _check_pair(path, where, names, centres):
+    """
+    Refuse two corners that are no axle, raising SceneError that names the axle's field.
+
+    A wheel on the wrong side (so a track <= 0, coincident wheels among them), or wheel
+    centres (mm) further than AXLE_SKEW x track from mirror images: in x, in z, or about y = 0.
+    """
+    (left, right), track = centres, centres[0][1] - centres[1][1]
+    for side, name, centre, sign in zip(('left', 'right'), names, centres, (1.0, -1.0)):
+        if not sign * centre[1] > 0:
+            raise SceneError(path, f'{where}.{side}', f'corner {name} is a {side} wheel with '
+                             f'its centre at y = {centre[1]:.6g} mm: a {side} wheel is at '
+                             f'{"+" if sign > 0 else "-"}y (y to the left); check its offset')
+    skew = {'x': abs(left[0] - right[0]), 'z': abs(left[2] - right[2]),
+            'y (middle off the centre plane)': abs(left[1] + right[1])}
+    for axis, apart in skew.items():
+        if apart > AXLE_SKEW * track:
+            raise SceneError(path, where, f'the wheel centres of {names[0]} and {names[1]} '
+                             f'are {apart:.6g} mm apart in {axis}, more than '
+                             f'{AXLE_SKEW:g} x their track of {track:.6g} mm: an axle is a '
+                             'left corner and its mirror image; check the offsets')
 
 
 def _share(path, where, value):

@@ -13,7 +13,8 @@ A file is refused, with SceneError naming the file and where in it, when it is
 - giving one key twice in a mapping (YAML would keep the last silently).
 Dates are not converted (`2024-01-01` stays text): a scene has no dates, and an invalid one
 (`2001-13-45`) would otherwise fail deep inside the YAML library. A number with an exponent
-and no point (`1e-3`) is a number, as in YAML 1.2 (PyYAML's YAML 1.1 reads it as text).
+is a number, as in YAML 1.2, also without a point or a sign after the e (`1e-3`, `-1.0e9`),
+which PyYAML's YAML 1.1 reads as text.
 """
 
 from __future__ import annotations
@@ -76,10 +77,12 @@ class _PlainLoader(_Base):
         return super().construct_mapping(node, deep)
 
 
-# 1e-3, -2E5: floats (after the int and float resolvers, which take every other number).
-_PlainLoader.add_implicit_resolver(_CORE + 'float',
-                                   re.compile(r'^[-+]?[0-9][0-9_]*[eE][-+]?[0-9]+$'),
-                                   list('-+0123456789'))
+# 1e-3, -2E5, -1.0e9, .5e3: floats (after the int and float resolvers, which take every
+# other number; YAML 1.1's wants a sign in the exponent and reads -1.0e9 as text).
+_PlainLoader.add_implicit_resolver(
+    _CORE + 'float',
+    re.compile(r'^[-+]?(?:[0-9][0-9_]*(?:\.[0-9_]*)?|\.[0-9][0-9_]*)[eE][-+]?[0-9]+$'),
+    list('-+.0123456789'))
 
 
 def read_yaml(path: str | PathLike, what: str = 'scene') -> Any:

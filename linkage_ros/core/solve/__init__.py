@@ -7,7 +7,8 @@ paper's method, arc length, continuation and the sweep (kinematics.py). Imports 
 """
 
 from .continuation import MIN_STEP
-from .kinematics import Continuation, METHODS, Settings, Solution, Sweep, sweep, travel_range
+from .kinematics import (Continuation, METHODS, Settings, Solution, Sweep, sweep, travel_count,
+                         travel_range)
 from .mechanism import (compile_scene, design_condition, design_jacobian, equation_table,
                         geometry_of, is_singular, length_errors, lengthened, linearize, Mechanism,
                         radii, SINGULAR_CONDITION)
@@ -16,4 +17,5 @@ from .pose_newton import tangent
 __all__ = ['compile_scene', 'Continuation', 'design_condition', 'design_jacobian',
            'equation_table', 'geometry_of', 'is_singular', 'length_errors', 'lengthened',
            'linearize', 'Mechanism', 'METHODS', 'MIN_STEP', 'radii', 'Settings',
-           'SINGULAR_CONDITION', 'Solution', 'Sweep', 'sweep', 'tangent', 'travel_range']
+           'SINGULAR_CONDITION', 'Solution', 'Sweep', 'sweep', 'tangent', 'travel_count',
+           'travel_range']

@@ -168,6 +168,20 @@ def _knots(cont, low, high):
     return np.array(knots)
 
 
+def travel_count(start: float, stop: float, step: float) -> float:
+    """
+    Return how many travels travel_range(start, stop, step) gives, counted, not built.
+
+    math.inf for a range too long to count or to step exactly (more than 2**52 steps, or a
+    span that overflows: 0 to 1e308 by 1e-308), which no caller can allocate anyway.
+    """
+    steps = abs(stop - start) / step + 1e-9
+    if not steps < 2.0 ** 52:   # inf and NaN too
+        return math.inf
+    count = math.floor(steps)
+    return count + 1 + (start + math.copysign(step * count, stop - start) != stop)
+
+
 def travel_range(start: float, stop: float, step: float) -> np.ndarray:
     """Return the travels from start to stop (mm) inclusive at step, either direction."""
     count = int(math.floor(abs(stop - start) / step + 1e-9))

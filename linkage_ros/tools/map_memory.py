@@ -1,0 +1,140 @@
+"""
+The memory a kinematic map needs, and the memory it may have, both known before it is solved.
+
+    need = memory_needed(jobs, parquet)   # Need(points, resident, address_space) bytes
+    room = memory_room()                  # Room(bytes, what limits it), or None: no limit known
+
+Every corner's map is kept until the last is written (their points out of reach are listed
+at the end), so the need is the sum over the corners, not the largest. The room is the
+smallest of what applies to this process: the host's MemAvailable, the address-space limit
+(RLIMIT_AS, `ulimit -v`) less the address space in use, and the cgroup's memory.max (v2) or
+memory.limit_in_bytes (v1) less what the cgroup already uses, at every level of its path. The
+address-space limit counts reserved address space, which pyarrow reserves plenty of; the
+others count resident memory, so each is compared with its own need.
+"""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+import resource
+from typing import NamedTuple
+
+# Measured with linkage-map demo_vehicle (4 corners, 41 quantities) on grids of 2,020 and
+# 164,164 points: loading the compiled kernels and solving took 141 MB of address space and
+# 48 MB resident on top of what the program held when it checked; each value of the maps
+# (a grid point's quantity: the map's array, the rows of one rack's sweep, a writer's copy)
+# took 15 B at the peak with CSV and NPZ, 23 B with Parquet too. Rounded up.
+BASE_BYTES = 160e6
+BYTES_PER_VALUE = 24
+# pyarrow's first Parquet file reserved 1.3 GB of address space (its allocator and threads),
+# of which about 100 MB became resident.
+PARQUET_ADDRESS_BYTES = 1.4e9
+PARQUET_RESIDENT_BYTES = 100e6
+CGROUP_ROOT = Path('/sys/fs/cgroup')
+
+
+class Need(NamedTuple):
+    """What the maps of a run need: grid points, bytes resident, bytes of address space."""
+
+    points: int
+    resident: float
+    address_space: float
+
+
+class Room(NamedTuple):
+    """The memory a run may take, bytes, and what sets it (said when it is too little)."""
+
+    size: float      # bytes
+    limit: str
+
+    def wanted(self, need: Need) -> float:
+        """Return the bytes of need this room holds: address space for RLIMIT_AS, else resident."""
+        return need.address_space if self.limit == ADDRESS_SPACE else need.resident
+
+
+ADDRESS_SPACE = 'the address-space limit RLIMIT_AS, ulimit -v'
+
+
+def memory_needed(jobs, parquet: bool = False) -> Need:
+    """Return the Need of jobs (each with shape (n0, n1) and quantities); nothing allocated."""
+    points = sum(job.shape[0] * job.shape[1] for job in jobs)
+    values = sum(job.shape[0] * job.shape[1] * job.quantities for job in jobs)
+    data = BASE_BYTES + BYTES_PER_VALUE * values
+    return Need(points, data + parquet * PARQUET_RESIDENT_BYTES,
+                data + parquet * PARQUET_ADDRESS_BYTES)
+
+
+def memory_room(cgroup_root: Path = CGROUP_ROOT) -> Room | None:
+    """Return the smallest Room that applies to this process, or None if none is known."""
+    rooms = [room for room in (mem_available(), address_space_room(),
+                               cgroup_room(_read('/proc/self/cgroup'), cgroup_root))
+             if room is not None]
+    return min(rooms, default=None)
+
+
+def mem_available() -> Room | None:
+    """Return the host's MemAvailable (or the free pages), or None if unknown."""
+    for line in _read('/proc/meminfo').splitlines():
+        if line.startswith('MemAvailable:'):
+            return Room(int(line.split()[1]) * 1024.0, 'MemAvailable')
+    try:
+        return Room(float(os.sysconf('SC_AVPHYS_PAGES') * os.sysconf('SC_PAGE_SIZE')),
+                    'the free memory')
+    except (ValueError, OSError):
+        return None
+
+
+def address_space_room() -> Room | None:
+    """Return RLIMIT_AS (soft) less the address space in use (VmSize), or None: no limit."""
+    soft, _ = resource.getrlimit(resource.RLIMIT_AS)
+    if soft == resource.RLIM_INFINITY:
+        return None
+    used = 0.0
+    for line in _read('/proc/self/status').splitlines():
+        if line.startswith('VmSize:'):
+            used = int(line.split()[1]) * 1024.0
+    return Room(max(soft - used, 0.0), ADDRESS_SPACE)
+
+
+def cgroup_room(proc_cgroup: str, root: Path = CGROUP_ROOT) -> Room | None:
+    """
+    Return the least room (limit less usage) of the cgroups in proc_cgroup, or None.
+
+    proc_cgroup: the text of /proc/self/cgroup ('0::/path' for v2, 'N:memory:/path' for
+    v1); every level of the path is read under root (a limit of a parent applies too), and
+    root itself, which is the process's own cgroup inside a container.
+    """
+    rooms = []
+    for line in proc_cgroup.splitlines():
+        _, controllers, path = (line.split(':', 2) + ['', ''])[:3]
+        if controllers == '':
+            files, base = ('memory.max', 'memory.current'), root
+        elif 'memory' in controllers.split(','):
+            files, base = ('memory.limit_in_bytes', 'memory.usage_in_bytes'), root / 'memory'
+        else:
+            continue
+        parts = [p for p in path.split('/') if p]
+        for depth in range(len(parts) + 1):
+            room = _cgroup_level(base.joinpath(*parts[:depth]), *files)
+            if room is not None:
+                rooms.append(room)
+    return min(rooms, default=None)
+
+
+def _cgroup_level(folder: Path, limit_file: str, usage_file: str) -> Room | None:
+    """Return one cgroup's limit less its usage, or None: no limit ('max', huge) or no file."""
+    limit, usage = _read(folder / limit_file).strip(), _read(folder / usage_file).strip()
+    if not (limit.isdigit() and usage.isdigit()) or int(limit) >= 2 ** 62:   # v1: no limit
+        return None
+    return Room(max(int(limit) - int(usage), 0) * 1.0, f"the cgroup's {limit_file} "
+                f'({folder})')
+
+
+def _read(path) -> str:
+    """Return a small system file's text, '' if it cannot be read."""
+    try:
+        with open(path) as stream:
+            return stream.read(1 << 20)
+    except (OSError, UnicodeDecodeError):
+        return ''
