@@ -112,5 +112,9 @@ if [ "${LONG:-0}" = 1 ]; then
     RUST_LOG=error xvfb-run -a -s '-screen 0 3200x1600x24' .venv/bin/rerun --screenshot-to bags/five_link_tf.png --window-size 1400x700 five_link_tf.rrd; echo "rc=$?"
     RUST_LOG=error xvfb-run -a -s '-screen 0 3200x1600x24' .venv/bin/rerun --screenshot-to bags/five_link_rerun.png --window-size 1400x700 five_link_sweep.rrd; echo "rc=$?"
 fi
+step one vocabulary: --travel/--rack FROM[:TO:STEP], -o, linkage-bench SUBCOMMAND
+.venv/bin/linkage-sweep double_wishbone --travel -40:40:40 --rack -10:10:10 -o grid.csv; echo "rc=$?"; wc -l grid.csv
+.venv/bin/linkage-bench sweep five_link --travel -10:10:10 --rounds 1; echo "rc=$?"
+.venv/bin/linkage-bench --help | head -1; echo "rc=$?"
 step git status
 git status --short
