@@ -25,13 +25,13 @@ PY
 step warmup
 .venv/bin/python -m linkage_ros.core.warmup; echo "rc=$?"
 step sweep double_wishbone
-.venv/bin/linkage-sweep double_wishbone --from -40 --to 40 --step 10 --csv double_wishbone.csv; echo "rc=$?"; head -2 double_wishbone.csv
+.venv/bin/linkage-sweep double_wishbone --travel -40:40:10 -o double_wishbone.csv; echo "rc=$?"; head -2 double_wishbone.csv
 step sweep out of reach
-.venv/bin/linkage-sweep five_link --from 0 --to 1000 --step 100 > /dev/null; echo "rc=$?"
+.venv/bin/linkage-sweep five_link --travel 0:1000:100 > /dev/null; echo "rc=$?"
 step sweep elements
-.venv/bin/linkage-sweep double_wishbone --from -40 --to 40 --step 40 --elements 2>/dev/null | cut -d, -f1,13-; echo "rc=${PIPESTATUS[0]}"
+.venv/bin/linkage-sweep double_wishbone --travel -40:40:40 --elements 2>/dev/null | cut -d, -f1,13-; echo "rc=${PIPESTATUS[0]}"
 step kinematic map
-.venv/bin/linkage-map double_wishbone --out maps; echo "rc=$?"; ls maps
+.venv/bin/linkage-map double_wishbone -o maps; echo "rc=$?"; ls maps
 step misspelt parameter
 .venv/bin/suspension_node --ros-args -p sceen:=macpherson; echo "rc=$?"
 step python snippet of README.md
@@ -81,15 +81,15 @@ step urdf and rerun from tf
 .venv/bin/linkage-rerun bags/five_link_sweep.mcap --tf -o five_link_tf.rrd; echo "rc=$?"
 .venv/bin/linkage-foxglove demo_vehicle -o demo_vehicle_layout.json; echo "rc=$?"
 step axle, anti-roll bar, roll centre picture
-.venv/bin/linkage-axle demo_vehicle --axle front --heave=-40:40:20 --csv front_heave.csv; echo "rc=$?"; cut -d, -f1,2,6,7,8,9,11,17 front_heave.csv | head -3
-.venv/bin/linkage-axle demo_vehicle --axle front --heave 0 --roll=-4:4:4 | cut -d, -f2,20,21,26; echo "rc=${PIPESTATUS[0]}"
-.venv/bin/linkage-axle demo_vehicle --axle front --heave 0 --roll=-4:4:2 | cut -d, -f2,20-; echo "rc=${PIPESTATUS[0]}"
+.venv/bin/linkage-axle demo_vehicle --axle front --heave -40:40:20 -o front_heave.csv; echo "rc=$?"; cut -d, -f1,2,6,7,8,9,11,17 front_heave.csv | head -3
+.venv/bin/linkage-axle demo_vehicle --axle front --heave 0 --roll -4:4:4 | cut -d, -f2,20,21,26; echo "rc=${PIPESTATUS[0]}"
+.venv/bin/linkage-axle demo_vehicle --axle front --heave 0 --roll -4:4:2 | cut -d, -f2,20-; echo "rc=${PIPESTATUS[0]}"
 .venv/bin/linkage-axle demo_vehicle --axle front > axle.csv; echo "rc=$?"; head -2 axle.csv
-.venv/bin/linkage-plot roll-centre roll_centre.png; echo "rc=$?"
+.venv/bin/linkage-plot roll-centre -o roll_centre.png; echo "rc=$?"
 pyblock doc/axle.md 'solve_axle(axle' > axle_snippet.py
 .venv/bin/python axle_snippet.py; echo "rc=$?"; rm axle_snippet.py
 step studies
-.venv/bin/linkage-study sensitivity five_link --travel -50 0 50 --out five_link_sensitivity.csv; echo "rc=$?"
+.venv/bin/linkage-study sensitivity five_link --travel -50 0 50 -o five_link_sensitivity.csv; echo "rc=$?"
 .venv/bin/linkage-study tolerance five_link --sigma 0.05 --samples 100000 --travel -50 -25 0 25 50 --plot tolerance.png > tolerance.csv; echo "rc=$?"
 .venv/bin/linkage-study tolerance five_link --sigma 1 --tolerances config/study/five_link_tie_rod_length.yaml --samples 4096 --travel -50 0 50 > tolerance_lengths.csv; echo "rc=$?"; head -3 tolerance_lengths.csv
 .venv/bin/linkage-study fit config/study/bump_steer_targets.yaml -o double_wishbone_fitted.yaml --plot fit.png; echo "rc=$?"
@@ -97,20 +97,24 @@ step study on a local dask cluster
 .venv/bin/dask scheduler --host 127.0.0.1 --port 8786 --no-dashboard > dask_scheduler.log 2>&1 &
 timeout 60 bash -c 'until (echo > /dev/tcp/127.0.0.1/8786) 2> /dev/null; do sleep 0.2; done'
 .venv/bin/dask worker tcp://127.0.0.1:8786 --nworkers 2 --nthreads 1 --no-dashboard > dask_worker.log 2>&1 &
-.venv/bin/linkage-study tolerance five_link --sigma 0.05 --samples 1000000 --travel -50 -25 0 25 50 --scheduler tcp://127.0.0.1:8786 --out tolerance.parquet; echo "rc=$?"
+.venv/bin/linkage-study tolerance five_link --sigma 0.05 --samples 1000000 --travel -50 -25 0 25 50 --scheduler tcp://127.0.0.1:8786 -o tolerance.parquet; echo "rc=$?"
 kill %2 %1; wait; echo done
 if [ "${LONG:-0}" = 1 ]; then
     step benchmarks
     .venv/bin/pip install -q -e '.[bench]'; echo "rc=$?"
-    .venv/bin/linkage-map double_wishbone --benchmark 20 > /dev/null; echo "rc=$?"
-    .venv/bin/linkage-axle demo_vehicle --axle front --benchmark 21 > /dev/null; echo "rc=$?"
-    .venv/bin/linkage-axle demo_vehicle --axle rear --roll=-3:3:0.5 --heave=-40:40:10 --benchmark 11 > /dev/null; echo "rc=$?"
-    .venv/bin/linkage-bench --quick --out bench-report; echo "rc=$?"
-    ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST .venv/bin/linkage-node-bench --plot node_latency.png > node_bench.csv; echo "rc=$?"
-    ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST .venv/bin/linkage-soak > soak.csv; echo "rc=$?"
+    .venv/bin/linkage-bench map double_wishbone --rounds 20 > /dev/null; echo "rc=$?"
+    .venv/bin/linkage-bench axle demo_vehicle --axle front --rounds 21 > /dev/null; echo "rc=$?"
+    .venv/bin/linkage-bench axle demo_vehicle --axle rear --roll -3:3:0.5 --heave -40:40:10 --rounds 11 > /dev/null; echo "rc=$?"
+    .venv/bin/linkage-bench accuracy --quick -o bench-report; echo "rc=$?"
+    ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST .venv/bin/linkage-bench node --plot node_latency.png > node_bench.csv; echo "rc=$?"
+    ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST .venv/bin/linkage-bench soak > soak.csv; echo "rc=$?"
     step screenshots '(they rewrite the committed pictures: git diff bags/ shows the change)'
     RUST_LOG=error xvfb-run -a -s '-screen 0 3200x1600x24' .venv/bin/rerun --screenshot-to bags/five_link_tf.png --window-size 1400x700 five_link_tf.rrd; echo "rc=$?"
     RUST_LOG=error xvfb-run -a -s '-screen 0 3200x1600x24' .venv/bin/rerun --screenshot-to bags/five_link_rerun.png --window-size 1400x700 five_link_sweep.rrd; echo "rc=$?"
 fi
+step one vocabulary: --travel/--rack FROM[:TO:STEP], -o, linkage-bench SUBCOMMAND
+.venv/bin/linkage-sweep double_wishbone --travel -40:40:40 --rack -10:10:10 -o grid.csv; echo "rc=$?"; wc -l grid.csv
+.venv/bin/linkage-bench sweep five_link --travel -10:10:10 --rounds 1; echo "rc=$?"
+.venv/bin/linkage-bench --help | head -1; echo "rc=$?"
 step git status
 git status --short

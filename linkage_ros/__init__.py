@@ -7,7 +7,7 @@ linkage_ros: kinematics of spatial multi-link suspensions (Alexandru 2018) for R
     linkage_ros.ros      suspension_node, its messages and diagnostics, the pytest plugin
     linkage_ros.record   MCAP and Rerun files of a run
     linkage_ros.tools    linkage-sweep, linkage-replay, linkage-rerun, plots
-    linkage_ros.bench    linkage-bench, linkage-node-bench and their references
+    linkage_ros.bench    linkage-bench (a subcommand per benchmark) and the references
 
 The core works without ROS:
 

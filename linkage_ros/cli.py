@@ -12,6 +12,7 @@ import contextlib
 import errno
 import functools
 import io
+import math
 import os
 from pathlib import Path
 import re
@@ -19,6 +20,7 @@ import select
 import signal
 import sys
 import tempfile
+from typing import NamedTuple
 
 from .core.base import LinkageError
 
@@ -76,12 +78,77 @@ class Parser(argparse.ArgumentParser):
                 message = f'unrecognized arguments: {" ".join(unknown)}'
         sys.exit(fail(self.prog, f'error: {message} (see {self.prog} --help)'))
 
+    def old(self, *names: str, new: str, **kwargs) -> None:
+        """
+        Add an old spelling of an option, kept for one release and left out of --help.
+
+        Given, it works as before and prints one line on stderr naming its new spelling.
+        """
+        self.add_argument(*names, action=OldSpelling, new=new, help=argparse.SUPPRESS,
+                          **kwargs)
+
     def _unknown_option(self, arg: str) -> bool:
         """Tell whether arg looks like an option (not a number) that no option starts with."""
         if not arg.startswith('-') or arg == '-' or self._negative_number_matcher.match(arg):
             return False
         name = arg.split('=', 1)[0]
         return not any(option.startswith(name) for option in self._option_string_actions)
+
+
+class OldSpelling(argparse.Action):
+    """Store an option's value as argparse does, noting on stderr that it is deprecated."""
+
+    def __init__(self, option_strings, dest, new: str, **kwargs) -> None:
+        super().__init__(option_strings, dest, **kwargs)
+        self.new = new
+
+    def __call__(self, parser, namespace, values, option_string=None) -> None:
+        """Note the new spelling (once per option), then store values."""
+        noted = parser.__dict__.setdefault('_noted', set())
+        if option_string not in noted:
+            noted.add(option_string)
+            deprecated(parser.prog, option_string, self.new)
+        setattr(namespace, self.dest, True if self.nargs == 0 else values)
+
+
+def deprecated(prog: str, old: str, new: str) -> None:
+    """Print the one-line note of an old spelling that still works, on stderr."""
+    print(f'{prog}: {old} is deprecated, use {new} (kept for one release)', file=sys.stderr)
+
+
+class Span(NamedTuple):
+    """A range FROM[:TO:STEP] given on the command line (mm or deg); one value is FROM:FROM:1."""
+
+    start: float
+    stop: float
+    step: float
+
+
+SPAN = 'FROM[:TO:STEP]'
+NUMBER = r'[-+]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][-+]?[0-9]+)?'
+
+
+def span(text: str) -> Span:
+    """
+    Read FROM or FROM:TO:STEP into a Span: an argparse type (its option names the mistake).
+
+    Every value finite, STEP > 0; TO may be below FROM (the range runs down). A unit after a
+    number (-80mm) is refused, saying how to give it: plain numbers, as millimetres() takes.
+    """
+    parts = text.split(':')
+    try:
+        values = [float(v) for v in parts]
+    except ValueError:
+        values = []
+    if len(values) == 1:
+        values = values * 2 + [1.0]
+    if len(values) == 3 and all(math.isfinite(v) for v in values) and values[2] > 0:
+        return Span(*values)
+    if any(re.fullmatch(rf'\s*{NUMBER}\s*[a-zA-Z]+\s*', v) for v in parts):
+        raise argparse.ArgumentTypeError(
+            f'{text!r}: give {SPAN} as plain numbers, without a unit')
+    raise argparse.ArgumentTypeError(
+        f'expected {SPAN}, finite numbers with STEP > 0, got {text!r}')
 
 
 def program(prog: str):
@@ -94,9 +161,9 @@ def program(prog: str):
     """
     def wrap(main):
         @functools.wraps(main)
-        def run(argv=None):
+        def run(argv=None, **kwargs):
             try:
-                return main(argv)
+                return main(argv, **kwargs)
             except BrokenPipeError:
                 if not stdout_reader_gone():
                     raise
@@ -154,8 +221,7 @@ def millimetres(text: str) -> float:
     try:
         return float(text)
     except ValueError:
-        unit = re.fullmatch(r'\s*[-+]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][-+]?[0-9]+)?\s*'
-                            r'([a-zA-Z]+)\s*', text)
+        unit = re.fullmatch(rf'\s*{NUMBER}\s*([a-zA-Z]+)\s*', text)
         if unit:
             number = text[:unit.start(1)].strip()
             example = f' (e.g. {number})' if unit.group(1) == 'mm' else ''

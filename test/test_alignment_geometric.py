@@ -166,7 +166,7 @@ def test_linkage_sweep_alignment_gives_both_conventions_side_by_side(capsys):
     import io
 
     from linkage_ros.tools.sweep import main
-    assert main([str(RESOURCES / LOTUS[0]), '--from', '0', '--to', '0', '--step', '1',
+    assert main([str(RESOURCES / LOTUS[0]), '--travel', '0:0:1',
                  '--alignment']) == 0
     row = next(csv.DictReader(io.StringIO(capsys.readouterr().out)))
     printed = LOTUS_PRINTED[LOTUS[0]]

@@ -26,7 +26,10 @@ BAR = (',arb_left_angle_deg,arb_right_angle_deg,arb_twist_deg,arb_ratio_deg_per_
 
 
 def run(capsys, *argv):
-    code = main(list(argv))
+    try:
+        code = main(list(argv))
+    except SystemExit as exited:   # a mistake argparse finds
+        code = exited.code
     out, err = capsys.readouterr()
     # without the line a cold numba cache adds once (warmup.MESSAGE: after an edit of a kernel)
     err = ''.join(line for line in err.splitlines(True) if warmup.MESSAGE not in line)
@@ -56,7 +59,7 @@ def test_the_default_is_the_demo_front_axle_over_the_travel_block_in_mm_and_deg(
 
 
 def test_the_table_holds_what_solve_axle_returns(capsys):
-    _, rows, _, _ = run(capsys, '--heave=-20:20:20', '--roll', '1.5')
+    _, rows, _, _ = run(capsys, '--heave', '-20:20:20', '--roll', '1.5')
     axle = axle_of(load_vehicle('demo_vehicle'), 'front')
     result = solve_axle(axle, [-20.0, 0.0, 20.0], np.radians(1.5))
     got = np.array([[float(r['roll_centre_y_mm']), float(r['roll_centre_height_mm']),
@@ -68,7 +71,7 @@ def test_the_table_holds_what_solve_axle_returns(capsys):
 
 
 def test_a_rack_adds_steer_and_ackermann_and_a_grid_walks_every_rack(capsys):
-    code, rows, out, _ = run(capsys, '--rack-grid=-20:20:20', '--heave', '0')
+    code, rows, out, _ = run(capsys, '--rack', '-20:20:20', '--heave', '0')
     assert code == 0 and out.splitlines()[0] == FRONT + STEER + BAR
     assert [float(r['rack_mm']) for r in rows] == [-20.0, 0.0, 20.0]
     assert rows[1]['ackermann_pct'] == 'nan'   # straight ahead
@@ -83,7 +86,7 @@ def test_the_rear_axle_has_anti_lift_under_braking_and_anti_squat_under_drive(ca
 
 def test_a_roll_beyond_the_travel_limits_writes_the_rows_before_it_with_status_1(capsys):
     # issue 27 item 21: roll 15 deg asks -203.6 mm of a corner whose travel block is +-80 mm
-    code, rows, _, err = run(capsys, '--heave', '0', '--roll=0:15:5')
+    code, rows, _, err = run(capsys, '--heave', '0', '--roll', '0:15:5')
     assert code == 1 and [float(r['roll_deg']) for r in rows] == [0.0, 5.0]
     assert err.splitlines()[-1] == (
         'linkage-axle: heave 0 mm, roll 10 deg, rack 0 mm: the left wheel (front_left) would '
@@ -101,7 +104,7 @@ def test_a_roll_out_of_reach_writes_the_rows_before_it_and_names_the_limit(capsy
     (tmp_path / 'wide.yaml').write_text(wide)
     path = vehicle_file(tmp_path, '  front: {left: fl, right: fr}\n',
                         scene=str(tmp_path / 'wide.yaml'))
-    code, rows, _, err = run(capsys, str(path), '--heave', '0', '--roll=0:40:10')
+    code, rows, _, err = run(capsys, str(path), '--heave', '0', '--roll', '0:40:10')
     assert code == 1 and [float(r['roll_deg']) for r in rows] == [0.0, 10.0, 20.0]
     assert err.splitlines()[-1] == (
         'linkage-axle: heave 0 mm, roll 30 deg, rack 0 mm: the left wheel (fl): '
@@ -139,10 +142,13 @@ def test_a_bad_axle_is_one_line_naming_the_file_and_the_key_with_status_2(
 
 @pytest.mark.parametrize('argv, says', [
     (['--axle', 'middle'], "axles: no axle 'middle' (axles: front, rear)"),
-    (['--roll', '50'], "--roll: |roll| must stay below 45 deg, got '50'"),
-    (['--heave', '1:2'], '--heave: expected FROM or FROM:TO:STEP'),
+    (['--roll', '50'], '--roll: |roll| must stay below 45 deg, got 50'),
+    (['--heave', '1:2'], 'argument --heave: expected FROM[:TO:STEP], finite numbers with '
+     "STEP > 0, got '1:2'"),
+    (['--roll', '-1:1:0'], 'argument --roll: expected FROM[:TO:STEP]'),
+    (['--rack', 'x'], 'argument --rack: expected FROM[:TO:STEP]'),
     (['--axle', 'rear', '--rack', '5'], 'demo_vehicle rear axle: no corner has a steer: rack'),
-    (['--csv', '/no/such/folder/a.csv'], '--csv: cannot write /no/such/folder/a.csv'),
+    (['-o', '/no/such/folder/a.csv'], '-o: cannot write /no/such/folder/a.csv'),
 ])
 def test_a_mistake_in_the_command_is_one_line_with_status_2(capsys, argv, says):
     code, _, out, err = run(capsys, *argv)
@@ -199,7 +205,8 @@ def test_the_benchmark_times_every_position_it_counts_within_the_travel_limits(
         return result
 
     monkeypatch.setattr(axle_tool, 'solve_axle', counting)
-    code, _, out, _ = run(capsys, '--heave=-80:80:40', '--benchmark', '1')
+    code = main(['--heave', '-80:80:40'], rounds=1)
+    out = capsys.readouterr().out
     assert code == 0 and len(out.splitlines()) == 5   # the title, the header, 3 sizes
     assert [n for n, _, _ in solved] == [5, 50, 500]
     assert all(asked == done and success for asked, done, success in solved), solved

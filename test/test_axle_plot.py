@@ -13,9 +13,9 @@ DOCS = '\n'.join(page.read_text()
 
 
 def test_the_roll_centre_picture_of_the_docs_is_what_its_command_makes(tmp_path):
-    assert f'linkage-plot roll-centre {PICTURE}' in DOCS
+    assert f'linkage-plot roll-centre -o {PICTURE}' in DOCS
     again = tmp_path / 'roll_centre.png'
-    assert main(['roll-centre', str(again)]) == 0
+    assert main(['roll-centre', '-o', str(again)]) == 0
     assert compare_images(str(ROOT / PICTURE), str(again), tol=1.0) is None
 
 
@@ -26,7 +26,7 @@ def test_the_roll_centre_picture_of_the_docs_is_what_its_command_makes(tmp_path)
 ])
 def test_a_mistake_is_one_line_with_status_2_and_no_file(tmp_path, capsys, args, says):
     out = tmp_path / 'x.png'
-    assert main(['roll-centre', str(out), *args]) == 2
+    assert main(['roll-centre', '-o', str(out), *args]) == 2
     err = capsys.readouterr().err
     assert err.count('\n') == 1 and err.startswith('linkage-plot: ') and says in err, err
     assert not out.exists()
@@ -43,7 +43,7 @@ def test_an_axle_out_of_reach_is_drawn_in_part_said_and_status_1(tmp_path, capsy
         f'  front_right: {{scene: {scene}, offset: [1400.0, 0.0, 0.0], mirror: true}}\n'
         'axles:\n  front: {left: front_left, right: front_right}\n')
     out = tmp_path / 'roll_centre.png'
-    assert main(['roll-centre', str(out), str(vehicle), 'front']) == 1
+    assert main(['roll-centre', '-o', str(out), str(vehicle), 'front']) == 1
     err = capsys.readouterr().err.splitlines()
     assert out.stat().st_size > 0 and f'linkage-plot: wrote {out}' in err
     assert err[-2].startswith('linkage-plot: heave -60 mm, roll 0 deg, rack 0 mm: the left '

@@ -83,8 +83,8 @@ def test_replay_help_names_every_topic_a_solved_run_holds_with_its_type(capsys, 
     # issue 27 item 25: the help left out elements, which a scene with elements adds
     from linkage_ros.record.mcap_reader import read_bag
     out = tmp_path / 'sweep.mcap'
-    assert replay.main(['sweep', '--scene', 'double_wishbone', '--from', '0', '--to', '10',
-                        '--step', '10', '-o', str(out)]) == 0
+    assert replay.main(['sweep', '--scene', 'double_wishbone', '--travel', '0:10:10',
+                        '-o', str(out)]) == 0
     topics = read_bag(out).topics
     assert '/elements' in topics
     capsys.readouterr()
@@ -102,16 +102,16 @@ SUBCOMMAND_HELP = {
               ('std_msgs/msg/Float64 in m (default /wheel_travel)',
                'the scene the recording stores, else five_link', '(default fast)',
                '(default base_link)', "BAG's name + _solved.mcap, in the current folder")),
-    'sweep': (('--scene', '--from', '--to', '--step', '--hz', '-o'),
-              ('(default five_link)', 'first travel, mm', 'last travel, mm',
-               'travel step, mm, > 0', 'rate, Hz, > 0 (default 50)',
+    'sweep': (('--scene', '--travel', '--hz', '-o'),
+              ('(default five_link)', 'travels, mm: FROM:TO:STEP (TO included) or one value',
+               "(default: the scene's travel block)", 'rate, Hz, > 0 (default 50)',
                "the scene's name (its letters, digits, _ . -) + _sweep.mcap, in the current "
                'folder')),
     'copy': (('-o',), ("BAG's name + _copy.mcap, in the current folder",)),
-    'publish': (('--topic', '--rate', '--clock', '--wait', '--from', '--hz'),
+    'publish': (('--topic', '--rate', '--clock', '--wait', '--travel', '--hz'),
                 ('> 0 (default 1;', 's to wait for a subscriber, >= 0 (default 10)',
-                 'without it, the commands of a sweep', 'sweep: first travel, mm')),
-    'bench': (('--topic', '--scene', '--method', '--step'), ('CSV table on stdout',)),
+                 'without it, the commands of a sweep', 'sweep: travels, mm')),
+    'bench': (('--topic', '--scene', '--method', '--travel'), ('CSV table on stdout',)),
 }
 
 
@@ -148,7 +148,7 @@ def test_default_outputs_go_to_the_current_folder(tmp_path, monkeypatch):
     monkeypatch.chdir(work)
     assert replay.main(['solve', str(EXAMPLE)]) == 0
     assert replay.main(['copy', str(EXAMPLE)]) == 0
-    assert replay.main(['sweep', '--from', '0', '--to', '2']) == 0
+    assert replay.main(['sweep', '--travel', '0:2:1']) == 0
     assert rerun_convert.main([str(EXAMPLE)]) == 0
     assert sorted(p.name for p in work.iterdir()) == [
         'five_link_sweep.mcap', 'five_link_sweep.rrd', 'five_link_sweep_copy.mcap',
@@ -189,22 +189,23 @@ def replay_mistakes(tmp_path, foreign_bag):
         (['publish', bag, '--wait', '-1'], 'argument --wait: must be a finite number at '
          'least 0, got -1'),
         (['sweep', '--hz', '0'], 'argument --hz: must be a finite number above 0, got 0'),
-        (['sweep', '--step', '-1'], 'argument --step: must be a finite number above 0, '
-         'got -1'),
-        (['sweep', '--from', 'inf'], 'argument --from: must be a finite number, got inf'),
-        (['sweep', '--to', 'x'], "argument --to: expected a number of millimetres, got 'x'"),
-        (['sweep', '--from', '-80mm'], "argument --from: '-80mm': give millimetres as a plain "
-         'number, without a unit (e.g. -80)'),
-        (['bench', '--step', '0.5 mm'], "argument --step: '0.5 mm': give millimetres as a "
-         'plain number, without a unit (e.g. 0.5)'),
+        (['sweep', '--travel', '0:1:-1'], 'argument --travel: expected FROM[:TO:STEP], finite '
+         "numbers with STEP > 0, got '0:1:-1'"),
+        (['sweep', '--travel', 'inf'], 'argument --travel: expected FROM[:TO:STEP], finite '
+         "numbers with STEP > 0, got 'inf'"),
+        (['sweep', '--travel', '-80mm'], "argument --travel: '-80mm': give FROM[:TO:STEP] as "
+         'plain numbers, without a unit'),
+        (['bench', '--travel', '0:1:0.5 mm'], "argument --travel: '0:1:0.5 mm': give "
+         'FROM[:TO:STEP] as plain numbers, without a unit'),
         (['solve', bag, '--rate', '2'], 'error: --rate is not an option of linkage-replay solve '
          '(it is one of: publish) (see linkage-replay solve --help)'),
         (['sweep', '--clock'], 'error: --clock is not an option of linkage-replay sweep (it is '
          'one of: publish)'),
-        (['solve', bag, '--from', '3'], 'error: --from is not an option of linkage-replay solve '
+        (['solve', bag, '--travel', '3'], 'error: --travel is not an option of linkage-replay '
+         'solve '
          '(it is one of: sweep, publish, bench)'),
         (['publish', bag, '--hz', '3'], 'error: --hz makes a sweep: give it without BAG'),
-        (['bench', bag, '--step', '3'], 'error: --step makes a sweep: give it without BAG'),
+        (['bench', bag, '--travel', '3'], 'error: --travel makes a sweep: give it without BAG'),
         (['publish', bag, '--scene', 'macpherson'], 'error: --scene makes a sweep: give it '
          'without BAG'),
         (['copy', bag, '--scene', 'macpherson'], 'error: --scene is not an option of '

@@ -60,7 +60,7 @@ def test_an_unknown_option_is_one_line_naming_it_with_status_2(name, tmp_path):
     # it wrote nothing and said nothing: the plot is of the latency section
     ('linkage-node-bench', ['--plot', 'x.png', '--only', 'core,sweep'],
      '--plot draws the latency section: add latency to --only'),
-    ('linkage-bench', ['--out', 'setup.py'], '--out: setup.py is a file, not a folder'),
+    ('linkage-bench', ['-o', 'setup.py'], '-o: setup.py is a file, not a folder'),
     ('linkage-bench', ['--scenes', 'nowhere'], 'nowhere: scene: no such file'),
     ('linkage-bench', ['--entries', 'magic'], "--entries: unknown ['magic']"),
     ('linkage-soak', ['--scene', 'nowhere'], 'nowhere: scene: no such file'),

@@ -213,7 +213,7 @@ def test_vehicle_corners_carry_their_scenes_elements():
 
 
 def test_sweep_elements_columns_hold_the_element_values(capsys):
-    assert main(['five_link', '--elements', '--from', '-60', '--to', '60', '--step', '20']) == 0
+    assert main(['five_link', '--elements', '--travel', '-60:60:20']) == 0
     rows = list(csv.DictReader(io.StringIO(capsys.readouterr().out)))
     assert list(rows[0])[-6:] == ['damper_length_mm', 'damper_ratio', 'spring_length_mm',
                                   'spring_ratio', 'spring_force_N',
@@ -296,7 +296,7 @@ def test_a_spring_whose_ends_pass_through_each_other_is_nan_from_there_not_a_hug
 def test_sweep_warns_once_naming_the_element_and_the_travels_where_its_ends_cross(
         tmp_path, capsys):
     path = spring_through_its_body_point(tmp_path)
-    code = main([str(path), '--elements', '--from', '30', '--to', '50', '--step', '2'])
+    code = main([str(path), '--elements', '--travel', '30:50:2'])
     out, err = capsys.readouterr()
     rows = list(csv.DictReader(io.StringIO(out)))
     assert code == 0 and len(rows) == 11

@@ -23,7 +23,7 @@ def scene_with(tmp_path, *elements, base='double_wishbone'):
 
 
 def sweep_error(capsys, path):
-    code = main([path, '--elements', '--from', '0', '--to', '10', '--step', '10'])
+    code = main([path, '--elements', '--travel', '0:10:10'])
     out, err = capsys.readouterr()
     assert code == 2 and out == ''
     assert len(err.splitlines()) == 1 and 'Traceback' not in err

@@ -39,14 +39,14 @@ def direct(scene, travel, rack):
 
 
 def run_map(tmp_path, capsys, *argv):
-    code = main(list(argv) + ['--out', str(tmp_path)])
+    code = main(list(argv) + ['-o', str(tmp_path)])
     return code, capsys.readouterr().err
 
 
 @pytest.fixture(scope='module')
 def steered_map(tmp_path_factory):
     folder = tmp_path_factory.mktemp('map')
-    assert main(['double_wishbone', '--travel', '-60:60:30', '--rack', '-20:20:10', '--out',
+    assert main(['double_wishbone', '--travel', '-60:60:30', '--rack', '-20:20:10', '-o',
                  str(folder), '--format', 'csv,npz,parquet']) == 0
     return folder
 
@@ -130,8 +130,8 @@ def test_a_grid_too_large_for_memory_is_one_line_saying_what_it_needs(tmp_path, 
 
 @pytest.mark.parametrize('argv, said', [
     (['--rack', '0:10:5'], 'linkage-map: --rack: no corner has a steer: rack link'),
-    (['--travel', '10:0:0'], 'linkage-map: --travel: FROM, TO, STEP must be finite and '
-                             "STEP > 0, got '10:0:0'"),
+    (['--travel', '10:0:0'], 'linkage-map: --travel: expected FROM[:TO:STEP], finite '
+                             "numbers with STEP > 0, got '10:0:0'"),
     (['--format', 'csv,xlsx'], 'linkage-map: --format: unknown format xlsx'),
 ])
 def test_a_mistake_is_one_line_and_status_2(tmp_path, capsys, argv, said):
@@ -143,7 +143,7 @@ def test_parquet_without_pyarrow_names_the_extra_to_install(tmp_path):
     # pyarrow made unimportable in a fresh interpreter (None in sys.modules fails the import).
     code = ('import sys; sys.modules["pyarrow"] = None; '
             'from linkage_ros.tools.kinematic_map import main; '
-            f'sys.exit(main(["five_link", "--out", {str(tmp_path)!r}, '
+            f'sys.exit(main(["five_link", "-o", {str(tmp_path)!r}, '
             '"--format", "npz,parquet"]))')
     done = subprocess.run([sys.executable, '-c', code], capture_output=True, text=True)
     assert done.returncode == 2
@@ -191,7 +191,7 @@ def test_an_axle_map_of_a_scene_or_a_missing_axle_is_one_line(tmp_path, capsys):
 
 
 def test_benchmark_prints_with_and_without_elements_at_three_sizes(capsys):
-    assert main(['five_link', '--benchmark', '1']) == 0
+    assert main(['five_link'], rounds=1) == 0
     lines = capsys.readouterr().out.splitlines()
     assert lines[0].startswith('five_link: 2 elements (damper, spring)')
     rows = [line.replace('one command', 'one_command').split() for line in lines[2:]]
@@ -207,7 +207,7 @@ def test_benchmark_prints_with_and_without_elements_at_three_sizes(capsys):
 
 def test_a_scene_s_warnings_are_printed_once_before_the_map(tmp_path, capsys):
     singular = Path(__file__).resolve().parent / 'data' / 'five_link_singular.yaml'
-    status = main([str(singular), '--travel', '0:2:1', '--out', str(tmp_path)])
+    status = main([str(singular), '--travel', '0:2:1', '-o', str(tmp_path)])
     err = capsys.readouterr().err
     warning = f'linkage-map: warning: {load_scene(singular).warnings[0]}\n'
     assert status == 1 and err.count(warning) == 1     # 1: travels 1 and 2 are out of reach
@@ -217,7 +217,7 @@ def test_a_scene_s_warnings_are_printed_once_before_the_map(tmp_path, capsys):
 def test_a_benchmark_of_a_scene_out_of_reach_times_nothing_and_says_why(capsys):
     # It once ended in a numba TypingError: the elements of an answer that has no pose.
     singular = Path(__file__).resolve().parent / 'data' / 'five_link_singular.yaml'
-    assert main([str(singular), '--benchmark', '1']) == 1
+    assert main([str(singular)], rounds=1) == 1
     out, err = capsys.readouterr()
     assert out == '' and err.splitlines()[-1].startswith(
         'linkage-map: nothing to time: five_link_singular: travel -80 mm is out of reach')

@@ -21,7 +21,7 @@ def maps_folder(tmp_path_factory):
     """Make the two default maps the doc's programs read, in maps/ of a fresh folder."""
     folder = tmp_path_factory.mktemp('doc')
     for name in ('double_wishbone', 'five_link'):
-        assert main([name, '--out', str(folder / 'maps')]) == 0
+        assert main([name, '-o', str(folder / 'maps')]) == 0
     return folder
 
 
@@ -59,7 +59,7 @@ def test_the_mid_cell_error_table_is_what_the_program_prints(maps_folder):
 def test_the_parquet_example_reads_with_pyarrow_alone_no_pandas(maps_folder, monkeypatch):
     # issue 27 item 24: the doc read Parquet with .to_pandas(), and no extra installs pandas
     folder = str(maps_folder / 'maps')
-    assert main(['double_wishbone', '--out', folder, '--format', 'parquet']) == 0
+    assert main(['double_wishbone', '-o', folder, '--format', 'parquet']) == 0
     (code,) = [b for b in BLOCKS if 'parquet' in b]
     monkeypatch.setitem(sys.modules, 'pandas', None)   # import pandas raises ImportError
     printed = run(code, maps_folder).split()

@@ -34,7 +34,7 @@ def renamed(folder, file_name, scene_name):
 
 def test_a_grid_too_long_to_count_is_one_line(tmp_path, capsys):
     # 1e308 / 1e-308 overflows a float: counting it raised OverflowError before.
-    code, err = run_map(capsys, 'five_link', '--travel', '0:1e308:1e-308', '--out',
+    code, err = run_map(capsys, 'five_link', '--travel', '0:1e308:1e-308', '-o',
                         str(tmp_path / 'maps'))
     assert code == 2 and len(err.splitlines()) == 1
     assert err.startswith('linkage-map: --travel: 0:1e308:1e-308: more than 2**52 points')
@@ -83,7 +83,7 @@ used = int(next(l for l in open('/proc/self/status') if l.startswith('VmSize:'))
 limit = used * 1024 + 300_000_000
 resource.setrlimit(resource.RLIMIT_AS, (limit, limit))
 sys.exit(kinematic_map.main(['demo_vehicle', '--travel', '-50:50:0.05', '--rack',
-                             '-40:40:1', '--out', {str(tmp_path)!r}]))
+                             '-40:40:1', '-o', {str(tmp_path)!r}]))
 """
     done = subprocess.run([sys.executable, '-c', code], capture_output=True, text=True,
                           timeout=120)
@@ -95,9 +95,9 @@ sys.exit(kinematic_map.main(['demo_vehicle', '--travel', '-50:50:0.05', '--rack'
 
 def test_a_scene_named_out_of_reach_does_not_overwrite_the_list(tmp_path, capsys):
     scene = renamed(tmp_path, 'mine.yaml', 'out_of_reach')
-    code, err = run_map(capsys, str(scene), '--out', str(tmp_path / 'maps'))
+    code, err = run_map(capsys, str(scene), '-o', str(tmp_path / 'maps'))
     assert code == 2 and len(err.splitlines()) == 1
-    assert err.startswith(f'linkage-map: --out: the map of out_of_reach would be '
+    assert err.startswith(f'linkage-map: -o: the map of out_of_reach would be '
                           f'{tmp_path / "maps" / "out_of_reach.csv"}, which is the list of '
                           'points out of reach')
     assert list((tmp_path / 'maps').iterdir()) == []
@@ -105,10 +105,10 @@ def test_a_scene_named_out_of_reach_does_not_overwrite_the_list(tmp_path, capsys
 
 def test_a_scene_file_inside_out_is_not_overwritten_by_its_map(tmp_path, capsys):
     scene = renamed(tmp_path, 'x.csv', 'x')
-    code, err = run_map(capsys, str(scene), '--out', str(tmp_path))
+    code, err = run_map(capsys, str(scene), '-o', str(tmp_path))
     assert code == 2 and len(err.splitlines()) == 1
-    assert err == (f'linkage-map: --out: writing {scene} would replace the input {scene}: '
-                   'give another --out folder\n')
+    assert err == (f'linkage-map: -o: writing {scene} would replace the input {scene}: '
+                   'give another -o folder\n')
     assert scene.read_text().startswith(FIVE_LINK[:20])
 
 
@@ -116,7 +116,7 @@ def test_a_vehicle_corner_scene_inside_out_is_not_overwritten(tmp_path, capsys):
     renamed(tmp_path, 'rear_left.csv', 'rear')
     vehicle = tmp_path / 'car.yaml'
     vehicle.write_text('corners:\n  rear_left: {scene: rear_left.csv}\n')
-    code, err = run_map(capsys, str(vehicle), '--out', str(tmp_path), '--format', 'csv')
+    code, err = run_map(capsys, str(vehicle), '-o', str(tmp_path), '--format', 'csv')
     assert code == 2 and 'would replace the input' in err and len(err.splitlines()) == 1
 
 
@@ -125,7 +125,7 @@ import resource, signal, sys
 from linkage_ros.tools.kinematic_map import Job, main
 signal.signal(signal.SIGXFSZ, signal.SIG_IGN)   # a write past the limit fails with EFBIG
 resource.setrlimit(resource.RLIMIT_FSIZE, ({limit}, {limit}))
-sys.exit(main(['five_link', '--travel', '-50:50:1', '--out', sys.argv[1], '--format', 'csv']))
+sys.exit(main(['five_link', '--travel', '-50:50:1', '-o', sys.argv[1], '--format', 'csv']))
 """
 
 
@@ -145,7 +145,7 @@ def test_a_full_disk_leaves_no_cut_map_and_names_the_file(tmp_path):
 
 
 def test_a_map_written_whole_reads_back_with_the_permissions_of_a_new_file(tmp_path, capsys):
-    code, _ = run_map(capsys, 'five_link', '--travel', '-10:10:10', '--out', str(tmp_path))
+    code, _ = run_map(capsys, 'five_link', '--travel', '-10:10:10', '-o', str(tmp_path))
     assert code == 0
     assert sorted(p.name for p in tmp_path.iterdir()) == ['five_link.csv', 'five_link.npz',
                                                           'out_of_reach.csv']

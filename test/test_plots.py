@@ -26,17 +26,17 @@ DOCS = '\n'.join(page.read_text()
     ('bags/plots/node_latency.png', ['latency', 'doc/bench/node_bench.csv']),
 ])
 def test_a_readme_picture_is_what_its_command_makes(tmp_path, picture, args):
-    command = f"linkage-plot {' '.join(args)} {picture}"
+    command = f"linkage-plot {' '.join(args)} -o {picture}"
     assert command in DOCS, f'README.md and doc/ show no command {command!r} under {picture}'
     again = tmp_path / Path(picture).name
-    assert main([args[0], *[str(ROOT / a) for a in args[1:]], str(again)]) == 0
+    assert main([args[0], *[str(ROOT / a) for a in args[1:]], '-o', str(again)]) == 0
     assert compare_images(str(ROOT / picture), str(again), tol=1.0) is None
 
 
 @pytest.mark.skipif(not Path('/dev/full').exists(), reason='needs /dev/full')
 def test_a_picture_that_cannot_be_written_whole_is_one_line_and_status_2(capsys):
     # matplotlib's savefig('/dev/full') raises nothing: linkage-plot once said 'wrote /dev/full'
-    assert main(['camber-toe', '/dev/full']) == 2
+    assert main(['camber-toe', '-o', '/dev/full']) == 2
     assert capsys.readouterr().err == ('linkage-plot: /dev/full: cannot write (No space left '
                                        'on device)\n')
 
@@ -70,7 +70,7 @@ def test_the_bundled_scenes_are_titled_so_with_their_reference_entry():
 
 def test_a_scene_s_warnings_are_printed_before_the_picture(tmp_path, capsys):
     stress = ROOT / 'config' / 'stress' / 'five_link_submillimetre.yaml'
-    assert main(['camber-toe', str(tmp_path / 'small.png'), str(stress)]) == 0
+    assert main(['camber-toe', '-o', str(tmp_path / 'small.png'), str(stress)]) == 0
     err = capsys.readouterr().err.splitlines()
     assert err[0].startswith(f'linkage-plot: warning: {stress}: wheel_radius 0.033 mm')
     assert err[1:] == [f'linkage-plot: wrote {tmp_path / "small.png"}']
@@ -82,7 +82,7 @@ def test_a_scene_not_solved_whole_is_drawn_in_part_said_in_one_line_and_status_1
     # empty picture of it and exited 0. five_link beside it is drawn whole.
     singular = ROOT / 'test' / 'data' / 'five_link_singular.yaml'
     out = tmp_path / 'both.png'
-    assert main(['camber-toe', str(out), 'five_link', str(singular)]) == 1
+    assert main(['camber-toe', '-o', str(out), 'five_link', str(singular)]) == 1
     err = capsys.readouterr().err.splitlines()
     assert out.stat().st_size > 0 and err[-2] == f'linkage-plot: wrote {out}'
     assert err[-1].startswith('linkage-plot: five_link_singular: travel -80 mm is out of '

@@ -45,7 +45,7 @@ def unknown(names):
 
 def sweep_header(tmp_path, *argv):
     out = tmp_path / 'sweep.csv'
-    assert sweep_tool.main([*argv, '--csv', str(out)]) == 0
+    assert sweep_tool.main([*argv, '-o', str(out)]) == 0
     with open(out, newline='') as f:
         return next(csv.reader(f))
 
@@ -99,11 +99,11 @@ def test_doc_quantities_md_is_the_registry():
 # --- the outputs ------------------------------------------------------------------------------
 
 def test_linkage_sweep_names_only_registry_quantities_in_unchanged_order(tmp_path):
-    header = sweep_header(tmp_path, 'double_wishbone', '--from', '0', '--to', '10', '--step',
-                          '10', '--rack', '0', '--alignment', '--elements')
+    header = sweep_header(tmp_path, 'double_wishbone', '--travel', '0:10:10', '--rack', '0',
+                          '--alignment', '--elements')
     assert ','.join(header) == DOUBLE_WISHBONE_HEADER
     assert unknown(header) == []
-    five_link = sweep_header(tmp_path, 'five_link', '--from', '0', '--to', '10', '--step', '10',
+    five_link = sweep_header(tmp_path, 'five_link', '--travel', '0:10:10',
                              '--alignment', '--elements')
     assert unknown(five_link) == [] and len(five_link) > 40
 
@@ -114,7 +114,7 @@ def test_linkage_axle_names_only_registry_quantities(tmp_path):
     for argv in (['--axle', 'front', '--heave=-10:10:10', '--rack', '2'],
                  ['--axle', 'rear', '--heave=-10:10:10']):
         out = tmp_path / 'axle.csv'
-        assert axle_tool.main(['demo_vehicle', *argv, '--csv', str(out)]) == 0
+        assert axle_tool.main(['demo_vehicle', *argv, '-o', str(out)]) == 0
         headers += out.read_text().splitlines()[0].split(',')
     for name in ('ackermann_pct', 'arb_roll_stiffness_Nm_per_deg', 'anti_dive_pct',
                  'anti_squat_pct'):
@@ -126,7 +126,7 @@ def test_corner_and_axle_maps_name_only_registry_quantities(tmp_path, capsys):
     for argv in (['double_wishbone', '--travel', '-10:10:10', '--rack', '-5:5:5'],
                  ['demo_vehicle', '--axle', 'front', '--travel', '-10:10:10']):
         folder = tmp_path / argv[0]
-        assert kinematic_map.main([*argv, '--out', str(folder), '--format', 'npz']) == 0
+        assert kinematic_map.main([*argv, '-o', str(folder), '--format', 'npz']) == 0
         for path in folder.glob('*.npz'):
             assert unknown(np.load(path).files) == [], path.name
     capsys.readouterr()

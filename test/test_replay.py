@@ -122,7 +122,7 @@ def test_replaying_the_example_bag_reproduces_its_outputs(tmp_path):
 
 def test_each_command_is_followed_by_pose_camber_toe_at_its_receive_time(tmp_path):
     out = tmp_path / 'sweep.mcap'
-    assert main(['sweep', '--from', '-2', '--to', '2', '--step', '1', '--hz', '10', '-o',
+    assert main(['sweep', '--travel', '-2:2:1', '--hz', '10', '-o',
                  str(out)]) == 0
     with AnyReader([out]) as reader:
         rows = [(c.topic, t, reader.deserialize(raw, c.msgtype))
@@ -271,7 +271,7 @@ def test_publish_republishes_the_commands_in_order_at_the_recorded_pace(tmp_path
 
 
 def test_benchmark_prints_one_row_per_recording_mode(capsys):
-    assert main(['bench', '--from', '0', '--to', '3']) == 0
+    assert main(['bench', '--travel', '0:3:1']) == 0
     lines = capsys.readouterr().out.strip().splitlines()
     assert lines[0] == 'mode,commands,us_per_command,ratio,extra_us_per_message'
     assert [line.split(',')[:2] for line in lines[1:]] == [
@@ -359,7 +359,7 @@ def test_solve_uses_the_scene_a_recording_stores_when_its_file_is_gone(
 
 def test_a_sweep_stores_the_text_of_its_scene_file(tmp_path):
     out = tmp_path / 'sweep.mcap'
-    assert main(['sweep', '--scene', 'macpherson', '--from', '0', '--to', '1', '-o',
+    assert main(['sweep', '--scene', 'macpherson', '--travel', '0:1:1', '-o',
                  str(out)]) == 0
     assert stored_metadata(out)['linkage_ros'] == {
         'scene_yaml': (ROOT / 'config' / 'scenes' / 'macpherson.yaml').read_text()}

@@ -187,14 +187,14 @@ def test_a_path_that_is_not_a_bag_is_a_mistake(tmp_path, capsys, content):
     (['sweep', '--hz', '1e-7'], '--hz: 1e-07 Hz spreads the 161 commands over 1.6e+09 s'),
     (['sweep', '--hz', '1e300'], '--hz: 1e+300 Hz is a command every 1e-291 ns, faster than '
      'the 1 ns resolution of ROS 2 times (at most 1e+09 Hz)'),
-    (['sweep', '--step', '1e-300'], '--from/--to/--step: 1e-300 mm from -80 to 80 mm makes '
-     '1.6e+302 commands, more than the 1,000,000 a sweep may have (choose a larger --step)'),
-    (['sweep', '--step', '1e-9', '--to', '20'], 'makes 1e+11 commands'),
-    (['sweep', '--from', '-1e300', '--to', '1e300'], '--from/--to/--step: 1 mm from -1e+300 '
-     'to 1e+300 mm makes 2e+300 commands'),
-    (['sweep', '--from', '-1.7e308', '--to', '1.7e308'], 'makes inf commands'),
+    (['sweep', '--travel=-80:80:1e-300'], '--travel: 1e-300 mm from -80 to 80 mm makes '
+     '1.6e+302 commands, more than the 1,000,000 a sweep may have (choose a larger STEP)'),
+    (['sweep', '--travel=-80:20:1e-9'], 'makes 1e+11 commands'),
+    (['sweep', '--travel=-1e300:1e300:1'], '--travel: 1 mm from -1e+300 to 1e+300 mm makes '
+     '2e+300 commands'),
+    (['sweep', '--travel=-1.7e308:1.7e308:1'], 'makes inf commands'),
     (['bench', '--hz', '1e-300'], '--hz: 1e-300 Hz spreads'),
-    (['publish', '--step', '1e-300'], 'makes 1.6e+302 commands'),
+    (['publish', '--travel=-80:80:1e-300'], 'makes 1.6e+302 commands'),
     (['publish', str(EXAMPLE), '--rate', '1e-300'], '--rate: 1e-300: the 3.2 s of recorded '
      'commands would take 3.2e+300 s to publish, longer than the 292 years a wait can last '
      '(choose a larger --rate)'),
@@ -264,7 +264,7 @@ def test_the_default_sweep_file_is_named_from_the_scene_name_made_safe(
     work.mkdir(parents=True)
     monkeypatch.chdir(work)
     before = sorted(p for p in tmp_path.rglob('*'))
-    assert main(['sweep', '--scene', str(scene), '--from', '0', '--to', '2']) == 0
+    assert main(['sweep', '--scene', str(scene), '--travel', '0:2:1']) == 0
     assert sorted(p for p in tmp_path.rglob('*')) == sorted(before + [work / expected])
     assert not Path('/tmp/absolute_sweep.mcap').exists()
 
@@ -273,7 +273,7 @@ def test_a_scene_s_warnings_are_printed_once_before_its_commands_are_solved(tmp_
     # five_link_singular loads with a warning (a singular design position); every travel but
     # 0 is then out of reach, which the diagnostics of the new bag say.
     singular = ROOT / 'test' / 'data' / 'five_link_singular.yaml'
-    status = main(['sweep', '--scene', str(singular), '--from', '0', '--to', '2', '--step', '1',
+    status = main(['sweep', '--scene', str(singular), '--travel', '0:2:1',
                    '-o', str(tmp_path / 'singular.mcap')])
     err = capsys.readouterr().err
     warning = f'linkage-replay: warning: {load_scene(singular).warnings[0]}\n'

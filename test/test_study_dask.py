@@ -35,16 +35,16 @@ def scheduler():
 def test_a_tolerance_study_on_the_cluster_writes_the_local_runs_bytes(scheduler, tmp_path):
     args = ['tolerance', 'five_link', '--sigma', '0.1', '--samples', '9000', '--travel',
             '-40', '0', '40', '--seed', '5']
-    status, _, err = run(*args, '--scheduler', scheduler, '--out', 'dask.csv', cwd=tmp_path)
+    status, _, err = run(*args, '--scheduler', scheduler, '-o', 'dask.csv', cwd=tmp_path)
     assert status == 0, err
     assert f'in 3 batches on {scheduler}' in err and '3/3 batches (100%)' in err
-    status, _, err = run(*args, '--out', 'local.csv', cwd=tmp_path)
+    status, _, err = run(*args, '-o', 'local.csv', cwd=tmp_path)
     assert status == 0, err
     dask = (tmp_path / 'dask.csv').read_bytes()
     assert dask == (tmp_path / 'local.csv').read_bytes()
     assert dask.count(b'\n') == 1 + 3 * 5
     # and as Parquet, read back by pyarrow: the same numbers
-    status, _, err = run(*args, '--scheduler', scheduler, '--out', 'dask.parquet', cwd=tmp_path)
+    status, _, err = run(*args, '--scheduler', scheduler, '-o', 'dask.parquet', cwd=tmp_path)
     assert status == 0, err
     table = pq.read_table(tmp_path / 'dask.parquet').to_pydict()
     rows = [line.split(',') for line in dask.decode().splitlines()[1:]]

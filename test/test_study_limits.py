@@ -118,7 +118,7 @@ def test_a_scheduler_address_without_a_port_number_is_one_line_and_no_traceback(
 def test_ctrl_c_during_a_study_ends_it_at_once_with_status_130_and_no_traceback(tmp_path):
     # Ctrl-C reaches the whole process group, the local workers too.
     study = subprocess.Popen([PROG, *TOLERANCE, '--samples', '4000000', '--workers', '2',
-                              '--out', 'out.csv'], cwd=tmp_path, stderr=subprocess.PIPE,
+                              '-o', 'out.csv'], cwd=tmp_path, stderr=subprocess.PIPE,
                              text=True, start_new_session=True)
     lines = []
     for line in study.stderr:   # the first batches done: the workers are running

@@ -189,7 +189,7 @@ def test_a_length_the_scene_lacks_is_refused_naming_its_lengths():
 def test_linkage_study_tolerance_writes_the_table_a_progress_bar_and_the_picture(tmp_path):
     status, out, err = run('tolerance', 'five_link', '--sigma', '0.05', '--samples', '500',
                            '--travel', '-20', '0', '20', '--seed', '1', '--plot',
-                           str(tmp_path / 'tolerance.png'), '--out', str(tmp_path / 't.csv'))
+                           str(tmp_path / 'tolerance.png'), '-o', str(tmp_path / 't.csv'))
     assert status == 0, err
     lines = (tmp_path / 't.csv').read_text().splitlines()
     assert lines[0] == ','.join(TOLERANCE_COLUMNS) and len(lines) == 1 + 3 * 5
@@ -226,7 +226,8 @@ def test_a_tolerances_file_with_a_tie_rod_length_gives_the_static_toe_spread(tmp
     (['--sigma', '-1'], '--sigma: must be a number of mm above 0, got -1'),
     (['--sigma', 'nan'], '--sigma: must be a number of mm above 0, got nan'),
     (['--samples', '1'], '--samples: must be at least 2, got 1'),
-    (['--travel', 'inf'], '--travel: must be finite, got inf'),
+    (['--travel', 'inf'], 'linkage-study: --travel: expected FROM[:TO:STEP], finite numbers '
+     "with STEP > 0, got 'inf'"),
     (['--scene', 'nowhere'], 'nowhere: scene: no such file'),
     (['--tolerances', 'sd.yaml'], 'not_a_point: not a hardpoint of the scene five_link'),
 ])

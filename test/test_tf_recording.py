@@ -78,7 +78,7 @@ def check_recording(path, frame_id='base_link'):
 def test_a_replayed_sweep_carries_tf_per_answer_and_the_urdf(tmp_path):
     out = tmp_path / 'sweep.mcap'
     done = subprocess.run([str(Path(sys.executable).parent / 'linkage-replay'), 'sweep', '-o',
-                           str(out), '--from', '-40', '--to', '40', '--step', '10'],
+                           str(out), '--travel', '-40:40:10'],
                           capture_output=True, text=True, timeout=300)
     assert done.returncode == 0, done.stderr
     assert check_recording(out) == 9

@@ -34,8 +34,8 @@ def test_an_empty_cache_is_cold_and_said_once(tmp_path):
 def sweep_program(cache, out):
     """Run linkage-sweep (five_link, 3 positions) on numba's cache folder; (status, err)."""
     done = subprocess.run(
-        [sys.executable, '-m', 'linkage_ros.tools.sweep', 'five_link', '--from', '0', '--to',
-         '10', '--step', '5', '--csv', str(out)], capture_output=True, text=True, timeout=900,
+        [sys.executable, '-m', 'linkage_ros.tools.sweep', 'five_link', '--travel', '0:10:5',
+         '-o', str(out)], capture_output=True, text=True, timeout=900,
         env=dict(os.environ, NUMBA_CACHE_DIR=str(cache)))
     return done.returncode, done.stderr
 

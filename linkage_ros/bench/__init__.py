@@ -1,5 +1,6 @@
 """
 Benchmarks and their references.
 
-The extended-precision reference, the peer solvers, linkage-bench and linkage-node-bench.
+The extended-precision reference, the peer solvers, and linkage-bench (cli.py: a subcommand per
+benchmark: accuracy, node, soak, sweep, axle, map, study, replay).
 """

@@ -1,8 +1,8 @@
 """
-linkage-bench: error against run time of the kinematics solvers, on every bundled scene.
+linkage-bench accuracy: error against run time of the solvers, on every bundled scene.
 
-    linkage-bench [--out bench-report] [--quick] [--scenes five_link ...] [--tols 1e-3 ...]
-                  [--steps 0.1 ...] [--repeats 3] [--positions 40] [--no-stress]
+    linkage-bench accuracy [-o bench-report] [--quick] [--scenes five_link ...] [--tols 1e-3 ...]
+                           [--steps 0.1 ...] [--repeats 3] [--positions 40] [--no-stress]
 
 Entries, each solving the same positions of a scene by continuation from the design pose:
     fast            Continuation(method='fast'), one position per call (the node's path)
@@ -156,15 +156,20 @@ def run_grid(scenes, chosen, tols, steps, repeats, positions):
 
 
 EPILOG = f"""examples:
-  linkage-bench --quick --out bench-report
-  linkage-bench --scenes five_link macpherson --tols 1e-9 --steps 1 5
+  linkage-bench accuracy --quick -o bench-report
+  linkage-bench accuracy --scenes five_link macpherson --tols 1e-9 --steps 1 5
+
+Old spellings kept for one release, each with a note: linkage-bench without a subcommand,
+--out.
 
 exit status: 0 the report was written; {EXIT_STATUS}"""
 
 
-def parse_args(argv):
-    parser = Parser('linkage-bench', __doc__, EPILOG)
-    parser.add_argument('--out', default='bench-report', help='report folder (created)')
+def parse_args(argv, prog='linkage-bench accuracy'):
+    parser = Parser(prog, __doc__, EPILOG)
+    parser.add_argument('-o', '--output', dest='out', default='bench-report', metavar='DIR',
+                        help='report folder (created; default bench-report)')
+    parser.old('--out', dest='out', metavar='DIR', new='-o/--output')
     parser.add_argument('--scenes', nargs='+', help='scene names or paths (default: bundled)')
     parser.add_argument('--tols', nargs='+', type=float, default=list(TOLS), help='mm')
     parser.add_argument('--steps', nargs='+', type=float, default=list(STEPS), help='mm')
@@ -188,34 +193,34 @@ def parse_args(argv):
         parser.error('--repeats, --positions, --tols and --steps must be positive')
     out = Path(args.out)
     if out.exists() and not out.is_dir():
-        parser.error(f'--out: {out} is a file, not a folder')
+        parser.error(f'-o: {out} is a file, not a folder')
     for name in ('report.md', 'results.csv', 'bench_front.png'):
         problem = out.is_dir() and writable_file(str(out / name))
         if problem:
-            parser.error(f'--out: {problem}')
+            parser.error(f'-o: {problem}')
     return args
 
 
 @program('linkage-bench')
-def main(argv: list[str] | None = None) -> int:
-    """Run linkage-bench: 0 when the report is written, 2 for a bad scene or entry."""
-    args = parse_args(argv)
+def main(argv: list[str] | None = None, prog: str = 'linkage-bench accuracy') -> int:
+    """Run linkage-bench accuracy: 0 when the report is written, 2 for a bad scene or entry."""
+    args = parse_args(argv, prog)
     try:
         scenes = [load_scene(s) for s in (args.scenes or bundled_scenes())]
     except SceneError as exc:
-        return fail('linkage-bench', exc)
+        return fail(prog, exc)
     chosen = entries()
     if args.entries:
         unknown = set(args.entries) - {e.name for e in chosen}
         if unknown:
-            return fail('linkage-bench', f'--entries: unknown {sorted(unknown)} (known: '
+            return fail(prog, f'--entries: unknown {sorted(unknown)} (known: '
                         f'{[e.name for e in chosen]})')
         chosen = [e for e in chosen if e.name in args.entries]
     out = Path(args.out)
     try:
         out.mkdir(parents=True, exist_ok=True)
     except OSError as exc:
-        return fail('linkage-bench', f'--out: cannot make {out}: {exc.strerror or exc}')
+        return fail(prog, f'-o: cannot make {out}: {exc.strerror or exc}')
     compile_if_cold('linkage-bench')
     started = time.perf_counter()
     progress(f'{len(scenes)} scenes x {len(args.steps)} steps x {len(args.tols)} tolerances, '

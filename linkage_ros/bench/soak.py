@@ -156,14 +156,14 @@ def run(args):
 
 
 EPILOG = f"""examples:
-  ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST linkage-soak > soak.csv
-  ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST linkage-soak --commands 100000 --scene macpherson
+  ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST linkage-bench soak > soak.csv
+  ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST linkage-bench soak --commands 100000 --scene macpherson
 
 exit status: 0 no pose was non-finite; 1 a non-finite pose was published; {EXIT_STATUS}"""
 
 
-def parse_args(argv):
-    parser = Parser('linkage-soak', __doc__, EPILOG)
+def parse_args(argv, prog='linkage-soak'):
+    parser = Parser(prog, __doc__, EPILOG)
     parser.add_argument('--commands', type=int, default=1_000_000,
                         help='commands to send (default 1000000)')
     parser.add_argument('--scene', default='five_link', help='bundled scene or YAML path')
@@ -188,8 +188,8 @@ def parse_args(argv):
 
 
 @program('linkage-soak')
-def main(argv=None):
-    return run(parse_args(argv))
+def main(argv=None, prog='linkage-soak'):
+    return run(parse_args(argv, prog))
 
 
 if __name__ == '__main__':

@@ -7,26 +7,29 @@ and fitting hardpoints to target curves.
 
 from __future__ import annotations
 
+import argparse
 import sys
 
 from ..cli import (check_outputs, counted, EXIT_STATUS, fail, INTERRUPTED, millimetres, Parser,
-                   program, warn)
-from ..core.base import LENGTH_LIMIT_MM, LinkageError
+                   program, SPAN, span, warn)
+from ..core.base import LENGTH_LIMIT_MM, LinkageError, positions_needed
 
 PROG = 'linkage-study'
 COMMANDS = ('sensitivity', 'tolerance', 'fit')
 
 EPILOG = """examples:
-  linkage-study sensitivity five_link --travel -50 0 50 --out five_link_sensitivity.csv
+  linkage-study sensitivity five_link --travel -50:50:50 -o five_link_sensitivity.csv
   linkage-study tolerance five_link --sigma 0.05 --samples 10000 --travel -50 0 50
   linkage-study fit targets.yaml -o fitted.yaml --plot fit.png
-  linkage-study tolerance five_link --sigma 0.1 --samples 1000000 --travel -50 0 50 \\
-      --scheduler tcp://127.0.0.1:8786 --out tolerance.parquet
+  linkage-study tolerance five_link --sigma 0.1 --samples 1000000 --travel -50:50:50 \\
+      --scheduler tcp://127.0.0.1:8786 -o tolerance.parquet
 
 Hardpoints are named <constraint>.base, <constraint>.axis0, <constraint>.axis1,
 <constraint>.carrier, wheel_center and spin_axis_point; quantities as linkage-sweep's columns
 (camber_deg, toe_deg, wheel_center_x_mm, ..., the alignment set, <element>_length_mm, ...).
-Tables go to stdout as CSV, or to --out (CSV, or Parquet for a name ending in .parquet).
+Tables go to stdout as CSV, or to -o (CSV, or Parquet for a name ending in .parquet).
+--travel takes travels and ranges FROM:TO:STEP (TO included), in any mix. Old spelling kept
+for one release, with a note: --out.
 
 exit status: 0 done; 1 done, but a travel or a variant is out of reach, or a fit leaves a
 target with a tolerance unmet (said on stderr); """ + EXIT_STATUS
@@ -46,9 +49,11 @@ def parser() -> Parser:
     two = sub('tolerance', 'tolerance stack-up: first order and Monte Carlo')
     for p in (one, two):
         p.add_argument('scene', help='bundled scene name or path to a scene file')
-        p.add_argument('--travel', nargs='+', type=millimetres, required=True, metavar='T',
-                       help='travels, mm (+ = bump)')
-        p.add_argument('--out', help='write the table here (.csv, or .parquet); default stdout')
+        p.add_argument('--travel', nargs='+', required=True, metavar=SPAN,
+                       help='travels, mm (+ = bump): values, ranges, or both')
+        p.add_argument('-o', '--output', dest='out', metavar='FILE',
+                       help='write the table here (.csv, or .parquet); default stdout')
+        p.old('--out', dest='out', metavar='FILE', new='-o/--output')
     one.add_argument('--rack', type=millimetres, default=0.0,
                      help='steering rack travel, mm (default 0)')
     one.add_argument('--quantity', nargs='+', metavar='Q',
@@ -95,12 +100,27 @@ def parse_args(argv):
         top.error(f'unrecognized arguments: {" ".join(extra)}')
     if args.command is None:
         top.error(f'give a command: {", ".join(COMMANDS)}')
+    if getattr(args, 'travel', None):
+        args.travel = travels(args.travel)
     return args
+
+
+def travels(texts) -> list[float]:
+    """Return every travel, mm, of --travel's values and ranges, in the order given."""
+    from ..core.solve import travel_range
+    try:
+        spans = [span(text) for text in texts]
+        for given in spans:
+            positions_needed(*given, '--travel')   # before a range too long is made
+    except (argparse.ArgumentTypeError, LinkageError) as exc:
+        sys.exit(fail(PROG, f'--travel: {exc}' if isinstance(exc, argparse.ArgumentTypeError)
+                      else exc))
+    return [float(t) for given in spans for t in travel_range(*given)]
 
 
 def check(args) -> None:
     """Refuse values no study can use, and outputs that cannot be written (LinkageError)."""
-    outputs = [('--out', getattr(args, 'out', None)), ('--plot', getattr(args, 'plot', None)),
+    outputs = [('-o', getattr(args, 'out', None)), ('--plot', getattr(args, 'plot', None)),
                ('-o', getattr(args, 'output', None))]
     inputs = tuple(i for i in (getattr(args, 'scene', None), getattr(args, 'targets', None),
                                getattr(args, 'tolerances', None)) if i)
@@ -118,8 +138,8 @@ def check(args) -> None:
     if args.command == 'fit' and args.starts < 1:
         raise LinkageError('--starts', f'must be at least 1, got {args.starts}')
     for option, path in outputs:
-        if option == '--out' and path and path.endswith('.parquet'):
-            _need('pyarrow', '--out .parquet', 'study')
+        if option == '-o' and path and path.endswith('.parquet'):
+            _need('pyarrow', '-o .parquet', 'study')
         if option == '--plot' and path:
             _need('matplotlib', '--plot', 'plot')
 

@@ -14,9 +14,9 @@ import time
 
 import numpy as np
 
-from ..cli import EXIT_STATUS, fail, Parser, program, warn, writable_file
+from ..cli import EXIT_STATUS, fail, Parser, program, SPAN, span, warn, writable_file
 from ..core.axle import ACKERMANN_MIN_STEER, solve_axle, wheel_travels
-from ..core.base import all_finite, is_finite_number, LinkageError
+from ..core.base import LinkageError, positions_needed
 from ..core.model import load_vehicle, SceneError
 from ..core.solve import sweep, travel_range
 from ..core.warmup import compile_if_cold
@@ -30,7 +30,7 @@ EPILOG = """columns: heave_mm, roll_deg (+ = right side down), rack_mm (+ = rack
   the contact patches), left_/right_camber_deg (+ = top outboard) and left_/right_toe_deg
   (+ = toe-in) relative to the body, the same relative to the ground (*_ground_deg); then
   anti_dive_pct, anti_lift_pct or anti_squat_pct as the axle's brake_share and drive_share
-  ask; with --rack or --rack-grid: left_/right_steer_deg (yaw, + = to the left),
+  ask; with --rack: left_/right_steer_deg (yaw, + = to the left),
   mean_steer_deg and ackermann_pct (NaN below MIN_STEER deg of mean steer); with an
   anti_roll_bar: arb_left_angle_deg, arb_right_angle_deg (each arm about the bar's axis,
   directed to the left), arb_twist_deg
@@ -43,11 +43,13 @@ EPILOG = """columns: heave_mm, roll_deg (+ = right side down), rack_mm (+ = rack
   file.
 
 examples:
-  linkage-axle demo_vehicle --axle front --heave=-40:40:10
-  linkage-axle demo_vehicle --axle rear --roll=-4:4:1 --csv roll.csv
-  linkage-axle demo_vehicle --axle front --rack-grid=-30:30:10 --heave 0
+  linkage-axle demo_vehicle --axle front --heave -40:40:10
+  linkage-axle demo_vehicle --axle rear --roll -4:4:1 -o roll.csv
+  linkage-axle demo_vehicle --axle front --rack -30:30:10 --heave 0
 
-A negative FROM needs the = (--roll=-4:4:1), or it reads as an option.
+--heave, --roll and --rack take one value or a range FROM:TO:STEP (TO included). Timing:
+linkage-bench axle. Old spellings kept for one release, each with a note: --rack-grid,
+--csv, --benchmark.
 
 exit status: 0 every position solved; 1 a position is out of reach of a wheel or beyond a
 corner's travel limits (its scene's travel block; the rows solved before it are written, the
@@ -55,48 +57,40 @@ message names the limit) or out of reach of the anti-roll bar's drop links (its 
 NaN there); """ + EXIT_STATUS
 
 
-def parse_args(argv):
+def parse_args(argv, rounds=0):
     parser = Parser(PROG, __doc__, EPILOG.replace(
         'MIN_STEER', f'{math.degrees(ACKERMANN_MIN_STEER):g}'))
     parser.add_argument('vehicle', nargs='?', default='demo_vehicle',
                         help='bundled vehicle name or path to a vehicle YAML file with axles '
                         '(default demo_vehicle)')
     parser.add_argument('--axle', default='front', help='front or rear (default front)')
-    parser.add_argument('--heave', metavar='FROM[:TO:STEP]',
+    parser.add_argument('--heave', type=span, metavar=SPAN,
                         help="heave, mm, + = bump (default: the left corner's travel block "
                         'when --roll is not given, else 0)')
-    parser.add_argument('--roll', metavar='FROM[:TO:STEP]',
+    parser.add_argument('--roll', type=span, metavar=SPAN,
                         help=f'body roll, deg, + = right side down, |roll| < {MAX_ROLL_DEG:g} '
                         '(default 0)')
-    steer = parser.add_mutually_exclusive_group()
-    steer.add_argument('--rack', type=float, metavar='MM',
-                       help='steering rack travel, mm, + = to the left; adds the steer and '
-                       'Ackermann columns')
-    steer.add_argument('--rack-grid', metavar='FROM:TO:STEP',
-                       help='solve every heave and roll at each rack from FROM to TO, mm')
-    parser.add_argument('--csv', metavar='FILE',
+    parser.add_argument('--rack', type=span, metavar=SPAN,
+                        help='steering rack travel, mm, + = to the left; adds the steer and '
+                        'Ackermann columns; a range solves every heave and roll at each rack')
+    parser.old('--rack-grid', dest='rack', type=span, metavar=SPAN,
+               new='--rack FROM:TO:STEP')
+    parser.add_argument('-o', '--output', metavar='FILE',
                         help='write the table to this file (default: stdout)')
-    parser.add_argument('--benchmark', type=int, metavar='ROUNDS', default=0,
-                        help='instead of a table, time an axle position against one and two '
-                        'corner positions at 1x, 10x and 100x the positions, ROUNDS rounds')
+    parser.old('--csv', dest='output', metavar='FILE', new='-o/--output')
+    parser.old('--benchmark', type=int, metavar='ROUNDS', default=0,
+               new='linkage-bench axle --rounds ROUNDS')
     args = parser.parse_args(argv)
+    args.benchmark = rounds or args.benchmark
     if args.benchmark < 0:
         parser.error(f'--benchmark: expected a number of rounds >= 0, got {args.benchmark}')
     return args
 
 
-def values(option, text):
-    """Return the values of FROM[:TO:STEP] (mm or deg), or raise LinkageError naming option."""
-    try:
-        parts = [float(v) for v in text.split(':')]
-    except ValueError:
-        parts = []
-    if len(parts) == 1 and is_finite_number(parts[0]):
-        return np.array(parts)
-    if len(parts) != 3 or not (all_finite(parts) and parts[2] > 0):
-        raise LinkageError(option, f'expected FROM or FROM:TO:STEP, finite numbers and STEP > '
-                           f'0, got {text!r}')
-    return travel_range(*parts)
+def values(option, given):
+    """Return the values of a Span (mm or deg), or raise LinkageError naming option."""
+    positions_needed(*given, option)   # before a range too long is made
+    return travel_range(*given)
 
 
 def positions(args, axle):
@@ -104,19 +98,14 @@ def positions(args, axle):
     roll = np.zeros(1) if args.roll is None else values('--roll', args.roll)
     if np.abs(roll).max() >= MAX_ROLL_DEG:
         raise LinkageError('--roll', f'|roll| must stay below {MAX_ROLL_DEG:g} deg, got '
-                           f'{args.roll!r}')
+                           f'{np.abs(roll).max():g}')
     if args.heave is not None:
         heave = values('--heave', args.heave)
     elif args.roll is None:
         heave = travel_range(*axle.left.travel)
     else:
         heave = np.zeros(1)
-    if args.rack_grid is not None:
-        rack = values('--rack-grid', args.rack_grid)
-    else:
-        rack = np.array([0.0 if args.rack is None else args.rack])
-        if not all_finite(rack):
-            raise LinkageError('--rack', f'must be finite, got {args.rack}')
+    rack = np.zeros(1) if args.rack is None else values('--rack', args.rack)
     grid = np.meshgrid(rack, heave, roll, indexing='ij')
     return grid[1].ravel(), grid[2].ravel(), grid[0].ravel()
 
@@ -215,9 +204,13 @@ def benchmark(axle, heave, roll, rack, rounds):
 
 
 @program(PROG)
-def main(argv: list[str] | None = None) -> int:
-    """Run linkage-axle: 0 when done, 1 if a position is out of reach, 2 for a mistake."""
-    args = parse_args(argv)
+def main(argv: list[str] | None = None, rounds: int = 0) -> int:
+    """
+    Run linkage-axle: 0 when done, 1 if a position is out of reach, 2 for a mistake.
+
+    rounds > 0 times the axle instead (linkage-bench axle) over that many rounds.
+    """
+    args = parse_args(argv, rounds)
     try:
         from ..core.axle import axle_of
         vehicle = load_vehicle(args.vehicle)
@@ -226,13 +219,13 @@ def main(argv: list[str] | None = None) -> int:
     except (SceneError, LinkageError) as exc:
         return fail(PROG, exc)
     warn(PROG, vehicle.warnings)
-    with_rack = args.rack is not None or args.rack_grid is not None
+    with_rack = args.rack is not None
     if with_rack and not axle.steered:
         return fail(PROG, f'{vehicle.name} {axle.name} axle: no corner has a steer: rack '
                           'link, so a rack input moves nothing')
-    problem = args.csv and writable_file(args.csv)
+    problem = args.output and writable_file(args.output)
     if problem:
-        return fail(PROG, f'--csv: {problem}')
+        return fail(PROG, f'-o: {problem}')
     compile_if_cold(PROG)
     if args.benchmark:
         benchmark(axle, heave, roll, rack, args.benchmark)
@@ -247,16 +240,16 @@ def main(argv: list[str] | None = None) -> int:
               'from): no Ackermann', file=sys.stderr)
     header, rows = table(axle, result, with_rack)
     try:
-        if args.csv:
-            with open(args.csv, 'w') as stream:
+        if args.output:
+            with open(args.output, 'w') as stream:
                 write_csv(header, rows, stream)
         else:
             write_csv(header, rows, sys.stdout)
             sys.stdout.flush()
     except BrokenPipeError:
         raise                      # stdout's reader went away: program() ends quietly
-    except OSError as exc:         # a full disk; --csv was writable when checked
-        return fail(PROG, f'{args.csv or "stdout"}: cannot write the table '
+    except OSError as exc:         # a full disk; -o was writable when checked
+        return fail(PROG, f'{args.output or "stdout"}: cannot write the table '
                           f'({exc.strerror or exc})')
     if not result.success:
         print(f'{PROG}: {result.message} ({len(rows)} positions written)', file=sys.stderr)

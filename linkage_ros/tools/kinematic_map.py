@@ -8,6 +8,7 @@ NumPy .npz (grid axes and arrays) and, with the map extra, Parquet. Points out o
 NaN and listed in out_of_reach.csv, never extrapolated (doc/maps.md).
 """
 
+import argparse
 from functools import partial
 import math
 import os
@@ -23,9 +24,9 @@ import yaml
 from .map_files import FORMATS, map_files, UNREACHED, write_map, write_unreached
 from .map_grid import axle_grid_map, AXLE_QUANTITIES, corner_map, Grid, GridMap, quantities
 from .map_memory import memory_needed, memory_room
-from ..cli import EXIT_STATUS, fail, Parser, program, same_file, warn
+from ..cli import EXIT_STATUS, fail, Parser, program, same_file, SPAN, span, warn
 from ..core.axle import axle_of
-from ..core.base import all_finite, LinkageError
+from ..core.base import LinkageError
 from ..core.model import load_scene, load_vehicle, vehicle_dir
 from ..core.warmup import compile_if_cold
 
@@ -44,39 +45,43 @@ roll_centre_y_mm, roll_centre_z_mm, roll_centre_height_mm, track_mm and both whe
 camber and toe (core/axle/axle.py). Loading a map into an interpolating lookup: doc/maps.md.
 
 examples:
-  linkage-map double_wishbone --out maps
-  linkage-map demo_vehicle --travel -50:50:2 --rack -30:30:10 --out maps --format csv,npz,parquet
-  linkage-map demo_vehicle --axle front --out maps
+  linkage-map double_wishbone -o maps
+  linkage-map demo_vehicle --travel -50:50:2 --rack -30:30:10 -o maps --format csv,npz,parquet
+  linkage-map demo_vehicle --axle front -o maps
+
+--travel and --rack take a range FROM:TO:STEP (TO included) or one value. Timing:
+linkage-bench map. Old spellings kept for one release, each with a note: --out, --benchmark.
 
 exit status: 0 every grid point solved; 1 done, but some points are out of reach (NaN, listed
 in out_of_reach.csv); """ + EXIT_STATUS
 
 
-def parse_args(argv):
+def parse_args(argv, rounds=0):
     parser = Parser(PROG, __doc__, EPILOG)
     parser.add_argument('target', metavar='SCENE_OR_VEHICLE',
                         help='bundled scene or vehicle name, or the path of either file')
-    parser.add_argument('--travel', metavar='FROM:TO:STEP',
+    parser.add_argument('--travel', metavar=SPAN,
                         help="wheel travel grid, mm (default: each scene's travel block)")
-    parser.add_argument('--rack', metavar='FROM:TO:STEP',
+    parser.add_argument('--rack', metavar=SPAN,
                         help='steering rack grid, mm, + = rack to the left (default -40:40:5 '
                         'for a corner with a steer: rack link; 0 for the others)')
     parser.add_argument('--axle', metavar='NAME',
                         help="instead of the corners' maps, the map of the vehicle's axle NAME "
                         'over (left travel, right travel) at rack 0: roll centre, track, both '
                         "wheels' camber and toe")
-    parser.add_argument('--out', metavar='DIR', help='folder for the map files (made if '
-                        'missing)')
+    parser.add_argument('-o', '--output', dest='out', metavar='DIR',
+                        help='folder for the map files (made if missing)')
+    parser.old('--out', dest='out', metavar='DIR', new='-o/--output')
     parser.add_argument('--format', default='csv,npz',
                         help=f'comma-separated, of {", ".join(FORMATS)} (default csv,npz)')
-    parser.add_argument('--benchmark', type=int, metavar='ROUNDS', default=0,
-                        help='instead of a map, time answers with and without the elements '
-                        '(1x, 10x, 100x positions) over ROUNDS rounds; print the medians')
+    parser.old('--benchmark', type=int, metavar='ROUNDS', default=0,
+               new='linkage-bench map --rounds ROUNDS')
     args = parser.parse_args(joined_grids(sys.argv[1:] if argv is None else argv))
+    args.benchmark = rounds or args.benchmark
     if args.benchmark < 0:
         parser.error(f'--benchmark: expected a number of rounds >= 0, got {args.benchmark}')
     if not args.out and not args.benchmark:
-        parser.error('--out DIR is required')
+        parser.error('-o/--output DIR is required')
     return args
 
 
@@ -92,14 +97,11 @@ def joined_grids(argv):
 
 
 def grid_option(text, option):
-    """Read FROM:TO:STEP (mm) into a Grid; LinkageError naming the option if it is not one."""
+    """Read FROM[:TO:STEP] (mm) into a Grid; LinkageError naming the option if it is not one."""
     try:
-        start, stop, step = (float(v) for v in text.split(':'))
-    except ValueError:
-        raise LinkageError(option, f'expected FROM:TO:STEP in mm, got {text!r}') from None
-    if not (step > 0 and all_finite((start, stop, step))):
-        raise LinkageError(option, f'FROM, TO, STEP must be finite and STEP > 0, got {text!r}')
-    grid = Grid(start, stop, step)
+        grid = Grid(*span(text))
+    except argparse.ArgumentTypeError as exc:
+        raise LinkageError(option, str(exc)) from None
     if grid.count == math.inf:
         raise LinkageError(option, f'{text}: more than 2**52 points, too many to make; take '
                            'a larger STEP or a shorter range')
@@ -202,14 +204,14 @@ def check_names(folder, jobs, formats, inputs):
                 other = 'the list of points out of reach' if path == unreached else \
                     f'the map of {written[path]}'
                 what = 'axle' if job.kind == 'axle' else 'scene or corner'
-                raise LinkageError('--out', f'the map of {job.name} would be {path}, which '
+                raise LinkageError('-o', f'the map of {job.name} would be {path}, which '
                                    f'is {other}: rename the {what}')
             written[path] = job.name
     for path in [*written, unreached]:
         for source in inputs:
             if same_file(str(path), source):
-                raise LinkageError('--out', f'writing {path} would replace the input '
-                                   f'{source}: give another --out folder')
+                raise LinkageError('-o', f'writing {path} would replace the input '
+                                   f'{source}: give another -o folder')
 
 
 def formats_option(text):
@@ -230,15 +232,15 @@ def formats_option(text):
 
 
 def output_folder(text):
-    """Make the --out folder if missing; LinkageError if it cannot be written into."""
+    """Make the -o folder if missing; LinkageError if it cannot be written into."""
     folder = Path(text)
     try:
         folder.mkdir(parents=True, exist_ok=True)
     except OSError as exc:
-        raise LinkageError('--out', f'cannot make the folder {text} '
+        raise LinkageError('-o', f'cannot make the folder {text} '
                            f'({exc.strerror or exc})') from None
     if not os.access(folder, os.W_OK):
-        raise LinkageError('--out', f'cannot write into the folder {text}')
+        raise LinkageError('-o', f'cannot write into the folder {text}')
     return folder
 
 
@@ -247,9 +249,13 @@ def _gb(value):
 
 
 @program(PROG)
-def main(argv: list[str] | None = None) -> int:
-    """Run linkage-map: 0 when done, 1 if points are out of reach, 2 for a mistake."""
-    args = parse_args(argv)
+def main(argv: list[str] | None = None, rounds: int = 0) -> int:
+    """
+    Run linkage-map: 0 when done, 1 if points are out of reach, 2 for a mistake.
+
+    rounds > 0 times the answers instead (linkage-bench map) over that many rounds.
+    """
+    args = parse_args(argv, rounds)
     try:
         vehicle, corners = load_target(args.target)
         warn(PROG, [w for scene in corners.values() for w in scene.warnings])

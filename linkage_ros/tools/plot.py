@@ -1,12 +1,14 @@
 """
 linkage-plot: the pictures of README.md and doc/, as PNG files (needs matplotlib: the plot extra).
 
-    linkage-plot camber-toe OUT.png [SCENE ...]    camber and toe against travel
-    linkage-plot alignment OUT.png [SCENE ...]     the alignment set against travel
-    linkage-plot latency BENCH.csv OUT.png         latency against command rate, node and echo,
-                                                   from the tables a linkage-node-bench run wrote
-    linkage-plot roll-centre OUT.png [VEHICLE [AXLE]]   an axle's roll centre in heave and roll
-                                                   (default demo_vehicle front; axle_plot.py)
+    linkage-plot camber-toe -o OUT.png [SCENE ...]   camber and toe against travel
+    linkage-plot alignment -o OUT.png [SCENE ...]    the alignment set against travel
+    linkage-plot latency BENCH.csv -o OUT.png        latency against command rate, node and
+                                                     echo, from the tables linkage-bench node
+                                                     wrote
+    linkage-plot roll-centre -o OUT.png [VEHICLE [AXLE]]   an axle's roll centre in heave and
+                                                     roll (default demo_vehicle front;
+                                                     axle_plot.py)
 Default scenes: five_link, double_wishbone, macpherson, in that order (one colour each).
 A scene whose travel block is not solved whole (a travel out of reach, a singular scene) is
 drawn as far as it was solved, and named on stderr in one line with where it stopped: the
@@ -20,8 +22,8 @@ import sys
 
 import numpy as np
 
-from ..cli import (counted, EXIT_STATUS, fail, Parser, plot_problem, program, save_figure,
-                   warn)
+from ..cli import (counted, deprecated, EXIT_STATUS, fail, Parser, plot_problem, program,
+                   save_figure, warn)
 from ..core.model import load_scene, scene_dir, SceneError
 from ..core.solve import sweep, travel_range
 from ..core.warmup import compile_if_cold
@@ -195,16 +197,28 @@ DEFAULT_SCENES = ['five_link', 'double_wishbone', 'macpherson']
 
 def parse_args(argv: list[str] | None) -> argparse.Namespace:
     parser = Parser('linkage-plot', __doc__, 'examples:\n'
-                    '  linkage-plot camber-toe bags/plots/camber_toe.png\n'
-                    '  linkage-plot latency doc/bench/node_bench.csv bags/plots/node_latency.png'
+                    '  linkage-plot camber-toe -o bags/plots/camber_toe.png\n'
+                    '  linkage-plot latency doc/bench/node_bench.csv -o bags/plots/'
+                    'node_latency.png\n\nThe old spelling, OUT.png as a PATH (the first; for '
+                    'latency the second), is kept\nfor one release, with a note.'
                     '\n\nexit status: 0 written; 1 written, but a scene is drawn only as far '
                     'as its travel block was solved (said on stderr); ' + EXIT_STATUS)
     parser.add_argument('what', choices=('camber-toe', 'alignment', 'latency', 'roll-centre'),
                         help='which picture')
-    parser.add_argument('paths', nargs='+', metavar='PATH',
-                        help='OUT.png [SCENE ...]; for latency: BENCH.csv OUT.png; for '
-                        'roll-centre: OUT.png [VEHICLE [AXLE]]')
-    return parser.parse_args(argv)
+    parser.add_argument('paths', nargs='*', metavar='PATH',
+                        help='[SCENE ...]; for latency: BENCH.csv; for roll-centre: '
+                        '[VEHICLE [AXLE]]')
+    parser.add_argument('-o', '--output', metavar='OUT.png',
+                        help='the picture to write (PNG, or another format by its suffix)')
+    args = parser.parse_intermixed_args(argv)   # SCENE ... after -o OUT.png too
+    if args.output is None:
+        if not args.paths:
+            parser.error('-o/--output OUT.png is required')
+        deprecated('linkage-plot', 'OUT.png as a PATH', '-o/--output OUT.png')
+    else:   # in the order of the old spelling, which the pictures read
+        args.paths = (args.paths + [args.output] if args.what == 'latency'
+                      else [args.output] + args.paths)
+    return args
 
 
 @program('linkage-plot')
@@ -218,7 +232,7 @@ def main(argv: list[str] | None = None) -> int:
         return roll_centre(args.paths)
     if args.what == 'latency':
         if len(args.paths) != 2:
-            return fail(prog, 'latency: expected BENCH.csv OUT.png')
+            return fail(prog, 'latency: expected BENCH.csv -o OUT.png')
         source, out = args.paths
         try:
             ladder = read_ladder(source)

@@ -41,7 +41,7 @@ COMMANDS = {
                ('car/ --topic /front_left/wheel_travel', 'a corner of a vehicle')]),
     'sweep': ("solve the commands of a travel sweep (the scene's range and step by default)",
               [('', 'writes ./five_link_sweep.mcap'),
-               ('--scene macpherson --from -40 --to 40 --step 0.5 -o sweep.mcap', '')]),
+               ('--scene macpherson --travel -40:40:0.5 -o sweep.mcap', '')]),
     'copy': ('copy every readable message (any topic, type and QoS) into a complete MCAP: '
              'recovers a recording cut by a hard kill or damaged',
              [('run.mcap', 'writes ./run_copy.mcap'), ('cut.mcap -o fixed.mcap', '')]),
@@ -51,7 +51,7 @@ COMMANDS = {
                  ('--scene macpherson --hz 100', 'the commands of a sweep')]),
     'bench': ('time solving the commands with no recording, McapRecorder, RerunRecorder and '
               'both; print a CSV table on stdout (us per command)',
-              [('run.mcap', ''), ('--from -80 --to 80 --step 0.1', 'the commands of a sweep')]),
+              [('run.mcap', ''), ('--travel -80:80:0.1', 'the commands of a sweep')]),
 }
 
 
@@ -66,7 +66,7 @@ def examples(*commands):
 
 
 LEGACY = {'--publish': 'publish', '--copy': 'copy', '--benchmark': 'bench', '--sweep': 'sweep'}
-SWEEP_OPTIONS = ('--from', '--to', '--step', '--hz')
+SWEEP_OPTIONS = ('--travel', '--from', '--to', '--step', '--hz')
 
 
 class Parser(cli.Parser):
@@ -143,12 +143,14 @@ def _options(parser, command):
                help='s to wait for a subscriber, >= 0 (default 10)')
     if command in ('sweep', 'publish', 'bench'):
         which = 'sweep: ' if source else ''
-        option('--from', dest='start', type=_number(millimetres=True),
-               help=f"{which}first travel, mm (default: the scene's travel min)")
-        option('--to', dest='stop', type=_number(millimetres=True),
-               help=f"{which}last travel, mm (default: the scene's travel max)")
-        option('--step', type=_number(0.0, True, millimetres=True),
-               help=f"{which}travel step, mm, > 0 (default: the scene's step)")
+        option('--travel', type=cli.span, metavar=cli.SPAN,
+               help=f'{which}travels, mm: FROM:TO:STEP (TO included) or one value (default: '
+               "the scene's travel block)")
+        for name, dest, number in (('--from', 'start', _number(millimetres=True)),
+                                   ('--to', 'stop', _number(millimetres=True)),
+                                   ('--step', 'step', _number(0.0, True, millimetres=True))):
+            known.add(name)
+            parser.old(name, dest=dest, type=number, new='--travel FROM:TO:STEP')
         option('--hz', type=_number(0.0, True),
                help=f'{which}command rate, Hz, > 0 (default {SWEEP_HZ:g})')
     return known
@@ -220,10 +222,12 @@ def parse_args(argv, description):
         sub.error(_misplaced(parser, args.command, extras, note))
     args.note = note
     if args.command in ('publish', 'bench') and args.bag:
-        given = [o for o, dest in zip(SWEEP_OPTIONS, ('start', 'stop', 'step', 'hz'))
+        given = [o for o, dest in zip(SWEEP_OPTIONS, ('travel', 'start', 'stop', 'step', 'hz'))
                  if getattr(args, dest) is not None]
         if given or (args.command == 'publish' and args.scene):
             sub.error(f'{(given or ["--scene"])[0]} makes a sweep: give it without BAG')
+    if getattr(args, 'travel', None) is not None:
+        args.start, args.stop, args.step = args.travel
     return args
 
 
@@ -234,7 +238,7 @@ def _joined_values(argv, parser):
     argparse takes '-1e300' or '-80mm' for an option of its own ('expected one argument');
     joined, the value is checked as a number, and a mistake is said as such.
     """
-    numeric = {'--from', '--to', '--step', '--hz', '--rate', '--wait'}
+    numeric = {'--travel', '--from', '--to', '--step', '--hz', '--rate', '--wait'}
     known = set().union(*(options for _, options in parser.commands.values()))
     joined, i = [], 0
     while i < len(argv):

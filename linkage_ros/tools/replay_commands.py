@@ -227,13 +227,13 @@ def sweep_commands(scene, start=None, stop=None, step=None, hz=SWEEP_HZ, t0=None
     stop = high if stop is None else stop
     step = default_step if step is None else step
     if not (step > 0 and hz > 0 and all(is_finite_number(v) for v in (start, stop, step, hz))):
-        raise ReplayError('--from, --to, --step, --hz', f'must be finite, --step and --hz > 0 '
+        raise ReplayError('--travel, --hz', f'must be finite, STEP and --hz > 0 '
                           f'(got {start:g}, {stop:g}, {step:g}, {hz:g})')
     count = abs(stop - start) / step + 1      # float: may be far beyond any integer in use
     if not count <= MAX_SWEEP_COMMANDS:
-        raise ReplayError('--from/--to/--step', f'{step:g} mm from {start:g} to {stop:g} mm '
+        raise ReplayError('--travel', f'{step:g} mm from {start:g} to {stop:g} mm '
                           f'makes {count:.3g} commands, more than the {MAX_SWEEP_COMMANDS:,} a '
-                          'sweep may have (choose a larger --step)')
+                          'sweep may have (choose a larger STEP)')
     if hz > 1e9:
         raise ReplayError('--hz', f'{hz:g} Hz is a command every {1e9 / hz:.3g} ns, faster than '
                           'the 1 ns resolution of ROS 2 times (at most 1e+09 Hz)')

@@ -1,7 +1,7 @@
 """
 linkage-sweep: solve a scene over a travel range and write a CSV table (mm, deg).
 
-The table goes to stdout (or to --csv PATH), progress and errors to stderr. Travels default
+The table goes to stdout (or to -o PATH), progress and errors to stderr. Travels default
 to the scene's own travel block (for the bundled scenes -80 to +80 mm in 1 mm steps).
 """
 
@@ -10,9 +10,9 @@ import time
 
 import numpy as np
 
-from ..cli import counted, EXIT_STATUS, fail, millimetres, Parser, program, warn, writable_file
-from ..core.base import (all_finite, check_position_count, is_finite_number, LinkageError,
-                         positions_needed)
+from ..cli import (counted, EXIT_STATUS, fail, millimetres, Parser, program, SPAN, span, warn,
+                   writable_file)
+from ..core.base import check_position_count, LinkageError, positions_needed
 from ..core.measure import columns
 from ..core.model import load_scene, SceneError
 from ..core.solve import Continuation, METHODS, sweep, travel_range
@@ -20,7 +20,7 @@ from ..core.warmup import compile_if_cold
 
 PROG = 'linkage-sweep'
 # The columns, each declared once in the registry (core/measure/quantities.py), in the
-# table's order: always COLUMNS; RACK_COLUMNS with --rack/--grid; ALIGNMENT_COLUMNS with
+# table's order: always COLUMNS; RACK_COLUMNS with --rack; ALIGNMENT_COLUMNS with
 # --alignment.
 COLUMNS = columns('travel', 'wheel', 'rotation', 'solver')
 RACK_COLUMNS = columns('rack')
@@ -93,49 +93,54 @@ def write_csv(results, stream, scene=None, with_rack=False, elements=None):
 
 EPILOG = """columns: travel_mm, camber_deg (+ = top outboard), toe_deg (+ = toe-in), wheel centre
   x, y, z in mm (vehicle frame: x forward, y left, z up), the carrier rotation relative to
-  design as a quaternion qx, qy, qz, qw, residual_mm, iterations; then rack_mm with --rack or
-  --grid, the alignment set with --alignment, and with --elements each element's
+  design as a quaternion qx, qy, qz, qw, residual_mm, iterations; then rack_mm with --rack,
+  the alignment set with --alignment, and with --elements each element's
   <name>_length_mm and <name>_ratio (d length / d travel), and for a spring with a rate
   <name>_force_N (+ = compressed) and <name>_wheel_rate_N_per_mm (doc/elements.md).
 
 examples:
-  linkage-sweep five_link --csv five_link_sweep.csv
-  linkage-sweep double_wishbone --from -40 --to 40 --step 10 --rack 5 --alignment
-  linkage-sweep my_corner.yaml --grid -20:20:10 > grid.csv
+  linkage-sweep five_link -o five_link_sweep.csv
+  linkage-sweep double_wishbone --travel -40:40:10 --rack 5 --alignment
+  linkage-sweep my_corner.yaml --rack -20:20:10 > grid.csv
 
-Travels and racks are plain numbers of mm (--from -80, not -80mm). A request is refused
-before it runs when it would solve more than 1,000,000 positions (travels x racks).
+Travels and racks are plain numbers of mm (--travel -80:80:1, not -80mm); one value is one
+position, FROM:TO:STEP a range (TO included). A request is refused before it runs when it
+would solve more than 1,000,000 positions (travels x racks). Timing: linkage-bench sweep.
+Old spellings kept for one release, each with a note: --from/--to/--step, --grid, --csv,
+--benchmark.
 
 exit status: 0 every travel solved; 1 a travel is out of reach (the rows solved before it
 are written, the message names the limit); """ + EXIT_STATUS
 
 
-def parse_args(argv):
+def parse_args(argv, rounds=0):
     parser = Parser('linkage-sweep', __doc__, EPILOG)
     parser.add_argument('scene', help='bundled scene name (e.g. five_link) or path to a YAML file')
-    parser.add_argument('--from', dest='start', type=millimetres,
-                        help="first travel, mm (default: the scene's travel block)")
-    parser.add_argument('--to', dest='stop', type=millimetres,
-                        help="last travel, mm (default: the scene's travel block)")
-    parser.add_argument('--step', type=millimetres,
-                        help="travel step, mm, > 0 (default: the scene's travel block)")
+    parser.add_argument('--travel', type=span, metavar=SPAN,
+                        help='wheel travel, mm, + = bump: one value or a range (default: the '
+                        "scene's travel block)")
+    parser.old('--from', dest='start', type=millimetres, new='--travel FROM:TO:STEP')
+    parser.old('--to', dest='stop', type=millimetres, new='--travel FROM:TO:STEP')
+    parser.old('--step', type=millimetres, new='--travel FROM:TO:STEP')
     parser.add_argument('--method', choices=METHODS, default='fast',
                         help='fast (pose Newton, compiled) or paper (Alexandru 2018); '
                         'default fast')
-    parser.add_argument('--csv', help='write the table to this file (default: stdout)')
-    parser.add_argument('--rack', type=millimetres, default=None,
-                        help='steering rack travel, mm (+ = rack to the left); adds rack_mm')
-    parser.add_argument('--grid', metavar='FROM:TO:STEP',
-                        help='solve a travel x rack grid: rack from FROM to TO at STEP, mm')
+    parser.add_argument('-o', '--output', metavar='FILE',
+                        help='write the table to this file (default: stdout)')
+    parser.old('--csv', dest='output', new='-o/--output')
+    parser.add_argument('--rack', type=span, metavar=SPAN,
+                        help='steering rack travel, mm (+ = rack to the left); adds rack_mm; '
+                        'a range solves a travel x rack grid')
+    parser.old('--grid', dest='rack', type=span, metavar=SPAN, new='--rack FROM:TO:STEP')
     parser.add_argument('--alignment', action='store_true',
                         help='add the alignment columns (gains, steer axis, scrub, trail, '
                         'instant centres, screw axis)')
     parser.add_argument('--elements', action='store_true',
                         help="add the columns of the scene's springs, dampers and lengths")
-    parser.add_argument('--benchmark', type=int, metavar='ROUNDS', default=0,
-                        help='instead of a table, time paper and fast sweeps side by side '
-                        'over ROUNDS interleaved rounds and print the median per position')
+    parser.old('--benchmark', type=int, metavar='ROUNDS', default=0,
+               new='linkage-bench sweep --rounds ROUNDS')
     args = parser.parse_args(argv)
+    args.benchmark = rounds or args.benchmark
     if args.benchmark < 0:
         parser.error(f'--benchmark: expected a number of rounds >= 0, got {args.benchmark}')
     return args
@@ -184,25 +189,31 @@ def benchmark(scene, travels, rounds):
 
 
 @program(PROG)
-def main(argv: list[str] | None = None) -> int:
-    """Run linkage-sweep: 0 when done, 1 if a travel is out of reach, 2 for a mistake."""
-    args = parse_args(argv)
+def main(argv: list[str] | None = None, rounds: int = 0) -> int:
+    """
+    Run linkage-sweep: 0 when done, 1 if a travel is out of reach, 2 for a mistake.
+
+    rounds > 0 times the sweep instead (linkage-bench sweep) over that many rounds.
+    """
+    args = parse_args(argv, rounds)
     try:
         scene = load_scene(args.scene)
     except SceneError as exc:
         return fail(PROG, exc)
     warn(PROG, scene.warnings)
-    problem = args.csv and writable_file(args.csv)
+    problem = args.output and writable_file(args.output)
     if problem:
-        return fail(PROG, f'--csv: {problem}')
-    low, high, step = scene.travel
-    start = low if args.start is None else args.start
-    stop = high if args.stop is None else args.stop
-    step = step if args.step is None else args.step
+        return fail(PROG, f'-o: {problem}')
+    start, stop, step = args.travel or (
+        given if given is not None else default
+        for given, default in zip((args.start, args.stop, args.step), scene.travel))
     try:
-        count = positions_needed(start, stop, step, '--from, --to, --step')
-        racks = rack_values(args)
-        check_position_count(count * len(racks), '--grid', f'{counted(count, "travel")} x '
+        count = positions_needed(start, stop, step, '--travel')
+        racks = [0.0]
+        if args.rack is not None:
+            positions_needed(*args.rack, '--rack')   # before a range too long is made
+            racks = list(travel_range(*args.rack))
+        check_position_count(count * len(racks), '--rack', f'{counted(count, "travel")} x '
                              f'{counted(len(racks), "rack")}')
     except LinkageError as exc:
         return fail(PROG, exc)
@@ -225,19 +236,19 @@ def main(argv: list[str] | None = None) -> int:
         if not results[-1].success:
             break
     table = {'scene': scene if args.alignment else None,
-             'with_rack': args.rack is not None or args.grid is not None,
+             'with_rack': args.rack is not None,
              'elements': scene if args.elements else None}
     try:
-        if args.csv:
-            with open(args.csv, 'w') as stream:
+        if args.output:
+            with open(args.output, 'w') as stream:
                 write_csv(results, stream, **table)
         else:
             write_csv(results, sys.stdout, **table)
             sys.stdout.flush()
     except BrokenPipeError:
         raise                      # stdout's reader went away: program() ends quietly
-    except OSError as exc:         # a full disk; --csv was writable when checked
-        return fail(PROG, f'{args.csv or "stdout"}: cannot write the table '
+    except OSError as exc:         # a full disk; -o was writable when checked
+        return fail(PROG, f'{args.output or "stdout"}: cannot write the table '
                           f'({exc.strerror or exc})')
     if args.elements:
         from ..core.measure import crossing_notes, element_values
@@ -253,24 +264,6 @@ def main(argv: list[str] | None = None) -> int:
     worst = max(r.residual.max() for r in results if len(r.travel))
     print(f'linkage-sweep: done, largest residual {worst:.2g} mm', file=sys.stderr)
     return 0
-
-
-def rack_values(args):
-    """Rack positions (mm) to solve: --grid FROM:TO:STEP, --rack MM, or 0."""
-    if args.grid is None:
-        rack = 0.0 if args.rack is None else args.rack
-        if not is_finite_number(rack):
-            raise LinkageError('--rack', f'must be finite, got {rack}')
-        return [rack]
-    try:
-        start, stop, step = (float(v) for v in args.grid.split(':'))
-    except ValueError:
-        raise LinkageError('--grid', f'expected FROM:TO:STEP in mm, got {args.grid!r}') from None
-    if not (step > 0 and all_finite((start, stop, step))):
-        raise LinkageError('--grid', f'FROM, TO, STEP must be finite and STEP > 0, got '
-                           f'{args.grid!r}')
-    positions_needed(start, stop, step, '--grid')
-    return list(travel_range(start, stop, step))
 
 
 if __name__ == '__main__':

@@ -55,14 +55,14 @@ DEFAULT_RATES = (250, 500, 1000, 2000, 4000)
 
 
 EPILOG = f"""examples:
-  ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST linkage-node-bench --plot latency.png > bench.csv
-  ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST linkage-node-bench --only core,vehicle --scale 10
+  ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST linkage-bench node --plot latency.png > bench.csv
+  ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST linkage-bench node --only core,vehicle --scale 10
 
 exit status: 0 the tables were written; {EXIT_STATUS}"""
 
 
-def parse_args(argv):
-    parser = Parser('linkage-node-bench', __doc__, EPILOG)
+def parse_args(argv, prog='linkage-node-bench'):
+    parser = Parser(prog, __doc__, EPILOG)
     parser.add_argument('--only', default=','.join(SECTIONS),
                         help=f'sections to run, comma separated (default: all: '
                         f'{",".join(SECTIONS)})')
@@ -116,9 +116,9 @@ def parse_args(argv):
 
 
 @program('linkage-node-bench')
-def main(argv: list[str] | None = None) -> int:
-    """Run linkage-node-bench, or one of the processes it starts (--echo, --start-once)."""
-    args, ros_args = parse_args(sys.argv[1:] if argv is None else argv)
+def main(argv: list[str] | None = None, prog: str = 'linkage-node-bench') -> int:
+    """Run linkage-bench node, or one of the processes it starts (--echo, --start-once)."""
+    args, ros_args = parse_args(sys.argv[1:] if argv is None else argv, prog)
     os.environ.setdefault('ROS_AUTOMATIC_DISCOVERY_RANGE', 'LOCALHOST')   # for its children too
     if args.domain_id is None:
         args.domain_id = environment_domain_id()

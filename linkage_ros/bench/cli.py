@@ -1,0 +1,130 @@
+"""
+linkage-bench: every benchmark of linkage_ros, one subcommand each.
+
+    linkage-bench accuracy [...]       error against run time of every solver (accuracy.py)
+    linkage-bench node [...]           the node over DDS: latency, throughput (node_bench/)
+    linkage-bench soak [...]           a million commands through the node (soak.py)
+    linkage-bench sweep SCENE [...]    paper and fast sweeps side by side (linkage-sweep)
+    linkage-bench axle [VEHICLE] [...] an axle position against corner positions
+    linkage-bench map SCENE [...]      map answers with and without the elements
+    linkage-bench study [...]          tolerance, sensitivity and fit (study/bench.py)
+    linkage-bench replay [BAG] [...]   solving recorded commands with and without recording
+
+Each subcommand takes the options of the program it times (SUBCOMMAND --help lists them);
+sweep, axle and map take --rounds N too. The earlier entry points (linkage-node-bench,
+linkage-soak, linkage-bench without a subcommand, --benchmark of linkage-sweep, linkage-axle
+and linkage-map) still work for one release, each with a note on stderr.
+"""
+
+import sys
+
+from ..cli import deprecated, EXIT_STATUS, fail, MISTAKE
+
+PROG = 'linkage-bench'
+ROUNDS = 5   # default --rounds of sweep, axle and map
+
+EPILOG = """examples:
+  linkage-bench accuracy --quick -o bench-report
+  linkage-bench sweep five_link --travel -80:80:1 --rounds 5
+  linkage-bench axle demo_vehicle --axle front --rounds 21
+  linkage-bench map double_wishbone --rounds 20
+
+exit status: as the program timed; """ + EXIT_STATUS
+
+
+def _accuracy(argv, prog=f'{PROG} accuracy'):
+    from .accuracy import main
+    return main(argv, prog=prog)
+
+
+def _node(argv, prog=f'{PROG} node'):
+    from .node_bench.cli import main
+    return main(argv, prog=prog)
+
+
+def _soak(argv, prog=f'{PROG} soak'):
+    from .soak import main
+    return main(argv, prog=prog)
+
+
+def _study(argv):
+    from ..study.bench import main
+    return main(argv)
+
+
+def _replay(argv):
+    from ..tools.replay import main
+    return main(['bench', *argv])
+
+
+def _timed(module):
+    """Return the runner of a program whose main(argv, rounds) times instead of solving."""
+    def run(argv):
+        import importlib
+        rounds, rest = _rounds(argv, f'{PROG} {module.rsplit(".", 1)[-1]}')
+        return importlib.import_module(f'..tools.{module}', __package__).main(rest,
+                                                                              rounds=rounds)
+    return run
+
+
+COMMANDS = {'accuracy': _accuracy, 'node': _node, 'soak': _soak,
+            'sweep': _timed('sweep'), 'axle': _timed('axle'), 'map': _timed('kinematic_map'),
+            'study': _study, 'replay': _replay}
+
+
+def _rounds(argv, prog):
+    """Take --rounds N (or --rounds=N) out of argv: (N, the other arguments); exit 2 if bad."""
+    rounds, rest, i = ROUNDS, [], 0
+    while i < len(argv):
+        arg = argv[i]
+        if arg == '--rounds' or arg.startswith('--rounds='):
+            text = arg.split('=', 1)[1] if '=' in arg else (
+                argv[i + 1] if i + 1 < len(argv) else '')
+            i += 1 if '=' in arg else 2
+            if not text.isdigit() or int(text) < 1:
+                sys.exit(fail(prog, f'error: argument --rounds: expected a whole number of '
+                                    f'rounds >= 1, got {text!r}'))
+            rounds = int(text)
+        else:
+            rest.append(arg)
+            i += 1
+    return rounds, rest
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Run the benchmark a subcommand names; without one, accuracy (the earlier spelling)."""
+    argv = list(sys.argv[1:] if argv is None else argv)
+    if argv and argv[0] in ('-h', '--help'):
+        print(f'usage: {PROG} {{{",".join(COMMANDS)}}} [options]\n\n{__doc__.strip()}\n\n'
+              f'{EPILOG}')
+        return 0
+    if argv and argv[0] in COMMANDS:
+        return COMMANDS[argv[0]](argv[1:])
+    if argv and not argv[0].startswith('-'):
+        return fail(PROG, f'error: unknown benchmark {argv[0]!r}: choose one of '
+                          f'{", ".join(COMMANDS)} (see {PROG} --help)')
+    return _old(PROG, f'{PROG} without a subcommand', 'accuracy', argv)
+
+
+def _old(prog, old, command, argv):
+    """Run an earlier spelling of linkage-bench COMMAND; after it, note the new spelling."""
+    run = COMMANDS[command]
+    # --help and a mistake exit here, without the note; their lines name the old program
+    status = run(argv, prog=prog)
+    if status != MISTAKE:
+        deprecated(prog, old, f'{PROG} {command}')
+    return status
+
+
+def node_bench() -> int:
+    """Run linkage-node-bench, the earlier spelling of linkage-bench node."""
+    return _old('linkage-node-bench', 'linkage-node-bench', 'node', sys.argv[1:])
+
+
+def soak() -> int:
+    """Run linkage-soak, the earlier spelling of linkage-bench soak."""
+    return _old('linkage-soak', 'linkage-soak', 'soak', sys.argv[1:])
+
+
+if __name__ == '__main__':
+    sys.exit(main())
