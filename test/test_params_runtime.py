@@ -11,30 +11,12 @@ from diagnostic_msgs.msg import DiagnosticStatus
 from linkage_ros.core.model import load_scene
 from linkage_ros.core.solve import sweep
 from linkage_ros.ros.messages import status_values
-from linkage_ros.ros.testing import connect, live_tf_topics, Probe, spin_until
+from linkage_ros.ros.testing import connect, live_tf_topics, ParameterClient, Probe, spin_until
 import numpy as np
 import pytest
-from rcl_interfaces.srv import SetParameters
 from rclpy.parameter import Parameter
 
 NODE = '/suspension_kinematics'
-
-
-class ParameterClient:
-    """SetParameters of suspension_node, called from the probe's node."""
-
-    def __init__(self, probe):
-        self.probe = probe
-        self.client = probe.node.create_client(SetParameters, f'{NODE}/set_parameters')
-
-    def set(self, **values):  # noqa: A003 (SetParameters' verb)
-        """Set each parameter (one request); return [(successful, reason)] per parameter."""
-        assert spin_until(self.probe.executor, self.client.service_is_ready, 20.0)
-        request = SetParameters.Request(parameters=[
-            Parameter(name, value=value).to_parameter_msg() for name, value in values.items()])
-        future = self.client.call_async(request)
-        assert spin_until(self.probe.executor, future.done, 20.0)
-        return [(r.successful, r.reason) for r in future.result().results]
 
 
 def assert_answers(probe, scene_name, travels_m, method='fast'):

@@ -16,12 +16,12 @@ from linkage_ros.core.model import load_scene
 from linkage_ros.core.solve import Continuation
 from linkage_ros.ros.messages import status_values
 from linkage_ros.ros.node import QOS, SuspensionNode
-from linkage_ros.ros.testing import spin_until
+from linkage_ros.ros.testing import ParameterClient, spin_until
 import pytest
 from rcl_interfaces.srv import SetParameters
 from rclpy.parameter import Parameter
 from std_msgs.msg import Float64
-from test_params_runtime import assert_answers, ParameterClient
+from test_params_runtime import assert_answers
 
 SINGULAR = Path(__file__).resolve().parent / 'data' / 'five_link_singular.yaml'
 

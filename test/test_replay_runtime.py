@@ -7,14 +7,13 @@ read back with mcap + mcap_ros2 (test_replay.decoded), not the project's reader.
 """
 
 from linkage_ros.record.mcap_writer import McapRecorder
-from linkage_ros.ros.testing import spin_until
+from linkage_ros.ros.testing import ParameterClient, spin_until
 from linkage_ros.tools.replay import main
 import numpy as np
 import pytest
 from rcl_interfaces.msg import ParameterEvent
 from rclpy.parameter import Parameter
 from std_msgs.msg import Float64
-from test_params_runtime import ParameterClient
 from test_replay import by_topic, decoded, T0
 
 # Poses are rebuilt by the same code from the same commands: only CDR's float64 round trip
