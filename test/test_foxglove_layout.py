@@ -14,9 +14,9 @@ import sys
 from linkage_ros.core.model import load_scene, load_vehicle
 from linkage_ros.ros.corner import corner_outputs
 from linkage_ros.ros.parameters import PARAMETERS
+from linkage_ros.ros.testing import read_mcap_ros2
 from linkage_ros.tools.foxglove_layout import foxglove_layout
 import pytest
-from test_tf_recording import read_mcap_ros2
 
 ROOT = Path(__file__).resolve().parent.parent
 BUNDLED = ROOT / 'config' / 'foxglove_layout.json'

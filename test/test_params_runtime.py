@@ -161,7 +161,7 @@ def test_the_output_switches_make_and_remove_their_topics(suspension_node, probe
 
 def test_a_recording_goes_on_across_a_scene_change_and_records_it(suspension_node, probe,
                                                                   client, tmp_path):
-    from test_tf_recording import read_mcap_ros2
+    from linkage_ros.ros.testing import read_mcap_ros2
     path = tmp_path / 'run.mcap'
     node = suspension_node(record_mcap=str(path))
     assert_answers(probe, 'five_link', [0.02])

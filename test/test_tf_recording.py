@@ -13,9 +13,7 @@ import xml.etree.ElementTree as ElementTree
 
 from linkage_ros.core.model import load_scene
 from linkage_ros.core.solve import sweep
-from linkage_ros.ros.testing import spin_until
-from mcap.reader import make_reader
-from mcap_ros2.decoder import DecoderFactory
+from linkage_ros.ros.testing import read_mcap_ros2, spin_until
 import numpy as np
 import pytest
 from rosbags.highlevel import AnyReader
@@ -32,16 +30,6 @@ def read_rosbags(path):
                 reader.deserialize(raw, connection.msgtype))
         qos = {c.topic: c.ext.offered_qos_profiles[0] for c in reader.connections}
     return out, qos
-
-
-def read_mcap_ros2(path):
-    """Return {topic: [message]} as mcap-ros2-support decodes them."""
-    out = {}
-    with open(path, 'rb') as stream:
-        reader = make_reader(stream, decoder_factories=[DecoderFactory()])
-        for _, channel, _, message in reader.iter_decoded_messages():
-            out.setdefault(channel.topic, []).append(message)
-    return out
 
 
 def check_recording(path, frame_id='base_link'):

@@ -236,6 +236,18 @@ class ParameterClient:
         return [(r.successful, r.reason) for r in future.result().results]
 
 
+def read_mcap_ros2(path):
+    """Return {topic: [message]} of an MCAP file as mcap-ros2-support decodes them."""
+    from mcap.reader import make_reader
+    from mcap_ros2.decoder import DecoderFactory
+    out = {}
+    with open(path, 'rb') as stream:
+        reader = make_reader(stream, decoder_factories=[DecoderFactory()])
+        for _, channel, _, message in reader.iter_decoded_messages():
+            out.setdefault(channel.topic, []).append(message)
+    return out
+
+
 def live_tf_topics():
     """
     Return the TF topics a node of this environment publishes: /tf and /tf_static, or none.
