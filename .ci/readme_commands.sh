@@ -5,9 +5,9 @@
 #        LONG=1 bash .ci/readme_commands.sh   also the benchmarks, the soak and the screenshots
 # Not run here: command 2 and the inner-loop pytest (the suite: .ci/run runs it), the colcon
 # route of doc/node.md (.ci/run runs it), the linkage-plot commands that rewrite the committed
-# pictures (test/test_plots.py and test/test_axle_plot.py run them into a temporary folder),
-# and the Python of doc/maps.md, doc/elements.md and doc/testing.md (test/test_map_doc.py,
-# test/test_elements.py and test/test_plugin_example.py run it). Not run even with LONG=1: the
+# pictures (test/tools/test_plots.py and test/tools/test_axle_plot.py run them into a temporary folder),
+# and the Python of doc/maps.md, doc/elements.md and doc/testing.md (test/tools/test_map_doc.py,
+# test/core/test_elements.py and test/ros/test_plugin_example.py run it). Not run even with LONG=1: the
 # node benchmarks at --scale 10 and 100 of doc/benchmarks.md (20 to 36 min each) and
 # `rerun FILE.rrd`, which opens a window.
 set -u

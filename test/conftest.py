@@ -48,10 +48,10 @@ PROCESS_NAMES = {'subprocess', 'node_process', 'NodeProcess', 'Popen', 'multipro
 # main that a test calls, such as linkage-soak's).
 ROS_NAMES = {'init_context', 'rclpy', 'SuspensionNode', 'start_suspension_node'}
 STARTS_ROS = ('rclpy.init', 'init_context', 'EventsExecutor', 'create_node')
-# The longest tests of the inner loop (pytest --durations), by file and name without
-# parameters: each more than 9 s on a machine shared by several runs (2 s and more alone);
-# together half its time. A name that no longer exists in its file is an error, so that a rename
-# cannot drop the mark silently.
+# The longest tests of the inner loop (pytest --durations), by file (its basename: basenames
+# are unique across test/'s folders) and name without parameters: each more than 9 s on a
+# machine shared by several runs (2 s and more alone); together half its time. A name that no
+# longer exists in its file is an error, so that a rename cannot drop the mark silently.
 SLOW = {
     'test_flake8.py': ['test_flake8'],
     'test_fuzz_inputs.py': [

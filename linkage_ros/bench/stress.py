@@ -60,7 +60,7 @@ PAPER_STEP_BUDGET = 20_000
 
 
 def stress_lines(reversals=100_000):
-    """Numbers of the stiff and extreme cases (the tests in test/test_stability.py)."""
+    """Numbers of the stiff and extreme cases (the tests in test/core/test_stability.py)."""
     lines = []
     parts = (('toggles', stress_toggles), ('jumps', stress_jumps),
              ('reversals', lambda: stress_reversals(reversals)), ('scaling', stress_scaling),

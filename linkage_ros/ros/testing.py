@@ -214,6 +214,40 @@ class Probe:
                       None)
 
 
+class ParameterClient:
+    """SetParameters of suspension_node (NODE_NAME), called from a Probe's node."""
+
+    def __init__(self, probe):
+        from rcl_interfaces.srv import SetParameters
+
+        from .node import NODE_NAME
+        self.probe = probe
+        self.client = probe.node.create_client(SetParameters, f'/{NODE_NAME}/set_parameters')
+
+    def set(self, **values):  # noqa: A003 (SetParameters' verb)
+        """Set each parameter (one request); return [(successful, reason)] per parameter."""
+        from rcl_interfaces.srv import SetParameters
+        from rclpy.parameter import Parameter
+        assert spin_until(self.probe.executor, self.client.service_is_ready, 20.0)
+        request = SetParameters.Request(parameters=[
+            Parameter(name, value=value).to_parameter_msg() for name, value in values.items()])
+        future = self.client.call_async(request)
+        assert spin_until(self.probe.executor, future.done, 20.0)
+        return [(r.successful, r.reason) for r in future.result().results]
+
+
+def read_mcap_ros2(path):
+    """Return {topic: [message]} of an MCAP file as mcap-ros2-support decodes them."""
+    from mcap.reader import make_reader
+    from mcap_ros2.decoder import DecoderFactory
+    out = {}
+    with open(path, 'rb') as stream:
+        reader = make_reader(stream, decoder_factories=[DecoderFactory()])
+        for _, channel, _, message in reader.iter_decoded_messages():
+            out.setdefault(channel.topic, []).append(message)
+    return out
+
+
 def live_tf_topics():
     """
     Return the TF topics a node of this environment publishes: /tf and /tf_static, or none.

@@ -17,7 +17,7 @@ through its template.
     TOPICS['alignment']                  -> the table names of the alignment message's fields
 
 Data only: this module imports nothing of the package (it sits at the bottom of core).
-doc/quantities.md is markdown_table() (test/test_quantities.py checks it); to write it again:
+doc/quantities.md is markdown_table() (test/core/test_quantities.py checks it); to write it again:
 python -m linkage_ros.core.measure.quantities > doc/quantities.md
 """
 
@@ -306,7 +306,8 @@ def markdown_table() -> str:
     lines = ['# Quantities', '',
              'Every quantity an output of linkage_ros names, from its registry',
              '(`linkage_ros/core/measure/quantities.py`; this file is `markdown_table()`, and',
-             '`test/test_quantities.py` checks that it matches). Tables are in the table unit,',
+             '`test/core/test_quantities.py` checks that it matches). Tables are in the '
+             'table unit,',
              'with the unit in the name; ROS messages are in SI: SI value = table value x factor,',
              'labelled by the SI name. `{element}` stands for each element of a scene,',
              '`{side}` for left and right. Axes ISO 8855 / REP 103 (x forward, y left, z up);',
