@@ -205,6 +205,11 @@ def _bag(scan, path, topics):
                   f'{"s" if count > 1 else ""} of channel {channel_id}, which the file '
                   f'does not define, left out (the first in the record at byte '
                   f'{first[channel_id]})')
+    named = scan.chunks_read | {d.offset for d in scan.damage}   # said once, where it is
+    for offset in sorted({c.chunk_start_offset for c in scan.chunk_indexes} - named):
+        # a byte that turned a chunk's opcode into another record's: read past, not as a chunk
+        scan.note('record', offset, f'the chunk that the summary indexes at byte {offset} is '
+                  'not there (the record at that byte is not a chunk): its messages are lost')
     if scan.statistics is not None:
         stored = scan.statistics.message_count
         bag.lost = max(0, stored - (len(scan.raw) - sum(orphans.values())))

@@ -83,6 +83,7 @@ class Scan:
         self.metadata = {}   # name -> {key: value} of each metadata record (the first)
         self.statistics = None
         self.chunk_indexes, self.metadata_indexes = [], []
+        self.chunks_read = set()    # byte offsets of the chunk records met, damaged or not
 
     # --- walking the records ---
 
@@ -307,6 +308,7 @@ class Scan:
         Its uncompressed size is checked first, against what its compression can produce.
         """
         where = f'the chunk at byte {offset}'
+        self.chunks_read.add(offset)
         usize, = struct.unpack_from('<Q', content, 16)
         clen, = struct.unpack_from('<I', content, 28)    # fields checked by _record_at
         data = content[40 + clen:]

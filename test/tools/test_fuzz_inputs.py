@@ -251,6 +251,22 @@ def test_a_valid_bag_with_bytes_overwritten_or_cut_gives_a_bag_with_what_is_inta
             assert len(result.messages) == 40 and result.lost == 0
 
 
+@pytest.mark.parametrize('opcode', [0x01, 0x7F])   # a second Header; a later version's record
+def test_a_chunk_whose_opcode_is_overwritten_is_named_as_damage_at_its_offset(
+        folder, small_bag, opcode):
+    # found by the fuzz test above: the reader read past the record as another kind, and one
+    # message was lost with no damage said (the bag looked whole)
+    from mcap.reader import make_reader
+    import io
+    start = min(c.chunk_start_offset for c in make_reader(
+        io.BytesIO(small_bag)).get_summary().chunk_indexes)
+    data = bytearray(small_bag)
+    data[start] = opcode
+    result = read_safely(folder, data)
+    assert isinstance(result, Bag) and result.truncated and result.lost >= 1
+    assert [(d.kind, d.offset) for d in result.damage] == [('record', start)]
+
+
 @settings(deadline=None, database=None, max_examples=200)
 @given(field=st.sampled_from(['record length', 'uncompressed size', 'compression length',
                               'records length']),
