@@ -129,7 +129,8 @@ class Result:
     pivot_forces_n: dict = field(default_factory=dict)
     ball_joint_forces_n: dict = field(default_factory=dict)
     spring_forces_n: dict = field(default_factory=dict)
-    body_forces_n: dict = field(default_factory=dict)     # every force on the body, (3,)
+    body_forces_n: dict = field(default_factory=dict)     # every force on the body, (3,):
+    # keys: arm pivots as pivot_forces_n, f'{link}_base', f'{spring}_body'
     body_points_mm: dict = field(default_factory=dict)    # where each acts
     body_couples_nmm: np.ndarray = field(default_factory=lambda: np.zeros(3))
     residual: float = math.nan
@@ -379,12 +380,12 @@ class EnergyModel:
                 u = unit(c - b)
                 res.link_forces_n[part.name] = lam[k]
                 res.ball_joint_forces_n[part.name] = -lam[k] * u
-                res.body_forces_n[part.name] = lam[k] * u
+                res.body_forces_n[f'{part.name}_base'] = lam[k] * u
                 if part.bushing:    # what the bushing passes on, springs on the link included
-                    res.body_forces_n[part.name] = stiffness(
+                    res.body_forces_n[f'{part.name}_base'] = stiffness(
                         unit(part.carrier - part.base[0]), part.bushing['axial'],
                         part.bushing['radial']) @ q[part.index:part.index + 3]
-                res.body_points_mm[part.name] = b.real
+                res.body_points_mm[f'{part.name}_base'] = b.real
                 k += 1
             else:
                 k += 2
@@ -393,13 +394,13 @@ class EnergyModel:
             length = np.linalg.norm(end - sp.body)
             res.spring_forces_n[sp.name] = sp.rate * (sp.free_length - length)
             push = res.spring_forces_n[sp.name] * unit(end - sp.body)    # on the moving end
-            res.body_forces_n[sp.name] = -push
-            res.body_points_mm[sp.name] = sp.body
+            res.body_forces_n[f'{sp.name}_body'] = -push
+            res.body_points_mm[f'{sp.name}_body'] = sp.body
             if sp.on == 'link':     # a link shares a load on its line between its two ends
                 name = self.parts[sp.part].name
                 res.ball_joint_forces_n[name] = res.ball_joint_forces_n[name] + sp.fraction * push
                 if not self.parts[sp.part].bushing:
-                    res.body_forces_n[name] = res.body_forces_n[name] + (1 - sp.fraction) * push
+                    res.body_forces_n[f'{name}_base'] += (1 - sp.fraction) * push
         return res
 
     def _arm_body_forces(self, q, part, res):

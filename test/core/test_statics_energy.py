@@ -100,6 +100,24 @@ def test_reference_forces_on_the_body_balance_the_load(name):
                                atol=1e-9 * scale * np.abs(wc).max())
 
 
+@pytest.mark.parametrize('name', BUSHED)
+def test_reference_ball_joint_forces_balance_the_load_on_the_carrier(name):
+    # The carrier is held by its ball joints and the held height only (no spring is mounted
+    # on a bundled bushed scene's carrier), so their forces on it and the load sum to zero.
+    model = EnergyModel(scene_data(name))
+    assert all(sp.on != 'carrier' for sp in model.springs)
+    force, moment = np.array([800.0, -500.0, 300.0]), np.array([30.0, -20.0, 80.0])
+    res = model.solve(-25.0, force_n=force, at='wc', moment_nm=moment)
+    wc, up = res.wheel_center_mm, np.array([0.0, 0.0, res.holding_force_n])
+    joints = {p.name: model.carrier_point(res.q, p.carrier) for p in model.parts
+              if p.kind != 'line'}
+    scale = max(np.abs(f).max() for f in res.ball_joint_forces_n.values())
+    np.testing.assert_allclose(sum(res.ball_joint_forces_n.values()) + force + up, 0.0,
+                               atol=1e-9 * scale)
+    turning = sum(np.cross(joints[k] - wc, f) for k, f in res.ball_joint_forces_n.items())
+    np.testing.assert_allclose(turning + moment * 1000.0, 0.0, atol=1e-9 * scale * 1000.0)
+
+
 # --- the comparison with linkage_ros.core.statics --------------------------------------------
 
 def statics():
@@ -136,6 +154,7 @@ def test_loaded_pose_and_forces_agree_with_the_energy_reference(name, load):
         assert_forces_agree(got.ball_joint_forces_n, want.ball_joint_forces_n,
                             'ball_joint_forces_n')
         assert_forces_agree(got.spring_forces_n, want.spring_forces_n, 'spring_forces_n')
+        assert_forces_agree(got.body_forces_n, want.body_forces_n, 'body_forces_n')
 
 
 @pytest.mark.parametrize('name', ['double_wishbone', 'chrono_sedan_doublewishbone_bushings'])
