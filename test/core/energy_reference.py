@@ -22,6 +22,7 @@ from dataclasses import dataclass, field
 import math
 
 import numpy as np
+from scipy.linalg import null_space
 import yaml
 
 UNIT_MM = {'mm': 1.0, 'm': 1000.0}
@@ -135,6 +136,7 @@ class Result:
     body_couples_nmm: np.ndarray = field(default_factory=lambda: np.zeros(3))
     residual: float = math.nan
     q: np.ndarray | None = None
+    min_curvature: float = math.nan     # > 0: a minimum of the potential, not a saddle
 
 
 class EnergyModel:
@@ -349,7 +351,9 @@ class EnergyModel:
             if size > 0.5 * last:
                 matrix = None
             last = size
-        return self.forces(z, rack, travel, force, point, moment, np.max(np.abs(r)))
+        res = self.forces(z, rack, travel, force, point, moment, np.max(np.abs(r)))
+        res.min_curvature = _least_curvature(self._newton_matrix(lagrange, z, r), self.size)
+        return res
 
     def _newton_matrix(self, lagrange, z, r):
         """Return Newton's matrix: forward differences (exact in the multipliers: linear)."""
@@ -427,6 +431,17 @@ def _bushing(item, s):
             'torsion': float(item.get('torsion', 0.0)) * NM_PER_DEG,
             'conical': float(item.get('conical', 0.0)) * NM_PER_DEG,
             'at': item.get('at', 'pivots')}
+
+
+def _least_curvature(matrix, n):
+    """
+    Return the least eigenvalue of the Lagrangian's Hessian on the constraints' tangent space.
+
+    matrix: Newton's matrix [[H, J^T], [J, 0]] with n unknowns q; > 0 at a strict minimum.
+    """
+    basis = null_space(matrix[n:, :n])
+    hessian = basis.T @ matrix[:n, :n] @ basis
+    return float(np.linalg.eigvalsh(0.5 * (hessian + hessian.T)).min())
 
 
 def _normals(direction):

@@ -85,6 +85,14 @@ def test_reference_link_bushing_deflection_is_the_link_force_over_its_rate():
 
 
 @pytest.mark.parametrize('name', BUSHED)
+def test_reference_equilibrium_is_a_minimum_of_the_potential(name):
+    # The stationary point Newton finds is the minimum the method is named for: the Hessian
+    # of the Lagrangian is positive definite on the constraints' tangent space.
+    res = EnergyModel(scene_data(name)).solve(-20.0, force_n=(0.0, 1500.0, 0.0), at='cp')
+    assert res.min_curvature > 0.0
+
+
+@pytest.mark.parametrize('name', BUSHED)
 def test_reference_forces_on_the_body_balance_the_load(name):
     model = EnergyModel(scene_data(name))
     force, moment = np.array([800.0, -500.0, 300.0]), np.array([30.0, -20.0, 80.0])
