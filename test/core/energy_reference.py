@@ -137,6 +137,7 @@ class Result:
     residual: float = math.nan
     q: np.ndarray | None = None
     min_curvature: float = math.nan     # > 0: a minimum of the potential, not a saddle
+    load_point_mm: np.ndarray | None = None   # where the load's point (carrier-fixed) is
 
 
 class EnergyModel:
@@ -159,6 +160,7 @@ class EnergyModel:
             n += part.size
             self.parts.append(part)
         self.size = n
+        self._free = {}
         self.springs = [self._spring(e, s) for e in data.get('elements') or []
                         if e.get('type') == 'spring' and e.get('rate') is not None]
 
@@ -311,16 +313,20 @@ class EnergyModel:
         The contact patch is the lowest point of the wheel circle in the zero-load
         equilibrium at that travel and rack, fixed in the carrier.
         """
-        start = self.kinematic(travel_mm, rack_mm)
         force, moment = np.asarray(force_n, float), np.asarray(moment_nm, float) * 1000.0
-        point = self.m0
+        key = (float(travel_mm), float(rack_mm))
+        if key not in self._free:       # the zero-load equilibrium, kept for later loads
+            start = self.kinematic(travel_mm, rack_mm)
+            self._free[key] = self.equilibrium(start, travel_mm, rack_mm, np.zeros(3), self.m0,
+                                               np.zeros(3))
+        free, point = self._free[key], self.m0
+        start = free.q
         if at == 'cp':
-            free = self.equilibrium(start, travel_mm, rack_mm, np.zeros(3), self.m0, np.zeros(3))
             rot, wc = exp_so3(free.q[3:6]).real, free.q[0:3]
             spin = unit(rot @ (self.m0 - self.n0))
             up = np.array([0.0, 0.0, 1.0]) - spin[2] * spin
             cp = wc - self.radius * unit(up)
-            point, start = rot.T @ (cp - wc) + self.m0, free.q
+            point = rot.T @ (cp - wc) + self.m0
         return self.equilibrium(start, travel_mm, rack_mm, force, point, moment, tol)
 
     def equilibrium(self, q0, travel, rack, force, point, moment, tol=1e-13):
@@ -370,7 +376,8 @@ class EnergyModel:
         q, lam = z[:self.size], z[self.size:]
         rot = exp_so3(q[3:6]).real
         camber, toe = camber_toe_deg(rot @ (self.m0 - self.n0), self.side)
-        res = Result(camber, toe, q[0:3].copy(), rot, -lam[-1], residual=residual, q=q)
+        res = Result(camber, toe, q[0:3].copy(), rot, -lam[-1], residual=residual, q=q,
+                     load_point_mm=self.carrier_point(q, point).real)
         k = 0
         for part in self.parts:
             c = self.carrier_point(q, part.carrier)
