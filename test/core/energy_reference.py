@@ -165,9 +165,14 @@ class EnergyModel:
                         if e.get('type') == 'spring' and e.get('rate') is not None]
 
     def _spring(self, item, s):
-        on = next(k for k in ('carrier', 'arm', 'link') if k in item)
-        point = np.array(item['carrier'] if on == 'carrier' else item['point'], float) * s
-        spring = Spring(item['name'], np.array(item['body'], float) * s, point, on,
+        on = next(k for k in ('carrier', 'arm', 'link', 'along') if k in item)
+        if on == 'along':   # a strut's own length: top mount to its carrier point
+            strut = next(p for p in self.parts if p.name == item['along'])
+            on, body, point = 'carrier', strut.base[0], strut.carrier
+        else:
+            body = np.array(item['body'], float) * s
+            point = np.array(item['carrier'] if on == 'carrier' else item['point'], float) * s
+        spring = Spring(item['name'], body, point, on,
                         rate=float(item['rate']) / s, free_length=float(item['free_length']) * s)
         if on != 'carrier':
             spring.part = [p.name for p in self.parts].index(item[on])
