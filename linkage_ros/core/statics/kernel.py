@@ -1,8 +1,9 @@
 """
 The statics compiled (numba): the Lagrangian's derivatives and Newton on the KKT system.
 
-A System is packed into arrays (pack.py, Model below). The same equations as system.py and newton.py, which stay as the
-check (test_statics_kernel compares them); see there for the model and the signs.
+A System is packed into arrays (pack.py, Model below). The same equations as system.py and
+newton.py, which stay as the check (test_statics_kernel compares them); see there for the
+model and the signs.
 
 A term is a constraint row or an energy, on up to 3 weighted items grouped into up to 2
 points (x_p = sum of w x_item): kinds LINK, BALL, LINE, TRAVEL (the constraints, in
