@@ -51,6 +51,8 @@ def test_the_statics_kernel_names_the_digest_of_each_file_it_compiles_in(source,
 
 def test_the_rotational_energy_has_exact_derivatives_in_the_left_increment():
     """
+    The bushing's rotational energy has its gradient and Hessian exact.
+
     E(exp(w) R) = phi.K phi / 2, phi = log(exp(w) R): gradient and Hessian at w = 0 against
     central differences (h = 1e-4 rad: h^2 truncation 1e-8, round-off 1e-12 / h^2 = 1e-4 of
     the Hessian's own finite difference; gradient to 1e-7, Hessian to 1e-5 relative).
