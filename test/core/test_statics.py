@@ -164,6 +164,11 @@ def test_a_rigid_scene_keeps_its_kinematic_pose_and_its_forces_balance(scene_nam
     assert abs(res.toe_deg - np.degrees(kin.toe)) < 1e-9
     net_f, net_m, scale = balance(res, load)
     assert np.abs(net_f).max() < 1e-9 * scale and np.abs(net_m).max() < 1e-9 * scale * 1000
+    for c in scene.constraints:   # a rigid revolute shares its axial force equally
+        if c.type == 'circle':
+            along = (c.base[1] - c.base[0]) / np.linalg.norm(c.base[1] - c.base[0])
+            shares = [res.pivot_forces_n[f'{c.name}_{end}'] @ along for end in ('axis0', 'axis1')]
+            assert shares[0] == pytest.approx(shares[1], rel=1e-9, abs=1e-9 * scale)
 
 
 def test_a_rigid_double_wishbone_holds_a_lateral_load_as_virtual_work_says():
