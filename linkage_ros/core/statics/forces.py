@@ -72,10 +72,10 @@ def pickup_forces(scene, system, eq, force: np.ndarray) -> dict:
             c = scene.constraints[j]
             for end, f in zip(('axis0', 'axis1'), _pivots(c.base, arm_loads.get(k, []))):
                 add(f'{c.name}_{end}', c.base[0 if end == 'axis0' else 1], f)
-    pivots = {key: f for key, f in body.items()
-              if any(key.startswith(f'{c.name}_') and c.type == 'circle'
-                     and key[len(c.name) + 1:] in ('axis0', 'axis1', 'centre')
-                     for c in scene.constraints)}
+    arms = [b.key for b in system.bushings if scene.constraints[b.constraint].type == 'circle']
+    arms += [f'{c.name}_{end}' for c in scene.constraints
+             if c.type == 'circle' and c.bushing is None for end in ('axis0', 'axis1')]
+    pivots = {key: body[key] for key in arms}
     return {'link_forces_n': links, 'ball_joint_forces_n': balls, 'spring_forces_n': springs,
             'pivot_forces_n': pivots, 'body_forces_n': body, 'body_points_mm': points,
             'body_moments_nm': moments}
