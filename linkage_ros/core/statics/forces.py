@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .rotation import energy_terms, log_so3, skew
+from .rotation import energy_terms, log_so3
 from .system import Item, point_of, position, spring_terms
 from ..base.geometry import cross
 
@@ -72,10 +72,10 @@ def pickup_forces(scene, system, eq, force: np.ndarray) -> dict:
             c = scene.constraints[j]
             for end, f in zip(('axis0', 'axis1'), _pivots(c.base, arm_loads.get(k, []))):
                 add(f'{c.name}_{end}', c.base[0 if end == 'axis0' else 1], f)
-    pivots = {key: f for key, f in body.items()
-              if any(key.startswith(f'{c.name}_') and c.type == 'circle'
-                     and key[len(c.name) + 1:] in ('axis0', 'axis1', 'centre')
-                     for c in scene.constraints)}
+    arms = [b.key for b in system.bushings if scene.constraints[b.constraint].type == 'circle']
+    arms += [f'{c.name}_{end}' for c in scene.constraints
+             if c.type == 'circle' and c.bushing is None for end in ('axis0', 'axis1')]
+    pivots = {key: body[key] for key in arms}
     return {'link_forces_n': links, 'ball_joint_forces_n': balls, 'spring_forces_n': springs,
             'pivot_forces_n': pivots, 'body_forces_n': body, 'body_points_mm': points,
             'body_moments_nm': moments}
@@ -85,17 +85,15 @@ def _pivots(axis_points, loads):
     """
     Return the forces (3,) N a rigid revolute's pivots exert on the body.
 
-    loads: those on its arm [(point (3,), force (3,)), ...]; the axial force is shared
-    equally (the least-norm pair).
+    loads: those on its arm [(point (3,), force (3,)), ...]. The reactions on the arm, P0 at
+    axis[0] and P1 at axis[1], balance them: P0 + P1 = -F, L x P1 = -M (moments about axis[0],
+    L = axis[1] - axis[0]; M has no part along L at equilibrium). That fixes P1 across L,
+    -(M x L) / |L|^2; along L the axial force is shared equally (the least-norm pair).
     """
     a0, a1 = axis_points
     total = sum((f for _, f in loads), np.zeros(3))
     moment = sum((cross(p - a0, f) for p, f in loads), np.zeros(3))
-    scale = float(np.linalg.norm(a1 - a0))
-    # reactions on the arm P0 at a0, P1 at a1: P0 + P1 = -total, (a1 - a0) x P1 = -moment
-    lhs = np.zeros((6, 6))
-    lhs[:3, :3], lhs[:3, 3:] = np.eye(3), np.eye(3)
-    lhs[3:, 3:] = skew(a1 - a0) / scale
-    rhs = np.concatenate((-total, -moment / scale))
-    react = np.linalg.lstsq(lhs, rhs, rcond=None)[0]
-    return -react[:3], -react[3:]
+    span = a1 - a0
+    along = span / np.linalg.norm(span)
+    p1 = -cross(moment, span) / (span @ span) - 0.5 * (total @ along) * along
+    return total + p1, -p1   # on the body: -P0 = F + P1, -P1
