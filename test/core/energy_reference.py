@@ -23,7 +23,6 @@ import math
 
 import numpy as np
 from scipy.linalg import null_space
-import yaml
 
 UNIT_MM = {'mm': 1.0, 'm': 1000.0}
 NM_PER_DEG = 1000.0 * 180.0 / math.pi     # N m/deg -> N mm/rad
