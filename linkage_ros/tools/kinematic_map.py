@@ -23,7 +23,7 @@ import yaml
 
 from .map_files import FORMATS, map_files, UNREACHED, write_map, write_unreached
 from .map_grid import axle_grid_map, AXLE_QUANTITIES, corner_map, Grid, GridMap, quantities
-from .map_memory import memory_needed, memory_room
+from .map_memory import memory_needed, refuse_if_short
 from ..cli import EXIT_STATUS, fail, Parser, program, same_file, SPAN, span, warn
 from ..core.axle import axle_of
 from ..core.base import LinkageError
@@ -182,12 +182,8 @@ def solve_axle(axle, travel):
 def check_memory(jobs, formats):
     """Refuse maps that need more memory than this process may take (LinkageError)."""
     need = memory_needed(jobs, 'parquet' in formats)
-    room = memory_room()
-    if room is not None and room.wanted(need) > room.size:
-        raise LinkageError('grid', f'{need.points:,} points need about '
-                           f'{_gb(room.wanted(need))} of memory and {_gb(room.size)} is '
-                           f'available ({room.limit}): take a larger --travel or --rack '
-                           'step, or a shorter range')
+    refuse_if_short(need, 'grid', f'{need.points:,} points',
+                    'take a larger --travel or --rack step, or a shorter range')
 
 
 def check_names(folder, jobs, formats, inputs):
@@ -242,10 +238,6 @@ def output_folder(text):
     if not os.access(folder, os.W_OK):
         raise LinkageError('-o', f'cannot write into the folder {text}')
     return folder
-
-
-def _gb(value):
-    return f'{value / 1e9:,.1f} GB'
 
 
 @program(PROG)
