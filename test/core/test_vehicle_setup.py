@@ -20,7 +20,7 @@ NMM_PER_RAD_TO_NM_PER_DEG = math.pi / 180.0 / 1000.0
 
 
 def energy(axle, roll):
-    """Return the total elastic energy (N mm) of springs and bar at rolls (rad), heave 0."""
+    """Return the springs' and the bar's stored work, N mm, at rolls phi (rad)."""
     result = solve_axle(axle, 0.0, roll)
     assert result.success, result.message
     return sum(p.energy for p in elastic_parts(axle, result).values())
@@ -141,4 +141,3 @@ def test_the_textbook_roll_stiffness_is_within_a_percent_of_the_exact_one_at_des
         exact, book = (rows[axle][f'roll_stiffness{k}_Nm_per_deg'] for k in ('', '_textbook'))
         assert book != exact
         assert book == pytest.approx(exact, rel=0.01)
-

@@ -70,8 +70,8 @@ def test_csv_and_plot_write_their_files(tmp_path, capsys):
     ('  sprung: 1280.0                 # kg\n', '', 'mass.sprung'),
     ('  unsprung: {front: 70.0, rear: 90.0}', '', 'mass.unsprung'),
 ])
-def test_bad_mass_data_is_one_line_naming_the_key_and_status_2(tmp_path, capsys, old, new,
-                                                              named):
+def test_bad_mass_data_is_one_line_naming_the_key_and_status_2(
+        tmp_path, capsys, old, new, named):
     status, out, err = run([edited(tmp_path, old, new)], capsys)
     assert status == 2
     assert out == ''
