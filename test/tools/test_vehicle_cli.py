@@ -99,3 +99,18 @@ def test_a_missing_cg_height_is_named_as_the_key_the_roll_quantities_need(tmp_pa
     status, _, err = run([str(path)], capsys)
     assert status == 2
     assert 'mass.cg_height' in err and 'missing' in err
+
+
+def test_a_table_beyond_a_corners_travel_limits_stops_there_with_status_1(tmp_path, capsys):
+    # the front scene's travel block at +-30 mm: the roll table's +-3 deg asks the wheels for
+    # (t / 2) tan(3 deg) = 39.8 mm, so it stops at the first roll past 30 mm
+    scene = (vehicle_dir().parent / 'scenes' / 'double_wishbone.yaml').read_text()
+    assert 'travel: {min: -80, max: 80, step: 1}' in scene
+    (tmp_path / 'short.yaml').write_text(scene.replace('travel: {min: -80, max: 80, step: 1}',
+                                                       'travel: {min: -30, max: 30, step: 1}'))
+    car = DEMO.read_text().replace('scene: double_wishbone,', 'scene: short.yaml,')
+    (tmp_path / 'car.yaml').write_text(car)
+    status, out, err = run([str(tmp_path / 'car.yaml')], capsys)
+    assert status == 1
+    assert [r['axle'] for r in csv.DictReader(io.StringIO(out))] == ['front', 'rear', 'vehicle']
+    assert 'beyond its travel limits -30 to 30 mm' in err
