@@ -141,3 +141,49 @@ def test_the_textbook_roll_stiffness_is_within_a_percent_of_the_exact_one_at_des
         exact, book = (rows[axle][f'roll_stiffness{k}_Nm_per_deg'] for k in ('', '_textbook'))
         assert book != exact
         assert book == pytest.approx(exact, rel=0.01)
+
+
+def test_the_pitch_centre_lies_on_both_axles_side_view_force_lines():
+    vehicle = load_vehicle('demo_vehicle')
+    sheet = setup_sheet(vehicle)
+    car = sheet.rows['vehicle']
+    for case in ('braking', 'drive'):
+        for s in sheet.axles.values():
+            patch = case == 'braking' and s.axle.brakes == 'outboard'
+            point = (s.design.contact_patch if patch else s.design.wheel_center)[0, 0]
+            velocity = (s.design.patch_velocity if patch else s.design.center_velocity)[0, 0]
+            ground = s.design.contact_patch[0, :, 2].mean()
+            centre = np.array([car[f'pitch_centre_{case}_x_mm'],
+                               car[f'pitch_centre_{case}_height_mm'] + ground])
+            offset = centre - point[[0, 2]]
+            # square to the point's side-view velocity: the line of the force it passes
+            cosine = offset @ velocity[[0, 2]] / np.linalg.norm(offset) / np.linalg.norm(
+                velocity[[0, 2]])
+            assert abs(cosine) < 1e-9
+
+
+def test_the_pitch_gradient_under_braking_adds_springs_less_anti_and_tyres():
+    vehicle = load_vehicle('demo_vehicle')
+    rows = setup_sheet(vehicle).rows
+    mass = vehicle.mass
+    height = (mass.sprung * mass.cg_height + 2.0 * sum(
+        mass.unsprung[a] * mass.unsprung_cg_height[a] for a in ('front', 'rear'))) / mass.total
+    wheelbase = rows['vehicle']['wheelbase_mm']
+    transfer = mass.total * G * height / wheelbase                   # N at 1 g
+    anti = {'front': rows['front']['anti_dive_pct'], 'rear': rows['rear']['anti_lift_pct']}
+    dive = sum(transfer * ((1.0 - anti[a] / 100.0) / (2.0 * rows[a]['wheel_rate_N_per_mm'])
+                           + 1.0 / (2.0 * rows[a]['tyre_rate_N_per_mm']))
+               for a in ('front', 'rear'))                            # mm
+    assert rows['vehicle']['pitch_gradient_braking_deg_per_g'] == pytest.approx(
+        math.degrees(dive / wheelbase), rel=1e-12)
+
+
+def test_the_steering_ratio_is_the_mean_steers_slope_at_rack_0():
+    vehicle = load_vehicle('demo_vehicle')
+    axle = axle_of(vehicle, 'front')
+    h = 0.01   # mm: the slope of the solves themselves, to h^2 (about 1e-8 relative)
+    result = solve_axle(axle, 0.0, 0.0, np.array([-h, h]))
+    slope = math.degrees(result.mean_steer[1] - result.mean_steer[0]) / (2.0 * h)
+    # the sheet's table has 1 mm steps: its second-order difference is off by h^2 f''' / 6
+    assert setup_sheet(vehicle).rows['front']['steering_ratio_deg_per_mm'] == pytest.approx(
+        slope, rel=1e-4)
