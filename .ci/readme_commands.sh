@@ -35,6 +35,7 @@ step kinematic map
 step vehicle setup sheet
 .venv/bin/linkage-vehicle demo_vehicle > /dev/null; echo "rc=$?"
 .venv/bin/linkage-vehicle demo_vehicle --csv sheet.csv --plot sheet.png; echo "rc=$?"; cut -d, -f1-4 sheet.csv
+.venv/bin/linkage-vehicle demo_vehicle --tables sheet_tables > /dev/null; echo "rc=$?"; ls sheet_tables
 step misspelt parameter
 .venv/bin/suspension_node --ros-args -p sceen:=macpherson; echo "rc=$?"
 step python snippet of README.md

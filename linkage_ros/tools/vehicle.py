@@ -1,19 +1,22 @@
 """
 linkage-vehicle: the setup sheet of a vehicle: rates, frequencies, roll, load transfer, pitch.
 
-    linkage-vehicle VEHICLE [--csv FILE] [--plot FILE]
+    linkage-vehicle VEHICLE [--csv FILE] [--plot FILE] [--tables DIR]
 
 One table (CSV), a row per axle (front, rear) and one for the vehicle, the units in the column
 names (doc/vehicle.md gives every formula and its source, doc/quantities.md every column). The
 vehicle file needs `mass` and `tyre_rate` (config/vehicles/demo_vehicle.yaml); without them it
-has no setup sheet, and says so in one line.
+has no setup sheet, and says so in one line. --tables writes each axle's quantities over
+heave, roll and rack (front_heave.csv, front_roll.csv, front_rack.csv, rear_heave.csv, ...).
 """
 
 import csv
 import math
 import sys
 
-from ..cli import EXIT_STATUS, fail, Parser, plot_problem, program, warn, writable_file
+from ..cli import (EXIT_STATUS, fail, output_folder, Parser, plot_problem, program, warn,
+                   writable_file)
+from ..core.base import LinkageError
 from ..core.model import load_vehicle, SceneError
 from ..core.warmup import compile_if_cold
 
@@ -22,6 +25,7 @@ PROG = 'linkage-vehicle'
 EPILOG = """examples:
   linkage-vehicle demo_vehicle
   linkage-vehicle demo_vehicle --csv sheet.csv --plot sheet.png
+  linkage-vehicle demo_vehicle --tables sheet_tables
 
 columns (the axle rows, then the vehicle's; empty where a column is not the row's): axle,
 wheel_rate_N_per_mm, ride_rate_N_per_mm, ride_frequency_Hz, roll_stiffness_springs_Nm_per_deg,
@@ -42,6 +46,8 @@ def parse_args(argv):
                         help='write the sheet to this CSV file (default: stdout)')
     parser.add_argument('--plot', metavar='FILE', help='draw the sheet to this PNG file '
                         '(needs matplotlib)')
+    parser.add_argument('--tables', metavar='DIR', help="write each axle's heave, roll and "
+                        'rack tables into this folder (made if missing)')
     return parser.parse_args(argv)
 
 
@@ -93,6 +99,10 @@ def main(argv=None, rounds=0):
         problem = path and (plot_problem(path) if option == '--plot' else writable_file(path))
         if problem:
             return fail(PROG, f'{option}: {problem}')
+    try:
+        folder = args.tables and output_folder(args.tables, '--tables')
+    except LinkageError as exc:
+        return fail(PROG, exc)
     compile_if_cold(PROG)
     from ..core.vehicle import setup_sheet
     if rounds:
@@ -109,6 +119,11 @@ def main(argv=None, rounds=0):
     else:
         write_csv(header, rows, sys.stdout)
         sys.stdout.flush()
+    if folder:
+        for name, sheet_axle in sheet.axles.items():
+            for table, columns in sheet_axle.tables.items():
+                with open(folder / f'{name}_{table}.csv', 'w', newline='') as stream:
+                    write_csv(list(columns), [list(r) for r in zip(*columns.values())], stream)
     if args.plot:
         from .vehicle_plot import plot_sheet
         plot_sheet(sheet, args.plot)

@@ -4,6 +4,7 @@ import csv
 import io
 from pathlib import Path
 
+from linkage_ros.core.measure import quantities as registry
 from linkage_ros.core.model import vehicle_dir
 from linkage_ros.tools import vehicle as vehicle_tool
 import pytest
@@ -48,6 +49,22 @@ def test_the_sheet_has_a_row_per_axle_and_one_for_the_vehicle(capsys):
     assert 0.0 < float(rows['vehicle']['lltd_front_pct']) < 100.0
 
 
+def test_tables_are_written_per_axle_and_every_column_is_a_registered_quantity(tmp_path,
+                                                                               capsys):
+    status, out, err = run(['demo_vehicle', '--tables', str(tmp_path / 'tables')], capsys)
+    assert status == 0, err
+    header = next(csv.reader(io.StringIO(out)))
+    assert [n for n in header if not registry.known(n)] == []
+    written = sorted(p.name for p in (tmp_path / 'tables').iterdir())
+    assert written == ['front_heave.csv', 'front_rack.csv', 'front_roll.csv', 'rear_heave.csv',
+                       'rear_roll.csv']
+    for name in written:
+        with open(tmp_path / 'tables' / name, newline='') as f:
+            rows = list(csv.reader(f))
+        assert [n for n in rows[0] if not registry.known(n)] == []
+        assert len(rows) - 1 == {'heave': 31, 'roll': 25, 'rack': 61}[name[:-4].split('_')[1]]
+
+
 def test_csv_and_plot_write_their_files(tmp_path, capsys):
     table, picture = tmp_path / 'sheet.csv', tmp_path / 'sheet.png'
     status, out, err = run(['demo_vehicle', '--csv', str(table), '--plot', str(picture)], capsys)
@@ -69,6 +86,8 @@ def test_csv_and_plot_write_their_files(tmp_path, capsys):
     ('tyre_rate: {front: 250.0, rear: 260.0}', '', 'tyre_rate'),
     ('  sprung: 1280.0                 # kg\n', '', 'mass.sprung'),
     ('  unsprung: {front: 70.0, rear: 90.0}', '', 'mass.unsprung'),
+    ('front_share: 0.54', 'front_share: 0.54\n  cg_height: 600.0', 'mass.cg_height'),
+    ('front_share: 0.54', 'front_share: 0.54\n  cg_x: 0.0', 'mass.front_share'),
 ])
 def test_bad_mass_data_is_one_line_naming_the_key_and_status_2(
         tmp_path, capsys, old, new, named):
