@@ -11,7 +11,7 @@ from linkage_ros.core.axle import axle_of, solve_axle
 from linkage_ros.core.measure import element_values
 from linkage_ros.core.model import load_vehicle, vehicle_dir
 from linkage_ros.core.vehicle import (elastic_parts, G, load_transfer, roll_gradient,
-                                      roll_stiffness, series, setup_sheet)
+                                      roll_moment, roll_stiffness, series, setup_sheet)
 import numpy as np
 import pytest
 
@@ -45,6 +45,21 @@ def test_roll_stiffness_is_the_second_difference_of_the_elastic_energy_over_roll
     # round-off of V (poses to 1e-10 mm) over h^2 stays near 1e-8 relative at h = 5e-4 rad
     estimate = (4.0 * second_difference(5e-4) - second_difference(1e-3)) / 3.0
     assert estimate == pytest.approx(exact, rel=1e-6)
+
+
+@pytest.mark.parametrize('axle_name', ['front', 'rear'])
+def test_roll_stiffness_is_the_derivative_of_the_roll_moment_and_that_of_the_energy(axle_name):
+    axle = axle_of(load_vehicle('demo_vehicle'), axle_name)
+    phi, h = math.radians(2.0), 1e-4
+    result = solve_axle(axle, 0.0, phi + np.array([-h, 0.0, h]))
+    parts = elastic_parts(axle, result).values()
+    moment = sum(roll_moment(p, axle.design_track, result.roll) for p in parts)   # N mm
+    stiffness = sum(roll_stiffness(p, axle.design_track, result.roll) for p in parts)
+    energy = sum(p.energy for p in parts)
+    # central differences: error h^2 / 6 of the third derivative, about 1e-9 relative here
+    assert moment[1] == pytest.approx((energy[2] - energy[0]) / (2.0 * h), rel=1e-7)
+    assert stiffness[1] == pytest.approx((moment[2] - moment[0]) / (2.0 * h)
+                                         * NMM_PER_RAD_TO_NM_PER_DEG, rel=1e-7)
 
 
 def test_the_bars_energy_hessian_gives_the_bars_own_roll_stiffness():
