@@ -32,6 +32,10 @@ step sweep elements
 .venv/bin/linkage-sweep double_wishbone --travel -40:40:40 --elements 2>/dev/null | cut -d, -f1,13-; echo "rc=${PIPESTATUS[0]}"
 step kinematic map
 .venv/bin/linkage-map double_wishbone -o maps; echo "rc=$?"; ls maps
+step vehicle setup sheet
+.venv/bin/linkage-vehicle demo_vehicle > /dev/null; echo "rc=$?"
+.venv/bin/linkage-vehicle demo_vehicle --csv sheet.csv --plot sheet.png; echo "rc=$?"; cut -d, -f1-4 sheet.csv
+.venv/bin/linkage-vehicle demo_vehicle --tables sheet_tables > /dev/null; echo "rc=$?"; ls sheet_tables
 step misspelt parameter
 .venv/bin/suspension_node --ros-args -p sceen:=macpherson; echo "rc=$?"
 step python snippet of README.md
@@ -105,6 +109,7 @@ if [ "${LONG:-0}" = 1 ]; then
     .venv/bin/linkage-bench map double_wishbone --rounds 20 > /dev/null; echo "rc=$?"
     .venv/bin/linkage-bench axle demo_vehicle --axle front --rounds 21 > /dev/null; echo "rc=$?"
     .venv/bin/linkage-bench axle demo_vehicle --axle rear --roll -3:3:0.5 --heave -40:40:10 --rounds 11 > /dev/null; echo "rc=$?"
+    .venv/bin/linkage-bench vehicle demo_vehicle --rounds 3 > /dev/null; echo "rc=$?"
     .venv/bin/linkage-bench accuracy --quick -o bench-report; echo "rc=$?"
     ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST .venv/bin/linkage-bench node --plot node_latency.png > node_bench.csv; echo "rc=$?"
     ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST .venv/bin/linkage-bench soak > soak.csv; echo "rc=$?"

@@ -7,11 +7,12 @@ linkage-bench: every benchmark of linkage_ros, one subcommand each.
     linkage-bench sweep SCENE [...]    paper and fast sweeps side by side (linkage-sweep)
     linkage-bench axle [VEHICLE] [...] an axle position against corner positions
     linkage-bench map SCENE [...]      map answers with and without the elements
+    linkage-bench vehicle VEHICLE [...] the setup sheet at 1x, 10x, 100x its tables (sheet.py)
     linkage-bench study [...]          tolerance, sensitivity and fit (study/bench.py)
     linkage-bench replay [BAG] [...]   solving recorded commands with and without recording
 
 Each subcommand takes the options of the program it times (SUBCOMMAND --help lists them);
-sweep, axle and map take --rounds N too. The earlier entry points (linkage-node-bench,
+sweep, axle, map and vehicle take --rounds N too. The earlier entry points (linkage-node-bench,
 linkage-soak, linkage-bench without a subcommand, --benchmark of linkage-sweep, linkage-axle
 and linkage-map) still work for one release, each with a note on stderr.
 """
@@ -28,6 +29,7 @@ EPILOG = """examples:
   linkage-bench sweep five_link --travel -80:80:1 --rounds 5
   linkage-bench axle demo_vehicle --axle front --rounds 21
   linkage-bench map double_wishbone --rounds 20
+  linkage-bench vehicle demo_vehicle --rounds 3
 
 exit status: as the program timed; """ + EXIT_STATUS
 
@@ -69,6 +71,7 @@ def _timed(module):
 
 COMMANDS = {'accuracy': _accuracy, 'node': _node, 'soak': _soak,
             'sweep': _timed('sweep'), 'axle': _timed('axle'), 'map': _timed('kinematic_map'),
+            'vehicle': _timed('vehicle'),
             'study': _study, 'replay': _replay}
 
 
