@@ -226,8 +226,6 @@ def formats_option(text):
     return kinds
 
 
-
-
 @program(PROG)
 def main(argv: list[str] | None = None, rounds: int = 0) -> int:
     """
