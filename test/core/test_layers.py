@@ -33,6 +33,7 @@ ALLOWED = {
     'measure': {'base', 'model', 'solve', 'measure'},
     'axle': {'base', 'model', 'solve', 'measure', 'axle'},
     'vehicle': {'base', 'model', 'solve', 'measure', 'axle', 'vehicle'},
+    'statics': {'base', 'model', 'solve', 'measure', 'statics'},
 }
 
 
