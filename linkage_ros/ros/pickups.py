@@ -1,0 +1,151 @@
+"""
+Statics of a corner for suspension_node: the loaded pose, and each pickup's force.
+
+The loaded pose at the last contact wrench, each body pickup's force as a
+geometry_msgs/WrenchStamped:
+
+    statics = CornerStatics(scene, frame_id='base_link', prefix='')
+    statics.set_wrench(force_n, moment_nm)   the tyre's wrench at the contact patch (vehicle
+                                             frame, N and N m); zero until one is set
+    statics.use_frames(on)                   pickups in their own TF frames (on) or frame_id
+    loaded, outputs = statics.load(solution, stamp)
+        loaded: the kinematic Solution with the loaded pose put in its place (wheel centre,
+        rotation, quaternion, camber, toe), or a failed Solution (Status.NOT_CARRIED) with no
+        pose; outputs: [('pickup/<name>', WRENCH_TYPE, CDR bytes)], one per body pickup
+    pickup_points(scene) -> {name: point (3,) mm}   the body pickups, design, vehicle frame
+    pickup_frame(prefix, name)                      the TF frame of a pickup
+
+The loaded pose is linkage_ros.core.statics.solve_loaded's at the travel and rack that the
+kinematic continuation solved, for a load at the contact patch (at='cp'): the node's
+answers are then those of the core, bit for bit. A pickup's wrench is the force on the body
+at that pickup (N, vehicle frame orientation), torque zero (a pickup is a point). Its
+header names the pickup's frame (static TF at the design pickup point, orientation of the
+vehicle frame; ros/tf.py publishes it on /tf_static), so that RViz's and Foxglove's wrench
+displays draw the arrow at the pickup; where those frames are not published (tf off, or
+tf2_msgs missing) it names the vehicle frame, and the pickup point is that of
+pickup_points (doc/node.md).
+
+ROS-free (cdr only). CornerStatics imports the statics core, only where statics is on: a
+scene without bushings and without parameter statics loads none of it (pickup_points, which
+linkage-rerun draws with, needs none).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from ..cdr import wrench_stamped_cdr
+from ..core.base import LinkageError, quaternion_from_matrix, Status
+
+if TYPE_CHECKING:
+    from ..core.model import Scene
+    from ..core.solve import Solution
+
+WRENCH_TYPE = 'geometry_msgs/msg/WrenchStamped'
+PICKUP = 'pickup'          # the topics' folder: <corner>/pickup/<name>
+ZERO = (0.0, 0.0, 0.0)
+
+
+def pickup_points(scene: Scene) -> dict[str, np.ndarray]:
+    """
+    Return {pickup name: body point (3,) mm at design, vehicle frame} of the body pickups.
+
+    The names of the statics core (Loaded.pivot_forces_n, link_forces_n): a link's by its
+    name at its base point, an arm's '<arm>_axis0' and '<arm>_axis1' at its pivots, or
+    '<arm>_centre' at their midpoint for a bushing at: centre.
+    """
+    points = {}
+    for c in scene.constraints:
+        if c.type == 'circle':
+            bushing = getattr(c, 'bushing', None)
+            if bushing is not None and bushing.at == 'centre':
+                points[f'{c.name}_centre'] = (c.base[0] + c.base[1]) / 2
+            else:
+                points[f'{c.name}_axis0'] = c.base[0].copy()
+                points[f'{c.name}_axis1'] = c.base[1].copy()
+        else:
+            points[c.name] = c.base[0].copy()
+    return points
+
+
+def pickup_frame(prefix: str, name: str) -> str:
+    """Return the TF frame of a pickup: '<prefix>pickup/<name>' ('front_left/pickup/...')."""
+    return f'{prefix}{PICKUP}/{name}'
+
+
+class CornerStatics:
+    """The contact wrench of one corner and its loaded answers (module docstring)."""
+
+    def __init__(self, scene: Scene, frame_id: str = 'base_link', prefix: str = '') -> None:
+        if not scene.wheel_radius > 0:
+            raise LinkageError(f'scene {scene.name} ({scene.source})', 'statics needs '
+                               'wheel_radius: the contact wrench acts at the contact patch')
+        from ..core.statics import Load, solve_loaded
+        self._solve, self._make_load = solve_loaded, Load
+        self.scene, self.frame_id, self.prefix = scene, frame_id, prefix
+        self.points = pickup_points(scene)
+        self.names = list(self.points)
+        self.force, self.moment = ZERO, ZERO
+        self._load = Load(force_n=ZERO, at='cp', moment_nm=ZERO)
+        self.frames = [frame_id] * len(self.names)
+
+    def set_wrench(self, force_n: tuple, moment_nm: tuple) -> None:
+        """Take the tyre's wrench at the contact patch: force N, moment N m, vehicle frame."""
+        self.force, self.moment = tuple(force_n), tuple(moment_nm)
+        self._load = self._make_load(force_n=self.force, at='cp', moment_nm=self.moment)
+
+    def take(self, old: CornerStatics | None) -> None:
+        """Go on with the wrench of old (the corner's statics before a change), if any."""
+        if old is not None:
+            self.set_wrench(old.force, old.moment)
+
+    def frame_points(self) -> dict[str, np.ndarray]:
+        """Return {TF frame: point (3,) mm} of the pickups (ros/tf.CornerFrames' pickups)."""
+        return {pickup_frame(self.prefix, name): point for name, point in self.points.items()}
+
+    def use_frames(self, on: bool) -> None:
+        """Name each pickup's own TF frame (on) or the vehicle frame in the pickup wrenches."""
+        self.frames = [pickup_frame(self.prefix, n) if on else self.frame_id
+                       for n in self.names]
+
+    def load(self, solution: Solution, stamp: tuple[int, int]) -> tuple[Solution, list]:
+        """
+        Return (the loaded answer, its pickup outputs) of a solved kinematic command.
+
+        The loaded pose replaces the kinematic one in solution (travel, rack, the solver's
+        counts kept); a load the linkage cannot carry gives a failed Solution
+        (Status.NOT_CARRIED, the core's message naming the load and its last residual) and
+        no outputs.
+        """
+        loaded = self._solve(self.scene, travel_mm=solution.travel, load=self._load,
+                             rack_mm=solution.rack)
+        if loaded.status != Status.OK:
+            failed = solution._replace(
+                success=False, message=loaded.message, wheel_center=None, rotation=None,
+                camber=math.nan, toe=math.nan, quaternion=None, status=loaded.status)
+            return failed, []
+        rotation = np.asarray(loaded.rotation)
+        answer = solution._replace(
+            wheel_center=np.asarray(loaded.wheel_center_mm), rotation=rotation,
+            quaternion=quaternion_from_matrix(rotation),
+            camber=math.radians(loaded.camber_deg), toe=math.radians(loaded.toe_deg))
+        forces = body_forces(loaded)
+        outputs = [(f'{PICKUP}/{name}', WRENCH_TYPE,
+                    wrench_stamped_cdr(stamp, frame, forces[name].tolist(), ZERO))
+                   for name, frame in zip(self.names, self.frames)]
+        return answer, outputs
+
+
+def body_forces(loaded) -> dict[str, np.ndarray]:
+    """
+    Return {pickup name: force on the body (3,) N, vehicle frame} of a Loaded result.
+
+    The arms' pivots as the core gives them; a link pulls its base towards its carrier
+    joint with its tension.
+    """
+    forces = {name: np.asarray(f, dtype=float) for name, f in loaded.pivot_forces_n.items()}
+    forces.update(loaded.link_force_vectors_n)
+    return forces
