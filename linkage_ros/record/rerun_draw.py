@@ -372,24 +372,25 @@ def _strips_array(scene, points):
 
 def log_forces(rec: rr.RecordingStream, scene: Scene, name: str, times_ns: Sequence[int],
                sequence: Sequence[int], origins: ArrayLike, forces_n: ArrayLike,
-               root: str = '') -> None:
+               root: str = '', style: bool = True) -> None:
     """
     Log one force over time as an arrow of FORCE_SCALE mm per N under suspension/forces/name.
 
     name: 'contact' (the tyre's force at the contact patch) or 'pickup/<name>' (the force on
     the body at that pickup); origins (n, 3) mm where it acts, forces_n (n, 3) N, vehicle
-    frame; times_ns (n,), sequence (n,).
+    frame; times_ns (n,), sequence (n,). style: also log its colour and width (static: once
+    per entity is enough).
     """
     if len(times_ns) == 0:
         return
-    color = COLORS['contact' if name == 'contact' else 'pickup']
-    rec.send_columns(entity(root, f'suspension/forces/{name}'),
-                     indexes=_indexes(times_ns, sequence),
-                     columns=rr.Arrows3D.columns(
-                         origins=np.asarray(origins, dtype=float),
-                         vectors=FORCE_SCALE * np.asarray(forces_n, dtype=float)))
-    rec.log(entity(root, f'suspension/forces/{name}'),
-            rr.Arrows3D.from_fields(radii=ARROW_RADIUS, colors=color), static=True)
+    path = entity(root, f'suspension/forces/{name}')
+    if style:
+        rec.log(path, rr.Arrows3D.from_fields(
+            radii=ARROW_RADIUS, colors=COLORS['contact' if name == 'contact' else 'pickup']),
+            static=True)
+    rec.send_columns(path, indexes=_indexes(times_ns, sequence), columns=rr.Arrows3D.columns(
+        origins=np.asarray(origins, dtype=float),
+        vectors=FORCE_SCALE * np.asarray(forces_n, dtype=float)))
 
 
 def send_hidden(rec: rr.RecordingStream, time_ns: int, sequence: int, root: str) -> None:

@@ -175,6 +175,7 @@ class RerunRecorder:
         self._racks = dict.fromkeys(self.scenes, 0.0)   # root: last rack (mm)
         self._wrenches = dict.fromkeys(self.scenes)     # root: last contact force (N)
         self._pickups = {}     # root: {pickup name: (point (3,) mm, moves with the rack)}
+        self._styled = set()   # (root, force) whose arrows' colour and width are logged
         self._rows = {}        # (root, role): [(receive_ns, sequence, value)]
         self._buffered = 0
         self._oldest = None
@@ -292,15 +293,13 @@ class RerunRecorder:
                 values = np.array(values)
                 send_poses(self._rec, self.scenes[root], times, sequence, values[:, :3],
                            values[:, 3:7], root, values[:, 7])
-            elif role == 'contact':
-                values = np.array(values)
-                log_forces(self._rec, self.scenes[root], 'contact', times, sequence,
-                           contact_patches(self.scenes[root], values[:, :3], values[:, 3:7]),
-                           values[:, 7:], root)
-            elif role.startswith('pickup/'):
-                values = np.array(values)
-                log_forces(self._rec, self.scenes[root], role, times, sequence,
-                           values[:, :3], values[:, 3:], root)
+            elif role == 'contact' or role.startswith('pickup/'):
+                values, styled = np.array(values), (root, role) in self._styled
+                origins = values[:, :3] if role != 'contact' else contact_patches(
+                    self.scenes[root], values[:, :3], values[:, 3:7])
+                log_forces(self._rec, self.scenes[root], role, times, sequence, origins,
+                           values[:, -3:], root, style=not styled)
+                self._styled.add((root, role))
             else:
                 send_values(self._rec, PLOTS[role], times, sequence, values, root)
             rows.clear()
