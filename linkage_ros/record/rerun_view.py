@@ -224,19 +224,18 @@ class RerunRecorder:
 
     def _pickup(self, root, topic, force):
         """Return the row key and value (point mm, force N) of a pickup's force, or None."""
-        from ..ros.pickups import pickup_points
-        scene = self.scenes[root]
-        if root not in self._pickups:
-            rack_links = {c.name for c in scene.constraints if c.steer == 'rack'}
-            self._pickups[root] = {name: (point, name in rack_links)
-                                   for name, point in pickup_points(scene).items()}
+        if root not in self._pickups:   # where each is at rack 0, and how the rack moves it
+            from ..ros.pickups import pickup_points
+            scene = self.scenes[root]
+            at_zero = pickup_points(scene)
+            at_one = pickup_points(scene, rack_mm=1.0) if scene.steered else at_zero
+            self._pickups[root] = {name: (point, at_one[name] - point)
+                                   for name, point in at_zero.items()}
         name = topic.rstrip('/').rsplit('/', 1)[-1]
         if name not in self._pickups[root]:
             return None, None
-        point, on_rack = self._pickups[root][name]
-        if on_rack:
-            point = point + [0.0, self._racks[root], 0.0]
-        return f'pickup/{name}', (*point, *force)
+        point, per_mm = self._pickups[root][name]
+        return f'pickup/{name}', (*(point + self._racks[root] * per_mm), *force)
 
     def _add(self, root, role, receive_ns, value):
         """Buffer one row of root's role; flush the rows when the batch is full or old."""

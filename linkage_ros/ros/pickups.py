@@ -18,16 +18,17 @@ geometry_msgs/WrenchStamped:
 The loaded pose is linkage_ros.core.statics.solve_loaded's at the travel and rack that the
 kinematic continuation solved, for a load at the contact patch (at='cp'): the node's
 answers are then those of the core, bit for bit. A pickup's wrench is the force on the body
-at that pickup (N, vehicle frame orientation), torque zero (a pickup is a point). Its
+at that pickup (N, vehicle frame orientation), its torque the bushing's couple there (N m,
+Loaded.body_moments_nm; zero at a ball joint, a rigid pivot or a spring end). Its
 header names the pickup's frame (static TF at the design pickup point, orientation of the
 vehicle frame; ros/tf.py publishes it on /tf_static), so that RViz's and Foxglove's wrench
 displays draw the arrow at the pickup; where those frames are not published (tf off, or
 tf2_msgs missing) it names the vehicle frame, and the pickup point is that of
 pickup_points (doc/node.md).
 
-ROS-free (cdr only). CornerStatics imports the statics core, only where statics is on: a
-scene without bushings and without parameter statics loads none of it (pickup_points, which
-linkage-rerun draws with, needs none).
+ROS-free (cdr only). The statics core is imported by CornerStatics and pickup_points, only
+where statics is on: a scene without bushings and without parameter statics loads none of
+it.
 """
 
 from __future__ import annotations
@@ -49,26 +50,23 @@ PICKUP = 'pickup'          # the topics' folder: <corner>/pickup/<name>
 ZERO = (0.0, 0.0, 0.0)
 
 
-def pickup_points(scene: Scene) -> dict[str, np.ndarray]:
+def pickup_points(scene: Scene, rack_mm: float = 0.0) -> dict[str, np.ndarray]:
     """
-    Return {pickup name: body point (3,) mm at design, vehicle frame} of the body pickups.
+    Return {pickup name: body point (3,) mm, vehicle frame} of the body pickups.
 
-    The names of the statics core (Loaded.pivot_forces_n, link_forces_n): a link's by its
-    name at its base point, an arm's '<arm>_axis0' and '<arm>_axis1' at its pivots, or
-    '<arm>_centre' at their midpoint for a bushing at: centre.
+    The statics core's names and points (Loaded.body_forces_n, body_points_mm: a link's
+    '<link>_base', an arm's '<arm>_axis0' and '<arm>_axis1' or '<arm>_centre', a strut's
+    '<strut>_top', a spring's '<spring>_body') at travel 0 and rack_mm (mm), with no load.
+    The points are fixed to the body but for a rack link's base, which the rack moves.
     """
-    points = {}
-    for c in scene.constraints:
-        if c.type == 'circle':
-            bushing = getattr(c, 'bushing', None)
-            if bushing is not None and bushing.at == 'centre':
-                points[f'{c.name}_centre'] = (c.base[0] + c.base[1]) / 2
-            else:
-                points[f'{c.name}_axis0'] = c.base[0].copy()
-                points[f'{c.name}_axis1'] = c.base[1].copy()
-        else:
-            points[c.name] = c.base[0].copy()
-    return points
+    from ..core.statics import Load, solve_loaded
+    loaded = solve_loaded(scene, travel_mm=0.0, rack_mm=rack_mm,
+                          load=Load(force_n=ZERO, at='wc', moment_nm=ZERO))
+    if loaded.status != Status.OK:
+        raise LinkageError(f'scene {scene.name} ({scene.source})',
+                           f'no statics at design: {loaded.message}')
+    return {name: np.array(point, dtype=float)
+            for name, point in loaded.body_points_mm.items()}
 
 
 def pickup_frame(prefix: str, name: str) -> str:
@@ -132,20 +130,9 @@ class CornerStatics:
             wheel_center=np.asarray(loaded.wheel_center_mm), rotation=rotation,
             quaternion=quaternion_from_matrix(rotation),
             camber=math.radians(loaded.camber_deg), toe=math.radians(loaded.toe_deg))
-        forces = body_forces(loaded)
-        outputs = [(f'{PICKUP}/{name}', WRENCH_TYPE,
-                    wrench_stamped_cdr(stamp, frame, forces[name].tolist(), ZERO))
+        forces, moments = loaded.body_forces_n, loaded.body_moments_nm
+        outputs = [(f'{PICKUP}/{name}', WRENCH_TYPE, wrench_stamped_cdr(
+                    stamp, frame, forces[name].tolist(),
+                    moments[name].tolist() if name in moments else ZERO))
                    for name, frame in zip(self.names, self.frames)]
         return answer, outputs
-
-
-def body_forces(loaded) -> dict[str, np.ndarray]:
-    """
-    Return {pickup name: force on the body (3,) N, vehicle frame} of a Loaded result.
-
-    The arms' pivots as the core gives them; a link pulls its base towards its carrier
-    joint with its tension.
-    """
-    forces = {name: np.asarray(f, dtype=float) for name, f in loaded.pivot_forces_n.items()}
-    forces.update(loaded.link_force_vectors_n)
-    return forces

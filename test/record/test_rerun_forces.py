@@ -77,7 +77,7 @@ def test_forces_are_arrows_to_scale_at_the_contact_patch_and_at_the_pickups(tmp_
 def test_a_pickup_the_scene_does_not_have_is_skipped(tmp_path):
     path = tmp_path / 'run.rrd'
     with RerunRecorder(path, load_scene('double_wishbone')) as recorder:
-        recorder.record('/pickup/no_such_link', WRENCH, wrench_stamped_cdr(
+        recorder.record('/pickup/no_such_pickup', WRENCH, wrench_stamped_cdr(
             (0, 0), 'base_link', (1.0, 2.0, 3.0), (0, 0, 0)), 1, 1)
-        recorder.record('/pickup/tie_rod', WRENCH, b'\x00\x01\x00\x00\x01', 2, 2)
-    assert recorder.skipped == {'/pickup/no_such_link': 1, '/pickup/tie_rod': 1}
+        recorder.record('/pickup/tie_rod_base', WRENCH, b'\x00\x01\x00\x00\x01', 2, 2)
+    assert recorder.skipped == {'/pickup/no_such_pickup': 1, '/pickup/tie_rod_base': 1}
