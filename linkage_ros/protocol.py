@@ -252,7 +252,7 @@ class Responder:
         solution = self.solver.solve(travel, rack_mm)
         pickups = []
         if solution.success and self.statics is not None:   # the loaded pose in its place
-            solution, pickups = self.statics.load(solution, stamp)
+            solution, pickups = self.statics.load(solution, stamp, self.solver)
         if solution.success:
             outputs, said = answer_outputs(solution, stamp, self.frame_id), ''
             for name, type_name, build in self._extras:

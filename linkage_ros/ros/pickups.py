@@ -8,7 +8,7 @@ geometry_msgs/WrenchStamped:
     statics.set_wrench(force_n, moment_nm)   the tyre's wrench at the contact patch (vehicle
                                              frame, N and N m); zero until one is set
     statics.use_frames(on)                   pickups in their own TF frames (on) or frame_id
-    loaded, outputs = statics.load(solution, stamp)
+    loaded, outputs = statics.load(solution, stamp, continuation)
         loaded: the kinematic Solution with the loaded pose put in its place (wheel centre,
         rotation, quaternion, camber, toe), or a failed Solution (Status.NOT_CARRIED) with no
         pose; outputs: [('pickup/<name>', WRENCH_TYPE, CDR bytes)], one per body pickup
@@ -16,8 +16,9 @@ geometry_msgs/WrenchStamped:
     pickup_frame(prefix, name)                      the TF frame of a pickup
 
 The loaded pose is linkage_ros.core.statics.solve_loaded's at the travel and rack that the
-kinematic continuation solved, for a load at the contact patch (at='cp'): the node's
-answers are then those of the core, bit for bit. A pickup's wrench is the force on the body
+corner's kinematic continuation solved, continuing from its pose, for a load at the contact
+patch (at='cp'): the node's answers are those of the core for the same commands, bit for
+bit. A pickup's wrench is the force on the body
 at that pickup (N, vehicle frame orientation), its torque the bushing's couple there (N m,
 Loaded.body_moments_nm; zero at a ball joint, a rigid pivot or a spring end). Its
 header names the pickup's frame (static TF at the design pickup point, orientation of the
@@ -43,7 +44,7 @@ from ..core.base import LinkageError, quaternion_from_matrix, Status
 
 if TYPE_CHECKING:
     from ..core.model import Scene
-    from ..core.solve import Solution
+    from ..core.solve import Continuation, Solution
 
 WRENCH_TYPE = 'geometry_msgs/msg/WrenchStamped'
 PICKUP = 'pickup'          # the topics' folder: <corner>/pickup/<name>
@@ -109,9 +110,13 @@ class CornerStatics:
         self.frames = [pickup_frame(self.prefix, n) if on else self.frame_id
                        for n in self.names]
 
-    def load(self, solution: Solution, stamp: tuple[int, int]) -> tuple[Solution, list]:
+    def load(self, solution: Solution, stamp: tuple[int, int],
+             continuation: Continuation) -> tuple[Solution, list]:
         """
         Return (the loaded answer, its pickup outputs) of a solved kinematic command.
+
+        continuation: the corner's kinematic solver, which solved solution: the equilibrium
+        continues from its pose (the same assembly branch, and no walk from design).
 
         The loaded pose replaces the kinematic one in solution (travel, rack, the solver's
         counts kept); a load the linkage cannot carry gives a failed Solution
@@ -119,7 +124,7 @@ class CornerStatics:
         no outputs.
         """
         loaded = self._solve(self.scene, travel_mm=solution.travel, load=self._load,
-                             rack_mm=solution.rack)
+                             rack_mm=solution.rack, continuation=continuation)
         if loaded.status != Status.OK:
             failed = solution._replace(
                 success=False, message=loaded.message, wheel_center=None, rotation=None,

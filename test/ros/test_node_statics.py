@@ -1,6 +1,7 @@
 """
-suspension_node with statics, over real rclpy and DDS: contact_wrench in, loaded poses and
-pickup forces out (issue 29 item 5).
+suspension_node with statics over real rclpy and DDS: contact_wrench in, loaded poses out.
+
+And the pickups' forces out (issue 29 item 5).
 
 A scene with bushings (or parameter statics) makes each corner take contact_wrench
 (geometry_msgs/WrenchStamped: the tyre's force and moment at the contact patch, vehicle
@@ -16,7 +17,7 @@ from pathlib import Path
 from geometry_msgs.msg import WrenchStamped
 from linkage_ros.core.base import M_PER_MM, quaternion_from_matrix
 from linkage_ros.core.measure import contact_patch
-from linkage_ros.core.model import load_scene
+from linkage_ros.core.solve import Continuation
 from linkage_ros.core.statics import Load, solve_loaded
 from linkage_ros.ros.node import QOS
 from linkage_ros.ros.pickups import pickup_points
@@ -78,15 +79,25 @@ class Wrenches:
         return {name: received[-1] for name, received in self.pickups.items()}
 
 
-def expected(scene, travel_mm, force=(0.0, 0.0, 0.0), moment=(0.0, 0.0, 0.0)):
-    loaded = solve_loaded(scene, travel_mm=travel_mm, rack_mm=0.0,
-                          load=Load(force_n=force, at='cp', moment_nm=moment))
-    assert loaded.status == 0, loaded.message
-    return loaded
+class Core:
+    """The core answering the node's commands in turn: its Continuation, then solve_loaded."""
+
+    def __init__(self, scene):
+        self.scene, self.continuation = scene, Continuation(scene)
+
+    def answer(self, travel_mm, force=(0.0, 0.0, 0.0), moment=(0.0, 0.0, 0.0)):
+        """Return the Loaded of one travel command (mm) under a contact-patch wrench."""
+        kinematic = self.continuation.solve(travel_mm)
+        assert kinematic.success, kinematic.message
+        loaded = solve_loaded(self.scene, travel_mm=travel_mm, rack_mm=0.0,
+                              load=Load(force_n=force, at='cp', moment_nm=moment),
+                              continuation=self.continuation)
+        assert loaded.status == 0, loaded.message
+        return loaded
 
 
 def assert_pose_is(answer, loaded):
-    """The answer is the loaded pose, computed from the core's as the node does, in SI."""
+    """Assert the answer is the loaded pose, computed from the core's as the node does, SI."""
     p, q = answer.pose.pose.position, answer.pose.pose.orientation
     assert [p.x, p.y, p.z] == pytest.approx(
         (np.asarray(loaded.wheel_center_mm) * M_PER_MM).tolist(), rel=0, abs=1e-15)
@@ -101,24 +112,25 @@ def test_answers_are_the_zero_load_pose_until_a_wrench_arrives(suspension_node, 
     node = suspension_node(scene=str(bushing_scene(tmp_path)), diagnostic_period=3600.0)
     scene = node.corners[''].scene
     assert scene.has_bushings and node.corners[''].statics is not None
-    assert_pose_is(probe.ask(0.02), expected(scene, 20.0))
+    assert_pose_is(probe.ask(0.02), Core(scene).answer(20.0))
 
 
 def test_a_wrench_over_dds_gives_the_pose_solve_loaded_gives(suspension_node, probe,
                                                              tmp_path):
     node = suspension_node(scene=str(bushing_scene(tmp_path)), diagnostic_period=3600.0)
     scene, wrenches = node.corners[''].scene, Wrenches(probe, node)
+    core = Core(scene)
     unloaded = probe.ask(0.02)
+    assert_pose_is(unloaded, core.answer(20.0))
     wrenches.send(FORCE, MOMENT)
-    loaded = expected(scene, 20.0, FORCE, MOMENT)
     answer = probe.ask(0.02)
-    assert_pose_is(answer, loaded)
+    assert_pose_is(answer, core.answer(20.0, FORCE, MOMENT))
     # the load moves the wheel: the bushings give (a lateral force of 2.5 kN moves the wheel
     # centre by a fraction of a millimetre and more)
     moved = np.subtract([answer.pose.pose.position.y], [unloaded.pose.pose.position.y])
     assert abs(moved[0]) > 1e-5
     # and it holds for the next commands, at their travel
-    assert_pose_is(probe.ask(-0.01), expected(scene, -10.0, FORCE, MOMENT))
+    assert_pose_is(probe.ask(-0.01), core.answer(-10.0, FORCE, MOMENT))
 
 
 def test_the_pickup_wrenches_balance_the_contact_wrench_and_the_holding_force(
@@ -132,8 +144,9 @@ def test_the_pickup_wrenches_balance_the_contact_wrench_and_the_holding_force(
     points = pickup_points(scene)
     assert set(msgs) == set(points) == {'upper_arm_axis0', 'upper_arm_axis1',
                                         'lower_arm_axis0', 'lower_arm_axis1', 'tie_rod_base'}
-    loaded = expected(scene, 30.0, FORCE, MOMENT)
-    unloaded = expected(scene, 30.0)
+    core = Core(scene)
+    loaded = core.answer(30.0, FORCE, MOMENT)
+    unloaded = core.answer(30.0)
     # The load acts at the contact patch of the unloaded pose at that travel, a point of
     # the carrier (the spec), which the loaded pose carries along.
     axis = np.asarray(unloaded.rotation) @ (scene.wheel_center - scene.spin_axis_point)
@@ -204,7 +217,7 @@ def test_a_bad_wrench_is_refused_in_one_line_and_the_last_good_one_kept(
     assert status.message.startswith('/contact_wrench: ') and said in status.message
     assert '\n' not in status.message
     assert node.corners[''].health.failures_total == 1
-    assert_pose_is(probe.ask(0.01), expected(scene, 10.0, FORCE, MOMENT))
+    assert_pose_is(probe.ask(0.01), Core(scene).answer(10.0, FORCE, MOMENT))
 
 
 def test_a_load_the_linkage_cannot_carry_is_an_error_with_no_pose(suspension_node, probe,
@@ -226,8 +239,7 @@ def test_statics_true_on_a_rigid_scene_answers_its_kinematic_pose(suspension_nod
     scene, wrenches = node.corners[''].scene, Wrenches(probe, node)
     wrenches.send(FORCE, MOMENT)
     answer = probe.ask(0.02)
-    assert_pose_is(answer, expected(scene, 20.0, FORCE, MOMENT))
-    from linkage_ros.core.solve import Continuation
+    assert_pose_is(answer, Core(scene).answer(20.0, FORCE, MOMENT))
     kinematic = Continuation(scene).solve(20.0)
     assert answer.camber == pytest.approx(kinematic.camber, abs=1e-12)
     assert wrenches.last()     # rigid: the forces are the multipliers
