@@ -220,8 +220,8 @@ def test_a_bad_wrench_is_refused_in_one_line_and_the_last_good_one_kept(
     assert_pose_is(probe.ask(0.01), Core(scene).answer(10.0, FORCE, MOMENT))
 
 
-def test_a_load_the_linkage_cannot_carry_is_an_error_with_no_pose(suspension_node, probe,
-                                                                 tmp_path):
+def test_a_load_the_linkage_cannot_carry_is_an_error_with_no_pose(
+        suspension_node, probe, tmp_path):
     from diagnostic_msgs.msg import DiagnosticStatus
     node = suspension_node(scene=str(bushing_scene(tmp_path)), diagnostic_period=3600.0)
     wrenches = Wrenches(probe, node)
@@ -229,8 +229,9 @@ def test_a_load_the_linkage_cannot_carry_is_an_error_with_no_pose(suspension_nod
     answer = probe.ask(0.0)
     assert answer.pose is None
     assert answer.diagnostics.level == DiagnosticStatus.ERROR
-    assert 'not carried' in answer.diagnostics.message.lower() or \
-        'residual' in answer.diagnostics.message
+    said = answer.diagnostics.message
+    assert said.startswith('/wheel_travel 0.0 m') and 'is not carried' in said, said
+    assert '5000000.0' in said and 'residual' in said       # names the load and residual
     assert node.corners[''].health.last.status == 7      # Status.NOT_CARRIED
 
 

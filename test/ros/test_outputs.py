@@ -114,3 +114,34 @@ def test_the_node_publishes_the_responders_list_in_its_order(suspension_node, ex
         topics = [c.topic for _, c, _ in reader.iter_messages(log_time_order=False)]
     names = ['/' + n.lstrip('/') for n in EVERY]
     assert [t for t in topics if t in names] == names * 2
+
+
+def test_with_statics_the_pickups_follow_the_extras_each_in_its_static_frame():
+    from linkage_ros.cdr import transforms_of, wrench_of
+    from linkage_ros.ros.pickups import pickup_points
+    from linkage_ros.ros.tf import static_cdr
+    scene = load_scene('double_wishbone')
+    corner = Responder(scene, method='fast', max_step_mm=5.0, condition_warn=1e4,
+                       frame_id='base_link', status_name='s', period_ns=10**9, statics=True,
+                       prefix='front_left/')
+    frames = CornerFrames(scene, 'base_link', 'front_left/', corner.statics.frame_points())
+    corner.set_outputs(frames=frames)
+    points = pickup_points(scene)
+    assert [o.name for o in corner.outputs] == [*EVERY[:3], 'elements', '/tf', 'pickup']
+    reply = corner.answer(30.0, None, (4, 5))
+    names = [n for n, _, _ in reply.outputs]
+    assert names == [*EVERY[:3], 'elements', '/tf', *(f'pickup/{p}' for p in points)]
+    static = {child: (parent, translation, q) for _, parent, child, translation, q
+              in transforms_of(static_cdr([frames], (0, 0)))}
+    for name, point in points.items():
+        frame_id, force, _ = wrench_of(dict((n, d) for n, _, d in reply.outputs)[
+            f'pickup/{name}'])
+        assert frame_id == f'front_left/pickup/{name}'
+        parent, translation, q = static[frame_id]
+        assert parent == 'base_link' and tuple(q) == (0.0, 0.0, 0.0, 1.0)
+        assert translation == pytest.approx(point / 1000.0, abs=1e-15)
+    # without the frames (tf off), the wrenches name the vehicle frame
+    corner.set_outputs(frames=None)
+    reply = corner.answer(30.0, None, (4, 6))
+    assert {wrench_of(d)[0] for n, _, d in reply.outputs if n.startswith('pickup/')} == {
+        'base_link'}

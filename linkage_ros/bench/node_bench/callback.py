@@ -18,6 +18,7 @@ import rclpy
 from .driver import sine
 from .tables import progress, table, us
 from ...cdr import float64_cdr, wrench_stamped_cdr
+from ...core.base import LinkageError
 from ...core.model import config_dir, load_scene
 from ...ros.isolation import init_context
 
@@ -73,6 +74,13 @@ def bench_callback(args):
              'statics': {'statics': True}, 'bushings': {}}
     if not scene.elements:
         del modes['elements']
+    if args.modes:
+        chosen = ['plain', *(m for m in args.modes.split(',') if m and m != 'plain')]
+        unknown = [m for m in chosen if m not in modes]
+        if unknown:
+            raise LinkageError('--modes', f'unknown mode {unknown[0]!r} (modes: '
+                               f'{", ".join(modes)})')
+        modes = {m: modes[m] for m in chosen}
     context = init_context(args.domain_id, 'OFF')      # no subscriber, and none outside
     travels = sine(args.count * args.scale, 0.05, 0.02)
     loads = wrenches(len(travels))
