@@ -133,9 +133,9 @@ def test_with_statics_the_pickups_follow_the_extras_each_in_its_static_frame():
     assert names == [*EVERY[:3], 'elements', '/tf', *(f'pickup/{p}' for p in points)]
     static = {child: (parent, translation, q) for _, parent, child, translation, q
               in transforms_of(static_cdr([frames], (0, 0)))}
+    out = {n: d for n, _, d in reply.outputs}
     for name, point in points.items():
-        frame_id, force, _ = wrench_of(dict((n, d) for n, _, d in reply.outputs)[
-            f'pickup/{name}'])
+        frame_id, _, _ = wrench_of(out[f'pickup/{name}'])
         assert frame_id == f'front_left/pickup/{name}'
         parent, translation, q = static[frame_id]
         assert parent == 'base_link' and tuple(q) == (0.0, 0.0, 0.0, 1.0)

@@ -45,8 +45,8 @@ def with_bushings(data):
     return data
 
 
-def wrenches(count, frame_id='base_link'):
-    """Return contact wrenches (CDR), count of them: a cornering force swept as a sine."""
+def contact_loads(count, frame_id='base_link'):
+    """Return the contact wrenches (CDR) of a cornering force swept as a sine, N and N m."""
     phase = np.linspace(0.0, 2.0 * math.pi, count)
     return [wrench_stamped_cdr((0, 0), frame_id, (200.0 * math.cos(p), 3000.0 * math.sin(p),
                                                   4000.0), (0.0, 0.0, 50.0 * math.sin(p)))
@@ -83,7 +83,7 @@ def bench_callback(args):
         modes = {m: modes[m] for m in chosen}
     context = init_context(args.domain_id, 'OFF')      # no subscriber, and none outside
     travels = sine(args.count * args.scale, 0.05, 0.02)
-    loads = wrenches(len(travels))
+    loads = contact_loads(len(travels))
     rows, base = [], None
     try:
         for mode, params in modes.items():
