@@ -101,6 +101,14 @@ def statics_on(scene: Scene, switch: bool) -> bool:
     return bool(switch) or bool(getattr(scene, 'has_bushings', False))
 
 
+def statics_problem(scene: Scene, switch: bool) -> str:
+    """Say why a corner of scene cannot answer loaded poses though statics is on, or ''."""
+    if statics_on(scene, switch) and not scene.wheel_radius > 0:
+        return (f'scene {scene.name} ({scene.source}): statics needs wheel_radius: the '
+                'contact wrench acts at the contact patch')
+    return ''
+
+
 def outputs_of(scene: Scene, switches: dict[str, Any]) -> list[Output]:
     """
     Return the outputs a solved command of scene publishes, in publishing order.

@@ -138,3 +138,19 @@ def test_a_wrench_to_a_corner_whose_new_scene_has_no_statics_is_refused(
     pub.publish(pub.msg_type())
     assert spin_until(probe.executor, lambda: corner.health.failures_total > before)
     assert 'no bushings and parameter statics is false' in corner.health.refused
+
+
+def test_a_new_scene_with_bushings_and_no_wheel_radius_is_refused_while_running(
+        suspension_node, probe, tmp_path):
+    import yaml
+    from linkage_ros.ros.testing import ParameterClient
+    path = bushing_scene(tmp_path)
+    data = yaml.safe_load(path.read_text())
+    del data['wheel_radius']
+    path.write_text(yaml.safe_dump(data))
+    suspension_node(scene='double_wishbone', diagnostic_period=3600.0)
+    ((ok, reason),) = ParameterClient(probe).set(scene=str(path))
+    assert not ok
+    assert reason.startswith('scene: scene double_wishbone') and \
+        'statics needs wheel_radius' in reason
+    assert probe.ask(0.01).pose is not None     # the old scene answers on
