@@ -24,6 +24,14 @@ period (period_ns) of the clock the caller gives: the node's timer, or a recordi
 The roll centre of a vehicle's axle is not a corner's output: it needs both corners' poses
 (ros/roll_centres.py listens to both).
 
+With statics on (statics_on: a scene with bushings, or statics=True), a solved command is
+answered with the loaded pose at the last contact wrench (responder.statics.set_wrench;
+ros/pickups.CornerStatics, which alone imports the statics core) in place of the kinematic
+one, then with every body pickup's force (pickup/<name>, after the extras); a load the
+linkage cannot carry is a failed command (Status.NOT_CARRIED), with no answer.
+wrench_problem says why a contact wrench is refused, statics_problem why a scene cannot
+have statics.
+
 ROS-free: this module imports the core, cdr (the answer's CDR bytes) and the Health logic,
 never rclpy or a message package. The elements' JointState and the TF frames are CDR bytes
 (ros/element_outputs.py, ros/tf.py, themselves ROS-free); the alignment and markers outputs

@@ -263,3 +263,14 @@ def test_a_vehicle_gives_each_corner_its_own_wrench_topic(suspension_node, probe
     assert right.corner.statics.force == (0.0, 0.0, 0.0)
     right.send((0.0, 2500.0, 4000.0), (0.0, 0.0, -60.0))
     assert left.corner.statics.force == FORCE
+
+
+def test_wrench_bytes_that_do_not_decode_are_refused_naming_the_topic(suspension_node,
+                                                                      tmp_path):
+    node = suspension_node(scene=str(bushing_scene(tmp_path)), diagnostic_period=3600.0)
+    corner = node.corners['']
+    corner.on_wrench(b'\x00\x01\x00\x00\x05\x00')     # as the raw subscription hands it over
+    assert corner.health.failures_total == 1
+    assert corner.health.refused.startswith('/contact_wrench: geometry_msgs/WrenchStamped of '
+                                            '6 bytes')
+    assert corner.statics.force == (0.0, 0.0, 0.0)
