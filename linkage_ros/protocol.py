@@ -46,7 +46,7 @@ import math
 from typing import Any, Callable, NamedTuple, TYPE_CHECKING
 
 from .cdr import float64_cdr, pose_stamped_cdr
-from .core.base import M_PER_MM, Status
+from .core.base import LinkageError, M_PER_MM, Status
 from .core.solve import Continuation, Solution
 from .health import Health
 
@@ -225,6 +225,8 @@ class Responder:
         self.frames: CornerFrames | None = None
         self.statics = None
         if statics_on(scene, statics):   # the statics core is imported only here
+            if statics_problem(scene, statics):
+                raise LinkageError('statics', statics_problem(scene, statics))
             from .ros.pickups import CornerStatics
             self.statics = CornerStatics(scene, frame_id, prefix)
         self.outputs: list[Output] = []

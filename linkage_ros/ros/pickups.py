@@ -79,10 +79,6 @@ class CornerStatics:
     """The contact wrench of one corner and its loaded answers (module docstring)."""
 
     def __init__(self, scene: Scene, frame_id: str = 'base_link', prefix: str = '') -> None:
-        from ..protocol import statics_problem
-        problem = statics_problem(scene, True)
-        if problem:
-            raise LinkageError('statics', problem)
         from ..core.statics import Load, solve_loaded
         self._solve, self._make_load = solve_loaded, Load
         self.scene, self.frame_id, self.prefix = scene, frame_id, prefix
