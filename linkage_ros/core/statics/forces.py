@@ -15,6 +15,7 @@ import numpy as np
 
 from .rotation import energy_terms, log_so3, skew
 from .system import Item, point_of, position, spring_terms
+from ..base.geometry import cross
 
 
 def pickup_forces(scene, system, eq, force: np.ndarray) -> dict:
@@ -62,7 +63,7 @@ def pickup_forces(scene, system, eq, force: np.ndarray) -> dict:
     for b in system.bushings:
         d = position(system, pose, Item(b.body, b.x0))[0] - b.at
         f = b.stiff @ d
-        couple = np.cross(d, f)
+        couple = cross(d, f)
         if b.turn is not None:
             couple = couple + energy_terms(log_so3(pose.r[b.body]), b.turn)[1]
         add(b.key, b.at, f, couple / 1000.0)
@@ -89,7 +90,7 @@ def _pivots(axis_points, loads):
     """
     a0, a1 = axis_points
     total = sum((f for _, f in loads), np.zeros(3))
-    moment = sum((np.cross(p - a0, f) for p, f in loads), np.zeros(3))
+    moment = sum((cross(p - a0, f) for p, f in loads), np.zeros(3))
     scale = float(np.linalg.norm(a1 - a0))
     # reactions on the arm P0 at a0, P1 at a1: P0 + P1 = -total, (a1 - a0) x P1 = -moment
     lhs = np.zeros((6, 6))

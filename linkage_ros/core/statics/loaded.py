@@ -12,7 +12,7 @@ Status.NOT_CARRIED, naming the load and the last residual, with no pose.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 import math
 from typing import NamedTuple
 
@@ -20,6 +20,7 @@ import numpy as np
 
 from . import newton
 from .forces import pickup_forces
+from .pack import pack
 from .rotation import log_so3
 from .system import build, initial_pose, Item, position, System
 from ..base.errors import LinkageError
@@ -78,6 +79,37 @@ class Unloaded(NamedTuple):
     system: System | None = None
     eq: newton.Equilibrium | None = None
     lever: float = 1.0
+    model: object = None    # kernel.Model of system (None: solved by newton_python)
+
+
+# where a Scene keeps its statics Systems and packed Models, by rack (as compile_scene does)
+PREPARED = '_statics'
+RACKS_KEPT = 16
+
+
+def prepared(scene, rack_mm: float, z: float, load_x0: np.ndarray, compiled: bool = True):
+    """
+    Return (System, kernel.Model or None) of a scene at rack, held height z, load point x0.
+
+    Built and packed once per scene and rack (kept on the Scene); each call sets the height
+    and the load point in copies of the two arrays that hold them.
+    """
+    cache = scene.__dict__.setdefault(PREPARED, {})
+    if rack_mm not in cache:
+        if len(cache) >= RACKS_KEPT:   # a steered node's racks: keep the last few only
+            cache.clear()
+        system = build(scene, rack_mm, 0.0, np.zeros(3))
+        cache[rack_mm] = (system, pack(system))
+    template, model = cache[rack_mm]
+    name, kind, items, _ = template.constraints[-1]   # the travel row, the last constraint
+    system = replace(template, z=z, load_item=template.load_item._replace(x0=load_x0),
+                     constraints=template.constraints[:-1] + [(name, kind, items, z)])
+    if not compiled:
+        return build(scene, rack_mm, z, load_x0), None
+    data, x0 = model.t_data.copy(), model.it_x0.copy()
+    data[model.m - 1, 0] = z            # the travel row, the last constraint
+    x0[len(x0) - 1, 0] = load_x0        # the load, the last term
+    return system, model._replace(t_data=data, it_x0=x0)
 
 
 def check_load(scene, load: Load) -> tuple[np.ndarray, np.ndarray]:
@@ -96,8 +128,12 @@ def check_load(scene, load: Load) -> tuple[np.ndarray, np.ndarray]:
 
 
 def unloaded(scene, travel_mm: float, rack_mm: float = 0.0,
-             continuation: Continuation | None = None) -> Unloaded:
-    """Solve the zero-load equilibrium at travel and rack (mm), from the kinematic pose."""
+             continuation: Continuation | None = None, compiled: bool = True) -> Unloaded:
+    """
+    Solve the zero-load equilibrium at travel and rack (mm), from the kinematic pose.
+
+    compiled False: by newton_python (numpy), the check of the compiled kernel.
+    """
     if not (is_finite_number(travel_mm) and is_finite_number(rack_mm)):
         return Unloaded(Status.NOT_FINITE, f'travel {travel_mm!r} and rack {rack_mm!r} must be '
                         'finite numbers')
@@ -107,15 +143,16 @@ def unloaded(scene, travel_mm: float, rack_mm: float = 0.0,
         return Unloaded(kin.status, kin.message)
     mech = compile_scene(scene)
     z = float(mech.design_center[2] + travel_mm)
-    system = build(scene, float(rack_mm), z, mech.design_center)
+    system, model = prepared(scene, float(rack_mm), z, mech.design_center, compiled)
     pose = initial_pose(system, scene, kin.wheel_center, kin.rotation)
     lever = mech.lever
-    eq = newton.newton(system, pose, np.zeros(len(system.constraints)), np.zeros(3),
-                       np.zeros(3), lever)
+    eq = newton.loaded(system, model, newton.Equilibrium(
+        True, pose, np.zeros(len(system.constraints)), None, None, 0.0, 0), np.zeros(3),
+        np.zeros(3), lever)
     if not eq.ok:
         return Unloaded(Status.NOT_CARRIED, f'the zero load is not carried at travel '
                         f'{travel_mm:g} mm: no convergence (residual {eq.residual:.3g} N)')
-    return Unloaded(Status.OK, 'ok', system, eq, lever)
+    return Unloaded(Status.OK, 'ok', system, eq, lever, model)
 
 
 def load_point(scene, base: Unloaded, at: str) -> np.ndarray:
@@ -130,20 +167,27 @@ def load_point(scene, base: Unloaded, at: str) -> np.ndarray:
 
 
 def solve_loaded(scene, travel_mm: float = 0.0, load: Load = Load(), rack_mm: float = 0.0,
-                 continuation: Continuation | None = None) -> Loaded:
+                 continuation: Continuation | None = None, compiled: bool = True) -> Loaded:
     """
     Solve the loaded equilibrium of a scene at travel and rack (mm); returns a Loaded.
 
     Bad input (a load at cp without wheel_radius, a non-finite load) raises LinkageError;
-    a load not carried is Status.NOT_CARRIED with no pose.
+    a load not carried is Status.NOT_CARRIED with no pose. continuation: a solve.Continuation
+    of the scene to take the kinematic pose from (kept between calls: the node's). compiled
+    False: by newton_python (numpy), the compiled kernel's check.
     """
     force, moment = check_load(scene, load)
-    base = unloaded(scene, travel_mm, rack_mm, continuation)
+    base = unloaded(scene, travel_mm, rack_mm, continuation, compiled)
     if base.status != Status.OK:
         return Loaded(base.status, base.message, float(travel_mm))
-    system = base.system
-    system.load_item = system.load_item._replace(x0=load_point(scene, base, load.at))
-    eq = newton.loaded(system, base.eq, force, moment, base.lever)
+    x0 = load_point(scene, base, load.at)
+    system = replace(base.system, load_item=base.system.load_item._replace(x0=x0))
+    model = base.model
+    if model is not None:
+        it_x0 = model.it_x0.copy()
+        it_x0[len(it_x0) - 1, 0] = x0
+        model = model._replace(it_x0=it_x0)
+    eq = newton.loaded(system, model, base.eq, force, moment, base.lever)
     said = (f'load {tuple(float(f) for f in load.force_n)} N at {load.at}, moment '
             f'{tuple(float(m) for m in load.moment_nm)} N m')
     if not eq.ok:

@@ -6,7 +6,9 @@ Newton on the Lagrange (KKT) system of a corner's statics, from the kinematic po
 
 H the Hessian of L = V - work + lambda . c (exact: system.py), J = dc/dq. The step is taken
 in the bodies' coordinates (system.moved). A load too large for one Newton solve is applied
-in increments (halved on failure), each solve continuing from the last.
+in increments (halved on failure), each solve continuing from the last. newton() runs the
+compiled kernel (kernel.py, on the System packed by pack.py); newton_python() is the same in
+numpy, kept as its check.
 """
 
 from __future__ import annotations
@@ -16,6 +18,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from . import kernel
 from .system import assemble, moved, Pose, System
 
 TOL_STEP = 1e-11       # mm (rotations times the lever): a step this small has converged
@@ -54,9 +57,21 @@ def imbalance(system: System, grad: np.ndarray, lever: float) -> float:
     return float(np.max(np.abs(scaled))) if scaled.size else 0.0
 
 
-def newton(system: System, pose: Pose, multipliers: np.ndarray, force: np.ndarray,
-           moment: np.ndarray, lever: float) -> Equilibrium:
-    """Solve one equilibrium by Newton from pose and multipliers; ok False if it fails."""
+def newton(system: System, model: kernel.Model, pose: Pose, multipliers: np.ndarray,
+           force: np.ndarray, moment: np.ndarray, lever: float) -> Equilibrium:
+    """Solve one equilibrium by Newton (compiled) from pose and multipliers."""
+    c, r, lam = pose.c.copy(), pose.r.copy(), np.array(multipliers, dtype=float)
+    hess, rows = np.empty((model.n, model.n)), np.empty((model.m, model.n))
+    ok, iterations, residual = kernel.newton(model, c, r, lam, np.asarray(force, dtype=float),
+                                             np.asarray(moment, dtype=float), lever, TOL_STEP,
+                                             MAX_ITER, hess, rows)
+    return Equilibrium(bool(ok), Pose(c, r), lam, hess, rows,
+                       residual if math.isfinite(residual) else math.inf, int(iterations))
+
+
+def newton_python(system: System, pose: Pose, multipliers: np.ndarray, force: np.ndarray,
+                  moment: np.ndarray, lever: float) -> Equilibrium:
+    """Solve one equilibrium by Newton (numpy) from pose and multipliers; ok False if not."""
     n = system.size
     for iteration in range(1, MAX_ITER + 1):
         grad, hess, values, rows, _ = assemble(system, pose, multipliers, force, moment)
@@ -92,20 +107,22 @@ def _step_size(system, step, lever):
     return float(np.max(np.abs(scaled))) if scaled.size else 0.0
 
 
-def loaded(system: System, start: Equilibrium, force: np.ndarray, moment: np.ndarray,
-           lever: float) -> Equilibrium:
+def loaded(system: System, model: kernel.Model | None, start: Equilibrium, force: np.ndarray,
+           moment: np.ndarray, lever: float) -> Equilibrium:
     """
     Solve the equilibrium under force (N) and moment (N mm) from the zero-load one.
 
     In one Newton solve if it converges, else in 2, 4, ... 2**MAX_HALVINGS equal increments.
+    model None: by newton_python.
     """
     last = start
     for halvings in range(MAX_HALVINGS + 1):
         parts = 2 ** halvings
         here = start
         for k in range(1, parts + 1):
-            here = newton(system, here.pose, here.multipliers, force * k / parts,
-                          moment * k / parts, lever)
+            args = (here.pose, here.multipliers, force * k / parts, moment * k / parts, lever)
+            here = (newton_python(system, *args) if model is None
+                    else newton(system, model, *args))
             if not here.ok:
                 last = here
                 break

@@ -10,38 +10,47 @@ Robotics, 2017, eq. 7.77b):
     c = 1/theta^2 - (1 + cos theta) / (2 theta sin theta)
 
 so the energy E = phi.K phi / 2 has the gradient A^T K phi, and its Hessian in w (at w = 0)
-adds to A^T K A the term from A's own change (dA/dphi, exact, below).
+adds to A^T K A the term from A's own change (dA/dphi, exact, below). Compiled (numba), so
+that the statics kernel (kernel.py) calls them too; Python calls them alike.
 """
-
-from __future__ import annotations
 
 import math
 
+from numba import njit
 import numpy as np
+
+jit = njit(cache=True, nogil=True, error_model='numpy')
 
 # Below this angle (rad) c and c'/theta come from their Taylor series (sympy, to theta^10):
 # the closed forms lose digits to cancellation there (c' as eps / theta^3).
 SERIES_BELOW = 0.1
-EYE = np.eye(3)
 
 
-def skew(v: np.ndarray) -> np.ndarray:
+@jit
+def skew(v):
     """Return [v]x (3, 3), the matrix of v x ."""
-    return np.array([[0.0, -v[2], v[1]], [v[2], 0.0, -v[0]], [-v[1], v[0], 0.0]])
+    out = np.zeros((3, 3))
+    out[0, 1], out[0, 2], out[1, 2] = -v[2], v[1], -v[0]
+    out[1, 0], out[2, 0], out[2, 1] = v[2], -v[1], v[0]
+    return out
 
 
-def log_so3(rotation: np.ndarray) -> np.ndarray:
+@jit
+def log_so3(rotation):
     """Return the rotation vector (3,) rad of a rotation matrix (angle below pi)."""
-    cos = min(1.0, max(-1.0, 0.5 * (np.trace(rotation) - 1.0)))
-    axis = np.array([rotation[2, 1] - rotation[1, 2], rotation[0, 2] - rotation[2, 0],
-                     rotation[1, 0] - rotation[0, 1]])   # 2 sin(theta) * unit axis
+    cos = min(1.0, max(-1.0, 0.5 * (rotation[0, 0] + rotation[1, 1] + rotation[2, 2] - 1.0)))
+    axis = np.empty(3)   # 2 sin(theta) * unit axis
+    axis[0] = rotation[2, 1] - rotation[1, 2]
+    axis[1] = rotation[0, 2] - rotation[2, 0]
+    axis[2] = rotation[1, 0] - rotation[0, 1]
     sin = 0.5 * np.linalg.norm(axis)
     theta = math.atan2(sin, cos)
     scale = 0.5 / (1.0 - theta * theta / 6.0) if sin < 1e-8 else 0.5 * theta / sin
     return scale * axis
 
 
-def coefficients(theta: float) -> tuple[float, float]:
+@jit
+def coefficients(theta):
     """Return c(theta) and c'(theta) / theta of A (module docstring)."""
     t2 = theta * theta
     if theta < SERIES_BELOW:
@@ -56,24 +65,44 @@ def coefficients(theta: float) -> tuple[float, float]:
     return c, dc / theta
 
 
-def energy_terms(phi: np.ndarray, stiffness: np.ndarray) -> tuple[float, np.ndarray,
-                                                                  np.ndarray]:
+@jit
+def _mul(a, b):
+    """Return a @ b of (3, 3) matrices, without a BLAS call (they are small)."""
+    out = np.empty((3, 3))
+    for i in range(3):
+        for j in range(3):
+            out[i, j] = a[i, 0] * b[0, j] + a[i, 1] * b[1, j] + a[i, 2] * b[2, j]
+    return out
+
+
+@jit
+def energy_terms(phi, stiffness):
     """
     Return E, its gradient (3,) and Hessian (3, 3) in w of E = phi.K phi / 2 (N mm, rad).
 
     stiffness K (3, 3) N mm/rad, symmetric. Gradient A^T K phi; Hessian A^T K A plus the
     symmetrised (K phi) . (dA/dphi_k w2) (A w1)_k, exact (module docstring).
     """
-    theta = float(np.linalg.norm(phi))
+    theta = math.sqrt(phi[0] * phi[0] + phi[1] * phi[1] + phi[2] * phi[2])
     c, dc = coefficients(theta)
     big = skew(phi)
-    big2 = big @ big
-    a = EYE - 0.5 * big + c * big2
-    k_phi = stiffness @ phi
+    big2 = _mul(big, big)
+    eye = np.eye(3)
+    a = eye - 0.5 * big + c * big2
+    k_phi = np.empty(3)
+    for i in range(3):
+        k_phi[i] = stiffness[i, 0] * phi[0] + stiffness[i, 1] * phi[1] + stiffness[i, 2] * phi[2]
     z = np.empty((3, 3))
     for k in range(3):
-        e = skew(EYE[k])
-        d_a = -0.5 * e + dc * phi[k] * big2 + c * (e @ big + big @ e)
-        z[k] = k_phi @ d_a
-    hess = a.T @ stiffness @ a + 0.5 * (a.T @ z + z.T @ a)
-    return 0.5 * float(phi @ k_phi), a.T @ k_phi, hess
+        e = skew(eye[k])
+        d_a = -0.5 * e + dc * phi[k] * big2 + c * (_mul(e, big) + _mul(big, e))
+        for j in range(3):   # (K phi)^T dA/dphi_k
+            z[k, j] = k_phi[0] * d_a[0, j] + k_phi[1] * d_a[1, j] + k_phi[2] * d_a[2, j]
+    a_t = a.T.copy()
+    az = _mul(a_t, z)
+    hess = _mul(_mul(a_t, stiffness), a) + 0.5 * (az + az.T)
+    grad = np.empty(3)
+    for i in range(3):
+        grad[i] = a[0, i] * k_phi[0] + a[1, i] * k_phi[1] + a[2, i] * k_phi[2]
+    energy = 0.5 * (phi[0] * k_phi[0] + phi[1] * k_phi[1] + phi[2] * k_phi[2])
+    return energy, grad, hess

@@ -23,7 +23,7 @@ from typing import NamedTuple
 import numpy as np
 
 from .rotation import energy_terms, log_so3, skew
-from ..base.geometry import exp_so3, unit
+from ..base.geometry import cross, exp_so3, unit
 from ..solve.mechanism import compile_scene
 
 CARRIER, ARM, HINGE, BASE = 'carrier', 'arm', 'hinge', 'base'   # body kinds
@@ -197,7 +197,7 @@ def initial_pose(system: System, scene, center, rotation) -> Pose:
         axis = unit(a1 - a0)
         ball = center + rotation @ (con.carrier - mech.design_center)
         u0, u1 = (p - a0 - ((p - a0) @ axis) * axis for p in (con.carrier, ball))
-        angle = math.atan2(axis @ np.cross(u0, u1), u0 @ u1)
+        angle = math.atan2(axis @ cross(u0, u1), u0 @ u1)
         r[k] = exp_so3(angle * axis)
     return Pose(c, r)
 
