@@ -85,6 +85,7 @@ class Unloaded(NamedTuple):
 # where a Scene keeps its statics Systems and packed Models, by rack (as compile_scene does)
 PREPARED = '_statics'
 RACKS_KEPT = 16
+LAST = '_statics_last'   # the last zero-load equilibrium solved: (travel, rack, compiled), it
 
 
 def prepared(scene, rack_mm: float, z: float, load_x0: np.ndarray, compiled: bool = True):
@@ -132,11 +133,17 @@ def unloaded(scene, travel_mm: float, rack_mm: float = 0.0,
     """
     Solve the zero-load equilibrium at travel and rack (mm), from the kinematic pose.
 
-    compiled False: by newton_python (numpy), the check of the compiled kernel.
+    compiled False: by newton_python (numpy), the check of the compiled kernel. The last
+    one solved is kept on the Scene and returned again for the same travel and rack (a rig
+    or a node loading one position with many loads; rates and loads at one travel).
     """
     if not (is_finite_number(travel_mm) and is_finite_number(rack_mm)):
         return Unloaded(Status.NOT_FINITE, f'travel {travel_mm!r} and rack {rack_mm!r} must be '
                         'finite numbers')
+    key = (float(travel_mm), float(rack_mm), compiled)
+    last = scene.__dict__.get(LAST)
+    if last is not None and last[0] == key:
+        return last[1]
     cont = continuation or Continuation(scene)
     kin = cont.solve(float(travel_mm), float(rack_mm) if scene.steered else None)
     if not kin.success:
@@ -152,7 +159,9 @@ def unloaded(scene, travel_mm: float, rack_mm: float = 0.0,
     if not eq.ok:
         return Unloaded(Status.NOT_CARRIED, f'the zero load is not carried at travel '
                         f'{travel_mm:g} mm: no convergence (residual {eq.residual:.3g} N)')
-    return Unloaded(Status.OK, 'ok', system, eq, lever, model)
+    done = Unloaded(Status.OK, 'ok', system, eq, lever, model)
+    scene.__dict__[LAST] = (key, done)
+    return done
 
 
 def load_point(scene, base: Unloaded, at: str) -> np.ndarray:

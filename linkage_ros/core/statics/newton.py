@@ -62,9 +62,9 @@ def newton(system: System, model: kernel.Model, pose: Pose, multipliers: np.ndar
     """Solve one equilibrium by Newton (compiled) from pose and multipliers."""
     c, r, lam = pose.c.copy(), pose.r.copy(), np.array(multipliers, dtype=float)
     hess, rows = np.empty((model.n, model.n)), np.empty((model.m, model.n))
-    ok, iterations, residual = kernel.newton(model, c, r, lam, np.asarray(force, dtype=float),
-                                             np.asarray(moment, dtype=float), lever, TOL_STEP,
-                                             MAX_ITER, hess, rows)
+    ok, iterations, residual = kernel.newton(
+        tuple(model), c, r, lam, np.asarray(force, dtype=float),
+        np.asarray(moment, dtype=float), lever, TOL_STEP, MAX_ITER, hess, rows)
     return Equilibrium(bool(ok), Pose(c, r), lam, hess, rows,
                        residual if math.isfinite(residual) else math.inf, int(iterations))
 
