@@ -24,6 +24,7 @@ setup(
         ('share/' + package_name + '/config/interfaces/tf2_msgs/msg',
          glob('config/interfaces/tf2_msgs/msg/*')),
         ('share/' + package_name + '/config/study', glob('config/study/*.yaml')),
+        ('share/' + package_name + '/config/bench', glob('config/bench/*.yaml')),
     ],
     python_requires='>=3.10',
     install_requires=['setuptools', 'numpy', 'scipy', 'PyYAML', 'numba'],
