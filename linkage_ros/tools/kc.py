@@ -201,12 +201,14 @@ def solve(scene, args, travels, racks):
     Solve every position: (header, rows, results, failure); failure '' when all solved.
 
     Rack by rack, travel by travel; the first position that fails ends the table there (its
-    message is the failure). results: the Compliance or Loaded of each solved position.
+    message is the failure). header and rows hold the columns --columns keeps; results: the
+    Compliance or Loaded of each solved position. An unknown column raises LinkageError once
+    the first position has named the columns, before anything is said or written.
     """
     from ..core.base import Status
     from ..core.statics import compliance, solve_loaded
     lead = ['travel_mm'] + (['rack_mm'] if args.rack is not None else [])
-    header, rows, results = None, [], []
+    header, chosen, rows, results = None, None, [], []
     load = load_of(args) if args.loaded else None
     for rack in racks:
         for travel in travels:
@@ -225,11 +227,21 @@ def solve(scene, args, travels, racks):
                 return header or lead, rows, results, failure
             values = list(result.rates.values()) if load is None else loaded_row(result)
             if header is None:
-                header = lead + (list(result.rates) if load is None
-                                 else loaded_header(scene, result))
-            rows.append([travel] + ([rack] if len(lead) > 1 else []) + values)
+                names = list(result.rates) if load is None else loaded_header(scene, result)
+                chosen = list(range(len(lead))) + [
+                    len(lead) + i for i in select(names, args.columns)]
+                header = [(lead + names)[i] for i in chosen]
+                announce(scene, args, len(travels) * len(racks))
+            row = [travel] + ([rack] if len(lead) > 1 else []) + values
+            rows.append([row[i] for i in chosen])
             results.append(result)
     return header, rows, results, ''
+
+
+def announce(scene, args, count):
+    """Say on stderr what is being solved (once the request is known to be sound)."""
+    what = f'loaded by {describe(load_of(args))}' if args.loaded else 'compliance rates'
+    print(f'{PROG}: {scene.name}: {what}, {counted(count, "position")}', file=sys.stderr)
 
 
 @program(PROG)
@@ -259,18 +271,10 @@ def main(argv: list[str] | None = None, rounds: int = 0) -> int:
         from .kc_bench import benchmark
         return benchmark(scene, travels, racks, load_of(args) if args.loaded else None,
                          args.rounds)
-    what = f'loaded by {describe(load_of(args))}' if args.loaded else 'compliance rates'
-    print(f'{PROG}: {scene.name}: {what}, {counted(len(travels) * len(racks), "position")}',
-          file=sys.stderr)
-    header, rows, results, failure = solve(scene, args, travels, racks)
-    if rows:
-        lead = 2 if args.rack is not None else 1
-        try:
-            chosen = list(range(lead)) + [lead + i for i in select(header[lead:], args.columns)]
-        except LinkageError as exc:
-            return fail(PROG, exc)
-        header = [header[i] for i in chosen]
-        rows = np.asarray(rows, float)[:, chosen]
+    try:
+        header, rows, results, failure = solve(scene, args, travels, racks)
+    except LinkageError as exc:   # an unknown column
+        return fail(PROG, exc)
     if args.output:
         with whole_file(args.output) as stream:
             write_csv(header, rows, stream)

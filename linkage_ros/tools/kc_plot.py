@@ -10,17 +10,18 @@ arrow to one scale (mm of paper per kN), the load on the wheel and the holding f
 import numpy as np
 
 from ..cli import save_figure
-from ..core.measure import quantity
+from ..core.measure import contact_patch
 from ..core.model import link_polylines
 from ..core.solve import compile_scene, sweep
 
-# The panels of plot_rates: (title, test on a rate's name, its unit in the registry's
-# spelling); a rate goes to the first panel it fits.
-PANELS = (('toe per force', lambda n: n.startswith('toe_') and n.endswith('_kn')),
-          ('camber per force', lambda n: n.startswith('camber_') and n.endswith('_kn')),
-          ('toe and camber per moment', lambda n: n.endswith('_knm')),
-          ('displacement per force', lambda n: n.endswith('_mm_per_kn')),
-          ('force per force', lambda n: True))
+# The panels of plot_rates: (title, unit, test on a rate's name); a rate goes to the first
+# panel it fits (the names end in their unit: doc/kc.md).
+PANELS = (('toe per force', 'deg/kN', lambda n: n.startswith('toe_') and n.endswith('_kn')),
+          ('camber per force', 'deg/kN',
+           lambda n: n.startswith('camber_') and n.endswith('_kn')),
+          ('toe and camber per moment', 'deg/(kN m)', lambda n: n.endswith('_knm')),
+          ('displacement per force', 'mm/kN', lambda n: n.endswith('_mm_per_kn')),
+          ('force per force', 'N/N', lambda n: True))
 VIEWS = (('front view (seen from ahead: + y, left, to the right)', 1),
          ('side view (seen from the left: + x, forward, to the right)', 0))
 ARROW_MM = 150.0   # the longest arrow, mm of the drawing
@@ -33,14 +34,6 @@ def _pyplot():
     return plt
 
 
-def _unit(name):
-    """Return a rate's unit as its name ends ('deg_per_kn' -> 'deg/kN'), for axis labels."""
-    try:
-        return quantity(name).unit
-    except KeyError:
-        return name.rsplit('_per_', 1)[-1]
-
-
 def plot_rates(scene, header, rows, path):
     """
     Write the rates of a linkage-kc table (header, rows: (n, columns)) against travel to path.
@@ -51,15 +44,15 @@ def plot_rates(scene, header, rows, path):
     rows = np.asarray(rows, float)
     lead = 2 if len(header) > 1 and header[1] == 'rack_mm' else 1
     names = header[lead:]
-    panels = [(title, [n for n in names if next(t for t, f in PANELS if f(n)) == title])
-              for title, _ in PANELS]
-    panels = [(title, chosen) for title, chosen in panels if chosen]
+    panels = [(title, unit, [n for n in names if next(t for t, _, f in PANELS if f(n)) == title])
+              for title, unit, _ in PANELS]
+    panels = [panel for panel in panels if panel[2]]
     racks = np.unique(rows[:, 1]) if lead == 2 else [None]
     columns = min(3, len(panels))
     lines = -(-len(panels) // columns)
     fig, axes = plt.subplots(lines, columns, figsize=(5.2 * columns, 3.8 * lines),
                              squeeze=False)
-    for ax, (title, chosen) in zip(axes.flat, panels):
+    for ax, (title, unit, chosen) in zip(axes.flat, panels):
         for k, name in enumerate(chosen):
             for j, rack in enumerate(racks):
                 mine = rows if rack is None else rows[rows[:, 1] == rack]
@@ -70,7 +63,7 @@ def plot_rates(scene, header, rows, path):
         ax.axhline(0.0, color='0.6', lw=0.8)
         ax.set_title(title, fontsize=10)
         ax.set_xlabel('travel_mm (+ = bump)', fontsize=9)
-        ax.set_ylabel(_unit(chosen[0]), fontsize=9)
+        ax.set_ylabel(unit, fontsize=9)
         ax.grid(True, alpha=0.3)
         ax.legend(fontsize=7)
     for ax in list(axes.flat)[len(panels):]:
@@ -98,58 +91,103 @@ def pickups(result):
     return found
 
 
+def wheel_outline(scene, center, rotation):
+    """
+    Return the wheel's two side circles (2, k, 3) mm in a pose (center (3,), rotation (3, 3)).
+
+    Radius scene.wheel_radius, 0.6 radius apart along the spin axis: a rectangle seen from
+    the front, a circle seen from the side.
+    """
+    axis = rotation @ unit(scene.wheel_center - scene.spin_axis_point)
+    across = unit(np.cross(axis, [1.0, 0.0, 0.0] if abs(axis[0]) < 0.9 else [0.0, 0.0, 1.0]))
+    along = np.cross(axis, across)
+    turn = np.linspace(0.0, 2.0 * np.pi, 73)[:, None]
+    ring = scene.wheel_radius * (np.cos(turn) * across + np.sin(turn) * along)
+    return np.stack([center + ring + side * 0.3 * scene.wheel_radius * axis
+                     for side in (-1.0, 1.0)])
+
+
+def unit(vector):
+    """Return vector / |vector|."""
+    vector = np.asarray(vector, float)
+    return vector / np.linalg.norm(vector)
+
+
+def load_point(scene, result, free, at):
+    """
+    Return where the load acts in the loaded pose (3,) mm: the wheel centre, or the patch.
+
+    The contact patch is the unloaded pose's lowest wheel point at this travel, carried with
+    the carrier into the loaded pose (doc/kc.md, The model).
+    """
+    wheel = np.asarray(result.wheel_center_mm, float)
+    if at == 'wc' or not free.success:
+        return wheel
+    axis = unit(free.rotation[0] @ unit(scene.wheel_center - scene.spin_axis_point))
+    patch = contact_patch(free.wheel_center[:1], axis[None, :], scene.wheel_radius)[0]
+    return wheel + np.asarray(result.rotation) @ free.rotation[0].T @ (
+        patch - free.wheel_center[0])
+
+
 def plot_loaded(scene, result, load, path):
     """Write the loaded mechanism of a Loaded (one position) in front and side views to path."""
     plt = _pyplot()
     mech = compile_scene(scene)
-    joints = result.wheel_center_mm + mech.offsets @ np.asarray(result.rotation).T
-    free = sweep(scene, [result.travel_mm], rack=getattr(result, 'rack_mm', 0.0))
-    found = pickups(result)
+    rotation = np.asarray(result.rotation, float)
     wheel = np.asarray(result.wheel_center_mm, float)
-    at = wheel if load.at == 'wc' else getattr(result, 'load_point_mm', wheel)
-    arrows = [(name, p, f, 'C3') for name, p, f in found]
-    arrows.append(('load', np.asarray(at, float), np.asarray(load.force_n, float), 'C0'))
+    joints = wheel + mech.offsets @ rotation.T
+    free = sweep(scene, [result.travel_mm], rack=getattr(result, 'rack_mm', 0.0))
+    arrows = [(name, p, f, 'C3') for name, p, f in pickups(result)]
+    arrows.append(('load', load_point(scene, result, free, load.at),
+                   np.asarray(load.force_n, float), 'C0'))
     arrows.append(('holding', wheel, np.array([0.0, 0.0, result.holding_force_n]), 'C2'))
     largest = max([np.linalg.norm(f) for _, _, f, _ in arrows] + [1e-9])
     scale = ARROW_MM / largest   # mm of drawing per N
-    fig, axes = plt.subplots(1, 2, figsize=(15, 7.5))
+    fig, axes = plt.subplots(1, 2, figsize=(15, 7.8))
     for ax, (title, across) in zip(axes, VIEWS):
+        if scene.wheel_radius > 0:
+            rings = wheel_outline(scene, wheel, rotation)
+            for ring in rings:
+                ax.plot(ring[:, across], ring[:, 2], '-', color='0.55', lw=1.0, zorder=1)
+            for k in (np.argmax(rings[0, :, 2]), np.argmin(rings[0, :, 2])):   # tread edges
+                ax.plot(rings[:, k, across], rings[:, k, 2], '-', color='0.55', lw=1.0)
         if free.success:
             for line in link_polylines(scene, free.joints[0]):
-                ax.plot(line[:, across], line[:, 2], '-', color='0.8', lw=3, zorder=1)
+                ax.plot(line[:, across], line[:, 2], '-', color='0.82', lw=4, zorder=1)
         for line in link_polylines(scene, joints):
-            ax.plot(line[:, across], line[:, 2], '-', color='0.25', lw=1.3, zorder=2)
+            ax.plot(line[:, across], line[:, 2], '-', color='0.2', lw=1.4, zorder=2)
         ax.plot(joints[:, across], joints[:, 2], 'o', color='0.1', ms=4, zorder=3)
         ax.plot(wheel[across], wheel[2], 'P', color='k', ms=9, zorder=3)
+        ends = []
         for name, point, force, color in arrows:
+            tip = point + scale * force
+            ends += [point[[across, 2]], tip[[across, 2]]]
             if np.linalg.norm(force[[across, 2]]) * scale < 1.0:
                 continue   # less than a millimetre of drawing: a dot would say nothing
-            ax.annotate('', xy=(point[across] + scale * force[across],
-                                point[2] + scale * force[2]),
-                        xytext=(point[across], point[2]),
-                        arrowprops={'arrowstyle': '-|>', 'color': color, 'lw': 1.8}, zorder=4)
-            ax.text(point[across] + scale * force[across], point[2] + scale * force[2],
-                    f' {name} {np.linalg.norm(force):.0f} N', fontsize=7, color=color)
+            ax.annotate('', xy=(tip[across], tip[2]), xytext=(point[across], point[2]),
+                        arrowprops={'arrowstyle': '-|>', 'color': color, 'lw': 1.8},
+                        zorder=4)
+            if across == 0 or color != 'C3':   # names in the side view, where pivots part
+                ax.text(tip[across], tip[2], f' {name} {np.linalg.norm(force):.0f} N',
+                        fontsize=7, color=color, zorder=5)
         ax.set_aspect('equal')
         ax.set_title(title, fontsize=10)
         ax.set_xlabel('y, mm' if across == 1 else 'x, mm')
         ax.set_ylabel('z, mm')
         ax.grid(True, alpha=0.3)
-        ax.update_datalim(np.array([[p[across] + scale * f[across], p[2] + scale * f[2]]
-                                    for _, p, f, _ in arrows]))
+        ax.update_datalim(np.array(ends))
         ax.autoscale_view()
-    axes[0].plot([], [], '-', color='0.8', lw=3, label='unloaded at this travel')
-    axes[0].plot([], [], '-', color='0.25', lw=1.3, label='loaded')
-    for label, color in (('force of each pickup on the body', 'C3'), ('load on the wheel', 'C0'),
-                         ('holding force (the travel held)', 'C2')):
-        axes[0].plot([], [], '-', color=color, lw=2, label=label)
-    axes[0].legend(fontsize=8, loc='upper left')
+    handles = [plt.Line2D([], [], color=color, lw=width, label=label) for label, color, width in (
+        ('unloaded at this travel', '0.82', 4), ('loaded', '0.2', 1.4), ('wheel', '0.55', 1),
+        ('force of each pickup on the body', 'C3', 2), ('load on the wheel', 'C0', 2),
+        ('holding force (the travel held)', 'C2', 2))]
+    fig.legend(handles=handles, loc='lower center', ncol=6, fontsize=9, frameon=False)
     force = ', '.join(f'{v:g}' for v in load.force_n)
     moment = ', '.join(f'{v:g}' for v in load.moment_nm)
     fig.suptitle(f'linkage_ros: {scene.name} at travel {result.travel_mm:g} mm, loaded by '
                  f'F ({force}) N at {load.at} and M ({moment}) N m: camber '
                  f'{result.camber_deg:+.3f} deg, toe {result.toe_deg:+.3f} deg\n'
                  f'arrows to scale: 1 kN = {1e3 * scale:.3g} mm of the drawing', fontsize=11)
-    fig.tight_layout()
+    fig.tight_layout(rect=(0, 0.06, 1, 0.93))
     save_figure(fig, path, dpi=100)
     plt.close(fig)
