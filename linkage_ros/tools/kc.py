@@ -21,7 +21,6 @@ from ..core.model import load_scene, SceneError
 from ..core.solve import travel_range
 
 PROG = 'linkage-kc'
-AXES = 'xyz'
 # The 6x6 matrix's rows (the wheel centre's response) and columns (the load at the wheel
 # centre), units in the labels: entry [i, j] is response i per unit of load j.
 MATRIX_ROWS = ('dx_mm', 'dy_mm', 'dz_mm', 'rx_deg', 'ry_deg', 'rz_deg')
@@ -136,14 +135,19 @@ def check_request(scene, args):
                            'rack input moves nothing')
 
 
-def loaded_header(scene, result):
-    """Return the columns of a loaded solve after travel and rack (the issue's order)."""
-    header = ['camber_deg', 'toe_deg'] + [f'wheel_center_{a}_mm' for a in AXES]
-    header.append('holding_force_n')
-    header += [f'{name}_force_n' for name in result.link_forces_n]
-    header += [f'{pivot}_f{a}_n' for pivot in result.pivot_forces_n for a in AXES]
-    header += [f'{name}_force_n' for name in result.spring_forces_n]
-    return header
+def loaded_header(result):
+    """
+    Return the columns of a loaded solve after travel and rack, from the registry's templates.
+
+    The wheel's columns, the holding force, each link's force, each pivot's force on the body
+    (x, y, z) and each spring's force: the issue's order, the Loaded's names.
+    """
+    from ..core.measure import quantities
+    wheel = [n for n in quantities.columns('wheel') if n.startswith(('camber', 'toe', 'wheel'))]
+    holding, member, *pivot = quantities.names('kc_loaded')
+    return (wheel + [holding] + [member.format(member=n) for n in result.link_forces_n]
+            + [t.format(pivot=p) for p in result.pivot_forces_n for t in pivot]
+            + [member.format(member=n) for n in result.spring_forces_n])
 
 
 def loaded_row(result):
@@ -217,17 +221,12 @@ def solve(scene, args, travels, racks):
             else:
                 result = solve_loaded(scene, travel_mm=float(travel), load=load,
                                       rack_mm=float(rack))
-            where = f'travel {travel:g} mm' + (f', rack {rack:g} mm' if len(lead) > 1 else '')
-            if result.status != Status.OK:
-                said = result.message
-                if load is not None and result.status == Status.NOT_CARRIED and \
-                        describe(load) not in said:
-                    said = f'{describe(load)}: {said}'
-                failure = f'ERROR {result.status.name} at {where}: {said}'
+            if result.status != Status.OK:   # the message names the travel (and the load)
+                failure = f'ERROR {result.status.name}: {result.message}'
                 return header or lead, rows, results, failure
             values = list(result.rates.values()) if load is None else loaded_row(result)
             if header is None:
-                names = list(result.rates) if load is None else loaded_header(scene, result)
+                names = list(result.rates) if load is None else loaded_header(result)
                 chosen = list(range(len(lead))) + [
                     len(lead) + i for i in select(names, args.columns)]
                 header = [(lead + names)[i] for i in chosen]

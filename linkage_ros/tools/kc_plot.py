@@ -79,16 +79,11 @@ def pickups(result):
     """
     Return (name, point mm (3,), force on the body N (3,)) of each pickup of a Loaded.
 
-    An arm's pivots carry pivot_forces_n; a link, a two-force member, pushes on the body with
-    the opposite of its force on the carrier (ball_joint_forces_n).
+    The pickups are where the body carries the linkage: arm pivots, link bases, spring body
+    ends, strut tops (Loaded.body_forces_n at Loaded.body_points_mm).
     """
-    points = result.body_points_mm
-    found = [(key, points[key], np.asarray(force, float))
-             for key, force in result.pivot_forces_n.items() if key in points]
-    found += [(name, points[name], -np.asarray(result.ball_joint_forces_n[name], float))
-              for name in result.link_forces_n
-              if name in points and name in result.ball_joint_forces_n]
-    return found
+    return [(key, np.asarray(result.body_points_mm[key], float), np.asarray(force, float))
+            for key, force in result.body_forces_n.items()]
 
 
 def wheel_outline(scene, center, rotation):
@@ -121,6 +116,8 @@ def load_point(scene, result, free, at):
     the carrier into the loaded pose (doc/kc.md, The model).
     """
     wheel = np.asarray(result.wheel_center_mm, float)
+    if getattr(result, 'load_point_mm', None) is not None:
+        return np.asarray(result.load_point_mm, float)
     if at == 'wc' or not free.success:
         return wheel
     axis = unit(free.rotation[0] @ unit(scene.wheel_center - scene.spin_axis_point))
