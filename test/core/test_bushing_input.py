@@ -16,9 +16,10 @@ LINK = {'axial': 3000, 'radial': 3000}
 
 
 def scene_with(tmp_path, bushings, base='double_wishbone', units=None):
-    """Write the bundled base scene with {constraint name: bushing mapping} added."""
+    """Write the bundled base scene with exactly the bushings {constraint name: mapping}."""
     data = yaml.safe_load(Path(load_scene(base).source).read_text())
     for item in data['constraints']:
+        item.pop('bushing', None)
         if item['name'] in bushings:
             item['bushing'] = bushings[item['name']]
     path = tmp_path / 'scene.yaml'
@@ -49,7 +50,7 @@ def test_bushing_rates_of_a_metre_scene_are_converted_to_n_per_mm(tmp_path):
 
 
 def test_a_scene_without_bushings_has_none(tmp_path):
-    scene = load_scene('double_wishbone')
+    scene = load_scene('macpherson')
     assert not scene.has_bushings
     assert all(c.bushing is None for c in scene.constraints)
 
@@ -62,7 +63,7 @@ def test_mirror_and_translate_keep_the_bushings(tmp_path):
 
 def test_loading_a_bushing_free_scene_leaves_statics_unimported():
     code = ('import sys; from linkage_ros.core.model import load_scene; '
-            "from linkage_ros.core.solve import sweep; s = load_scene('five_link'); "
+            "from linkage_ros.core.solve import sweep; s = load_scene('macpherson'); "
             'sweep(s, [0.0, 10.0]); '
             "print(sorted(m for m in sys.modules if 'statics' in m or 'bushing' in m))")
     out = subprocess.run([sys.executable, '-c', code], capture_output=True, text=True,
