@@ -86,6 +86,18 @@ def pickups(result):
             for key, force in result.body_forces_n.items()]
 
 
+def named_in(name, force):
+    """
+    Return the view (1 front, 0 side: the axis across it) that names a pickup's arrow.
+
+    An arm's two pivots lie on one axis, nearly one behind the other from the front: they are
+    named in the side view; any other pickup where its arrow is the longer.
+    """
+    if name.endswith(('_axis0', '_axis1')):
+        return 0
+    return 1 if np.linalg.norm(force[[1, 2]]) >= np.linalg.norm(force[[0, 2]]) else 0
+
+
 def wheel_outline(scene, center, rotation):
     """
     Return the wheel's two side circles (2, k, 3) mm in a pose (center (3,), rotation (3, 3)).
@@ -164,7 +176,7 @@ def plot_loaded(scene, result, load, path):
             ax.annotate('', xy=(tip[across], tip[2]), xytext=(point[across], point[2]),
                         arrowprops={'arrowstyle': '-|>', 'color': color, 'lw': 1.8},
                         zorder=4)
-            if across == 0 or color != 'C3':   # names in the side view, where pivots part
+            if color != 'C3' or across == named_in(name, force):
                 ax.text(tip[across], tip[2], f' {name} {np.linalg.norm(force):.0f} N',
                         fontsize=7, color=color, zorder=5)
         ax.set_aspect('equal')
