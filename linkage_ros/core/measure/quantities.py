@@ -257,7 +257,7 @@ _DECLARED = (
     _q('{member}_force_n', 'n', '+ = tension (a link), + = compressed (a spring)', 'kc_loaded',
        "a link's axial force, or a spring's force"),
     _q('{pivot}_fx_n', 'n', '+ = forward', 'kc_loaded',
-       "force of an arm on the body at a pivot (<arm>_axis0, _axis1 or _centre), x"),
+       'force of an arm on the body at a pivot (<arm>_axis0, _axis1 or _centre), x'),
     _q('{pivot}_fy_n', 'n', '+ = left', 'kc_loaded',
        'force of an arm on the body at a pivot, y'),
     _q('{pivot}_fz_n', 'n', '+ = up', 'kc_loaded', 'force of an arm on the body at a pivot, z'),
