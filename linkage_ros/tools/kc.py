@@ -36,8 +36,8 @@ EPILOG = """columns, without a load: travel_mm (+ = bump), rack_mm with --rack, 
 columns, with --load or --moment: travel_mm, rack_mm with --rack, camber_deg, toe_deg,
   wheel_center_x/y/z_mm, holding_force_n (the vertical force at the wheel centre that holds
   the travel, + = up), <link>_force_n (+ = tension), <arm>_<pivot>_fx/fy/fz_n (the force of
-  the arm on the body at pivot axis0, axis1 or centre) and <spring>_force_n
-  (+ = compressed).
+  the arm on the body at pivot axis0, axis1 or centre), <spring>_force_n
+  (+ = compressed) and <strut>_top_fx/fy/fz_n (a strut's force on the body at its top).
 
 examples:
   linkage-kc double_wishbone --travel -40:40:20
@@ -135,27 +135,36 @@ def check_request(scene, args):
                            'rack input moves nothing')
 
 
-def loaded_header(result):
+def loaded_header(scene, result):
     """
     Return the columns of a loaded solve after travel and rack, from the registry's templates.
 
     The wheel's columns, the holding force, each link's force, each pivot's force on the body
-    (x, y, z) and each spring's force: the issue's order, the Loaded's names.
+    (x, y, z), each spring's force (the issue's order), then each strut's force on the body at
+    its top mount (x, y, z): the Loaded's names.
     """
     from ..core.measure import quantities
     wheel = [n for n in quantities.columns('wheel') if n.startswith(('camber', 'toe', 'wheel'))]
-    holding, member, *pivot = quantities.names('kc_loaded')
+    holding, member, *pivot = quantities.names('kc_loaded')[:5]
+    top = quantities.names('kc_loaded')[5:]
     return (wheel + [holding] + [member.format(member=n) for n in result.link_forces_n]
             + [t.format(pivot=p) for p in result.pivot_forces_n for t in pivot]
-            + [member.format(member=n) for n in result.spring_forces_n])
+            + [member.format(member=n) for n in result.spring_forces_n]
+            + [t.format(strut=s) for s in struts(scene) for t in top])
 
 
-def loaded_row(result):
+def struts(scene):
+    """Return the names of the scene's struts (line constraints), in constraint order."""
+    return [c.name for c in scene.constraints if c.type == 'line']
+
+
+def loaded_row(scene, result):
     """Return the values of loaded_header of a Loaded (mm, deg, N)."""
     row = [result.camber_deg, result.toe_deg, *result.wheel_center_mm, result.holding_force_n]
     row += list(result.link_forces_n.values())
     row += [v for force in result.pivot_forces_n.values() for v in force]
     row += list(result.spring_forces_n.values())
+    row += [v for name in struts(scene) for v in result.body_forces_n[f'{name}_top']]
     return row
 
 
@@ -224,9 +233,9 @@ def solve(scene, args, travels, racks):
             if result.status != Status.OK:   # the message names the travel (and the load)
                 failure = f'ERROR {result.status.name}: {result.message}'
                 return header or lead, rows, results, failure
-            values = list(result.rates.values()) if load is None else loaded_row(result)
+            values = list(result.rates.values()) if load is None else loaded_row(scene, result)
             if header is None:
-                names = list(result.rates) if load is None else loaded_header(result)
+                names = list(result.rates) if load is None else loaded_header(scene, result)
                 chosen = list(range(len(lead))) + [
                     len(lead) + i for i in select(names, args.columns)]
                 header = [(lead + names)[i] for i in chosen]

@@ -97,6 +97,20 @@ def test_the_loaded_table_written_to_a_file_is_the_apis_loaded_solve(scene, tmp_
     close(rows[0], [expected[name] for name in header])
 
 
+def test_a_rigid_strut_scene_gives_its_strut_top_force_and_zero_pose_rates():
+    status, out, err = run('macpherson', '--travel', '0', '--load', '0,1000,0', '--at', 'cp')
+    header, rows = table(out)
+    res = solve_loaded(load_scene('macpherson'), travel_mm=0.0,
+                       load=Load(force_n=(0.0, 1000.0, 0.0), at='cp'))
+    assert status == 0, err
+    assert header[-3:] == ['strut_top_fx_n', 'strut_top_fy_n', 'strut_top_fz_n']
+    close(rows[0, -3:], res.body_forces_n['strut_top'])
+    _, out, _ = run('macpherson', '--travel', '0')
+    header, rows = table(out)
+    pose = [k for k, name in enumerate(header) if name not in ('travel_mm', 'jacking_per_fy_cp')]
+    assert np.abs(rows[0, pose]).max() < 1e-12   # rigid: the held travel leaves nothing to move
+
+
 def test_csv_is_the_issues_spelling_of_output(tmp_path):
     args = [SCENE, '--travel', '0', '--load', '0,1000,0', '--at', 'wc']
     status, out, _ = run(*args, '--csv', str(tmp_path / 'a.csv'))

@@ -50,7 +50,7 @@ UNITS = {
 }
 # What a template's placeholder stands for (a regular expression).
 PLACEHOLDERS = {'element': r'.+', 'side': r'left|right', 'member': r'.+',
-                'pivot': r'.+_(?:axis0|axis1|centre)'}
+                'pivot': r'.+_(?:axis0|axis1|centre)', 'strut': r'.+'}
 SIDES = ('left', 'right')
 
 
@@ -261,6 +261,12 @@ _DECLARED = (
     _q('{pivot}_fy_n', 'n', '+ = left', 'kc_loaded',
        'force of an arm on the body at a pivot, y'),
     _q('{pivot}_fz_n', 'n', '+ = up', 'kc_loaded', 'force of an arm on the body at a pivot, z'),
+    _q('{strut}_top_fx_n', 'n', '+ = forward', 'kc_loaded',
+       'force of a strut (line) on the body at its top mount, x'),
+    _q('{strut}_top_fy_n', 'n', '+ = left', 'kc_loaded',
+       'force of a strut on the body at its top mount, y'),
+    _q('{strut}_top_fz_n', 'n', '+ = up', 'kc_loaded',
+       'force of a strut on the body at its top mount, z'),
 )
 QUANTITIES = {q.name: q for q in _DECLARED}
 
