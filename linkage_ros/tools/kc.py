@@ -154,7 +154,7 @@ def loaded_header(scene, result):
 
 
 def struts(scene):
-    """Return the names of the scene's struts (line constraints), in constraint order."""
+    """Return the names of the scene's line constraints (struts), in constraint order."""
     return [c.name for c in scene.constraints if c.type == 'line']
 
 
