@@ -28,7 +28,8 @@ from .newton import kkt
 from ..base import jets as jt
 from ..base.status import Status
 from ..measure.quantities import names
-from ..solve import compile_scene, Continuation
+from ..solve.continuation import Continuation
+from ..solve.mechanism import compile_scene
 
 RATE_COLUMNS = tuple(names('kc_fy_cp', 'kc_fx_cp', 'kc_fx_wc', 'kc_mz'))
 PER_KN = 1000.0            # N per kN
@@ -67,7 +68,7 @@ def compliance(scene, travel_mm: float = 0.0, rack_mm: float = 0.0,
     system, eq = base.system, base.eq
     n, m = system.size, len(system.constraints)
     factors = lu_factor(kkt(eq.hess, eq.rows))
-    center, rot = eq.pose.c[0], eq.pose.r[0]
+    rot = eq.pose.r[0]
     mech = compile_scene(scene)
     d_camber, d_toe = angle_gradients(rot @ mech.spin_axis, scene.side_sign)
 

@@ -82,8 +82,10 @@ def pickup_forces(scene, system, eq, force: np.ndarray) -> dict:
 
 def _pivots(axis_points, loads):
     """
-    Return the forces (3,) N a rigid revolute's pivots exert on the body, given the loads on
-    its arm [(point (3,), force (3,)), ...]; the axial force shared equally (least norm).
+    Return the forces (3,) N a rigid revolute's pivots exert on the body.
+
+    loads: those on its arm [(point (3,), force (3,)), ...]; the axial force is shared
+    equally (the least-norm pair).
     """
     a0, a1 = axis_points
     total = sum((f for _, f in loads), np.zeros(3))
@@ -96,4 +98,3 @@ def _pivots(axis_points, loads):
     rhs = np.concatenate((-total, -moment / scale))
     react = np.linalg.lstsq(lhs, rhs, rcond=None)[0]
     return -react[:3], -react[3:]
-

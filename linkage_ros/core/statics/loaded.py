@@ -27,7 +27,8 @@ from ..base.finite import all_finite, is_finite_number
 from ..base.geometry import camber_toe
 from ..base.status import Status
 from ..measure.alignment import patch_offset
-from ..solve import compile_scene, Continuation
+from ..solve.continuation import Continuation
+from ..solve.mechanism import compile_scene
 
 PLACES = ('cp', 'wc')
 # The model's validity (STATICS_SPEC.md): beyond these a load is not carried

@@ -6,7 +6,8 @@ rad, vehicle frame), as the carrier's is. Its rotation vector phi = log(R) then 
 d phi = A(phi) w, A the inverse of SO(3)'s left Jacobian (Barfoot, State Estimation for
 Robotics, 2017, eq. 7.77b):
 
-    A(phi) = I - [phi]x / 2 + c(theta) [phi]x^2,  c = 1/theta^2 - (1 + cos theta) / (2 theta sin theta)
+    A(phi) = I - [phi]x / 2 + c(theta) [phi]x^2,
+    c = 1/theta^2 - (1 + cos theta) / (2 theta sin theta)
 
 so the energy E = phi.K phi / 2 has the gradient A^T K phi, and its Hessian in w (at w = 0)
 adds to A^T K A the term from A's own change (dA/dphi, exact, below).
@@ -50,8 +51,8 @@ def coefficients(theta: float) -> tuple[float, float]:
         return c, dc
     sin, cos = math.sin(theta), math.cos(theta)
     c = 1.0 / t2 - (1.0 + cos) / (2.0 * theta * sin)
-    dc = -2.0 / (t2 * theta) + (1.0 + cos) / (2.0 * t2 * sin) + (1.0 + cos) / (2.0 * theta
-                                                                             * sin * sin)
+    dc = (-2.0 / (t2 * theta) + (1.0 + cos) / (2.0 * t2 * sin)
+          + (1.0 + cos) / (2.0 * theta * sin * sin))
     return c, dc / theta
 
 

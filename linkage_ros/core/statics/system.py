@@ -41,8 +41,12 @@ class Item(NamedTuple):
 
 
 class Bush(NamedTuple):
-    """One bushing: its key, constraint, arm or base body, design point x0, where it holds
-    (B, mm), translational stiffness (3, 3) N/mm, rotational (3, 3) N mm/rad or None, axis."""
+    """
+    One bushing of an arm or a link base.
+
+    key, constraint index, body, design point x0 on the body, where it holds B (3,) mm,
+    translational stiffness (3, 3) N/mm, rotational (3, 3) N mm/rad or None, design axis.
+    """
 
     key: str
     constraint: int
@@ -199,7 +203,7 @@ def initial_pose(system: System, scene, center, rotation) -> Pose:
 
 
 def position(system: System, pose: Pose, item: Item) -> tuple[np.ndarray, np.ndarray]:
-    """Return (x, v) of an item: its position (or direction) and v = R (x0 - ref0)."""
+    """Return where an item is, x (a point or a direction), and v = R (x0 - ref0), (3,) mm."""
     if item.body < 0:
         return item.x0, np.zeros(3)
     body = system.bodies[item.body]
@@ -239,8 +243,10 @@ class Assembly:
 
     def term(self, points, grads, hess, factor: float = 1.0) -> np.ndarray:
         """
-        Add factor times a term of points (weighted items each) with d/dx grads (p, 3) and
-        d2/dx2 hess (p, p, 3, 3) or None; return the term's row d/dq (n,).
+        Add factor times a term of points; return the term's row d/dq (n,), unscaled.
+
+        points: weighted items each; grads (p, 3) its d/dx; hess (p, p, 3, 3) its d2/dx2
+        (blocks may be None), or None.
         """
         jacs = [self.jac(p) for p in points]
         row = sum(g @ j for g, j in zip(grads, jacs))
