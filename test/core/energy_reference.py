@@ -22,6 +22,7 @@ from dataclasses import dataclass, field
 import math
 
 import numpy as np
+from scipy.linalg import null_space
 import yaml
 
 UNIT_MM = {'mm': 1.0, 'm': 1000.0}
@@ -129,11 +130,14 @@ class Result:
     pivot_forces_n: dict = field(default_factory=dict)
     ball_joint_forces_n: dict = field(default_factory=dict)
     spring_forces_n: dict = field(default_factory=dict)
-    body_forces_n: dict = field(default_factory=dict)     # every force on the body, (3,)
+    body_forces_n: dict = field(default_factory=dict)     # every force on the body, (3,):
+    # keys: arm pivots as pivot_forces_n, f'{link}_base', f'{spring}_body'
     body_points_mm: dict = field(default_factory=dict)    # where each acts
     body_couples_nmm: np.ndarray = field(default_factory=lambda: np.zeros(3))
     residual: float = math.nan
     q: np.ndarray | None = None
+    min_curvature: float = math.nan     # > 0: a minimum of the potential, not a saddle
+    load_point_mm: np.ndarray | None = None   # where the load's point (carrier-fixed) is
 
 
 class EnergyModel:
@@ -156,6 +160,7 @@ class EnergyModel:
             n += part.size
             self.parts.append(part)
         self.size = n
+        self._free = {}
         self.springs = [self._spring(e, s) for e in data.get('elements') or []
                         if e.get('type') == 'spring' and e.get('rate') is not None]
 
@@ -308,16 +313,20 @@ class EnergyModel:
         The contact patch is the lowest point of the wheel circle in the zero-load
         equilibrium at that travel and rack, fixed in the carrier.
         """
-        start = self.kinematic(travel_mm, rack_mm)
         force, moment = np.asarray(force_n, float), np.asarray(moment_nm, float) * 1000.0
-        point = self.m0
+        key = (float(travel_mm), float(rack_mm))
+        if key not in self._free:       # the zero-load equilibrium, kept for later loads
+            start = self.kinematic(travel_mm, rack_mm)
+            self._free[key] = self.equilibrium(start, travel_mm, rack_mm, np.zeros(3), self.m0,
+                                               np.zeros(3))
+        free, point = self._free[key], self.m0
+        start = free.q
         if at == 'cp':
-            free = self.equilibrium(start, travel_mm, rack_mm, np.zeros(3), self.m0, np.zeros(3))
             rot, wc = exp_so3(free.q[3:6]).real, free.q[0:3]
             spin = unit(rot @ (self.m0 - self.n0))
             up = np.array([0.0, 0.0, 1.0]) - spin[2] * spin
             cp = wc - self.radius * unit(up)
-            point, start = rot.T @ (cp - wc) + self.m0, free.q
+            point = rot.T @ (cp - wc) + self.m0
         return self.equilibrium(start, travel_mm, rack_mm, force, point, moment, tol)
 
     def equilibrium(self, q0, travel, rack, force, point, moment, tol=1e-13):
@@ -348,7 +357,9 @@ class EnergyModel:
             if size > 0.5 * last:
                 matrix = None
             last = size
-        return self.forces(z, rack, travel, force, point, moment, np.max(np.abs(r)))
+        res = self.forces(z, rack, travel, force, point, moment, np.max(np.abs(r)))
+        res.min_curvature = _least_curvature(self._newton_matrix(lagrange, z, r), self.size)
+        return res
 
     def _newton_matrix(self, lagrange, z, r):
         """Return Newton's matrix: forward differences (exact in the multipliers: linear)."""
@@ -365,7 +376,8 @@ class EnergyModel:
         q, lam = z[:self.size], z[self.size:]
         rot = exp_so3(q[3:6]).real
         camber, toe = camber_toe_deg(rot @ (self.m0 - self.n0), self.side)
-        res = Result(camber, toe, q[0:3].copy(), rot, -lam[-1], residual=residual, q=q)
+        res = Result(camber, toe, q[0:3].copy(), rot, -lam[-1], residual=residual, q=q,
+                     load_point_mm=self.carrier_point(q, point).real)
         k = 0
         for part in self.parts:
             c = self.carrier_point(q, part.carrier)
@@ -379,12 +391,12 @@ class EnergyModel:
                 u = unit(c - b)
                 res.link_forces_n[part.name] = lam[k]
                 res.ball_joint_forces_n[part.name] = -lam[k] * u
-                res.body_forces_n[part.name] = lam[k] * u
+                res.body_forces_n[f'{part.name}_base'] = lam[k] * u
                 if part.bushing:    # what the bushing passes on, springs on the link included
-                    res.body_forces_n[part.name] = stiffness(
+                    res.body_forces_n[f'{part.name}_base'] = stiffness(
                         unit(part.carrier - part.base[0]), part.bushing['axial'],
                         part.bushing['radial']) @ q[part.index:part.index + 3]
-                res.body_points_mm[part.name] = b.real
+                res.body_points_mm[f'{part.name}_base'] = b.real
                 k += 1
             else:
                 k += 2
@@ -393,13 +405,13 @@ class EnergyModel:
             length = np.linalg.norm(end - sp.body)
             res.spring_forces_n[sp.name] = sp.rate * (sp.free_length - length)
             push = res.spring_forces_n[sp.name] * unit(end - sp.body)    # on the moving end
-            res.body_forces_n[sp.name] = -push
-            res.body_points_mm[sp.name] = sp.body
+            res.body_forces_n[f'{sp.name}_body'] = -push
+            res.body_points_mm[f'{sp.name}_body'] = sp.body
             if sp.on == 'link':     # a link shares a load on its line between its two ends
                 name = self.parts[sp.part].name
                 res.ball_joint_forces_n[name] = res.ball_joint_forces_n[name] + sp.fraction * push
                 if not self.parts[sp.part].bushing:
-                    res.body_forces_n[name] = res.body_forces_n[name] + (1 - sp.fraction) * push
+                    res.body_forces_n[f'{name}_base'] += (1 - sp.fraction) * push
         return res
 
     def _arm_body_forces(self, q, part, res):
@@ -426,6 +438,17 @@ def _bushing(item, s):
             'torsion': float(item.get('torsion', 0.0)) * NM_PER_DEG,
             'conical': float(item.get('conical', 0.0)) * NM_PER_DEG,
             'at': item.get('at', 'pivots')}
+
+
+def _least_curvature(matrix, n):
+    """
+    Return the least eigenvalue of the Lagrangian's Hessian on the constraints' tangent space.
+
+    matrix: Newton's matrix [[H, J^T], [J, 0]] with n unknowns q; > 0 at a strict minimum.
+    """
+    basis = null_space(matrix[n:, :n])
+    hessian = basis.T @ matrix[:n, :n] @ basis
+    return float(np.linalg.eigvalsh(0.5 * (hessian + hessian.T)).min())
 
 
 def _normals(direction):

@@ -12,6 +12,7 @@ from linkage_ros.core.model import bundled_scenes, load_scene, scene_dir
 from linkage_ros.core.solve import sweep
 import numpy as np
 import pytest
+from scipy.spatial.transform import Rotation
 import yaml
 
 
@@ -85,6 +86,14 @@ def test_reference_link_bushing_deflection_is_the_link_force_over_its_rate():
 
 
 @pytest.mark.parametrize('name', BUSHED)
+def test_reference_equilibrium_is_a_minimum_of_the_potential(name):
+    # The stationary point Newton finds is the minimum the method is named for: the Hessian
+    # of the Lagrangian is positive definite on the constraints' tangent space.
+    res = EnergyModel(scene_data(name)).solve(-20.0, force_n=(0.0, 1500.0, 0.0), at='cp')
+    assert res.min_curvature > 0.0
+
+
+@pytest.mark.parametrize('name', BUSHED)
 def test_reference_forces_on_the_body_balance_the_load(name):
     model = EnergyModel(scene_data(name))
     force, moment = np.array([800.0, -500.0, 300.0]), np.array([30.0, -20.0, 80.0])
@@ -98,6 +107,24 @@ def test_reference_forces_on_the_body_balance_the_load(name):
     expected = np.cross(wc, force + up) + moment * 1000.0
     np.testing.assert_allclose(turning + res.body_couples_nmm, expected,
                                atol=1e-9 * scale * np.abs(wc).max())
+
+
+@pytest.mark.parametrize('name', BUSHED)
+def test_reference_ball_joint_forces_balance_the_load_on_the_carrier(name):
+    # The carrier is held by its ball joints and the held height only (no spring is mounted
+    # on a bundled bushed scene's carrier), so their forces on it and the load sum to zero.
+    model = EnergyModel(scene_data(name))
+    assert all(sp.on != 'carrier' for sp in model.springs)
+    force, moment = np.array([800.0, -500.0, 300.0]), np.array([30.0, -20.0, 80.0])
+    res = model.solve(-25.0, force_n=force, at='wc', moment_nm=moment)
+    wc, up = res.wheel_center_mm, np.array([0.0, 0.0, res.holding_force_n])
+    joints = {p.name: model.carrier_point(res.q, p.carrier) for p in model.parts
+              if p.kind != 'line'}
+    scale = max(np.abs(f).max() for f in res.ball_joint_forces_n.values())
+    np.testing.assert_allclose(sum(res.ball_joint_forces_n.values()) + force + up, 0.0,
+                               atol=1e-9 * scale)
+    turning = sum(np.cross(joints[k] - wc, f) for k, f in res.ball_joint_forces_n.items())
+    np.testing.assert_allclose(turning + moment * 1000.0, 0.0, atol=1e-9 * scale * 1000.0)
 
 
 # --- the comparison with linkage_ros.core.statics --------------------------------------------
@@ -136,6 +163,60 @@ def test_loaded_pose_and_forces_agree_with_the_energy_reference(name, load):
         assert_forces_agree(got.ball_joint_forces_n, want.ball_joint_forces_n,
                             'ball_joint_forces_n')
         assert_forces_agree(got.spring_forces_n, want.spring_forces_n, 'spring_forces_n')
+        assert_forces_agree(got.body_forces_n, want.body_forces_n, 'body_forces_n')
+
+
+# Central differences of the reference's solves: +-2.5 N (N m) leaves a truncation error of
+# at most 3e-8 relative on the bundled scenes (it falls 4x per halving: 5e-7 at 10 N).
+STEP_N = 2.5
+
+
+def reference_rates(model, travel, step=STEP_N):
+    """Return the issue's rates by central differences of the reference's solves (+-step N)."""
+    def diff(force=(0.0, 0.0, 0.0), at='wc', moment=(0.0, 0.0, 0.0)):
+        plus, minus = (model.solve(travel, force_n=np.multiply(force, s), at=at,
+                                   moment_nm=np.multiply(moment, s)) for s in (step, -step))
+        per = 1000.0 / (2.0 * step)   # per kN (or kN m)
+        return {'toe': (plus.toe_deg - minus.toe_deg) * per,
+                'camber': (plus.camber_deg - minus.camber_deg) * per,
+                'wc': (plus.wheel_center_mm - minus.wheel_center_mm) * per,
+                'cp': (plus.load_point_mm - minus.load_point_mm) * per,
+                'jacking': (plus.holding_force_n - minus.holding_force_n) / (2.0 * step)}
+    fy, fx = diff((0, 1, 0), 'cp'), diff((1, 0, 0), 'cp')
+    fx_wc, mz = diff((1, 0, 0)), diff(moment=(0, 0, 1))
+    return {'toe_per_fy_cp_deg_per_kn': fy['toe'], 'camber_per_fy_cp_deg_per_kn': fy['camber'],
+            'wc_dy_per_fy_cp_mm_per_kn': fy['wc'][1], 'cp_dy_per_fy_cp_mm_per_kn': fy['cp'][1],
+            'jacking_per_fy_cp': fy['jacking'], 'toe_per_fx_cp_deg_per_kn': fx['toe'],
+            'camber_per_fx_cp_deg_per_kn': fx['camber'], 'wc_dx_per_fx_cp_mm_per_kn': fx['wc'][0],
+            'toe_per_fx_wc_deg_per_kn': fx_wc['toe'], 'wc_dx_per_fx_wc_mm_per_kn': fx_wc['wc'][0],
+            'toe_per_mz_deg_per_knm': mz['toe'], 'camber_per_mz_deg_per_knm': mz['camber']}
+
+
+@pytest.mark.parametrize('name', BUSHED)
+def test_compliance_rates_agree_with_differences_of_the_energy_reference(name):
+    core = statics()
+    got = core.compliance(load_scene(name), travel_mm=20.0)
+    want = reference_rates(EnergyModel(scene_data(name)), 20.0)
+    assert set(got.rates) == set(want)
+    scale = max(abs(v) for k, v in want.items() if k.endswith('deg_per_kn'))
+    for key, value in want.items():
+        assert got.rates[key] == pytest.approx(value, rel=1e-6, abs=1e-7 * scale), key
+
+
+@pytest.mark.parametrize('name', BUSHED)
+def test_compliance_matrix_agrees_with_differences_of_the_energy_reference(name):
+    core = statics()
+    got = core.compliance(load_scene(name), travel_mm=-20.0).matrix
+    model, want = EnergyModel(scene_data(name)), np.zeros((6, 6))
+    for j, unit in enumerate(np.eye(3)):     # per kN at the wheel centre, then per kN m
+        for col, kwargs in ((j, {'force_n': unit}), (j + 3, {'moment_nm': unit})):
+            plus, minus = (model.solve(-20.0, **{k: v * s for k, v in kwargs.items()})
+                           for s in (STEP_N, -STEP_N))
+            per = 1000.0 / (2.0 * STEP_N)
+            want[:3, col] = (plus.wheel_center_mm - minus.wheel_center_mm) * per
+            want[3:, col] = np.degrees(Rotation.from_matrix(
+                plus.rotation @ minus.rotation.T).as_rotvec()) * per
+    np.testing.assert_allclose(got, want, rtol=1e-6, atol=1e-7 * np.abs(want).max())
 
 
 @pytest.mark.parametrize('name', ['double_wishbone', 'chrono_sedan_doublewishbone_bushings'])
