@@ -151,6 +151,14 @@ def test_a_load_the_linkage_cannot_carry_is_an_error_line_and_status_1(tmp_path)
     assert path.read_text() == 'travel_mm\n'   # written whole: the table, with no pose
 
 
+def test_a_travel_out_of_reach_ends_the_table_there_with_status_1():
+    status, out, err = run(SCENE, '--travel', '0:1000:200')
+    _, rows = table(out)
+    assert status == 1 and rows[:, 0].tolist() == [0.0, 200.0]
+    assert err.splitlines()[-1].startswith('linkage-kc: ERROR OUT_OF_REACH: travel 400 mm')
+    assert err.splitlines()[-1].endswith('(2 positions written)')
+
+
 @pytest.mark.parametrize('argv, says', [
     (['SCENE', '--travel', '0'], 'bushing.axial: must be positive'),
     (['LINE', '--travel', '0'], 'a line takes no bushing'),
