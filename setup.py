@@ -55,6 +55,7 @@ setup(
             'linkage-sweep = linkage_ros.tools.sweep:main',
             'linkage-axle = linkage_ros.tools.axle:main',
             'linkage-vehicle = linkage_ros.tools.vehicle:main',
+            'linkage-kc = linkage_ros.tools.kc:main',
             'suspension_node = linkage_ros.ros.entry:main',
             'linkage-node-bench = linkage_ros.bench.cli:node_bench',
             'linkage-replay = linkage_ros.tools.replay:main',

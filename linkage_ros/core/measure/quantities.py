@@ -44,6 +44,7 @@ UNITS = {
     'deg/kn': ('rad/N', DEG * 1e-3, 1e-3),
     'mm/kn': ('m/N', 1e-6, 1e-6),
     'deg/knm': ('rad/Nm', DEG * 1e-3, 1e-3),
+    'n': ('N', 1.0, 1.0),   # newtons, written n as the K&C columns are (linkage-kc --load)
     '%': ('1', 1e-2, 1e-2),
     'kg': ('kg', 1.0, 1.0),
     'Hz': ('Hz', 1.0, 1.0),
@@ -52,7 +53,8 @@ UNITS = {
     '1': ('1', 1.0, 1.0),
 }
 # What a template's placeholder stands for (a regular expression).
-PLACEHOLDERS = {'element': r'.+', 'side': r'left|right'}
+PLACEHOLDERS = {'element': r'.+', 'side': r'left|right', 'member': r'.+',
+                'pivot': r'.+_(?:axis0|axis1|centre)', 'strut': r'.+'}
 SIDES = ('left', 'right')
 
 
@@ -253,6 +255,22 @@ _DECLARED = (
        'toe per moment about the z axis (aligning torque)', _BUSHING),
     _q('camber_per_mz_deg_per_knm', 'deg/knm', '+ = top outboard per + z moment', 'kc_mz',
        'camber per moment about the z axis', _BUSHING),
+    # a loaded solve (core/statics, linkage-kc --load): after the wheel columns, the forces
+    _q('holding_force_n', 'n', '+ = up', 'kc_loaded',
+       'vertical force at the wheel centre that holds the travel (the jacking force)'),
+    _q('{member}_force_n', 'n', '+ = tension (a link), + = compressed (a spring)', 'kc_loaded',
+       "a link's axial force, or a spring's force"),
+    _q('{pivot}_fx_n', 'n', '+ = forward', 'kc_loaded',
+       'force of an arm on the body at a pivot (<arm>_axis0, _axis1 or _centre), x'),
+    _q('{pivot}_fy_n', 'n', '+ = left', 'kc_loaded',
+       'force of an arm on the body at a pivot, y'),
+    _q('{pivot}_fz_n', 'n', '+ = up', 'kc_loaded', 'force of an arm on the body at a pivot, z'),
+    _q('{strut}_top_fx_n', 'n', '+ = forward', 'kc_loaded',
+       'force of a strut (line) on the body at its top mount, x'),
+    _q('{strut}_top_fy_n', 'n', '+ = left', 'kc_loaded',
+       'force of a strut on the body at its top mount, y'),
+    _q('{strut}_top_fz_n', 'n', '+ = up', 'kc_loaded',
+       'force of a strut on the body at its top mount, z'),
 )
 _SHEET = 'mass, tyre_rate'
 _DECLARED += (
