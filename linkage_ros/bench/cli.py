@@ -16,7 +16,8 @@ linkage-bench: every benchmark of linkage_ros, one subcommand each.
 Each subcommand takes the options of the program it times (SUBCOMMAND --help lists them);
 sweep, axle, map, vehicle and kc take --rounds N too. The earlier entry points
 (linkage-node-bench, linkage-soak, linkage-bench without a subcommand, --benchmark of
-linkage-sweep, linkage-axle and linkage-map) still work for one release, each with a note on stderr.
+linkage-sweep, linkage-axle and linkage-map) still work for one release, each with a note on
+stderr.
 """
 
 import sys

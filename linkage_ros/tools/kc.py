@@ -202,13 +202,6 @@ def load_of(args):
                 moment_nm=args.moment or (0.0, 0.0, 0.0))
 
 
-def describe(load):
-    """Say a load in words for the messages: 'F (0, 4000, 0) N at cp, M (0, 0, 0) N m'."""
-    force = ', '.join(f'{v:g}' for v in load.force_n)
-    moment = ', '.join(f'{v:g}' for v in load.moment_nm)
-    return f'F ({force}) N at {load.at}, M ({moment}) N m'
-
-
 def solve(scene, args, travels, racks):
     """
     Solve every position: (header, rows, results, failure); failure '' when all solved.
@@ -248,7 +241,7 @@ def solve(scene, args, travels, racks):
 
 def announce(scene, args, count):
     """Say on stderr what is being solved (once the request is known to be sound)."""
-    what = f'loaded by {describe(load_of(args))}' if args.loaded else 'compliance rates'
+    what = f'loaded by {load_of(args)}' if args.loaded else 'compliance rates'
     print(f'{PROG}: {scene.name}: {what}, {counted(count, "position")}', file=sys.stderr)
 
 

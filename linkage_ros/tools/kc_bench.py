@@ -45,7 +45,6 @@ def benchmark(scene, travels, racks, load, rounds):
     """
     from ..core.base import Status
     from ..core.statics import compliance, solve_loaded
-    from .kc import describe
     load = load or default_load(scene)
     base = [(float(t), float(r)) for r in racks for t in travels]
     runs = {'kinematic': lambda t, r: sweep(scene, [t], rack=r),
@@ -60,7 +59,7 @@ def benchmark(scene, travels, racks, load, rounds):
             print(f'{PROG}: nothing to time: the {what} at travel {travel:g} mm, rack '
                   f'{rack:g} mm fails', file=sys.stderr)
             return 1
-    print(f'{scene.name}: {len(base)} positions (1x); loaded by {describe(load)}')
+    print(f'{scene.name}: {len(base)} positions (1x); loaded by {load}')
     print(f'{"positions":>10}{"kinematic_us":>14}{"rates_us":>12}{"loaded_us":>12}'
           f'{"rates/kinematic":>17}{"loaded/kinematic":>18}')
     middle = 0.5 * (scene.travel[0] + scene.travel[1])

@@ -45,6 +45,12 @@ class Load:
     at: str = 'wc'
     moment_nm: tuple = (0.0, 0.0, 0.0)
 
+    def __str__(self) -> str:
+        """Say the load in words for messages: 'F (0, 4000, 0) N at cp, M (0, 0, 0) N m'."""
+        force = ', '.join(f'{float(v):g}' for v in self.force_n)
+        moment = ', '.join(f'{float(v):g}' for v in self.moment_nm)
+        return f'F ({force}) N at {self.at}, M ({moment}) N m'
+
 
 @dataclass(frozen=True)
 class Loaded:
