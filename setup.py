@@ -1,6 +1,7 @@
 """ament_python package: installs with pip (pip install -e '.[test]') or builds with colcon."""
 
 from glob import glob
+import os
 
 from setuptools import find_packages, setup
 
@@ -24,7 +25,10 @@ setup(
         ('share/' + package_name + '/config/interfaces/tf2_msgs/msg',
          glob('config/interfaces/tf2_msgs/msg/*')),
         ('share/' + package_name + '/config/study', glob('config/study/*.yaml')),
-    ],
+        ('share/' + package_name + '/config/chrono',
+         ['config/chrono/LICENSE', 'config/chrono/README.md']),
+    ] + [('share/' + package_name + '/' + folder, glob(folder + '/*.json'))
+         for folder in sorted({os.path.dirname(p) for p in glob('config/chrono/*/*/*.json')})],
     python_requires='>=3.10',
     install_requires=['setuptools', 'numpy', 'scipy', 'PyYAML', 'numba'],
     extras_require={

@@ -104,7 +104,11 @@ def export_file(scene_ref: str, like: str | None = None):
     """Return (Chrono JSON text, summary) of a scene, keeping an original's other fields."""
     from .chrono_export import export_scene
     from ..core import load_scene
+    from ..core.model.scene import resolve_scene_path
     scene = load_scene(scene_ref)
+    raw = yaml.safe_load(resolve_scene_path(scene_ref).read_text(encoding='utf-8'))
+    damping = {item.get('name'): item.get('x_damping') for item in raw.get('elements') or []
+               if isinstance(item, dict) and isinstance(item.get('x_damping'), (int, float))}
     original = read_chrono(like) if like else None
-    data, template = export_scene(scene, original, like or '')
+    data, template = export_scene(scene, original, like or '', damping)
     return json_text(data), f'{scene.name}: {template}'

@@ -1,0 +1,144 @@
+"""
+A scene -> Chrono::Vehicle suspension JSON: the template of its topology, its points replaced.
+
+Two arms and a link go out as DoubleWishbone, an arm, a link and a strut as MacPhersonStrut,
+an arm and three links (one of them steered) as MultiLink; any other topology (the five-link
+5S among them) as GenericWheeledSuspension (chrono_generic.py). The fields that are not
+kinematic (masses, inertias, radii, curves) come from --like ORIGINAL.json, kept as they are,
+or else from the bundled generic file of the template (config/chrono/generic/suspension).
+Points in m, left side (a right scene is mirrored), camber and toe from the design spin axis.
+"""
+
+from __future__ import annotations
+
+import copy
+import math
+
+import numpy as np
+
+from .chrono_json import ChronoError, read_chrono
+from .chrono_templates import GENERIC, TEMPLATES
+
+M_PER_MM = 1e-3
+
+
+def export_scene(scene, original: dict | None = None, like: str = '',
+                 damping: dict | None = None) -> tuple[dict, str]:
+    """
+    Return (Chrono JSON object, template) of a scene; original: the --like file's object.
+
+    damping: {element name: N s/m}, the elements' x_damping (the scene keeps no free keys).
+    """
+    from ..core.model.scene import mirror
+    if scene.side == 'right':
+        scene = mirror(scene)
+    template, parts = match(scene, original.get('Template') if original else None, like)
+    if template == GENERIC:
+        data = _generic(scene, original, damping or {})
+    else:
+        data = copy.deepcopy(original) if original else _default(template)
+        _named(scene, data, template, parts)
+    data['Name'] = data.get('Name', scene.name) if original else scene.name
+    camber, toe = camber_toe(scene)
+    data['Camber Angle (deg)'], data['Toe Angle (deg)'] = camber, toe
+    data.setdefault('Spindle', {})['COM'] = _m(scene.wheel_center)
+    return data, template
+
+
+def match(scene, wanted: str | None, like: str) -> tuple[str, dict]:
+    """Return (template, {part name: constraint}) for the scene's topology."""
+    circles = sorted((c for c in scene.constraints if c.type == 'circle'),
+                     key=lambda c: -c.carrier[2])   # the upper arm first
+    spheres = [c for c in scene.constraints if c.type == 'sphere']
+    lines = [c for c in scene.constraints if c.type == 'line']
+    steered = [c for c in spheres if c.steer == 'rack']
+    found, parts = GENERIC, {}
+    shape = (len(circles), len(spheres), len(lines))
+    if shape == (2, 1, 0):
+        found = 'DoubleWishbone' if wanted != 'DoubleWishboneReduced' else wanted
+        parts = {'UpperControlArm': circles[0], 'LowerControlArm': circles[1],
+                 'Tierod': spheres[0]}
+    elif shape == (1, 1, 1):
+        found = 'MacPhersonStrut'
+        parts = {'ControlArm': circles[0], 'Tierod': spheres[0], 'Strut': lines[0]}
+    elif shape == (1, 3, 0) and len(steered) == 1:
+        found = 'MultiLink'
+        rest = sorted((c for c in spheres if c is not steered[0]),
+                      key=lambda c: -abs(c.carrier[1] - c.base[0][1]))   # the lateral first
+        parts = {'UpperArm': circles[0], 'Lateral': rest[0], 'TrailingLink': rest[1],
+                 'Tierod': steered[0]}
+    if wanted is not None and wanted != found and wanted != GENERIC:
+        raise ChronoError(like, f'its template {wanted} does not fit the scene {scene.name} '
+                          f'({shape[0]} arms, {shape[1]} links, {shape[2]} struts: {found})')
+    return (GENERIC if wanted == GENERIC else found), parts
+
+
+def camber_toe(scene) -> tuple[float, float]:
+    """Return Chrono's (camber, toe) deg of the design spin axis (left side; model/scene.py)."""
+    a = scene.wheel_center - scene.spin_axis_point
+    a = a / np.linalg.norm(a)
+    return math.degrees(-math.asin(a[2])), math.degrees(math.atan2(a[0], a[1]))
+
+
+def _named(scene, data, template, parts):
+    spec = TEMPLATES[template]
+    for part in spec.parts:
+        c = parts[part.name]
+        obj = data.setdefault(part.key, {})
+        if part.kind == 'arm':
+            obj['Location Chassis Front'], obj['Location Chassis Back'] = map(_m, c.base)
+        else:
+            obj['Location Chassis'] = _m(c.base[0])
+        obj['Location Upright'] = _m(c.carrier)
+    names = {e.name: e for e in scene.elements}
+    for tsda in spec.tsdas:
+        e = names.get(tsda.key) or names.get(f'{tsda.key}Spring') or \
+            names.get(f'{tsda.key}Damper')
+        if e is None or tsda.key not in data:
+            continue
+        data[tsda.key]['Location Chassis'] = _m(e.body)
+        data[tsda.key][tsda.point] = _m(e.mount.point)
+
+
+def _generic(scene, original, damping):
+    from .chrono_generic import generic_of
+    mounted = {scene.constraints[e.mount.constraint].name for e in scene.elements
+               if e.mount.kind == 'link'}
+    tsdas = [t for t in (tsda_of(scene, e, damping.get(e.name)) for e in scene.elements)
+             if t is not None]
+    data = {'Name': scene.name, 'Type': 'Suspension', 'Template': GENERIC}
+    if original and original.get('Template') == GENERIC:
+        data.update({k: copy.deepcopy(v) for k, v in original.items()
+                     if k not in ('Bodies', 'Joints', 'Distance Constraints', 'TSDAs')})
+    data.setdefault('Spindle', {'Mass': 14.705, 'Inertia': [0.04117, 0.07352, 0.04117],
+                                'Radius': 0.1, 'Width': 0.06})
+    data['Spindle']['Attachment Body'] = 'Upright'
+    data.update(generic_of(scene, mounted, tsdas))
+    data.setdefault('Axle', {'Inertia': 0.4})
+    return data
+
+
+def tsda_of(scene, e, damping: float | None = None) -> dict | None:
+    """Return a GenericWheeledSuspension TSDA of an element (None: a plain length)."""
+    on = 'Upright' if e.mount.kind in ('carrier', 'along') else \
+        scene.constraints[e.mount.constraint].name
+    out = {'Name': e.name, 'Mirrored': True, 'Body1': 'Chassis', 'Body2': on,
+           'Point1': _m(e.body), 'Point2': _m(e.mount.point)}
+    if e.force_table is not None:
+        out['Free Length'] = e.free_length * M_PER_MM
+        out['Spring Curve Data'] = [[-d * M_PER_MM, -f] for d, f in e.force_table[::-1]]
+    elif e.has_rate:
+        out['Free Length'] = e.free_length * M_PER_MM
+        out['Spring Coefficient'] = e.rate / M_PER_MM
+    if e.type == 'damper':
+        out['Damping Coefficient'] = float(damping or 0.0)   # N s/m
+    return out if len(out) > 6 else None
+
+
+def _default(template: str) -> dict:
+    from ..core.model.bundled import config_dir
+    return read_chrono(config_dir() / 'chrono' / 'generic' / 'suspension' / f'{template}.json')
+
+
+def _m(point) -> list:
+    return [float(v) / 1000.0 for v in point]
