@@ -120,6 +120,29 @@ def crossing_notes(scene: Scene, travel: ArrayLike, length: ArrayLike) -> tuple[
     return tuple(notes)
 
 
+def stop_notes(scene: Scene, travel: ArrayLike, force: ArrayLike) -> tuple[str, ...]:
+    """
+    Say, once per stop (a spring whose force table is zero at one end), where it engages.
+
+    travel (n,) mm and force (n, k) N (ElementValues.force) of n solved positions, in any
+    order: the travel range over which the stop carries a force, or that it does not.
+    """
+    travel, force = np.asarray(travel, dtype=float), np.asarray(force, dtype=float)
+    notes = []
+    for j, e in enumerate(scene.elements):
+        if not e.is_stop:
+            continue
+        engaged = travel[np.abs(np.nan_to_num(force[:, j])) > 0.0]
+        if len(engaged):
+            notes.append(f'{scene.name}: stop {e.name} engages: it carries a force from travel '
+                         f'{engaged.min():g} to {engaged.max():g} mm (largest '
+                         f'{np.nanmax(np.abs(force[:, j])):.6g} N)')
+        elif len(travel):
+            notes.append(f'{scene.name}: stop {e.name} does not engage between travel '
+                         f'{travel.min():g} and {travel.max():g} mm')
+    return tuple(notes)
+
+
 def element_columns(scene: Scene) -> list[str]:
     """Return the table columns of the scene's elements (element_table's order, registry names)."""
     return [c for e in scene.elements for c in columns_of_element(e.name, e.has_rate)]
