@@ -29,7 +29,7 @@ def export_scene(scene, original: dict | None = None, like: str = '',
 
     damping: {element name: N s/m}, the elements' x_damping (the scene keeps no free keys).
     """
-    from ..core.model.scene import mirror
+    from ..core.model import mirror
     if scene.side == 'right':
         scene = mirror(scene)
     template, parts = match(scene, original.get('Template') if original else None, like)
@@ -136,7 +136,7 @@ def tsda_of(scene, e, damping: float | None = None) -> dict | None:
 
 
 def _default(template: str) -> dict:
-    from ..core.model.bundled import config_dir
+    from ..core.model import config_dir
     return read_chrono(config_dir() / 'chrono' / 'generic' / 'suspension' / f'{template}.json')
 
 

@@ -51,7 +51,7 @@ def scene_of(data: dict, source: str, output: str, wheel_radius: float | None = 
 def check_scene(text: str, where: str):
     """Load a scene text and solve it at design travel; raise a LinkageError if either fails."""
     from ..core import Continuation
-    from ..core.model.scene import parse_scene
+    from ..core.model import parse_scene
     scene = parse_scene(yaml.safe_load(text), source=where)
     solution = Continuation(scene).solve(0.0)
     if not solution.success:
@@ -104,7 +104,7 @@ def export_file(scene_ref: str, like: str | None = None):
     """Return (Chrono JSON text, summary) of a scene, keeping an original's other fields."""
     from .chrono_export import export_scene
     from ..core import load_scene
-    from ..core.model.scene import resolve_scene_path
+    from ..core.model import resolve_scene_path
     scene = load_scene(scene_ref)
     raw = yaml.safe_load(resolve_scene_path(scene_ref).read_text(encoding='utf-8'))
     damping = {item.get('name'): item.get('x_damping') for item in raw.get('elements') or []

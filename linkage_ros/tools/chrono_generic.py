@@ -16,6 +16,7 @@ from __future__ import annotations
 import numpy as np
 
 from .chrono_json import ChronoError, Fields
+from .chrono_parts import bushing_into, mount_of, tsda_elements
 from .chrono_templates import DESIGN_AXIS_M
 
 FIXED = ('Chassis', 'Steering')
@@ -25,7 +26,6 @@ BODY_DEFAULTS = {'Mass': 1.0, 'Moments of Inertia': [0.01, 0.01, 0.01],
 
 def import_generic(top: Fields, notes: list) -> tuple[list, list]:
     """Return (constraints, elements) of a GenericWheeledSuspension's object (m)."""
-    from .chrono_import import bushing_into, mount_of, tsda_elements
     upright = _ident(top.sub('Spindle').raw('Attachment Body'))
     joints = top.objects('Joints')
     constraints, carried = [], {}

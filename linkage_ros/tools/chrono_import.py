@@ -16,19 +16,9 @@ from typing import NamedTuple
 import numpy as np
 
 from .chrono_json import ChronoError, Fields
+from .chrono_parts import bushing_into, mount_of, tsda_elements
 from .chrono_templates import (DESIGN_AXIS_M, GENERIC, KINGPIN, REFUSED, supported, TEMPLATES,
                                TRAVEL_M, WHEEL_RADIUS_M)
-from ..core.model.constraint import Constraint
-from ..core.model.mounts import LINE_TOLERANCE
-
-# Chrono's length stops (utils::SpringForce::enable_stops, "From ADAMS/Car example"): force
-# (N) per penetration (m) past "Minimum Length" (bump) and "Maximum Length" (rebound).
-BUMP = ((0.0, 0.0), (2e-3, 200.0), (4e-3, 400.0), (6e-3, 600.0), (8e-3, 800.0),
-        (10e-3, 1000.0), (20e-3, 2500.0), (30e-3, 4500.0), (40e-3, 7500.0), (50e-3, 12500.0),
-        (60e-3, 125000.0))
-REBOUND = BUMP[:9]
-HAS_BUSHING = 'bushing' in Constraint.__dataclass_fields__   # once branch h-statics is in
-
 
 class Imported(NamedTuple):
     """A scene mapping made from a Chrono file, and what was left out of it (one line each)."""
@@ -114,107 +104,11 @@ def _named(top, template, notes):
     return constraints, elements
 
 
-def mount_of(item, on, body, point, notes, name):
-    """
-    Return an element's mount keys for a point on constraint item (None: the carrier).
-
-    A point on a link body is kept only on the link's line (a scene's link has no turn about
-    its line); off it, the element is left out with a note. A strut's own two points are
-    the strut (along).
-    """
-    if item is None:
-        return {'carrier': _list(point)}
-    if item['type'] == 'circle':
-        return {'arm': on, 'point': _list(point)}
-    base, joint = np.array(item['base']), np.array(item['carrier'])
-    if item['type'] == 'line':
-        if np.allclose(body, base, atol=1e-12) and np.allclose(point, joint, atol=1e-12):
-            return {'along': on}
-        return {'carrier': _list(point)}
-    span = joint - base
-    off = np.linalg.norm(np.cross(point - base, span)) / (span @ span)
-    if off > LINE_TOLERANCE:
-        notes.append(f'{name}: not imported: its point on {on} is {off * np.linalg.norm(span):.3g}'
-                     f' m off the link\'s line (a scene\'s link has no turn about its line)')
-        return None
-    return {'link': on, 'point': _list(point)}
-
-
-def tsda_elements(obj: Fields, name: str, body, mount: dict, notes: list) -> list:
-    """Return the elements of a Chrono spring, shock or spring-damper (TSDA) object."""
-    spring = obj.has('Spring Coefficient') or obj.has('Spring Curve Data')
-    damper = obj.has('Damping Coefficient') or obj.has('Damping Curve Data')
-    ends = {'body': _list(body), **mount} if 'along' not in mount else dict(mount)
-    out = []
-    if spring:
-        free = obj.number('Free Length')
-        preload = obj.number('Preload', 0.0)
-        item = {'name': f'{name}Spring' if damper else name, 'type': 'spring', **ends}
-        if obj.has('Spring Coefficient'):
-            rate = obj.number('Spring Coefficient')
-            # Chrono's force P + k (L0 - L), compression +: the free length L0 + P / k
-            item.update(rate=rate, free_length=free + (preload / rate if rate else 0.0))
-        else:
-            curve = obj.table('Spring Curve Data')
-            # Chrono: force = P - f(L - L0); the table's deflection L0 - L, force + compressed
-            item.update(free_length=free,
-                        force_table=[[-d, preload - f] for d, f in curve[::-1]])
-        out.append(item)
-        if obj.has('Minimum Length') and obj.has('Maximum Length'):
-            out.append({'name': f'{name}Bump', 'type': 'spring', **ends,
-                        'free_length': obj.number('Minimum Length'),
-                        'force_table': [list(r) for r in BUMP]})
-            out.append({'name': f'{name}Rebound', 'type': 'spring', **ends,
-                        'free_length': obj.number('Maximum Length'),
-                        'force_table': [[-d, -f] for d, f in REBOUND[::-1]]})
-    if damper:
-        item = {'name': f'{name}Damper' if spring else name, 'type': 'damper', **ends}
-        if obj.has('Damping Coefficient'):
-            item['x_damping'] = obj.number('Damping Coefficient')   # N s/m
-        else:
-            item['x_damping_curve'] = obj.table('Damping Curve Data').tolist()   # m/s, N
-        out.append(item)
-    if not out:
-        notes.append(f'{name}: neither a spring nor a damper: not imported')
-    return out
-
-
-def bushing_into(item: dict, obj: Fields, notes: list, name: str) -> None:
-    """
-    Give item a bushing from its object's "Bushing Data" (the statics issue's mapping).
-
-    K_lin (N/m) -> axial and radial; K_rot and K_rot_dof (N m/rad) -> conical and torsion,
-    N m/deg; at: centre (Chrono puts one bushing at the arm's mid-axis). Until the scene
-    model has bushings (branch h-statics) it is kept as x_bushing and noted as not yet used.
-    """
-    if not obj.has('Bushing Data'):
-        return
-    data = obj.sub('Bushing Data')
-    linear = data.number('Stiffness Linear')
-    rotational = data.number('Stiffness Rotational')
-    dof = obj.sub('Bushing Data').sub('DOF').number('Stiffness Rotational') \
-        if data.has('DOF') else 0.0
-    if not linear > 0:
-        notes.append(f'{name}: "Bushing Data" with "Stiffness Linear" {linear:g}: a rigid '
-                     'joint is used')
-        return
-    bushing = {'axial': linear, 'radial': linear}
-    if item['type'] == 'circle':
-        bushing.update(torsion=math.radians(dof) if dof > 0 else 0.0,
-                       conical=math.radians(rotational) if rotational > 0 else 0.0, at='centre')
-    if HAS_BUSHING:
-        item['bushing'] = bushing
-    else:
-        item['x_bushing'] = bushing
-        notes.append(f'{name}: "Bushing Data" read and kept (x_bushing), not yet used: the '
-                     'scene model has no bushings yet (statics, issue 29)')
-
-
 def _list(v) -> list:
     return [float(x) for x in v]
 
 
 def _stem(where: str) -> str:
     from pathlib import Path
-    from ..core.model.scene import safe_stem
+    from ..core.model import safe_stem
     return safe_stem(Path(where).stem)

@@ -50,7 +50,7 @@ def parse_chrono(text: str, where: str = '<json>') -> dict:
     plain = strip_comments(text, where)
 
     def refuse(name):
-        raise ChronoError(where, f'{name} is not a JSON number (Chrono\'s reader refuses it)')
+        raise ChronoError(where, f'{name} is not a JSON number (RapidJSON refuses it)')
 
     try:
         data = json.loads(plain, parse_constant=refuse)
@@ -125,7 +125,7 @@ class Fields:
         return Fields(self.where, self.raw(key), self._field(key))
 
     def number(self, key: str, default: float | None = None) -> float:
-        """Return a finite number (a bool or a string is refused)."""
+        """Return the finite number under key (a bool or a string is refused)."""
         if default is not None and key not in self.data:
             return default
         return _number(self.where, self._field(key), self.raw(key))

@@ -1,7 +1,8 @@
 """
-Springs with a force table (model/elements.py, element_kernel.spring_at): force and wheel
-rate from the table's slope, interpolated linearly and held outside as Chrono's
-ChFunctionInterp; bump stops; bad tables.
+Springs with a force table (model/elements.py, element_kernel.spring_at).
+
+Force and wheel rate from the table's slope, interpolated linearly and held outside as
+Chrono's ChFunctionInterp; bump stops; bad tables.
 """
 
 import copy

@@ -1,6 +1,4 @@
-"""
-Bad Chrono files: one line naming the problem, exit status 2, nothing written.
-"""
+"""Bad Chrono files: one line naming the problem, exit status 2, nothing written."""
 
 import json
 from pathlib import Path

@@ -113,7 +113,7 @@ def test_length_stops_become_bump_and_rebound_stops(tmp_path):
 def test_multilink_spring_off_its_links_line_is_left_out_with_a_note(tmp_path):
     out = tmp_path / 'ml.yaml'
     texts, summary = import_file(str(CHRONO / 'generic/suspension/MultiLink.json'), str(out))
-    assert 'Spring: not imported' in summary and 'off the link' in texts[str(out)]
+    assert 'Spring: not imported' in summary and 'off the line' in texts[str(out)]
     assert 'elements' not in yaml.safe_load(texts[str(out)])
 
 

@@ -116,11 +116,11 @@ def pack_elements(mounts: MountTable, springs: SpringTable | None = None) -> np.
         packed[j, :len(c)], packed[j, rows:rows + len(c)] = c[:, 0], c[:, 1]
     # deflections in the first half of the packed columns, forces in the second: each half
     # starts at the same column on every row; the kernel reads the first E_CURVE of each
+    width = ELEMENT_COLUMNS + 2 * rows
     return np.ascontiguousarray(np.column_stack((
         mounts.kind.astype(float), mounts.offset, mounts.base, mounts.axis, mounts.coeff,
         mounts.steer, springs.body, springs.rate, springs.free_length,
-        springs.direction, [len(c) for c in curves], packed)).reshape(k, ELEMENT_COLUMNS
-                                                                       + 2 * rows))
+        springs.direction, [len(c) for c in curves], packed)).reshape(k, width))
 
 
 @jit
