@@ -23,26 +23,28 @@ M_PER_MM = 1e-3
 
 
 def export_scene(scene, original: dict | None = None, like: str = '',
-                 damping: dict | None = None) -> tuple[dict, str]:
+                 damping: dict | None = None) -> tuple[dict, str, list]:
     """
-    Return (Chrono JSON object, template) of a scene; original: the --like file's object.
+    Return (Chrono JSON object, template, notes) of a scene; original: the --like file's object.
 
     damping: {element name: N s/m}, the elements' x_damping (the scene keeps no free keys).
+    Notes (one line each) say what was kept from the template's default file.
     """
     from ..core.model import mirror
     if scene.side == 'right':
         scene = mirror(scene)
     template, parts = match(scene, original.get('Template') if original else None, like)
+    notes = []
     if template == GENERIC:
         data = _generic(scene, original, damping or {})
     else:
         data = copy.deepcopy(original) if original else _default(template)
-        _named(scene, data, template, parts)
+        _named(scene, data, template, parts, original is None, notes)
     data['Name'] = data.get('Name', scene.name) if original else scene.name
     camber, toe = camber_toe(scene)
     data['Camber Angle (deg)'], data['Toe Angle (deg)'] = camber, toe
     data.setdefault('Spindle', {})['COM'] = _m(scene.wheel_center)
-    return data, template
+    return data, template, notes
 
 
 def match(scene, wanted: str | None, like: str) -> tuple[str, dict]:
@@ -80,7 +82,7 @@ def camber_toe(scene) -> tuple[float, float]:
     return math.degrees(-math.asin(a[2])), math.degrees(math.atan2(a[0], a[1]))
 
 
-def _named(scene, data, template, parts):
+def _named(scene, data, template, parts, fresh, notes):
     spec = TEMPLATES[template]
     for part in spec.parts:
         c = parts[part.name]
@@ -90,14 +92,41 @@ def _named(scene, data, template, parts):
         else:
             obj['Location Chassis'] = _m(c.base[0])
         obj['Location Upright'] = _m(c.carrier)
-    names = {e.name: e for e in scene.elements}
     for tsda in spec.tsdas:
-        e = names.get(tsda.key) or names.get(f'{tsda.key}Spring') or \
-            names.get(f'{tsda.key}Damper')
-        if e is None or tsda.key not in data:
+        e = element_for(scene, tsda, parts)
+        if tsda.key not in data:
+            continue
+        if e is None:
+            notes.append(f'"{tsda.key}": the scene has no element for it: the '
+                         + ('original' if not fresh else 'generic file') + "'s kept")
             continue
         data[tsda.key]['Location Chassis'] = _m(e.body)
         data[tsda.key][tsda.point] = _m(e.mount.point)
+        if fresh and e.type == 'spring' and e.has_rate:
+            data[tsda.key].update(_spring_fields(e))
+
+
+def element_for(scene, tsda, parts):
+    """Return the scene's element for a template's spring or shock (by name, else by role)."""
+    names = {e.name: e for e in scene.elements}
+    for name in (tsda.key, f'{tsda.key}Spring', f'{tsda.key}Damper'):
+        if name in names:
+            return names[name]
+    on = parts[tsda.on].name if tsda.on else ''
+    kind = 'spring' if tsda.key == 'Spring' else 'damper'
+    for e in scene.elements:
+        where = scene.constraints[e.mount.constraint].name if e.mount.constraint >= 0 else ''
+        if e.type == kind and not e.is_stop and (where == on or e.mount.kind == 'along'):
+            return e
+    return None
+
+
+def _spring_fields(e) -> dict:
+    """Return a Chrono spring's fields of a spring element (N/m, m; a curve in Chrono's sign)."""
+    if e.force_table is not None:
+        return {'Free Length': e.free_length * M_PER_MM,
+                'Spring Curve Data': [[-d * M_PER_MM, -f] for d, f in e.force_table[::-1]]}
+    return {'Free Length': e.free_length * M_PER_MM, 'Spring Coefficient': e.rate / M_PER_MM}
 
 
 def _generic(scene, original, damping):
@@ -124,12 +153,8 @@ def tsda_of(scene, e, damping: float | None = None) -> dict | None:
         scene.constraints[e.mount.constraint].name
     out = {'Name': e.name, 'Mirrored': True, 'Body1': 'Chassis', 'Body2': on,
            'Point1': _m(e.body), 'Point2': _m(e.mount.point)}
-    if e.force_table is not None:
-        out['Free Length'] = e.free_length * M_PER_MM
-        out['Spring Curve Data'] = [[-d * M_PER_MM, -f] for d, f in e.force_table[::-1]]
-    elif e.has_rate:
-        out['Free Length'] = e.free_length * M_PER_MM
-        out['Spring Coefficient'] = e.rate / M_PER_MM
+    if e.type == 'spring' and e.has_rate:
+        out.update(_spring_fields(e))
     if e.type == 'damper':
         out['Damping Coefficient'] = float(damping or 0.0)   # N s/m
     return out if len(out) > 6 else None

@@ -110,5 +110,5 @@ def export_file(scene_ref: str, like: str | None = None):
     damping = {item.get('name'): item.get('x_damping') for item in raw.get('elements') or []
                if isinstance(item, dict) and isinstance(item.get('x_damping'), (int, float))}
     original = read_chrono(like) if like else None
-    data, template = export_scene(scene, original, like or '', damping)
-    return json_text(data), f'{scene.name}: {template}'
+    data, template, notes = export_scene(scene, original, like or '', damping)
+    return json_text(data), f'{scene.name}: {template}' + ''.join(f'; {n}' for n in notes)

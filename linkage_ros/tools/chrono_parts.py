@@ -55,7 +55,8 @@ def mount_of(item, on, body, point, notes, name):
 def tsda_elements(obj: Fields, name: str, body, mount: dict, notes: list) -> list:
     """Return the elements of a Chrono spring, shock or spring-damper (TSDA) object."""
     spring = obj.has('Spring Coefficient') or obj.has('Spring Curve Data')
-    damper = obj.has('Damping Coefficient') or obj.has('Damping Curve Data')
+    damper = obj.has('Damping Coefficient') or obj.has('Damping Curve Data') \
+        or obj.has('Map Data')
     ends = {'body': _list(body), **mount} if 'along' not in mount else dict(mount)
     out = []
     if spring:
@@ -81,7 +82,10 @@ def tsda_elements(obj: Fields, name: str, body, mount: dict, notes: list) -> lis
                         'force_table': [[-d, -f] for d, f in REBOUND[::-1]]})
     if damper:
         item = {'name': f'{name}Damper' if spring else name, 'type': 'damper', **ends}
-        if obj.has('Damping Coefficient'):
+        if obj.has('Map Data'):
+            notes.append(f'{name}: its "Map Data" (force by speed and deformation) is not '
+                         'imported: a damper without a coefficient')
+        elif obj.has('Damping Coefficient'):
             item['x_damping'] = obj.number('Damping Coefficient')   # N s/m
         else:
             item['x_damping_curve'] = obj.table('Damping Curve Data').tolist()   # m/s, N

@@ -53,7 +53,7 @@ def test_export_then_import_gives_every_bundled_scenes_hardpoints(name, tmp_path
 
 
 def test_five_link_goes_out_as_a_generic_suspension_with_all_chrono_needs(tmp_path):
-    data, template = export_scene(load_scene('five_link'))
+    data, template, _ = export_scene(load_scene('five_link'))
     assert template == 'GenericWheeledSuspension'
     for key in ('Steerable', 'Independent', 'Spindle', 'Antiroll Body', 'Axle'):
         assert key in data, key
@@ -92,7 +92,7 @@ def test_like_replaces_the_points_of_a_moved_design(tmp_path):
     scene = load_scene('chrono_generic_doublewishbone')
     from linkage_ros.core.model.scene import with_points
     moved = with_points(scene, scene.points + [0.0, 0.0, 5.0])
-    data, _ = export_scene(moved, read_chrono(original), str(original))
+    data, _, _ = export_scene(moved, read_chrono(original), str(original))
     before = read_chrono(original)
     assert data['Upper Control Arm']['Location Upright'][2] == pytest.approx(
         before['Upper Control Arm']['Location Upright'][2] + 0.005)
