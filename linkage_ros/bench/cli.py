@@ -9,6 +9,7 @@ linkage-bench: every benchmark of linkage_ros, one subcommand each.
     linkage-bench map SCENE [...]      map answers with and without the elements
     linkage-bench study [...]          tolerance, sensitivity and fit (study/bench.py)
     linkage-bench replay [BAG] [...]   solving recorded commands with and without recording
+    linkage-bench chrono [FILE...]     import, solve and write Chrono files (bench/chrono.py)
 
 Each subcommand takes the options of the program it times (SUBCOMMAND --help lists them);
 sweep, axle and map take --rounds N too. The earlier entry points (linkage-node-bench,
@@ -57,6 +58,11 @@ def _replay(argv):
     return main(['bench', *argv])
 
 
+def _chrono(argv):
+    from .chrono import main
+    return main(argv)
+
+
 def _timed(module):
     """Return the runner of a program whose main(argv, rounds) times instead of solving."""
     def run(argv):
@@ -69,7 +75,7 @@ def _timed(module):
 
 COMMANDS = {'accuracy': _accuracy, 'node': _node, 'soak': _soak,
             'sweep': _timed('sweep'), 'axle': _timed('axle'), 'map': _timed('kinematic_map'),
-            'study': _study, 'replay': _replay}
+            'study': _study, 'replay': _replay, 'chrono': _chrono}
 
 
 def _rounds(argv, prog):
