@@ -32,6 +32,7 @@ ALLOWED = {
     'solve': {'base', 'model', 'solve'},
     'measure': {'base', 'model', 'solve', 'measure'},
     'axle': {'base', 'model', 'solve', 'measure', 'axle'},
+    'statics': {'base', 'model', 'solve', 'measure', 'statics'},
 }
 
 

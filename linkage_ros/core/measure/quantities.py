@@ -40,6 +40,10 @@ UNITS = {
     'N/mm': ('N/m', 1e3, 1e3),
     'Nm': ('Nm', 1.0, 1.0),
     'Nm/deg': ('Nm/rad', 1.0 / DEG, 1.0),
+    # compliance rates (core/statics): per kN and per kN m, written kn as the K&C columns are
+    'deg/kn': ('rad/N', DEG * 1e-3, 1e-3),
+    'mm/kn': ('m/N', 1e-6, 1e-6),
+    'deg/knm': ('rad/Nm', DEG * 1e-3, 1e-3),
     '%': ('1', 1e-2, 1e-2),
     '1': ('1', 1.0, 1.0),
 }
@@ -102,6 +106,8 @@ def _q(name, unit, sign, group, doc, needs=''):
 
 _STEER_AXIS = 'a steer: rack link'
 _PATCH = 'wheel_radius'
+_BUSHING = 'a bushing'
+_BUSHING_PATCH = 'a bushing, wheel_radius'
 _DECLARED = (
     # the sweep's leading columns (linkage-sweep, maps, study)
     _q('travel_mm', 'mm', '+ = bump', 'travel',
@@ -215,6 +221,34 @@ _DECLARED = (
        'a bar rate'),
     _q('arb_roll_stiffness_Nm_per_deg', 'Nm/deg', '', 'anti_roll_bar',
        "the bar's roll stiffness", 'a bar rate'),
+    # compliance at one travel, travel and rack held (core/statics, linkage-kc): first-order
+    # rates at the zero-load equilibrium; cp = the contact patch, wc = the wheel centre
+    _q('toe_per_fy_cp_deg_per_kn', 'deg/kn', '+ = toe-in per + y (left) force', 'kc_fy_cp',
+       'toe per lateral force at the contact patch', _BUSHING_PATCH),
+    _q('camber_per_fy_cp_deg_per_kn', 'deg/kn', '+ = top outboard per + y force', 'kc_fy_cp',
+       'camber per lateral force at the contact patch', _BUSHING_PATCH),
+    _q('wc_dy_per_fy_cp_mm_per_kn', 'mm/kn', '+ = left per + y force', 'kc_fy_cp',
+       "wheel centre's lateral move per lateral force at the contact patch", _BUSHING_PATCH),
+    _q('cp_dy_per_fy_cp_mm_per_kn', 'mm/kn', '+ = left per + y force', 'kc_fy_cp',
+       "contact patch's lateral move per lateral force there", _BUSHING_PATCH),
+    _q('jacking_per_fy_cp', '1', '+ = up per + y force', 'kc_fy_cp',
+       'holding (jacking) force change per lateral force at the contact patch, N/N',
+       _BUSHING_PATCH),
+    _q('toe_per_fx_cp_deg_per_kn', 'deg/kn', '+ = toe-in per + x (forward) force', 'kc_fx_cp',
+       'toe per longitudinal force at the contact patch (braking is -x)', _BUSHING_PATCH),
+    _q('camber_per_fx_cp_deg_per_kn', 'deg/kn', '+ = top outboard per + x force', 'kc_fx_cp',
+       'camber per longitudinal force at the contact patch', _BUSHING_PATCH),
+    _q('wc_dx_per_fx_cp_mm_per_kn', 'mm/kn', '+ = forward per + x force', 'kc_fx_cp',
+       "wheel centre's longitudinal move per longitudinal force at the contact patch",
+       _BUSHING_PATCH),
+    _q('toe_per_fx_wc_deg_per_kn', 'deg/kn', '+ = toe-in per + x force', 'kc_fx_wc',
+       'toe per longitudinal force at the wheel centre (traction)', _BUSHING),
+    _q('wc_dx_per_fx_wc_mm_per_kn', 'mm/kn', '+ = forward per + x force', 'kc_fx_wc',
+       "wheel centre's longitudinal move per longitudinal force there", _BUSHING),
+    _q('toe_per_mz_deg_per_knm', 'deg/knm', '+ = toe-in per + z moment', 'kc_mz',
+       'toe per moment about the z axis (aligning torque)', _BUSHING),
+    _q('camber_per_mz_deg_per_knm', 'deg/knm', '+ = top outboard per + z moment', 'kc_mz',
+       'camber per moment about the z axis', _BUSHING),
 )
 QUANTITIES = {q.name: q for q in _DECLARED}
 

@@ -59,7 +59,7 @@ SCENE_FREE_KEYS = FREE_KEYS + ('reference',)
 CARRIER_KEYS = ('wheel_center', 'spin_axis_point', 'static', 'third_point')
 STATIC_KEYS = ('camber', 'toe')
 TRAVEL_KEYS = ('min', 'max', 'step')
-ALL_CONSTRAINT_KEYS = ('name', 'type', 'base', 'axis', 'carrier', 'steer')
+ALL_CONSTRAINT_KEYS = ('name', 'type', 'base', 'axis', 'carrier', 'steer', 'bushing')
 
 
 @dataclass(frozen=True)
@@ -89,6 +89,11 @@ class Scene:
     def side_sign(self) -> float:
         """+1 for a left wheel, -1 for a right wheel (outboard direction along y)."""
         return 1.0 if self.side == 'left' else -1.0
+
+    @property
+    def has_bushings(self) -> bool:
+        """Whether a constraint declares a bushing (the scene then has statics compliance)."""
+        return any(c.bushing is not None for c in self.constraints)
 
     @property
     def steered(self) -> bool:
@@ -349,8 +354,12 @@ def _parse_constraint(check, item, index, scale):
     steer = item.get('steer', '')
     if steer not in ('', None, 'rack'):
         check.fail(f'{where}.steer', f"unknown value {steer!r} (expected 'rack')")
+    bushing = None
+    if item.get('bushing') is not None:   # bushing.py is read only by a scene that has one
+        from .bushing import parse_bushing
+        bushing = parse_bushing(check, item['bushing'], where, kind)
     return Constraint(name=name or f'{kind}_{index}', type=kind, base=base * scale,
-                      carrier=carrier * scale, steer=steer or '')
+                      carrier=carrier * scale, steer=steer or '', bushing=bushing)
 
 
 def _parse_travel(check, block, scale):
@@ -425,8 +434,7 @@ def _size(points):
 def mirror(scene: Scene) -> Scene:
     """Return the scene of the opposite wheel: every point mirrored in the x-z plane (y -> -y)."""
     flip = np.array([1.0, -1.0, 1.0])
-    constraints = tuple(Constraint(name=c.name, type=c.type, base=c.base * flip,
-                                   carrier=c.carrier * flip, steer=c.steer)
+    constraints = tuple(replace(c, base=c.base * flip, carrier=c.carrier * flip)
                         for c in scene.constraints)
     side = 'right' if scene.side == 'left' else 'left'
     return Scene(name=f'{scene.name}_{side}', source=scene.source, side=side, units=scene.units,
@@ -442,8 +450,7 @@ def mirror(scene: Scene) -> Scene:
 def translate(scene: Scene, offset: ArrayLike) -> Scene:
     """Return the scene moved by offset (3,) mm: a corner placed on the vehicle."""
     offset = np.asarray(offset, dtype=float)
-    constraints = tuple(Constraint(name=c.name, type=c.type, base=c.base + offset,
-                                   carrier=c.carrier + offset, steer=c.steer)
+    constraints = tuple(replace(c, base=c.base + offset, carrier=c.carrier + offset)
                         for c in scene.constraints)
     return replace(scene, wheel_center=scene.wheel_center + offset,
                    spin_axis_point=scene.spin_axis_point + offset,
