@@ -95,3 +95,34 @@ def test_bad_table_is_one_line_and_status_2_for_a_program(tmp_path):
                          capture_output=True, text=True)
     assert run.returncode == 2 and len(run.stderr.strip().splitlines()) == 1
     assert 'force_table' in run.stderr
+
+
+def test_element_spring_at_agrees_with_the_compiled_kernel():
+    table = [[0.0, 0.0], [70.0, 900.0], [100.0, 9000.0], [200.0, 9500.0]]
+    scene = five_link({'free_length': 320.0, 'force_table': table})
+    v = values(scene)
+    spring = scene.elements[1]
+    for length, force in zip(v.length[:, 1], v.force[:, 1]):
+        assert spring.spring_at(length)[0] == pytest.approx(force, rel=1e-12)
+
+
+def test_table_energy_grows_by_the_force_over_a_step():
+    # dV/d(deflection) = F: central differences are exact on a linear segment
+    spring = five_link({'free_length': 320.0,
+                        'force_table': [[0.0, 0.0], [70.0, 900.0], [100.0, 9000.0]]}).elements[1]
+    for length in (300.0, 240.0, 200.0, 100.0):   # deflections 20, 80, 120 (held), 220
+        force = spring.spring_at(length)[0]
+        rise = spring.spring_at(length - 0.5)[2] - spring.spring_at(length + 0.5)[2]
+        assert rise == pytest.approx(force, rel=1e-9, abs=1e-9)
+
+
+def test_statics_of_a_linear_table_spring_equals_the_rate_spring():
+    from linkage_ros.core.statics import Load, solve_loaded
+    load = Load(force_n=(0.0, 1000.0, 0.0), at='wc', moment_nm=(0.0, 0.0, 0.0))
+    linear = solve_loaded(load_scene('five_link'), travel_mm=20.0, load=load)
+    tabled = solve_loaded(five_link({'free_length': 320.0, 'force_table':
+                                     [[-1000.0, -45000.0], [1000.0, 45000.0]]}),
+                          travel_mm=20.0, load=load)
+    assert tabled.holding_force_n == pytest.approx(linear.holding_force_n, rel=1e-9)
+    assert tabled.spring_forces_n['spring'] == pytest.approx(linear.spring_forces_n['spring'],
+                                                             rel=1e-9)

@@ -117,15 +117,18 @@ def test_multilink_spring_off_its_links_line_is_left_out_with_a_note(tmp_path):
     assert 'elements' not in yaml.safe_load(texts[str(out)])
 
 
-def test_bushing_data_is_read_and_kept(tmp_path):
+def test_bushing_data_becomes_the_arms_bushing_at_its_centre(tmp_path):
     out = tmp_path / 'b.yaml'
     texts, summary = import_file(
         str(CHRONO / 'hmmwv/suspension/HMMWV_DoubleWishboneFront_bushings.json'), str(out))
-    arm = yaml.safe_load(texts[str(out)])['constraints'][0]
-    bushing = arm.get('bushing', arm.get('x_bushing'))
+    bushing = yaml.safe_load(texts[str(out)])['constraints'][0]['bushing']
     assert bushing['axial'] == bushing['radial'] == 7e7            # N/m, an m scene
     assert bushing['conical'] == pytest.approx(1e5 * math.pi / 180)   # N m/rad -> N m/deg
     assert bushing['torsion'] == 0.0 and bushing['at'] == 'centre'
+    loaded = parse_scene(yaml.safe_load(texts[str(out)]), source=str(out))
+    arm = loaded.constraints[0].bushing
+    assert arm.axial == pytest.approx(7e4) and arm.radial == pytest.approx(7e4)   # N/mm
+    assert 'not yet used' not in summary
 
 
 def test_vehicle_file_gives_left_and_mirrored_right_corners(tmp_path):

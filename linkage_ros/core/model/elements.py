@@ -62,6 +62,25 @@ class Element:
         """Whether force and wheel rate are defined (a spring with a rate or a force table)."""
         return not math.isnan(self.rate) or self.force_table is not None
 
+    def spring_at(self, length: float) -> tuple[float, float, float]:
+        """
+        Return the spring's (force N, + = compressed; stiffness N/mm; energy N mm) at length.
+
+        length mm. A rate: k (L0 - L), k, k (L0 - L)^2 / 2. A force table: the force
+        interpolated at the deflection L0 - L and held outside the table, the slope of its
+        segment (0 outside), and the integral of the force from deflection 0: the same
+        interpolation as the compiled element_kernel.spring_at (its twin for the kernels).
+        """
+        deflection = self.free_length - length
+        if self.force_table is None:
+            return self.rate * deflection, self.rate, 0.5 * self.rate * deflection ** 2
+        d, f = self.force_table[:, 0], self.force_table[:, 1]
+        force = float(np.interp(deflection, d, f))
+        i = int(np.searchsorted(d, deflection))
+        inside = d[0] < deflection < d[-1]
+        slope = float((f[i] - f[i - 1]) / (d[i] - d[i - 1])) if inside else 0.0
+        return force, slope, _work(d, f, deflection) - _work(d, f, 0.0)
+
     @property
     def is_stop(self) -> bool:
         """Whether the element is a stop: a force table whose force is zero at either end."""
@@ -72,6 +91,18 @@ class Element:
         """Return the element with every point p at p * flip + offset (mirror, translate)."""
         return replace(self, body=self.body * flip + offset,
                        mount=self.mount.transformed(flip, offset))
+
+
+def _work(d: np.ndarray, f: np.ndarray, x: float) -> float:
+    """Return the integral of the held, interpolated table force from d[0] to x (N mm)."""
+    if x <= d[0]:
+        return float(f[0] * (x - d[0]))
+    k = int(np.searchsorted(d, x))   # d[k - 1] < x <= d[k], or k = len(d) past the end
+    whole = float(np.sum(0.5 * (f[1:k] + f[:k - 1]) * np.diff(d[:k])))
+    if k == len(d):
+        return whole + float(f[-1] * (x - d[-1]))
+    at = f[k - 1] + (f[k] - f[k - 1]) * (x - d[k - 1]) / (d[k] - d[k - 1])
+    return whole + 0.5 * float(f[k - 1] + at) * (x - d[k - 1])
 
 
 def parse_elements(check, items: object,
