@@ -14,12 +14,10 @@ from __future__ import annotations
 import copy
 import math
 
-import numpy as np
-
 from .chrono_json import ChronoError, read_chrono
 from .chrono_templates import GENERIC, TEMPLATES
+from ..core.base import camber_toe, M_PER_MM, MM_PER_M, unit
 
-M_PER_MM = 1e-3
 
 
 def export_scene(scene, original: dict | None = None, like: str = '',
@@ -41,7 +39,7 @@ def export_scene(scene, original: dict | None = None, like: str = '',
         data = copy.deepcopy(original) if original else _default(template)
         _named(scene, data, template, parts, original is None, notes)
     data['Name'] = data.get('Name', scene.name) if original else scene.name
-    camber, toe = camber_toe(scene)
+    camber, toe = design_angles(scene)
     data['Camber Angle (deg)'], data['Toe Angle (deg)'] = camber, toe
     data.setdefault('Spindle', {})['COM'] = _m(scene.wheel_center)
     return data, template, notes
@@ -75,11 +73,10 @@ def match(scene, wanted: str | None, like: str) -> tuple[str, dict]:
     return (GENERIC if wanted == GENERIC else found), parts
 
 
-def camber_toe(scene) -> tuple[float, float]:
+def design_angles(scene) -> tuple[float, float]:
     """Return Chrono's (camber, toe) deg of the design spin axis (left side; model/scene.py)."""
-    a = scene.wheel_center - scene.spin_axis_point
-    a = a / np.linalg.norm(a)
-    return math.degrees(-math.asin(a[2])), math.degrees(math.atan2(a[0], a[1]))
+    camber, toe = camber_toe(unit(scene.wheel_center - scene.spin_axis_point), 1.0)
+    return math.degrees(camber), math.degrees(toe)
 
 
 def _named(scene, data, template, parts, fresh, notes):
@@ -166,4 +163,4 @@ def _default(template: str) -> dict:
 
 
 def _m(point) -> list:
-    return [float(v) / 1000.0 for v in point]
+    return [float(v) / MM_PER_M for v in point]   # mm -> m, correctly rounded

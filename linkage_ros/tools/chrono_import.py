@@ -13,12 +13,12 @@ from __future__ import annotations
 import math
 from typing import NamedTuple
 
-import numpy as np
-
 from .chrono_json import ChronoError, Fields
 from .chrono_parts import bushing_into, mount_of, tsda_elements
 from .chrono_templates import (DESIGN_AXIS_M, GENERIC, KINGPIN, REFUSED, supported, TEMPLATES,
                                TRAVEL_M, WHEEL_RADIUS_M)
+from ..core.base import spin_axis_of
+
 
 class Imported(NamedTuple):
     """A scene mapping made from a Chrono file, and what was left out of it (one line each)."""
@@ -65,8 +65,7 @@ def carrier_of(top: Fields) -> tuple[list, list]:
     center = top.sub('Spindle').vector('COM')
     camber = math.radians(top.number('Camber Angle (deg)', 0.0))
     toe = math.radians(top.number('Toe Angle (deg)', 0.0))
-    axis = np.array([math.cos(camber) * math.sin(toe), math.cos(camber) * math.cos(toe),
-                     -math.sin(camber)])
+    axis = spin_axis_of(camber, toe, 1.0)   # Chrono's left side
     return _list(center), _list(center - DESIGN_AXIS_M * axis)
 
 
