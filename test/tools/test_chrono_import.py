@@ -152,3 +152,20 @@ def json_of(path):
 def json_dump(data):
     import json
     return json.dumps(data)
+
+
+def test_axle_says_where_each_corners_bump_stop_engages(tmp_path):
+    import subprocess
+    import sys
+    out = tmp_path / 'hmmwv.yaml'
+    texts, _ = import_file(str(CHRONO / 'hmmwv/vehicle/HMMWV_Vehicle.json'), str(out))
+    for path, text in texts.items():
+        # the bump stop 100 mm nearer: engaged in bump within the sweep
+        Path(path).write_text(text.replace('free_length: 0.15,', 'free_length: 0.25,'))
+    run = subprocess.run([str(Path(sys.executable).parent / 'linkage-axle'), str(out),
+                          '--heave', '-80:80:10'], capture_output=True, text=True)
+    assert run.returncode == 0, run.stderr
+    for corner in ('front_left', 'front_right'):
+        assert f'{corner}: stop SpringBump engages: it carries a force from travel 0 to 80 mm' \
+            in run.stderr
+        assert f'{corner}: stop SpringRebound does not engage' in run.stderr
