@@ -19,7 +19,6 @@ from .chrono_templates import GENERIC, TEMPLATES
 from ..core.base import camber_toe, M_PER_MM, MM_PER_M, unit
 
 
-
 def export_scene(scene, original: dict | None = None, like: str = '',
                  damping: dict | None = None) -> tuple[dict, str, list]:
     """
