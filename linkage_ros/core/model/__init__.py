@@ -24,8 +24,9 @@ __all__ = ['AxleSpec', 'bundled_scenes', 'check_kingpin', 'config_dir', 'Constra
            'Fields', 'FILE_LIMIT_BYTES', 'FREE_KEYS', 'KingpinPoint', 'LINE_TOLERANCE',
            'link_fraction', 'link_polylines', 'load_scene', 'load_vehicle', 'mirror', 'Mount',
            'name_problem', 'parse_elements', 'parse_mount', 'parse_scene', 'parse_yaml',
-           'read_yaml', 'resolve_scene_path', 'safe_stem', 'Scene', 'scene_dir', 'SceneError', 'translate',
-           'UNITS_TO_MM', 'VALUES_LIMIT', 'Vehicle', 'vehicle_dir', 'VehicleAxles', 'with_points']
+           'read_yaml', 'resolve_scene_path', 'safe_stem', 'Scene', 'scene_dir', 'SceneError',
+           'translate', 'UNITS_TO_MM', 'VALUES_LIMIT', 'Vehicle', 'vehicle_dir', 'VehicleAxles',
+           'with_points']
 LAZY = ('AxleSpec', 'VehicleAxles')   # vehicle_axles.py: loaded by a vehicle file with axles
 
 
