@@ -99,6 +99,8 @@ def _named(scene, data, template, parts, fresh, notes):
         data[tsda.key]['Location Chassis'] = _m(e.body)
         data[tsda.key][tsda.point] = _m(e.mount.point)
         if fresh and e.type == 'spring' and e.has_rate:
+            for key in ('Spring Coefficient', 'Spring Curve Data'):   # the other kind goes
+                data[tsda.key].pop(key, None)
             data[tsda.key].update(_spring_fields(e))
 
 

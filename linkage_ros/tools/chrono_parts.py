@@ -63,7 +63,7 @@ def tsda_elements(obj: Fields, name: str, body, mount: dict, notes: list) -> lis
         free = obj.number('Free Length')
         preload = obj.number('Preload', 0.0)
         item = {'name': f'{name}Spring' if damper else name, 'type': 'spring', **ends}
-        if obj.has('Spring Coefficient'):
+        if not obj.has('Spring Curve Data'):   # Chrono: a curve wins over a coefficient
             rate = obj.number('Spring Coefficient')
             # Chrono's force P + k (L0 - L), compression +: the free length L0 + P / k
             item.update(rate=rate, free_length=free + (preload / rate if rate else 0.0))

@@ -169,3 +169,30 @@ def test_axle_says_where_each_corners_bump_stop_engages(tmp_path):
         assert f'{corner}: stop SpringBump engages: it carries a force from travel 0 to 80 mm' \
             in run.stderr
         assert f'{corner}: stop SpringRebound does not engage' in run.stderr
+
+
+def test_scene_header_names_its_source_file_and_template(tmp_path):
+    source = CHRONO / 'generic/suspension/MacPhersonStrut.json'
+    out = tmp_path / 'mp.yaml'
+    texts, _ = import_file(str(source), str(out))
+    first = texts[str(out)].splitlines()[0]
+    assert first == f'# Chrono::Vehicle MacPhersonStrut imported by linkage-chrono from {source}'
+    assert 'BSD-3-Clause' in texts[str(out)].splitlines()[1]
+
+
+def test_force_table_survives_export_and_import(tmp_path):
+    # the export drops the template file's "Spring Coefficient": Chrono takes a curve first
+    from linkage_ros.tools.chrono_files import export_file
+    source, out = CHRONO / 'generic/suspension/DoubleWishboneCurve.json', tmp_path / 'c.yaml'
+    out.write_text(import_file(str(source), str(out))[0][str(out)])
+    (tmp_path / 'c.json').write_text(export_file(str(out))[0])
+    back = imported(tmp_path / 'c.json', tmp_path, 'back')
+    np.testing.assert_allclose(back.elements[0].force_table,
+                               imported(source, tmp_path).elements[0].force_table, rtol=1e-12)
+
+
+def test_wheel_radius_must_be_positive(tmp_path):
+    from linkage_ros.tools.chrono_json import ChronoError
+    with pytest.raises(ChronoError, match='--wheel-radius'):
+        import_file(str(CHRONO / 'generic/suspension/DoubleWishbone.json'),
+                    str(tmp_path / 'x.yaml'), wheel_radius=-0.3)
