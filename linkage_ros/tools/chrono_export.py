@@ -15,6 +15,7 @@ import copy
 import math
 
 from .chrono_json import ChronoError, read_chrono
+from .chrono_parts import bushing_data
 from .chrono_templates import GENERIC, TEMPLATES
 from ..core.base import camber_toe, M_PER_MM, MM_PER_M, unit
 
@@ -33,7 +34,7 @@ def export_scene(scene, original: dict | None = None, like: str = '',
     template, parts = match(scene, original.get('Template') if original else None, like)
     notes = []
     if template == GENERIC:
-        data = _generic(scene, original, damping or {})
+        data = _generic(scene, original, damping or {}, notes)
     else:
         data = copy.deepcopy(original) if original else _default(template)
         _named(scene, data, template, parts, original is None, notes)
@@ -88,6 +89,13 @@ def _named(scene, data, template, parts, fresh, notes):
         else:
             obj['Location Chassis'] = _m(c.base[0])
         obj['Location Upright'] = _m(c.carrier)
+        if fresh:
+            obj.pop('Bushing Data', None)
+            if c.bushing is not None and part.kind == 'arm':
+                obj['Bushing Data'] = bushing_data(c.bushing, notes, c.name)
+            elif c.bushing is not None:
+                notes.append(f'{c.name}: its bushing does not go out (Chrono puts one on a '
+                             'link only when the link is a body with a mass)')
     for tsda in spec.tsdas:
         e = element_for(scene, tsda, parts)
         if tsda.key not in data:
@@ -127,7 +135,7 @@ def _spring_fields(e) -> dict:
     return {'Free Length': e.free_length * M_PER_MM, 'Spring Coefficient': e.rate / M_PER_MM}
 
 
-def _generic(scene, original, damping):
+def _generic(scene, original, damping, notes):
     from .chrono_generic import generic_of
     mounted = {scene.constraints[e.mount.constraint].name for e in scene.elements
                if e.mount.kind == 'link'}
@@ -140,7 +148,7 @@ def _generic(scene, original, damping):
     data.setdefault('Spindle', {'Mass': 14.705, 'Inertia': [0.04117, 0.07352, 0.04117],
                                 'Radius': 0.1, 'Width': 0.06})
     data['Spindle']['Attachment Body'] = 'Upright'
-    data.update(generic_of(scene, mounted, tsdas))
+    data.update(generic_of(scene, mounted, tsdas, notes))
     data.setdefault('Axle', {'Inertia': 0.4})
     return data
 

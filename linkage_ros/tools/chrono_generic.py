@@ -16,7 +16,7 @@ from __future__ import annotations
 import numpy as np
 
 from .chrono_json import ChronoError, Fields
-from .chrono_parts import bushing_into, mount_of, tsda_elements
+from .chrono_parts import bushing_data, bushing_into, mount_of, tsda_elements
 from .chrono_templates import DESIGN_AXIS_M
 
 FIXED = ('Chassis', 'Steering')
@@ -110,7 +110,7 @@ def quaternion_z(axis) -> list:
     return [float(v) for v in q / np.linalg.norm(q)]
 
 
-def generic_of(scene, mounted: set, elements: list) -> dict:
+def generic_of(scene, mounted: set, elements: list, notes: list) -> dict:
     """Return the GenericWheeledSuspension fields of a scene (m): bodies, joints, constraints."""
     m = 1e-3
     bodies = [{'Name': 'Upright', 'Mirrored': True, 'Position': _list(scene.wheel_center * m),
@@ -135,6 +135,8 @@ def generic_of(scene, mounted: set, elements: list) -> dict:
         joints.append({'Name': f'{kind}{c.name}', 'Type': kind, 'Mirrored': True,
                        'Body1': fixed, 'Body2': c.name, 'Position': _list(at),
                        'Rotation': quaternion_z(axis)})
+        if c.bushing is not None and c.type == 'circle':
+            joints[-1]['Bushing Data'] = bushing_data(c.bushing, notes, c.name)
         joints.append({'Name': f'Spherical{c.name}', 'Type': 'Spherical', 'Mirrored': True,
                        'Body1': c.name, 'Body2': 'Upright', 'Position': _list(joint),
                        'Rotation': [1.0, 0.0, 0.0, 0.0]})

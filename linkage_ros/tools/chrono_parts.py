@@ -15,6 +15,7 @@ import math
 import numpy as np
 
 from .chrono_json import Fields
+from ..core.base import MM_PER_M
 from ..core.model import Constraint, LINE_TOLERANCE
 
 # Chrono's length stops (utils::SpringForce::enable_stops, "From ADAMS/Car example"): force
@@ -125,6 +126,27 @@ def bushing_into(item: dict, obj: Fields, notes: list, name: str) -> None:
         notes.append(f'{name}: "Bushing Data" read and kept (x_bushing), not yet used: the '
                      'scene model has no bushings yet (statics, issue 29)')
 
+
+
+def bushing_data(bushing, notes: list, name: str) -> dict:
+    """
+    Return Chrono's "Bushing Data" of an arm's bushing (bushing_into's inverse): N/m, N m/rad.
+
+    Chrono has one bushing per arm, at the middle of its axis, with one linear stiffness:
+    the radial rate goes out, and a note says what does not fit (axial unlike radial, at:
+    pivots).
+    """
+    if bushing.axial != bushing.radial:
+        notes.append(f'{name}: bushing axial {bushing.axial:g} and radial {bushing.radial:g} '
+                     'N/mm differ: Chrono has one linear stiffness, the radial goes out')
+    if bushing.at != 'centre':
+        notes.append(f'{name}: bushing at: pivots goes out as Chrono\'s one bushing at the '
+                     'middle of the axis, with the rates of one')
+    zero = {'Stiffness Linear': 0.0, 'Damping Linear': 0.0, 'Stiffness Rotational': 0.0,
+            'Damping Rotational': 0.0}
+    return {**zero, 'Stiffness Linear': bushing.radial * MM_PER_M,
+            'Stiffness Rotational': math.degrees(bushing.conical),
+            'DOF': {**zero, 'Stiffness Rotational': math.degrees(bushing.torsion)}}
 
 def _list(v) -> list:
     return [float(x) for x in v]

@@ -108,3 +108,23 @@ def test_like_of_another_template_is_refused_in_one_line(tmp_path):
                          capture_output=True, text=True)
     assert run.returncode == 2 and len(run.stderr.splitlines()) == 1
     assert 'DoubleWishbone' in run.stderr and not out.exists()
+
+
+def test_arm_bushings_go_out_as_chronos_bushing_data_and_come_back(tmp_path):
+    source = CHRONO / 'hmmwv/suspension/HMMWV_DoubleWishboneFront_bushings.json'
+    out = tmp_path / 'b.yaml'
+    out.write_text(import_file(str(source), str(out))[0][str(out)])
+    text, _ = export_file(str(out))   # without --like: the bushings from the scene
+    data = json.loads(text)
+    original = read_chrono(source)['Upper Control Arm']['Bushing Data']
+    ours = data['Upper Control Arm']['Bushing Data']
+    assert ours['Stiffness Linear'] == pytest.approx(original['Stiffness Linear'])
+    assert ours['Stiffness Rotational'] == pytest.approx(original['Stiffness Rotational'])
+    assert ours['DOF']['Stiffness Rotational'] == 0.0
+    (tmp_path / 'b.json').write_text(text)
+    texts, _ = import_file(str(tmp_path / 'b.json'), str(tmp_path / 'back.yaml'))
+    back = parse_scene(yaml.safe_load(texts[str(tmp_path / 'back.yaml')]), source='back')
+    ours, theirs = back.constraints[0].bushing, load_scene(str(out)).constraints[0].bushing
+    for key in ('axial', 'radial', 'torsion', 'conical'):   # N/mm, N m/deg: two conversions
+        assert getattr(ours, key) == pytest.approx(getattr(theirs, key), rel=1e-12)
+    assert ours.at == theirs.at == 'centre'
