@@ -16,7 +16,7 @@ import numpy as np
 
 from .chrono_json import Fields
 from ..core.base import MM_PER_M
-from ..core.model import Constraint, LINE_TOLERANCE
+from ..core.model import LINE_TOLERANCE
 
 # Chrono's length stops (utils::SpringForce::enable_stops, "From ADAMS/Car example"): force
 # (N) per penetration (m) past "Minimum Length" (bump) and "Maximum Length" (rebound).
@@ -24,7 +24,6 @@ BUMP = ((0.0, 0.0), (2e-3, 200.0), (4e-3, 400.0), (6e-3, 600.0), (8e-3, 800.0),
         (10e-3, 1000.0), (20e-3, 2500.0), (30e-3, 4500.0), (40e-3, 7500.0), (50e-3, 12500.0),
         (60e-3, 125000.0))
 REBOUND = BUMP[:9]
-HAS_BUSHING = 'bushing' in Constraint.__dataclass_fields__   # once branch h-statics is in
 
 
 def mount_of(item, on, body, point, notes, name):
@@ -101,8 +100,8 @@ def bushing_into(item: dict, obj: Fields, notes: list, name: str) -> None:
     Give item a bushing from its object's "Bushing Data" (the statics issue's mapping).
 
     K_lin (N/m) -> axial and radial; K_rot and K_rot_dof (N m/rad) -> conical and torsion,
-    N m/deg; at: centre (Chrono puts one bushing at the arm's mid-axis). Until the scene
-    model has bushings (branch h-statics) it is kept as x_bushing and noted as not yet used.
+    N m/deg; at: centre (Chrono puts one bushing at the arm's mid-axis). A link takes axial
+    and radial only (model/bushing.py). No linear stiffness: the joint stays rigid (a note).
     """
     if not obj.has('Bushing Data'):
         return
@@ -119,13 +118,7 @@ def bushing_into(item: dict, obj: Fields, notes: list, name: str) -> None:
     if item['type'] == 'circle':
         bushing.update(torsion=math.radians(dof) if dof > 0 else 0.0,
                        conical=math.radians(rotational) if rotational > 0 else 0.0, at='centre')
-    if HAS_BUSHING:
-        item['bushing'] = bushing
-    else:
-        item['x_bushing'] = bushing
-        notes.append(f'{name}: "Bushing Data" read and kept (x_bushing), not yet used: the '
-                     'scene model has no bushings yet (statics, issue 29)')
-
+    item['bushing'] = bushing
 
 
 def bushing_data(bushing, notes: list, name: str) -> dict:
@@ -140,13 +133,14 @@ def bushing_data(bushing, notes: list, name: str) -> dict:
         notes.append(f'{name}: bushing axial {bushing.axial:g} and radial {bushing.radial:g} '
                      'N/mm differ: Chrono has one linear stiffness, the radial goes out')
     if bushing.at != 'centre':
-        notes.append(f'{name}: bushing at: pivots goes out as Chrono\'s one bushing at the '
-                     'middle of the axis, with the rates of one')
+        notes.append(f'{name}: bushing at: pivots goes out as one bushing at the middle of '
+                     'the axis (as Chrono has it), with the rates of one')
     zero = {'Stiffness Linear': 0.0, 'Damping Linear': 0.0, 'Stiffness Rotational': 0.0,
             'Damping Rotational': 0.0}
     return {**zero, 'Stiffness Linear': bushing.radial * MM_PER_M,
             'Stiffness Rotational': math.degrees(bushing.conical),
             'DOF': {**zero, 'Stiffness Rotational': math.degrees(bushing.torsion)}}
+
 
 def _list(v) -> list:
     return [float(x) for x in v]
