@@ -32,12 +32,12 @@ def import_file(source: str, output: str, wheel_radius: float | None = None):
 
 
 def scene_of(data: dict, source: str, output: str, wheel_radius: float | None = None,
-             name: str = ''):
+             name: str = '', steered: bool = True):
     """Return (scene text, Imported) of a suspension file's object, loaded and solved."""
     radius = WHEEL_RADIUS_M if wheel_radius is None else wheel_radius
     if not radius > 0:
         raise ChronoError('--wheel-radius', f'must be a positive number of metres, got {radius}')
-    imported = import_suspension(data, source, radius, name or Path(output).stem)
+    imported = import_suspension(data, source, radius, name or Path(output).stem, steered)
     header = [f'Chrono::Vehicle {imported.template} imported by linkage-chrono from {source}',
               LICENCE + '.',
               "Chrono's suspension frame: ISO axes (x forward, y left, z up), left side, m.",
@@ -71,7 +71,8 @@ def import_vehicle(data: dict, source: str, output: str, wheel_radius: float | N
         where = axle.vector('Suspension Location')
         name = names[i] if names else f'axle{i}'
         path = out.with_name(f'{out.stem}_{name}.yaml')
-        text, _ = scene_of(read_chrono(sub), str(sub), str(path), wheel_radius, path.stem)
+        text, _ = scene_of(read_chrono(sub), str(sub), str(path), wheel_radius, path.stem,
+                           steered=axle.has('Steering Index'))
         texts[str(path)] = text
         xs.append(where[0])
         for side, mirror in (('left', False), ('right', True)):

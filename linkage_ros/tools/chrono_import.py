@@ -29,8 +29,13 @@ class Imported(NamedTuple):
 
 
 def import_suspension(data: dict, where: str, wheel_radius: float = WHEEL_RADIUS_M,
-                      name: str = '') -> Imported:
-    """Map a Chrono suspension file's object to a scene mapping (m, left side)."""
+                      name: str = '', steered: bool = True) -> Imported:
+    """
+    Map a Chrono suspension file's object to a scene mapping (m, left side).
+
+    steered: whether its tie rod follows a steering rack (steer: rack); a vehicle's axle
+    without a "Steering Index" has its tie rod on the chassis.
+    """
     top = Fields(where, data)
     kind = top.text('Type') if top.has('Type') else 'Suspension'
     if kind != 'Suspension':
@@ -47,6 +52,9 @@ def import_suspension(data: dict, where: str, wheel_radius: float = WHEEL_RADIUS
     else:
         raise ChronoError(where, f'template {template} is not imported (solid axles and other '
                           f'templates are not independent corners); supported: {supported()}')
+    if not steered:
+        for item in constraints:
+            item.pop('steer', None)
     center, spin = carrier_of(top)
     scene = {'name': name or _stem(where), 'description': f'Chrono::Vehicle {template}: '
              f'{top.text("Name") if top.has("Name") else _stem(where)}',

@@ -142,6 +142,8 @@ def test_vehicle_file_gives_left_and_mirrored_right_corners(tmp_path):
     left, right = vehicle.corners['front_left'], vehicle.corners['front_right']
     np.testing.assert_allclose(right.wheel_center, left.wheel_center * [1, -1, 1], atol=1e-9)
     assert yaml.safe_load(texts[str(out)])['wheelbase'] == pytest.approx(2 * 1.688965)
+    # the front axle has a "Steering Index", the rear none: its tie rod is on the chassis
+    assert vehicle.corners['front_left'].steered and not vehicle.corners['rear_left'].steered
 
 
 def json_of(path):
