@@ -14,8 +14,10 @@ from __future__ import annotations
 import copy
 import math
 
+import numpy as np
+
 from .chrono_json import ChronoError, read_chrono
-from .chrono_parts import bushing_data
+from .chrono_parts import bushing_data, length_stops
 from .chrono_templates import GENERIC, TEMPLATES
 from ..core.base import camber_toe, M_PER_MM, MM_PER_M, unit
 
@@ -39,9 +41,10 @@ def export_scene(scene, original: dict | None = None, like: str = '',
         data = copy.deepcopy(original) if original else _default(template)
         _named(scene, data, template, parts, original is None, notes)
     data['Name'] = data.get('Name', scene.name) if original else scene.name
-    camber, toe = design_angles(scene)
-    data['Camber Angle (deg)'], data['Toe Angle (deg)'] = camber, toe
-    data.setdefault('Spindle', {})['COM'] = _m(scene.wheel_center)
+    for key, angle in zip(('Camber Angle (deg)', 'Toe Angle (deg)'), design_angles(scene)):
+        if key in data or angle != 0.0:   # an original without the key has them 0
+            data[key] = data[key] if abs(data.get(key, math.nan) - angle) < 1e-9 else angle
+    _put(data.setdefault('Spindle', {}), 'COM', scene.wheel_center)
     return data, template, notes
 
 
@@ -85,10 +88,11 @@ def _named(scene, data, template, parts, fresh, notes):
         c = parts[part.name]
         obj = data.setdefault(part.key, {})
         if part.kind == 'arm':
-            obj['Location Chassis Front'], obj['Location Chassis Back'] = map(_m, c.base)
+            _put(obj, 'Location Chassis Front', c.base[0])
+            _put(obj, 'Location Chassis Back', c.base[1])
         else:
-            obj['Location Chassis'] = _m(c.base[0])
-        obj['Location Upright'] = _m(c.carrier)
+            _put(obj, 'Location Chassis', c.base[0])
+        _put(obj, 'Location Upright', c.carrier)
         if fresh:
             obj.pop('Bushing Data', None)
             if c.bushing is not None and part.kind == 'arm':
@@ -104,12 +108,14 @@ def _named(scene, data, template, parts, fresh, notes):
             notes.append(f'"{tsda.key}": the scene has no element for it: the '
                          + ('original' if not fresh else 'generic file') + "'s kept")
             continue
-        data[tsda.key]['Location Chassis'] = _m(e.body)
-        data[tsda.key][tsda.point] = _m(e.mount.point)
+        _put(data[tsda.key], 'Location Chassis', e.body)
+        _put(data[tsda.key], tsda.point, e.mount.point)
         if fresh and e.type == 'spring' and e.has_rate:
-            for key in ('Spring Coefficient', 'Spring Curve Data'):   # the other kind goes
+            for key in ('Spring Coefficient', 'Spring Curve Data', 'Minimum Length',
+                        'Maximum Length'):   # the template file's, of another spring
                 data[tsda.key].pop(key, None)
-            data[tsda.key].update(_spring_fields(e))
+            data[tsda.key].update(_spring_fields(e), **length_stops(scene.elements)[0].get(
+                e.name, {}))
 
 
 def element_for(scene, tsda, parts):
@@ -139,23 +145,74 @@ def _generic(scene, original, damping, notes):
     from .chrono_generic import generic_of
     mounted = {scene.constraints[e.mount.constraint].name for e in scene.elements
                if e.mount.kind == 'link'}
-    tsdas = [t for t in (tsda_of(scene, e, damping.get(e.name)) for e in scene.elements)
-             if t is not None]
     data = {'Name': scene.name, 'Type': 'Suspension', 'Template': GENERIC}
-    if original and original.get('Template') == GENERIC:
-        data.update({k: copy.deepcopy(v) for k, v in original.items()
-                     if k not in ('Bodies', 'Joints', 'Distance Constraints', 'TSDAs')})
+    like = original if original and original.get('Template') == GENERIC else None
+    if like:
+        data.update({k: copy.deepcopy(v) for k, v in like.items() if k not in KINEMATIC})
     data.setdefault('Spindle', {'Mass': 14.705, 'Inertia': [0.04117, 0.07352, 0.04117],
                                 'Radius': 0.1, 'Width': 0.06})
-    data['Spindle']['Attachment Body'] = 'Upright'
-    data.update(generic_of(scene, mounted, tsdas, notes))
+    upright = data['Spindle'].setdefault('Attachment Body', 'Upright')
+    limits, folded = length_stops(scene.elements)
+    tsdas = [{**t, **limits.get(e.name, {})} for e, t in
+             ((e, tsda_of(scene, e, damping.get(e.name), upright)) for e in scene.elements
+              if e.name not in folded) if t is not None]
+    fresh = generic_of(scene, mounted, tsdas, notes, upright)
+    if like:   # each of ours on its namesake: the original's fields, our kinematic ones
+        fresh = {key: _merged(value, like.get(key), KINEMATIC.get(key, ()))
+                 if isinstance(value, list) else like.get(key, value)
+                 for key, value in fresh.items()}
+    data.update(fresh)
     data.setdefault('Axle', {'Inertia': 0.4})
     return data
 
 
-def tsda_of(scene, e, damping: float | None = None) -> dict | None:
+# GenericWheeledSuspension's lists and the keys of their objects that are kinematic (a body's
+# Position is its centre of mass: not kinematic here)
+KINEMATIC = {'Bodies': (), 'Joints': ('Type', 'Body1', 'Body2', 'Position', 'Rotation'),
+             'Distance Constraints': ('Body1', 'Body2', 'Point1', 'Point2'),
+             'TSDAs': ('Body1', 'Body2', 'Point1', 'Point2')}
+
+
+def _merged(ours: list, theirs, keys: tuple) -> list:
+    """Return ours, each object on its namesake in theirs with only keys taken from ours."""
+    from .chrono_generic import same_axis
+    by_name = {o.get('Name'): o for o in theirs or [] if isinstance(o, dict)}
+    out = []
+    for item in ours:
+        old = by_name.get(item['Name'])
+        if old is None:
+            out.append(item)
+            continue
+        merged = copy.deepcopy(old)
+        for key in keys:
+            if key == 'Rotation' and same_axis(old.get(key), item[key]):
+                continue   # a revolute's frame: only its z axis matters
+            if key in item:
+                _put(merged, key, item[key], scale=1.0)
+        out.append(merged)
+    return out
+
+
+def _put(obj: dict, key: str, value, scale: float = 1.0 / MM_PER_M) -> None:
+    """
+    Set obj[key] to value (a point mm -> m, or as given), keeping the original's if equal.
+
+    An unmoved point read from a file and written back is the file's own number, byte for
+    byte: mm -> m and back may differ in the last bit.
+    """
+    new = [float(v) * scale for v in value] if isinstance(value, (list, tuple, np.ndarray)) \
+        else value
+    old = obj.get(key)
+    if isinstance(new, list) and isinstance(old, list) and len(old) == len(new) and all(
+            isinstance(v, (int, float)) and abs(v - w) <= 1e-12 for v, w in zip(old, new)):
+        return
+    if new != old:
+        obj[key] = new
+
+
+def tsda_of(scene, e, damping: float | None = None, upright: str = 'Upright') -> dict | None:
     """Return a GenericWheeledSuspension TSDA of an element (None: a plain length)."""
-    on = 'Upright' if e.mount.kind in ('carrier', 'along') else \
+    on = upright if e.mount.kind in ('carrier', 'along') else \
         scene.constraints[e.mount.constraint].name
     out = {'Name': e.name, 'Mirrored': True, 'Body1': 'Chassis', 'Body2': on,
            'Point1': _m(e.body), 'Point2': _m(e.mount.point)}

@@ -110,10 +110,11 @@ def quaternion_z(axis) -> list:
     return [float(v) for v in q / np.linalg.norm(q)]
 
 
-def generic_of(scene, mounted: set, elements: list, notes: list) -> dict:
+def generic_of(scene, mounted: set, elements: list, notes: list,
+               upright: str = 'Upright') -> dict:
     """Return the GenericWheeledSuspension fields of a scene (m): bodies, joints, constraints."""
     m = 1e-3
-    bodies = [{'Name': 'Upright', 'Mirrored': True, 'Position': _list(scene.wheel_center * m),
+    bodies = [{'Name': upright, 'Mirrored': True, 'Position': _list(scene.wheel_center * m),
                'Rotation': [1.0, 0.0, 0.0, 0.0], **BODY_DEFAULTS}]
     joints, dists = [], []
     for c in scene.constraints:
@@ -123,7 +124,7 @@ def generic_of(scene, mounted: set, elements: list, notes: list) -> dict:
                               'MacPhersonStrut template, with one arm and one tie rod')
         fixed = 'Steering' if c.steer == 'rack' else 'Chassis'
         if c.type == 'sphere' and c.name not in mounted:
-            dists.append({'Name': c.name, 'Mirrored': True, 'Body1': fixed, 'Body2': 'Upright',
+            dists.append({'Name': c.name, 'Mirrored': True, 'Body1': fixed, 'Body2': upright,
                           'Point1': _list(base[0]), 'Point2': _list(joint)})
             continue
         if c.type == 'circle':
@@ -138,12 +139,20 @@ def generic_of(scene, mounted: set, elements: list, notes: list) -> dict:
         if c.bushing is not None and c.type == 'circle':
             joints[-1]['Bushing Data'] = bushing_data(c.bushing, notes, c.name)
         joints.append({'Name': f'Spherical{c.name}', 'Type': 'Spherical', 'Mirrored': True,
-                       'Body1': c.name, 'Body2': 'Upright', 'Position': _list(joint),
+                       'Body1': c.name, 'Body2': upright, 'Position': _list(joint),
                        'Rotation': [1.0, 0.0, 0.0, 0.0]})
     arms = [b['Name'] for b in bodies[1:]]
     return {'Independent': True, 'Steerable': scene.steered, 'Bodies': bodies,
             'Joints': joints, 'Distance Constraints': dists, 'TSDAs': elements,
-            'Antiroll Body': arms[0] if arms else 'Upright'}
+            'Antiroll Body': arms[0] if arms else upright}
+
+
+def same_axis(old, new) -> bool:
+    """Whether two Chrono quaternions [w, x, y, z] turn z onto one line (either way, 1e-9)."""
+    try:
+        return abs(float(rotation(old)[:, 2] @ rotation(new)[:, 2])) > 1.0 - 1e-9
+    except (TypeError, ValueError):
+        return False
 
 
 def _ident(value) -> str:

@@ -142,5 +142,30 @@ def bushing_data(bushing, notes: list, name: str) -> dict:
             'DOF': {**zero, 'Stiffness Rotational': math.degrees(bushing.torsion)}}
 
 
+def length_stops(elements) -> tuple[dict, set]:
+    """
+    Return Chrono's length stops of a scene's springs, and the stop elements they fold.
+
+    The import makes "Minimum Length" and "Maximum Length" two stops, <spring>Bump and
+    <spring>Rebound, on the spring's points with Chrono's own curves; the export folds such
+    a pair back: ({spring: {"Minimum Length": m, "Maximum Length": m}}, {stop names}).
+    """
+    by_name = {e.name: e for e in elements}
+    limits, folded = {}, set()
+    curves = {'Bump': np.array(BUMP), 'Rebound': -np.array(REBOUND)[::-1]}
+    for e in elements:
+        pair = [by_name.get(f'{e.name}{kind}') for kind in curves]
+        if e.type != 'spring' or e.is_stop or None in pair:
+            continue
+        if all(s.force_table is not None and s.force_table.shape == c.shape
+               and np.allclose(s.force_table / [MM_PER_M, 1.0], c, rtol=1e-12, atol=1e-12)
+               and np.allclose(s.body, e.body) and np.allclose(s.mount.point, e.mount.point)
+               for s, c in zip(pair, curves.values())):
+            limits[e.name] = {'Minimum Length': pair[0].free_length / MM_PER_M,
+                              'Maximum Length': pair[1].free_length / MM_PER_M}
+            folded |= {s.name for s in pair}
+    return limits, folded
+
+
 def _list(v) -> list:
     return [float(x) for x in v]

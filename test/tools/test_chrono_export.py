@@ -128,3 +128,24 @@ def test_arm_bushings_go_out_as_chronos_bushing_data_and_come_back(tmp_path):
     for key in ('axial', 'radial', 'torsion', 'conical'):   # N/mm, N m/deg: two conversions
         assert getattr(ours, key) == pytest.approx(getattr(theirs, key), rel=1e-12)
     assert ours.at == theirs.at == 'centre'
+
+
+def test_like_of_a_generic_original_keeps_its_bodies_joints_and_springs(tmp_path):
+    original = CHRONO / 'hmmwv/suspension/HMMWV_DoubleWishboneFront_replica.json'
+    out = tmp_path / 'replica.yaml'
+    out.write_text(import_file(str(original), str(out))[0][str(out)])
+    text, _ = export_file(str(out), str(original))
+    assert json.loads(text) == read_chrono(original)
+
+
+def test_length_stops_fold_back_into_the_springs_minimum_and_maximum_length(tmp_path):
+    original = CHRONO / 'hmmwv/suspension/HMMWV_DoubleWishboneFront.json'
+    out = tmp_path / 'front.yaml'
+    out.write_text(import_file(str(original), str(out))[0][str(out)])
+    spring = json.loads(export_file(str(out))[0])['Spring']   # without --like
+    before = read_chrono(original)['Spring']
+    assert spring['Minimum Length'] == pytest.approx(before['Minimum Length'])
+    assert spring['Maximum Length'] == pytest.approx(before['Maximum Length'])
+    np.testing.assert_allclose(spring['Spring Curve Data'], before['Spring Curve Data'],
+                               rtol=1e-12, atol=1e-12)
+    assert 'Spring Coefficient' not in spring
