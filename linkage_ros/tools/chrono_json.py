@@ -17,7 +17,8 @@ from typing import Any
 
 import numpy as np
 
-from ..core.base import LinkageError
+from ..core.base import (LENGTH_LIMIT_MM, LinkageError, MM_PER_M,
+                         within_length_limit)
 
 MAX_BYTES = 10 * 1024 * 1024   # ten megabytes: thousands of times a real suspension file
 MAX_DEPTH = 32                 # brackets open at once
@@ -144,8 +145,13 @@ class Fields:
         if not isinstance(value, list) or len(value) != size:
             raise ChronoError(self.where, f'{self._field(key)}: expected {size} numbers '
                               f'[...], got {_kind(value)}')
-        return np.array([_number(self.where, f'{self._field(key)}[{i}]', v)
-                         for i, v in enumerate(value)])
+        out = np.array([_number(self.where, f'{self._field(key)}[{i}]', v)
+                        for i, v in enumerate(value)])
+        if size == 3 and not all(within_length_limit(float(v), MM_PER_M) for v in out):
+            raise ChronoError(self.where, f'{self._field(key)}: {value} m is beyond '
+                              f'{LENGTH_LIMIT_MM / MM_PER_M:g} m (a point in a suspension '
+                              'file is metres)')
+        return out
 
     def table(self, key: str) -> np.ndarray:
         """Return a curve [[x, y], ...] as an (n, 2) array of finite numbers."""

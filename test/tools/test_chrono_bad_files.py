@@ -65,3 +65,14 @@ def test_comments_are_read_as_rapidjson_reads_them():
 def test_unclosed_block_comment_is_not_json():
     with pytest.raises(ChronoError, match='never closed'):
         parse_chrono('{"a": 1 /* open')
+
+
+def test_point_beyond_the_length_limit_is_one_line(tmp_path):
+    data = json.loads(GOOD)
+    data['Tierod']['Location Chassis'][0] = 1e308
+    source, out = tmp_path / 'far.json', tmp_path / 'out.yaml'
+    source.write_text(json.dumps(data))
+    run = subprocess.run([str(PROGRAM), 'import', str(source), '-o', str(out)],
+                         capture_output=True, text=True)
+    assert run.returncode == 2 and len(run.stderr.splitlines()) == 1, run.stderr
+    assert '"Tierod" / "Location Chassis"' in run.stderr and not out.exists()
