@@ -1,6 +1,7 @@
 """ament_python package: installs with pip (pip install -e '.[test]') or builds with colcon."""
 
 from glob import glob
+import os
 
 from setuptools import find_packages, setup
 
@@ -25,7 +26,10 @@ setup(
          glob('config/interfaces/tf2_msgs/msg/*')),
         ('share/' + package_name + '/config/study', glob('config/study/*.yaml')),
         ('share/' + package_name + '/config/bench', glob('config/bench/*.yaml')),
-    ],
+        ('share/' + package_name + '/config/chrono',
+         ['config/chrono/LICENSE', 'config/chrono/README.md']),
+    ] + [('share/' + package_name + '/' + folder, glob(folder + '/*.json'))
+         for folder in sorted({os.path.dirname(p) for p in glob('config/chrono/*/*/*.json')})],
     python_requires='>=3.10',
     install_requires=['setuptools', 'numpy', 'scipy', 'PyYAML', 'numba'],
     extras_require={
@@ -68,6 +72,7 @@ setup(
             'linkage-urdf = linkage_ros.tools.urdf:main',
             'linkage-foxglove = linkage_ros.tools.foxglove_layout:main',
             'linkage-study = linkage_ros.study.cli:main',
+            'linkage-chrono = linkage_ros.tools.chrono_cli:main',
         ],
     },
 )

@@ -30,6 +30,14 @@ step sweep out of reach
 .venv/bin/linkage-sweep five_link --travel 0:1000:100 > /dev/null; echo "rc=$?"
 step sweep elements
 .venv/bin/linkage-sweep double_wishbone --travel -40:40:40 --elements 2>/dev/null | cut -d, -f1,13-; echo "rc=${PIPESTATUS[0]}"
+step chrono import and export (doc/chrono.md)
+.venv/bin/linkage-chrono import config/chrono/generic/suspension/DoubleWishbone.json -o dw.yaml; echo "rc=$?"
+.venv/bin/linkage-sweep dw.yaml --travel -40:40:40 --elements > dw.csv; echo "rc=$?"
+.venv/bin/linkage-chrono export dw.yaml -o dw.json --like config/chrono/generic/suspension/DoubleWishbone.json; echo "rc=$?"
+.venv/bin/linkage-chrono export five_link -o five_link.json; echo "rc=$?"
+.venv/bin/linkage-chrono import config/chrono/hmmwv/vehicle/HMMWV_Vehicle.json -o hmmwv.yaml; echo "rc=$?"
+.venv/bin/linkage-axle hmmwv.yaml > /dev/null; echo "rc=$?"
+rm -f dw.yaml dw.csv dw.json five_link.json hmmwv.yaml hmmwv_front.yaml hmmwv_rear.yaml
 step kinematic map
 .venv/bin/linkage-map double_wishbone -o maps; echo "rc=$?"; ls maps
 step vehicle setup sheet

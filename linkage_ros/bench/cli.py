@@ -12,6 +12,7 @@ linkage-bench: every benchmark of linkage_ros, one subcommand each.
     linkage-bench replay [BAG] [...]   solving recorded commands with and without recording
     linkage-bench kc SCENE [...]       compliance rates and a loaded solve against a
                                        kinematic solve (linkage-kc; kc_bench.py)
+    linkage-bench chrono [FILE...]     import, solve and write Chrono files (bench/chrono.py)
 
 Each subcommand takes the options of the program it times (SUBCOMMAND --help lists them);
 sweep, axle, map, vehicle and kc take --rounds N too. The earlier entry points
@@ -63,6 +64,11 @@ def _replay(argv):
     return main(['bench', *argv])
 
 
+def _chrono(argv):
+    from .chrono import main
+    return main(argv)
+
+
 def _timed(module):
     """Return the runner of a program whose main(argv, rounds) times instead of solving."""
     def run(argv):
@@ -76,7 +82,7 @@ def _timed(module):
 COMMANDS = {'accuracy': _accuracy, 'node': _node, 'soak': _soak,
             'sweep': _timed('sweep'), 'axle': _timed('axle'), 'map': _timed('kinematic_map'),
             'vehicle': _timed('vehicle'), 'study': _study, 'replay': _replay,
-            'kc': _timed('kc')}
+            'kc': _timed('kc'), 'chrono': _chrono}
 
 
 def _rounds(argv, prog):

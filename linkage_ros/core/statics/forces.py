@@ -49,8 +49,7 @@ def pickup_forces(scene, system, eq, force: np.ndarray) -> dict:
     for element, end, moving in system.springs:
         x_move = point_of(system, pose, moving)
         _, grads, _ = spring_terms(element, end.x0, x_move)
-        springs[element.name] = float(element.rate * (element.free_length
-                                                      - np.linalg.norm(x_move - end.x0)))
+        springs[element.name] = element.spring_at(float(np.linalg.norm(x_move - end.x0)))[0]
         add(f'{element.name}_body', end.x0, -grads[0])
         for w, it in moving:
             on_move = -w * grads[1]
