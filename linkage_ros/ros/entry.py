@@ -62,6 +62,26 @@ reliable, keep-last qos_depth):
                                                       one status per corner, named '<node's
                                                       full name>: <scene or corner>'
   out  alignment, markers  Float64MultiArray, MarkerArray (when turned on)
+  out  elements            sensor_msgs/JointState     the scene's elements: length (m), motion
+                                                      ratio (scenes with elements)
+  in   contact_wrench      geometry_msgs/WrenchStamped  the tyre's force (N) and moment (N m)
+                                                      at the contact patch, in frame_id (with
+                                                      statics: a scene with bushings, or
+                                                      -p statics:=true); answers are then the
+                                                      loaded pose at the last one
+  out  pickup/<name>       geometry_msgs/WrenchStamped  with statics, per answer: the force (N)
+                                                      on the body at each pickup and a
+                                                      bushing's couple (N m); name
+                                                      <link>_base, <arm>_axis0, <arm>_axis1,
+                                                      <arm>_centre, <strut>_top or
+                                                      <spring>_body; in frame
+                                                      <prefix>pickup/<name> (with tf)
+  out  /tf, /tf_static     tf2_msgs/TFMessage         the bodies' frames per answer; the wheel
+                                                      and pickup frames (parameter tf)
+  out  robot_description   std_msgs/String            the URDF (parameter tf)
+  out  <axle>/roll_centre  geometry_msgs/PointStamped  a vehicle axle's roll centre (m,
+                                                      frame_id; vehicle files with axles)
+  in   /clock              rosgraph_msgs/Clock        with use_sim_time: the node clock
 
 The first start after an install compiles the numerical kernels (about 20 s, said once; a
 Ctrl-C stops it at once); later starts load them.

@@ -162,20 +162,12 @@ def test_loaded_pose_and_forces_agree_with_the_energy_reference(name, load):
         assert got.holding_force_n == pytest.approx(want.holding_force_n, abs=FORCE_REL * scale)
         assert_forces_agree(got.link_forces_n, want.link_forces_n, 'link_forces_n')
         assert_forces_agree(got.pivot_forces_n, want.pivot_forces_n, 'pivot_forces_n')
-        assert_forces_agree(got.ball_joint_forces_n, without_spring_links(model, want),
+        assert_forces_agree(got.ball_joint_forces_n, want.ball_joint_forces_n,
                             'ball_joint_forces_n')
         assert_forces_agree(got.spring_forces_n, want.spring_forces_n, 'spring_forces_n')
         assert_forces_agree(got.body_forces_n, want.body_forces_n, 'body_forces_n')
 
 
-def without_spring_links(model, want):
-    """Return the reference's ball-joint forces less those of links that carry a spring."""
-    carrying = {model.parts[sp.part].name for sp in model.springs if sp.on == 'link'}
-    return {k: v for k, v in want.ball_joint_forces_n.items() if k not in carrying}
-
-
-@pytest.mark.xfail(strict=True, reason='STATICS_SPEC.md DISAGREEMENTS 1: the core leaves the '
-                   "spring's share out of the ball-joint force of the link that carries it")
 def test_a_link_carrying_a_spring_gives_the_carrier_its_share_of_the_spring_force():
     # five_link's spring sits half-way along lower_rear: the link's ball joint passes the
     # carrier its axial force and half the spring's push (the reference's carrier balances

@@ -30,7 +30,7 @@ from .layout import Layout, layout_of
 # LENGTH_LIMIT_MM, SceneError and within_length_limit are also read from here, where they were.
 from .yaml_file import read_yaml, SceneError  # noqa: F401 (SceneError: kept here)
 from ..base.errors import LinkageError
-from ..base.geometry import perpendicular, unit
+from ..base.geometry import perpendicular, spin_axis_of, unit
 from ..base.limits import LENGTH_LIMIT_MM, positions_needed, within_length_limit  # noqa: F401
 
 if TYPE_CHECKING:
@@ -301,9 +301,7 @@ def _spin_axis_point(check, carrier, wheel_center, side, constraints):
                        'deg, or the spin axis does not point outboard')
         angles.append(math.radians(value))
     camber, toe = angles
-    sign = 1.0 if side == 'left' else -1.0
-    axis = np.array([math.cos(camber) * math.sin(toe), sign * math.cos(camber) * math.cos(toe),
-                     -math.sin(camber)])
+    axis = spin_axis_of(camber, toe, 1.0 if side == 'left' else -1.0)
     reach = [np.linalg.norm(c.carrier - wheel_center) for c in constraints]
     distance = float(np.mean(reach)) if reach and np.mean(reach) > 0 else 100.0
     return wheel_center - distance * axis

@@ -14,7 +14,7 @@ from __future__ import annotations
 import numpy as np
 
 from .rotation import energy_terms, log_so3
-from .system import Item, point_of, position, spring_terms
+from .system import CARRIER, Item, point_of, position, spring_terms
 from ..base.geometry import cross
 
 
@@ -49,14 +49,18 @@ def pickup_forces(scene, system, eq, force: np.ndarray) -> dict:
     for element, end, moving in system.springs:
         x_move = point_of(system, pose, moving)
         _, grads, _ = spring_terms(element, end.x0, x_move)
-        springs[element.name] = float(element.rate * (element.free_length
-                                                      - np.linalg.norm(x_move - end.x0)))
+        springs[element.name] = element.spring_at(float(np.linalg.norm(x_move - end.x0)))[0]
         add(f'{element.name}_body', end.x0, -grads[0])
         for w, it in moving:
             on_move = -w * grads[1]
             if it.body < 0:   # the share at a rigid link's base goes to the body there
                 link = scene.constraints[element.mount.constraint].name
                 add(f'{link}_base', it.x0, on_move)
+            elif system.bodies[it.body].kind == CARRIER:
+                # a link that carries the spring passes its share at the carrier end on to
+                # the carrier, beside its axial force (STATICS_SPEC.md DISAGREEMENTS 1)
+                link = scene.constraints[element.mount.constraint].name
+                balls[link] = balls.get(link, np.zeros(3)) + on_move
             elif system.bodies[it.body].kind == 'hinge':
                 arm_loads.setdefault(it.body, []).append((position(system, pose, it)[0],
                                                           on_move))

@@ -45,6 +45,12 @@ class Load:
     at: str = 'wc'
     moment_nm: tuple = (0.0, 0.0, 0.0)
 
+    def __str__(self) -> str:
+        """Say the load in words for messages: 'F (0, 4000, 0) N at cp, M (0, 0, 0) N m'."""
+        force = ', '.join(f'{float(v):g}' for v in self.force_n)
+        moment = ', '.join(f'{float(v):g}' for v in self.moment_nm)
+        return f'F ({force}) N at {self.at}, M ({moment}) N m'
+
 
 @dataclass(frozen=True)
 class Loaded:
@@ -105,12 +111,18 @@ def prepared(scene, rack_mm: float, z: float, load_x0: np.ndarray, compiled: boo
     name, kind, items, _ = template.constraints[-1]   # the travel row, the last constraint
     system = replace(template, z=z, load_item=template.load_item._replace(x0=load_x0),
                      constraints=template.constraints[:-1] + [(name, kind, items, z)])
-    if not compiled:
+    if not compiled or _has_force_table(scene):
         return build(scene, rack_mm, z, load_x0), None
     data, x0 = model.t_data.copy(), model.it_x0.copy()
     data[model.m - 1, 0] = z            # the travel row, the last constraint
     x0[len(x0) - 1, 0] = load_x0        # the load, the last term
     return system, model._replace(t_data=data, it_x0=x0)
+
+
+def _has_force_table(scene) -> bool:
+    # The compiled kernel's springs are linear (rate, free length); a spring with a force table
+    # (a Chrono curve, a bump stop) takes the numpy path, which evaluates Element.spring_at.
+    return any(e.force_table is not None for e in scene.elements)
 
 
 def check_load(scene, load: Load) -> tuple[np.ndarray, np.ndarray]:

@@ -299,10 +299,10 @@ def spring_terms(element, x_body, x_move):
     d = x_move - x_body
     length = float(np.linalg.norm(d))
     u = d / length
-    stretch = length - element.free_length
-    f = element.rate * stretch
-    h = element.rate * np.outer(u, u) + f / length * (EYE - np.outer(u, u))
-    return 0.5 * element.rate * stretch ** 2, np.array([-f * u, f * u]), [[h, -h], [-h, h]]
+    pushed, stiffness, energy = element.spring_at(length)   # a rate or a force table
+    f = -pushed   # the tension, N
+    h = stiffness * np.outer(u, u) + f / length * (EYE - np.outer(u, u))
+    return energy, np.array([-f * u, f * u]), [[h, -h], [-h, h]]
 
 
 def assemble(system: System, pose: Pose, multipliers: np.ndarray, force: np.ndarray,
