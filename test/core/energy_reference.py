@@ -160,8 +160,10 @@ class EnergyModel:
             self.parts.append(part)
         self.size = n
         self._free = {}
-        self.springs = [self._spring(e, s) for e in data.get('elements') or []
-                        if e.get('type') == 'spring' and e.get('rate') is not None]
+        items = [e for e in data.get('elements') or [] if e.get('type') == 'spring']
+        if any('force_table' in e for e in items):
+            raise ValueError('energy_reference models linear springs (rate) only')
+        self.springs = [self._spring(e, s) for e in items if e.get('rate') is not None]
 
     def _spring(self, item, s):
         on = next(k for k in ('carrier', 'arm', 'link', 'along') if k in item)
