@@ -1,10 +1,11 @@
 """
 An independent statics of a scene with bushings: minimum potential energy over 6-DOF bodies.
 
-Written apart from linkage_ros (it reads the scene file itself and uses none of the package's
-parsers or solvers) to check linkage_ros.core.statics, with the model of STATICS_SPEC.md:
-the carrier is a free rigid body (6 DOF); an arm with a bushing is a free rigid body (6 DOF);
-an arm without one turns about its axis (1 DOF); a link with a bushing has a movable body end
+Written apart from linkage_ros (EnergyModel takes the scene file's mapping as yaml.safe_load
+gives it, and uses none of the package's parsers or solvers) to check
+linkage_ros.core.statics, with the model of STATICS_SPEC.md: the carrier is a free rigid body
+(6 DOF); an arm with a bushing is a free rigid body (6 DOF); an arm without one turns about
+its axis (1 DOF); a link with a bushing has a movable body end
 (3 DOF). Ball joints, link lengths, strut lines, the wheel centre's height and the rack are
 equality constraints. The energy is that of the bushings and springs, minus the work of the
 load. Newton on the Lagrange conditions (gradients exact by complex step) finds the
@@ -23,7 +24,6 @@ import math
 
 import numpy as np
 from scipy.linalg import null_space
-import yaml
 
 UNIT_MM = {'mm': 1.0, 'm': 1000.0}
 NM_PER_DEG = 1000.0 * 180.0 / math.pi     # N m/deg -> N mm/rad
@@ -161,8 +161,10 @@ class EnergyModel:
             self.parts.append(part)
         self.size = n
         self._free = {}
-        self.springs = [self._spring(e, s) for e in data.get('elements') or []
-                        if e.get('type') == 'spring' and e.get('rate') is not None]
+        items = [e for e in data.get('elements') or [] if e.get('type') == 'spring']
+        if any('force_table' in e for e in items):
+            raise ValueError('energy_reference models linear springs (rate) only')
+        self.springs = [self._spring(e, s) for e in items if e.get('rate') is not None]
 
     def _spring(self, item, s):
         on = next(k for k in ('carrier', 'arm', 'link', 'along') if k in item)
@@ -252,8 +254,7 @@ class EnergyModel:
 
     def gradient(self, f, q):
         """Return df/dq at real q by complex step (a row per output of f; exact)."""
-        cols = [np.imag(f(q + 1j * STEP * e)) / STEP for e in np.eye(len(q))]
-        return np.array(cols).T
+        return np.array([np.imag(f(q + 1j * STEP * e)) / STEP for e in np.eye(len(q))]).T
 
     def lagrange(self, z, rack, travel, force, point, moment):
         """Return the Lagrange conditions (grad V - M.omega + J^T lam, g) at z = (q, lam)."""
@@ -391,6 +392,8 @@ class EnergyModel:
                 k += 3
                 if part.bushing:
                     self._arm_body_forces(q, part, res)
+                else:
+                    self._pivot_forces(q, part, lam[k - 3:k], rack, res)
             elif part.kind == 'link':
                 b = self.link_base(q, part, rack)
                 u = unit(c - b)
@@ -418,6 +421,32 @@ class EnergyModel:
                 if not self.parts[sp.part].bushing:
                     res.body_forces_n[f'{name}_base'] += (1 - sp.fraction) * push
         return res
+
+    def _pivot_forces(self, q, part, lam, rack, res):
+        """
+        Add the forces a rigid revolute arm's pivots put on the body to res.
+
+        The arm (massless) balances the carrier's pull at its ball joint, its springs and
+        the two pivots; the pivots' axial split, which a rigid revolute leaves open, is the
+        least-norm (equal) one.
+        """
+        index = self.parts.index(part)
+        loads = [(self.arm_point(q, part, part.carrier).real, -lam)]
+        for sp in self.springs:
+            if sp.on == 'arm' and sp.part == index:
+                end = self.mount(q, sp, rack).real
+                loads.append((end, sp.rate * (sp.free_length - np.linalg.norm(end - sp.body))
+                              * unit(end - sp.body)))
+        a0, a1 = part.base
+        total = sum(f for _, f in loads)
+        turning = sum(np.cross(p - a0, f) for p, f in loads)
+        lhs = np.block([[np.eye(3), np.eye(3)],     # R0 + R1 = -total, (a1-a0) x R1 = -turning
+                        [np.zeros((3, 3)), np.cross(a1 - a0, np.eye(3)).T]])
+        react = np.linalg.lstsq(lhs, -np.r_[total, turning], rcond=None)[0]
+        for key, at, f in ((f'{part.name}_axis0', a0, react[:3]),
+                           (f'{part.name}_axis1', a1, react[3:])):
+            res.pivot_forces_n[key] = res.body_forces_n[key] = -f
+            res.body_points_mm[key] = at
 
     def _arm_body_forces(self, q, part, res):
         """Add the forces (and couples) the arm's bushings put on the body to res."""
@@ -452,6 +481,8 @@ def _least_curvature(matrix, n):
     matrix: Newton's matrix [[H, J^T], [J, 0]] with n unknowns q; > 0 at a strict minimum.
     """
     basis = null_space(matrix[n:, :n])
+    if basis.shape[1] == 0:     # a rigid scene: nothing moves, nothing to be minimal over
+        return math.inf
     hessian = basis.T @ matrix[:n, :n] @ basis
     return float(np.linalg.eigvalsh(0.5 * (hessian + hessian.T)).min())
 
@@ -470,9 +501,3 @@ def _angle_about(part, joint):
     r0, r1 = part.carrier - o, joint - o
     r0, r1 = r0 - (r0 @ a) * a, r1 - (r1 @ a) * a
     return math.atan2(np.cross(r0, r1) @ a, r0 @ r1)
-
-
-def load_model(path) -> EnergyModel:
-    """Read a scene file (YAML) into an EnergyModel."""
-    with open(path, encoding='utf-8') as stream:
-        return EnergyModel(yaml.safe_load(stream))

@@ -7,6 +7,8 @@ linkage_ros.core.statics. Its own checks come first (they need no statics), then
 comparison on every bundled scene with bushings.
 """
 
+from dataclasses import replace
+
 from energy_reference import EnergyModel, stiffness     # beside this file (pytest's path)
 from linkage_ros.core.model import bundled_scenes, load_scene, scene_dir
 from linkage_ros.core.solve import sweep
@@ -269,3 +271,24 @@ def test_a_strut_scene_with_bushings_agrees_with_the_energy_reference(tmp_path):
     assert_forces_agree(got.link_forces_n, want.link_forces_n, 'link_forces_n')
     assert_forces_agree(got.pivot_forces_n, want.pivot_forces_n, 'pivot_forces_n')
     assert_forces_agree(got.spring_forces_n, want.spring_forces_n, 'spring_forces_n')
+
+
+@pytest.mark.parametrize('name', ['double_wishbone', 'chrono_sedan_doublewishbone'])
+def test_rigid_arms_pivot_forces_agree_with_the_energy_reference(name):
+    # A rigid revolute's pivots share its axial force equally (the least-norm pair): a
+    # convention both sides take; the rest follows from the arm's balance. double_wishbone
+    # without its bushings keeps its spring on the lower arm.
+    core = statics()
+    data = scene_data(name)
+    for item in data['constraints']:
+        item.pop('bushing', None)
+    scene = load_scene(name)
+    scene = replace(scene, constraints=tuple(replace(c, bushing=None)
+                                             for c in scene.constraints))
+    force, moment = (-1500.0, 1000.0, 0.0), (0.0, 0.0, 40.0)
+    got = core.solve_loaded(scene, travel_mm=15.0,
+                            load=core.Load(force_n=force, at='cp', moment_nm=moment))
+    want = EnergyModel(data).solve(15.0, force_n=force, at='cp', moment_nm=moment)
+    assert got.toe_deg == pytest.approx(want.toe_deg, abs=ANGLE_DEG)
+    assert_forces_agree(got.pivot_forces_n, want.pivot_forces_n, 'pivot_forces_n')
+    assert_forces_agree(got.body_forces_n, want.body_forces_n, 'body_forces_n')
