@@ -101,11 +101,11 @@ step axle, anti-roll bar, roll centre picture
 pyblock doc/axle.md 'solve_axle(axle' > axle_snippet.py
 .venv/bin/python axle_snippet.py; echo "rc=$?"; rm axle_snippet.py
 step compliance and loaded solves '(doc/kc.md)'
-.venv/bin/linkage-kc double_wishbone --travel -40:40:20 | cut -d, -f1-4; echo "rc=${PIPESTATUS[0]}"
-.venv/bin/linkage-kc double_wishbone --travel 0 --matrix double_wishbone_compliance.csv; echo "rc=$?"; cat double_wishbone_compliance.csv
-.venv/bin/linkage-kc double_wishbone --travel 0 --load 0,4000,0 --at cp -o cornering.csv; echo "rc=$?"; cut -d, -f1-8 cornering.csv
-.venv/bin/linkage-kc double_wishbone --travel -40:40:10 --plot kc_rates.png > kc_rates.csv; echo "rc=$?"
-.venv/bin/linkage-kc double_wishbone --travel 0 --load 0,4000,0 --at cp --plot kc_loaded.png; echo "rc=$?"
+.venv/bin/linkage-kc double_wishbone_bushings --travel -40:40:20 | cut -d, -f1-4; echo "rc=${PIPESTATUS[0]}"
+.venv/bin/linkage-kc double_wishbone_bushings --travel 0 --matrix double_wishbone_compliance.csv; echo "rc=$?"; cat double_wishbone_compliance.csv
+.venv/bin/linkage-kc double_wishbone_bushings --travel 0 --load 0,4000,0 --at cp -o cornering.csv; echo "rc=$?"; cut -d, -f1-8 cornering.csv
+.venv/bin/linkage-kc double_wishbone_bushings --travel -40:40:10 --plot kc_rates.png > kc_rates.csv; echo "rc=$?"
+.venv/bin/linkage-kc double_wishbone_bushings --travel 0 --load 0,4000,0 --at cp --plot kc_loaded.png; echo "rc=$?"
 pyblock doc/kc.md 'solve_loaded(scene' > kc_snippet.py
 .venv/bin/python kc_snippet.py; echo "rc=$?"; rm kc_snippet.py
 step studies
@@ -126,7 +126,7 @@ if [ "${LONG:-0}" = 1 ]; then
     .venv/bin/linkage-bench axle demo_vehicle --axle front --rounds 21 > /dev/null; echo "rc=$?"
     .venv/bin/linkage-bench axle demo_vehicle --axle rear --roll -3:3:0.5 --heave -40:40:10 --rounds 11 > /dev/null; echo "rc=$?"
     .venv/bin/linkage-bench vehicle demo_vehicle --rounds 3 > /dev/null; echo "rc=$?"
-    .venv/bin/linkage-bench kc double_wishbone --travel -40:40:20 --rounds 3; echo "rc=$?"
+    .venv/bin/linkage-bench kc double_wishbone_bushings --travel -40:40:20 --rounds 3; echo "rc=$?"
     .venv/bin/linkage-bench accuracy --quick -o bench-report; echo "rc=$?"
     ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST .venv/bin/linkage-bench node --plot node_latency.png > node_bench.csv; echo "rc=$?"
     ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST .venv/bin/linkage-bench soak > soak.csv; echo "rc=$?"

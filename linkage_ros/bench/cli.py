@@ -34,7 +34,7 @@ EPILOG = """examples:
   linkage-bench axle demo_vehicle --axle front --rounds 21
   linkage-bench map double_wishbone --rounds 20
   linkage-bench vehicle demo_vehicle --rounds 3
-  linkage-bench kc double_wishbone --travel -40:40:20 --rounds 5
+  linkage-bench kc double_wishbone_bushings --travel -40:40:20 --rounds 5
 
 exit status: as the program timed; """ + EXIT_STATUS
 

@@ -40,10 +40,10 @@ columns, with --load or --moment: travel_mm, rack_mm with --rack, camber_deg, to
   (+ = compressed) and <strut>_top_fx/fy/fz_n (a strut's force on the body at its top).
 
 examples:
-  linkage-kc double_wishbone --travel -40:40:20
-  linkage-kc double_wishbone --travel 0 --matrix double_wishbone_compliance.csv
-  linkage-kc double_wishbone --travel 0 --load 0,4000,0 --at cp -o cornering.csv
-  linkage-kc double_wishbone --travel 0 --moment 0,0,100 --plot aligning.png
+  linkage-kc double_wishbone_bushings --travel -40:40:20
+  linkage-kc double_wishbone_bushings --travel 0 --matrix double_wishbone_compliance.csv
+  linkage-kc double_wishbone_bushings --travel 0 --load 0,4000,0 --at cp -o cornering.csv
+  linkage-kc double_wishbone_bushings --travel 0 --moment 0,0,100 --plot aligning.png
 
 Travels and racks are plain numbers of mm; one value is one position, FROM:TO:STEP a range
 (TO included). --matrix and the picture of a loaded solve are of one position. Timing:
@@ -69,7 +69,7 @@ def vector(text: str) -> tuple:
 def parse_args(argv, rounds=0):
     """Read the command line; a mistake exits with one line and status 2."""
     parser = Parser(PROG, __doc__, EPILOG)
-    parser.add_argument('scene', help='bundled scene name (e.g. double_wishbone) or path to a '
+    parser.add_argument('scene', help='bundled scene name (e.g. double_wishbone_bushings) or path to a '
                         'YAML file')
     parser.add_argument('--travel', type=span, metavar=SPAN, required=True,
                         help='wheel travel, mm, + = bump: one value or a range')

@@ -42,7 +42,8 @@ ANGLE_DEG, POSITION_MM, FORCE_REL = 1e-6, 1e-6, 1e-6
 
 
 def test_the_bundled_scenes_with_bushings_are_the_three_of_issue_29():
-    assert {'double_wishbone', 'five_link', 'chrono_sedan_doublewishbone_bushings'} <= set(BUSHED)
+    assert {'double_wishbone_bushings', 'five_link_bushings',
+            'chrono_sedan_doublewishbone_bushings'} <= set(BUSHED)
 
 
 @pytest.mark.parametrize('name', BUSHED)
@@ -66,7 +67,7 @@ def test_reference_link_bushing_deflection_is_the_link_force_over_its_rate():
     # its bushing, has K d = T u (u the link's loaded direction). T here comes from the
     # carrier's own balance at the loaded pose (five link forces and the holding force: six
     # equations), not from the reference's multipliers.
-    model = EnergyModel(scene_data('five_link'))
+    model = EnergyModel(scene_data('five_link_bushings'))
     model.springs = []
     force = np.array([500.0, 1500.0, 0.0])
     res = model.solve(20.0, force_n=force, at='wc')
@@ -174,9 +175,9 @@ def test_a_link_carrying_a_spring_gives_the_carrier_its_share_of_the_spring_forc
     # to 1e-13 N with it; test_reference_ball_joint_forces_balance_the_load_on_the_carrier).
     core = statics()
     force = (0.0, 1500.0, 0.0)
-    got = core.solve_loaded(load_scene('five_link'), travel_mm=-30.0,
+    got = core.solve_loaded(load_scene('five_link_bushings'), travel_mm=-30.0,
                             load=core.Load(force_n=force, at='wc'))
-    want = EnergyModel(scene_data('five_link')).solve(-30.0, force_n=force, at='wc')
+    want = EnergyModel(scene_data('five_link_bushings')).solve(-30.0, force_n=force, at='wc')
     assert_forces_agree(got.ball_joint_forces_n, want.ball_joint_forces_n,
                         'ball_joint_forces_n')
 
@@ -273,7 +274,7 @@ def test_a_strut_scene_with_bushings_agrees_with_the_energy_reference(tmp_path):
     assert_forces_agree(got.spring_forces_n, want.spring_forces_n, 'spring_forces_n')
 
 
-@pytest.mark.parametrize('name', ['double_wishbone', 'chrono_sedan_doublewishbone'])
+@pytest.mark.parametrize('name', ['double_wishbone_bushings', 'chrono_sedan_doublewishbone'])
 def test_rigid_arms_pivot_forces_agree_with_the_energy_reference(name):
     # A rigid revolute's pivots share its axial force equally (the least-norm pair): a
     # convention both sides take; the rest follows from the arm's balance. double_wishbone

@@ -14,7 +14,7 @@ BUSHED = str(Path(__file__).resolve().parents[1] / 'data' / 'double_wishbone_bus
 
 @pytest.mark.parametrize('scene_name, load', [
     (BUSHED, Load((300.0, 2000.0, -500.0), 'cp', (40.0, -20.0, 150.0))),
-    ('five_link', Load((-800.0, 1500.0, 0.0), 'cp', (0.0, 0.0, 30.0))),
+    ('five_link_bushings', Load((-800.0, 1500.0, 0.0), 'cp', (0.0, 0.0, 30.0))),
     ('macpherson', Load((0.0, 1000.0, 0.0), 'wc'))])
 def test_the_compiled_loaded_solve_equals_the_numpy_one(scene_name, load):
     """Same equations, same Newton: poses to 1e-9 mm, forces to 1e-9 of the largest."""

@@ -2,7 +2,7 @@
 linkage-kc end to end: its tables are the statics API's numbers, its files read back whole.
 
 Run as a user runs it (the installed console script, in a subprocess) on the bundled
-double_wishbone, which declares bushings. Values are written to 10 significant digits, so a
+double_wishbone_bushings, which declares bushings. Values are written to 10 significant digits, so a
 table agrees with the API to 1e-9 relative (plus an absolute floor for values near zero).
 """
 
@@ -19,7 +19,7 @@ import pytest
 
 KC = str(Path(sys.executable).parent / 'linkage-kc')
 BENCH = str(Path(sys.executable).parent / 'linkage-bench')
-SCENE = 'double_wishbone'
+SCENE = 'double_wishbone_bushings'
 DIGITS = 1e-9   # relative round-off of %.10g
 
 
@@ -163,7 +163,7 @@ def test_a_travel_out_of_reach_ends_the_table_there_with_status_1():
     (['SCENE', '--travel', '0'], 'bushing.axial: must be positive'),
     (['LINE', '--travel', '0'], 'a line takes no bushing'),
     (['NO_RADIUS', '--travel', '0', '--load', '0,1000,0', '--at', 'cp'],
-     '--at cp: double_wishbone has no wheel_radius'),
+     '--at cp: double_wishbone_bushings has no wheel_radius'),
     ([SCENE, '--travel', '0', '--no-such-option'], 'unrecognized arguments: --no-such-option'),
     ([SCENE, '--travel', '0', '--columns', 'toe_deg'], "--columns: unknown column 'toe_deg'"),
     ([SCENE, '--travel', '0', '--load', '0,1000,0'], '--load needs --at cp or --at wc'),
@@ -205,7 +205,7 @@ def test_linkage_bench_kc_prints_1x_10x_and_100x_side_by_side():
     status, out, err = run('kc', SCENE, '--travel', '0', '--rounds', '1', program=BENCH)
     lines = out.splitlines()
     assert status == 0, err
-    assert lines[0].startswith('double_wishbone: 1 positions (1x); loaded by F (0, 1000, 0)')
+    assert lines[0].startswith('double_wishbone_bushings: 1 positions (1x); loaded by F (0, 1000, 0)')
     assert lines[1].split() == ['positions', 'kinematic_us', 'rates_us', 'loaded_us',
                                 'rates/kinematic', 'loaded/kinematic']
     rows = np.array([line.split() for line in lines[2:]], dtype=float)
