@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """ament_python package: installs with pip (pip install -e '.[test]') or builds with colcon."""
 
 from glob import glob

@@ -1,4 +1,7 @@
 #!/bin/bash
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 # Run the commands of README.md and doc/*.md as written, from the root of a checkout where
 # command 1 has run (by hand, not in CI: it starts nodes and takes a few minutes).
 # Usage: bash .ci/readme_commands.sh          the commands, but the long ones

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 Compiled sensitivities of the sweep's columns to the hardpoints, by closed forms.
 

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 A compiled solve batched over mechanism variants: each variant at n travels, from the design's.
 

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 Compiled kernel of the bodies' frames at a pose (bodies.py: what each frame is).
 
