@@ -51,7 +51,7 @@ Wheel travel in; wheel-carrier pose, camber, toe and solver health out (ROS 2, S
 parameters (-p NAME:=VALUE after --ros-args, or a params file under /**: ros__parameters:):
 {parameters}
 topics (relative names; a vehicle puts each corner's under its name, e.g. front_left/; all
-reliable, keep-last qos_depth):
+reliable, keep-last qos_depth, but /tf_static and robot_description: transient local, depth 1):
   in   wheel_travel        std_msgs/Float64           m, + = bump
   in   steering_rack       std_msgs/Float64           m, + = rack to the left (scenes with a
                                                       steer: rack link)
@@ -65,6 +65,17 @@ reliable, keep-last qos_depth):
                                                       one status per corner, named '<node's
                                                       full name>: <scene or corner>'
   out  alignment, markers  Float64MultiArray, MarkerArray (when turned on)
+  out  elements            sensor_msgs/JointState     scenes with elements: each element's
+                                                      length (m) in position, its motion
+                                                      ratio (m/m) in velocity
+  out  /tf                 tf2_msgs/TFMessage         with tf: the frames of the carrier,
+                                                      wheel, links and arms, per answer
+  out  /tf_static          tf2_msgs/TFMessage         with tf: each wheel's frame on its
+                                                      carrier
+  out  robot_description   std_msgs/String            with tf: the URDF of the scene or
+                                                      vehicle
+  out  <axle>/roll_centre  geometry_msgs/PointStamped  a vehicle's axles (front/roll_centre):
+                                                      the roll centre in frame_id, m
 
 The first start after an install compiles the numerical kernels (about 20 s, said once; a
 Ctrl-C stops it at once); later starts load them.
