@@ -26,10 +26,13 @@ and so colcon and rosdep, refuse a package.xml with it (the toolkit's issue #85)
 declared instead in REUSE.toml, the REUSE specification's place for files without a header of
 their own, and given to the toolkit from there: a <license> tag without source-files gets the
 paths of REUSE.toml's annotations with its SPDX identifier. The tag of the licence REUSE.toml
-does not name stays the package's main licence (every other file).
+does not name stays the package's main licence (every other file). The toolkit finds "every
+other file" with a glob that skips hidden folders (.ci/), whose files would then count as
+covered by no tag: here the glob includes them.
 """
 
 import functools
+import glob
 import os
 import sys
 import tomllib
@@ -103,7 +106,16 @@ def tag_init(tag, element, pkg_path, *args, **kwargs):
     _tag_init(tag, element, pkg_path, *args, **kwargs)
 
 
+def eval_glob(pattern: str, pkg_path: str) -> set:
+    """Return the files pattern matches under pkg_path, relative to it, hidden ones included."""
+    return {os.path.relpath(path, pkg_path)
+            for path in glob.glob(os.path.join(pkg_path, pattern), recursive=True,
+                                  include_hidden=True)
+            if os.path.isfile(path) and '.git' not in path.split(os.sep)}
+
+
 license_tag.LicenseTag.__init__ = tag_init
+license_tag._eval_glob = eval_glob
 SchemaCheck.validate = validate
 for module in (license_tag, license_tag_is_spdx, license_text_exists_check):
     module.is_license_name_in_spdx_list = is_license_name_in_spdx_list
