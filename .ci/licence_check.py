@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 # SPDX-FileCopyrightText: 2026 linkage_ros authors
 # SPDX-License-Identifier: Apache-2.0
+
 """
 Run ros_license_toolkit on a package checkout; its exit status (0 passed, else failed).
 

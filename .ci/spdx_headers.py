@@ -18,6 +18,11 @@ copyright tag: a file taken from elsewhere keeps its own notice too). A line tha
 first (a shebang, then a PEP 263 encoding line) stays first; the header follows it, then a
 blank line. Only the missing tag is added, so a second run changes nothing.
 
+A file's sha256 may be written in another file (a kernel module names the digest of each file
+numba compiles into it, test/core/test_kernel.py checks them): where a file changes here,
+every quoted copy of its old digest in the source files becomes the new one, and so on for the
+files that change by that.
+
 Source files: the Python files and shell scripts (a .sh, or a file starting with #!) that git
 knows or would add (tracked, or untracked and not ignored) under ROOTS. Data (YAML scenes, the
 test resources) carries no header: the package's licence covers it (package.xml).
@@ -25,6 +30,7 @@ test resources) carries no header: the package's licence covers it (package.xml)
 
 from __future__ import annotations
 
+import hashlib
 from pathlib import Path
 import re
 import subprocess
@@ -91,6 +97,31 @@ def with_header(text: str) -> str:
     return '\n'.join(body[:keep] + lines + gap + rest)
 
 
+def digest(data: bytes) -> str:
+    """Return the sha256 of data in hex, as the kernel modules write it."""
+    return hashlib.sha256(data).hexdigest()
+
+
+def write_keeping_digests(changes: dict[Path, str], files: list[Path]) -> list[Path]:
+    """
+    Write changes {path: new text}; carry each changed file's digest into files that quote it.
+
+    Return every path written, the ones changed for a digest after those given.
+    """
+    written = []
+    pending = dict(changes)
+    while pending:
+        path, text = pending.popitem()
+        old, new = digest(path.read_bytes()), digest(text.encode('utf-8'))
+        path.write_text(text, encoding='utf-8')
+        written.append(path)
+        for other in files:
+            content = pending.get(other) or other.read_text(encoding='utf-8')
+            if f"'{old}'" in content and old != new:
+                pending[other] = content.replace(f"'{old}'", f"'{new}'")
+    return list(dict.fromkeys(written))
+
+
 def main(argv: list[str] | None = None) -> int:
     """Add the header where missing (or with --check only list those files); see the module."""
     argv = sys.argv[1:] if argv is None else argv
@@ -98,16 +129,18 @@ def main(argv: list[str] | None = None) -> int:
     if argv and not check:
         print('usage: spdx_headers.py [--check]', file=sys.stderr)
         return 2
-    lacking = [path for path in source_files()
-               if missing(path.read_text(encoding='utf-8'))]
-    for path in lacking:
-        if not check:
-            path.write_text(with_header(path.read_text(encoding='utf-8')), encoding='utf-8')
+    files = source_files()
+    lacking = [path for path in files if missing(path.read_text(encoding='utf-8'))]
+    if check:
+        for path in lacking:
+            print(path.relative_to(REPO))
+        if lacking:
+            print(f'{len(lacking)} file(s) without the SPDX header: python3 '
+                  '.ci/spdx_headers.py adds it', file=sys.stderr)
+        return 1 if lacking else 0
+    changes = {path: with_header(path.read_text(encoding='utf-8')) for path in lacking}
+    for path in write_keeping_digests(changes, files):
         print(path.relative_to(REPO))
-    if check and lacking:
-        print(f'{len(lacking)} file(s) without the SPDX header: python3 .ci/spdx_headers.py '
-              'adds it', file=sys.stderr)
-        return 1
     return 0
 
 
