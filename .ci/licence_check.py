@@ -38,11 +38,11 @@ import os
 import sys
 import tomllib
 
+import requests
 from ros_license_toolkit import license_tag
 from ros_license_toolkit.license_checks import license_tag_is_spdx, license_text_exists_check
 from ros_license_toolkit.license_checks.schema_check import SchemaCheck
 from ros_license_toolkit.main import main
-import requests
 
 _download_validate = SchemaCheck.validate
 _download_spdx = license_tag.is_license_name_in_spdx_list

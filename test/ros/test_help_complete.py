@@ -25,7 +25,7 @@ import yaml
 PARAMS_FILE = Path(__file__).resolve().parents[2] / 'config' / 'suspension.yaml'
 # What rclpy itself creates on every node: not the node's to document.
 RCLPY_TOPICS = {'/parameter_events', '/rosout', '/clock'}
-EVERY_OUTPUT = dict(alignment=True, markers=True, tf=True)
+EVERY_OUTPUT = {'alignment': True, 'markers': True, 'tf': True}
 STARTS = {
     'vehicle': dict(vehicle='demo_vehicle', **EVERY_OUTPUT),
     'scene': dict(scene='double_wishbone', travel_joint='wheel_joint', **EVERY_OUTPUT),
@@ -109,4 +109,4 @@ def test_help_lists_every_parameter_with_its_default(suspension_node, executor):
     text = help_section('parameters')
     for name in parameters:
         assert re.search(rf'^  {name} +\S', text, re.M), f'{name} missing from --help'
-    assert re.search(r"^  tf +True ", text, re.M)
+    assert re.search(r'^  tf +True ', text, re.M)
