@@ -4,6 +4,7 @@
 """ament_python package: installs with pip (pip install -e '.[test]') or builds with colcon."""
 
 from glob import glob
+import os
 
 from setuptools import find_packages, setup
 
@@ -28,7 +29,11 @@ setup(
         ('share/' + package_name + '/config/interfaces/tf2_msgs/msg',
          glob('config/interfaces/tf2_msgs/msg/*')),
         ('share/' + package_name + '/config/study', glob('config/study/*.yaml')),
-    ],
+        ('share/' + package_name + '/config/bench', glob('config/bench/*.yaml')),
+        ('share/' + package_name + '/config/chrono',
+         ['config/chrono/LICENSE', 'config/chrono/README.md']),
+    ] + [('share/' + package_name + '/' + folder, glob(folder + '/*.json'))
+         for folder in sorted({os.path.dirname(p) for p in glob('config/chrono/*/*/*.json')})],
     python_requires='>=3.10',
     install_requires=['setuptools', 'numpy', 'scipy', 'PyYAML', 'numba'],
     extras_require={
@@ -57,6 +62,8 @@ setup(
         'console_scripts': [
             'linkage-sweep = linkage_ros.tools.sweep:main',
             'linkage-axle = linkage_ros.tools.axle:main',
+            'linkage-vehicle = linkage_ros.tools.vehicle:main',
+            'linkage-kc = linkage_ros.tools.kc:main',
             'suspension_node = linkage_ros.ros.entry:main',
             'linkage-node-bench = linkage_ros.bench.cli:node_bench',
             'linkage-replay = linkage_ros.tools.replay:main',
@@ -69,6 +76,7 @@ setup(
             'linkage-urdf = linkage_ros.tools.urdf:main',
             'linkage-foxglove = linkage_ros.tools.foxglove_layout:main',
             'linkage-study = linkage_ros.study.cli:main',
+            'linkage-chrono = linkage_ros.tools.chrono_cli:main',
         ],
     },
 )

@@ -35,8 +35,20 @@ step sweep out of reach
 .venv/bin/linkage-sweep five_link --travel 0:1000:100 > /dev/null; echo "rc=$?"
 step sweep elements
 .venv/bin/linkage-sweep double_wishbone --travel -40:40:40 --elements 2>/dev/null | cut -d, -f1,13-; echo "rc=${PIPESTATUS[0]}"
+step chrono import and export (doc/chrono.md)
+.venv/bin/linkage-chrono import config/chrono/generic/suspension/DoubleWishbone.json -o dw.yaml; echo "rc=$?"
+.venv/bin/linkage-sweep dw.yaml --travel -40:40:40 --elements > dw.csv; echo "rc=$?"
+.venv/bin/linkage-chrono export dw.yaml -o dw.json --like config/chrono/generic/suspension/DoubleWishbone.json; echo "rc=$?"
+.venv/bin/linkage-chrono export five_link -o five_link.json; echo "rc=$?"
+.venv/bin/linkage-chrono import config/chrono/hmmwv/vehicle/HMMWV_Vehicle.json -o hmmwv.yaml; echo "rc=$?"
+.venv/bin/linkage-axle hmmwv.yaml > /dev/null; echo "rc=$?"
+rm -f dw.yaml dw.csv dw.json five_link.json hmmwv.yaml hmmwv_front.yaml hmmwv_rear.yaml
 step kinematic map
 .venv/bin/linkage-map double_wishbone -o maps; echo "rc=$?"; ls maps
+step vehicle setup sheet
+.venv/bin/linkage-vehicle demo_vehicle > /dev/null; echo "rc=$?"
+.venv/bin/linkage-vehicle demo_vehicle --csv sheet.csv --plot sheet.png; echo "rc=$?"; cut -d, -f1-4 sheet.csv
+.venv/bin/linkage-vehicle demo_vehicle --tables sheet_tables > /dev/null; echo "rc=$?"; ls sheet_tables
 step misspelt parameter
 .venv/bin/suspension_node --ros-args -p sceen:=macpherson; echo "rc=$?"
 step python snippet of README.md
@@ -93,6 +105,14 @@ step axle, anti-roll bar, roll centre picture
 .venv/bin/linkage-plot roll-centre -o roll_centre.png; echo "rc=$?"
 pyblock doc/axle.md 'solve_axle(axle' > axle_snippet.py
 .venv/bin/python axle_snippet.py; echo "rc=$?"; rm axle_snippet.py
+step compliance and loaded solves '(doc/kc.md)'
+.venv/bin/linkage-kc double_wishbone --travel -40:40:20 | cut -d, -f1-4; echo "rc=${PIPESTATUS[0]}"
+.venv/bin/linkage-kc double_wishbone --travel 0 --matrix double_wishbone_compliance.csv; echo "rc=$?"; cat double_wishbone_compliance.csv
+.venv/bin/linkage-kc double_wishbone --travel 0 --load 0,4000,0 --at cp -o cornering.csv; echo "rc=$?"; cut -d, -f1-8 cornering.csv
+.venv/bin/linkage-kc double_wishbone --travel -40:40:10 --plot kc_rates.png > kc_rates.csv; echo "rc=$?"
+.venv/bin/linkage-kc double_wishbone --travel 0 --load 0,4000,0 --at cp --plot kc_loaded.png; echo "rc=$?"
+pyblock doc/kc.md 'solve_loaded(scene' > kc_snippet.py
+.venv/bin/python kc_snippet.py; echo "rc=$?"; rm kc_snippet.py
 step studies
 .venv/bin/linkage-study sensitivity five_link --travel -50 0 50 -o five_link_sensitivity.csv; echo "rc=$?"
 .venv/bin/linkage-study tolerance five_link --sigma 0.05 --samples 100000 --travel -50 -25 0 25 50 --plot tolerance.png > tolerance.csv; echo "rc=$?"
@@ -110,6 +130,8 @@ if [ "${LONG:-0}" = 1 ]; then
     .venv/bin/linkage-bench map double_wishbone --rounds 20 > /dev/null; echo "rc=$?"
     .venv/bin/linkage-bench axle demo_vehicle --axle front --rounds 21 > /dev/null; echo "rc=$?"
     .venv/bin/linkage-bench axle demo_vehicle --axle rear --roll -3:3:0.5 --heave -40:40:10 --rounds 11 > /dev/null; echo "rc=$?"
+    .venv/bin/linkage-bench vehicle demo_vehicle --rounds 3 > /dev/null; echo "rc=$?"
+    .venv/bin/linkage-bench kc double_wishbone --travel -40:40:20 --rounds 3; echo "rc=$?"
     .venv/bin/linkage-bench accuracy --quick -o bench-report; echo "rc=$?"
     ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST .venv/bin/linkage-bench node --plot node_latency.png > node_bench.csv; echo "rc=$?"
     ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST .venv/bin/linkage-bench soak > soak.csv; echo "rc=$?"

@@ -21,7 +21,8 @@ blank line. Only the missing tag is added, so a second run changes nothing.
 A file's sha256 may be written in another file (a kernel module names the digest of each file
 numba compiles into it, test/core/test_kernel.py checks them): where a file changes here,
 every quoted copy of its old digest in the source files becomes the new one, and so on for the
-files that change by that.
+files that change by that. A file merged in from a branch that had no headers may quote the
+digest a file had without its header: such a copy is made the file's digest too.
 
 Source files: the Python files and shell scripts (a .sh, or a file starting with #!) that git
 knows or would add (tracked, or untracked and not ignored) under ROOTS. Data (YAML scenes, the
@@ -122,6 +123,38 @@ def write_keeping_digests(changes: dict[Path, str], files: list[Path]) -> list[P
     return list(dict.fromkeys(written))
 
 
+def without_header(text: str) -> str:
+    """Return text as it was before with_header gave it the header (text if it has none)."""
+    lines = text.split('\n')
+    for keep in range(3):
+        if lines[keep:keep + 2] == [COPYRIGHT, LICENSE]:
+            gap = 1 if len(lines) > keep + 2 and not lines[keep + 2].strip() else 0
+            return '\n'.join(lines[:keep] + lines[keep + 2 + gap:])
+    return text
+
+
+def headerless_digests(files: list[Path]) -> dict[Path, str]:
+    """
+    Return {path: text} of the files that quote a digest of another file without its header.
+
+    Each such copy replaced by that file's digest (the files as they are on disk).
+    """
+    stale = {}
+    for path in files:
+        text = path.read_text(encoding='utf-8')
+        if without_header(text) != text:
+            stale[digest(without_header(text).encode('utf-8'))] = digest(text.encode('utf-8'))
+    changes = {}
+    for path in files:
+        text = path.read_text(encoding='utf-8')
+        fixed = text
+        for old, new in stale.items():
+            fixed = fixed.replace(f"'{old}'", f"'{new}'")
+        if fixed != text:
+            changes[path] = fixed
+    return changes
+
+
 def main(argv: list[str] | None = None) -> int:
     """Add the header where missing (or with --check only list those files); see the module."""
     argv = sys.argv[1:] if argv is None else argv
@@ -139,7 +172,9 @@ def main(argv: list[str] | None = None) -> int:
                   '.ci/spdx_headers.py adds it', file=sys.stderr)
         return 1 if lacking else 0
     changes = {path: with_header(path.read_text(encoding='utf-8')) for path in lacking}
-    for path in write_keeping_digests(changes, files):
+    written = write_keeping_digests(changes, files)
+    written += write_keeping_digests(headerless_digests(files), files)
+    for path in dict.fromkeys(written):
         print(path.relative_to(REPO))
     return 0
 

@@ -9,6 +9,8 @@ Pure functions, usable without DDS: the recorders, the replay and the node share
     float64_cdr(value), float64_of(CDR), pose_of(CDR)  -> built or read in place, no rclpy
     pose_stamped_cdr(stamp, frame_id, position, q)     -> geometry_msgs/PoseStamped, no rclpy
     point_stamped_cdr(stamp, frame_id, point)          -> geometry_msgs/PointStamped, no rclpy
+    wrench_stamped_cdr(stamp, frame_id, force, torque) -> geometry_msgs/WrenchStamped, no rclpy
+    wrench_of(CDR)                                     -> (frame_id, force, torque), in place
     joint_state_cdr(stamp, frame_id, names, position)  -> sensor_msgs/JointState, no rclpy
     tf_message_cdr(stamp, parents, children, translations, quaternions)
                                                        -> tf2_msgs/TFMessage, no tf2_msgs
@@ -85,7 +87,14 @@ def point_stamped_cdr(stamp: tuple[int, int], frame_id: str, point: Sequence[flo
     return layout.pack(CDR_LE, stamp[0], stamp[1], len(frame), frame, *point)
 
 
-@functools.lru_cache(maxsize=16)
+def wrench_stamped_cdr(stamp: tuple[int, int], frame_id: str, force: Sequence[float],
+                       torque: Sequence[float]) -> bytes:
+    """Return a geometry_msgs/WrenchStamped (CDR bytes, little-endian): force N, torque N m."""
+    layout, frame = _stamped_layout(frame_id, 6)
+    return layout.pack(CDR_LE, stamp[0], stamp[1], len(frame), frame, *force, *torque)
+
+
+@functools.lru_cache(maxsize=256)
 def _stamped_layout(frame_id, doubles):
     # header: stamp (int32 sec, uint32 nanosec), frame_id (uint32 length with the NUL, bytes,
     # NUL); then the doubles float64 (a pose's 7, a point's 3), aligned to 8.
@@ -254,6 +263,21 @@ def pose_of(data: bytes) -> tuple[tuple[float, ...], tuple[float, ...]]:
     _order(what, data, start + 56)
     values = struct.unpack_from(order + '7d', data, start)
     return values[:3], values[3:]
+
+
+def wrench_of(data: bytes) -> tuple[str, tuple[float, ...], tuple[float, ...]]:
+    """
+    Read (frame_id, force (x, y, z), torque (x, y, z)) of a geometry_msgs/WrenchStamped.
+
+    From CDR bytes (either byte order), in place; CdrError if the bytes are too short for
+    the frame_id they declare and the wrench after it.
+    """
+    what = 'geometry_msgs/WrenchStamped'
+    reader = _Reader(what, data, _order(what, data, 16))
+    reader.unpack('iI', 4)
+    frame_id = reader.string()
+    values = reader.unpack('6d', 8)
+    return frame_id, values[:3], values[3:]
 
 
 def from_cdr(type_name: str, data: bytes) -> Any:

@@ -385,6 +385,19 @@ def safe_name(text: str, fallback: str = 'output') -> str:
     return re.sub(r'[^\w.-]+', '_', str(text)).lstrip('._-') or fallback
 
 
+def output_folder(text: str, option: str) -> Path:
+    """Make an output folder if missing; LinkageError naming option if it cannot be written."""
+    folder = Path(text)
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise LinkageError(option, f'cannot make the folder {text} '
+                           f'({exc.strerror or exc})') from None
+    if not os.access(folder, os.W_OK):
+        raise LinkageError(option, f'cannot write into the folder {text}')
+    return folder
+
+
 def plot_problem(path: str) -> str:
     """
     Tell why a plot cannot be written to path, in a few words; '' if it can.

@@ -27,6 +27,14 @@ period (period_ns) of the clock the caller gives: the node's timer, or a recordi
 The roll centre of a vehicle's axle is not a corner's output: it needs both corners' poses
 (ros/roll_centres.py listens to both).
 
+With statics on (statics_on: a scene with bushings, or statics=True), a solved command is
+answered with the loaded pose at the last contact wrench (responder.statics.set_wrench;
+ros/pickups.CornerStatics, which alone imports the statics core) in place of the kinematic
+one, then with every body pickup's force (pickup/<name>, after the extras); a load the
+linkage cannot carry is a failed command (Status.NOT_CARRIED), with no answer.
+wrench_problem says why a contact wrench is refused, statics_problem why a scene cannot
+have statics.
+
 ROS-free: this module imports the core, cdr (the answer's CDR bytes) and the Health logic,
 never rclpy or a message package. The elements' JointState and the TF frames are CDR bytes
 (ros/element_outputs.py, ros/tf.py, themselves ROS-free); the alignment and markers outputs
@@ -37,10 +45,11 @@ responder.health by linkage_ros.ros.messages.health_status.
 
 from __future__ import annotations
 
+import math
 from typing import Any, Callable, NamedTuple, TYPE_CHECKING
 
 from .cdr import float64_cdr, pose_stamped_cdr
-from .core.base import M_PER_MM, Status
+from .core.base import LinkageError, M_PER_MM, Status
 from .core.solve import Continuation, Solution
 from .health import Health
 
@@ -76,19 +85,51 @@ OUTPUTS = (
            "the scene's elements: lengths (m) and motion ratios (ros/element_outputs.py)"),
     Output('/tf', 'tf2_msgs/msg/TFMessage', 'tf',
            "the frames of the corner's bodies (ros/tf.py)"),
+    Output('pickup', 'geometry_msgs/msg/WrenchStamped', 'statics',
+           "each body pickup's force on the body, N, one topic pickup/<name> each "
+           '(ros/pickups.py)'),
 )
+# The input of a corner with statics on: the tyre's wrench at the contact patch.
+CONTACT_WRENCH = 'contact_wrench'
+WRENCH_TYPE = 'geometry_msgs/msg/WrenchStamped'
 # output name: ROS 2 type, of the outputs of every solved command
 ANSWER_TYPES = {o.name: o.type_name for o in OUTPUTS if o.when == SOLVED}
+
+
+def wrench_problem(frame_id: str, force: tuple, torque: tuple, vehicle_frame: str) -> str:
+    """Say why a contact wrench cannot be taken ('' if it can): not finite, or another frame."""
+    if frame_id != vehicle_frame:
+        return (f'frame_id {frame_id!r} is not the vehicle frame {vehicle_frame!r} (the '
+                'contact wrench is taken in the vehicle frame only)')
+    if not all(math.isfinite(v) for v in (*force, *torque)):
+        return (f'force {list(force)} N, torque {list(torque)} N m: not finite (the last '
+                'finite wrench is kept)')
+    return ''
+
+
+def statics_on(scene: Scene, switch: bool) -> bool:
+    """Tell whether a corner answers loaded poses: a scene with bushings, or statics:=true."""
+    return bool(switch) or bool(getattr(scene, 'has_bushings', False))
+
+
+def statics_problem(scene: Scene, switch: bool) -> str:
+    """Say why a corner of scene cannot answer loaded poses though statics is on, or ''."""
+    if statics_on(scene, switch) and not scene.wheel_radius > 0:
+        return (f'scene {scene.name} ({scene.source}): statics needs wheel_radius: the '
+                'contact wrench acts at the contact patch')
+    return ''
 
 
 def outputs_of(scene: Scene, switches: dict[str, Any]) -> list[Output]:
     """
     Return the outputs a solved command of scene publishes, in publishing order.
 
-    switches: {'alignment': bool, 'markers': bool, 'tf': bool} (the node's parameters of
-    those names; a missing one is off). elements: on for a scene with elements.
+    switches: {'alignment': bool, 'markers': bool, 'tf': bool, 'statics': bool} (the node's
+    parameters of those names; a missing one is off). elements: on for a scene with
+    elements; statics: also on for a scene with bushings (statics_on).
     """
-    on = {**switches, SOLVED: True, 'elements': bool(scene.elements)}
+    on = {**switches, SOLVED: True, 'elements': bool(scene.elements),
+          'statics': statics_on(scene, switches.get('statics'))}
     return [output for output in OUTPUTS if on.get(output.when)]
 
 
@@ -132,6 +173,8 @@ def extra_builder(name: str, responder: Responder) -> Callable[[Solution, tuple]
         return elements_builder(scene, solver.mech, frame_id, lambda: solver.jacobian)
     if name == '/tf':
         return responder.frames.tf_cdr
+    if name == 'pickup':
+        return None    # built with the loaded pose (Responder.answer, ros/pickups.py)
     raise ValueError(f'no output {name!r} (outputs: {", ".join(o.name for o in OUTPUTS)})')
 
 
@@ -161,13 +204,17 @@ class Responder:
 
     def __init__(self, scene: Scene, *, method: str, max_step_mm: float,
                  condition_warn: float, frame_id: str, status_name: str,
-                 period_ns: int, start_ns: int | None = None) -> None:
+                 period_ns: int, start_ns: int | None = None, statics: bool = False,
+                 prefix: str = '') -> None:
         """
         Make the corner's solver and Health.
 
         status_name: the DiagnosticStatus name ('suspension_kinematics: five_link').
         period_ns: the diagnostic period; start_ns: when its first period starts (the node:
-        its clock at start), or None for the time of the first call of due().
+        its clock at start), or None for the time of the first call of due(). statics: answer
+        the loaded pose at the last contact wrench (statics_on; ros/pickups.CornerStatics,
+        whose set_wrench takes it), with the pickups' forces; prefix: the corner's TF
+        prefix ('' or 'front_left/'), which names its pickups' frames.
         """
         self.scene, self.method, self.frame_id = scene, method, frame_id
         self.status_name, self.condition_warn = status_name, condition_warn
@@ -179,6 +226,12 @@ class Responder:
         self._next = None if start_ns is None else int(start_ns) + self.period
         self.switches = {'alignment': False, 'markers': False}
         self.frames: CornerFrames | None = None
+        self.statics = None
+        if statics_on(scene, statics):   # the statics core is imported only here
+            if statics_problem(scene, statics):
+                raise LinkageError('statics', statics_problem(scene, statics))
+            from .ros.pickups import CornerStatics
+            self.statics = CornerStatics(scene, frame_id, prefix)
         self.outputs: list[Output] = []
         self._extras: list[tuple[str, str, Callable]] = []
         self.set_outputs()
@@ -197,9 +250,12 @@ class Responder:
                 self.switches[name] = bool(value)
         if frames is not False:
             self.frames = frames
-        self.outputs = outputs_of(self.scene, {**self.switches, 'tf': self.frames is not None})
+        self.outputs = outputs_of(self.scene, {**self.switches, 'tf': self.frames is not None,
+                                               'statics': self.statics is not None})
         self._extras = [(o.name, o.type_name, extra_builder(o.name, self))
-                        for o in self.outputs if o.when != SOLVED]
+                        for o in self.outputs if o.when not in (SOLVED, 'statics')]
+        if self.statics is not None:   # pickups in their TF frames where /tf_static has them
+            self.statics.use_frames(bool(getattr(self.frames, 'pickups', False)))
 
     def answer(self, travel_mm: float | None, rack_mm: float | None,
                stamp: tuple[int, int], sent: str | Callable[[], str] = '') -> Reply:
@@ -215,10 +271,14 @@ class Responder:
             return self._no_rack(sent() if callable(sent) else sent)
         travel = self.solver.travel if travel_mm is None else travel_mm
         solution = self.solver.solve(travel, rack_mm)
+        pickups = []
+        if solution.success and self.statics is not None:   # the loaded pose in its place
+            solution, pickups = self.statics.load(solution, stamp, self.solver)
         if solution.success:
             outputs, said = answer_outputs(solution, stamp, self.frame_id), ''
             for name, type_name, build in self._extras:
                 outputs.append((name, type_name, build(solution, stamp)))
+            outputs += pickups
         else:
             outputs, said = [], sent() if callable(sent) else sent
         return Reply(solution, outputs, said, self.health.add(solution, said))
@@ -254,6 +314,8 @@ class Responder:
         self._next = old._next
         # its extras too: the frames are old's until the caller gives those of a new scene
         self.switches = dict(old.switches)
+        if self.statics is not None:     # the last contact wrench holds on
+            self.statics.take(old.statics)
         self.set_outputs(frames=old.frames)
         if self.scene is old.scene:
             self.solver.take_pose(old.solver)

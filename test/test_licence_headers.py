@@ -85,3 +85,14 @@ def test_a_digest_of_a_file_given_its_header_is_carried_into_the_files_that_quot
     assert spdx.missing(compiled_in.read_text()) == []
     assert f"'{spdx.digest(compiled_in.read_bytes())}'" in kernel.read_text()
     assert f"'{spdx.digest(kernel.read_bytes())}'" in user.read_text()
+
+
+def test_a_digest_of_a_file_before_its_header_becomes_its_digest_with_it(tmp_path):
+    # A branch merged in without headers quotes the digest so3.py had without its own.
+    compiled_in, kernel = tmp_path / 'so3.py', tmp_path / 'kernel.py'
+    bare = '"""Rotations."""\n'
+    compiled_in.write_text(spdx.with_header(bare))
+    kernel.write_text(f"DIGEST = '{spdx.digest(bare.encode())}'\n")
+    changes = spdx.headerless_digests([compiled_in, kernel])
+    assert changes == {kernel: f"DIGEST = '{spdx.digest(compiled_in.read_bytes())}'\n"}
+    assert spdx.without_header(compiled_in.read_text()) == bare

@@ -10,13 +10,18 @@ linkage-bench: every benchmark of linkage_ros, one subcommand each.
     linkage-bench sweep SCENE [...]    paper and fast sweeps side by side (linkage-sweep)
     linkage-bench axle [VEHICLE] [...] an axle position against corner positions
     linkage-bench map SCENE [...]      map answers with and without the elements
+    linkage-bench vehicle VEHICLE [...] the setup sheet at 1x, 10x, 100x its tables (sheet.py)
     linkage-bench study [...]          tolerance, sensitivity and fit (study/bench.py)
     linkage-bench replay [BAG] [...]   solving recorded commands with and without recording
+    linkage-bench kc SCENE [...]       compliance rates and a loaded solve against a
+                                       kinematic solve (linkage-kc; kc_bench.py)
+    linkage-bench chrono [FILE...]     import, solve and write Chrono files (bench/chrono.py)
 
 Each subcommand takes the options of the program it times (SUBCOMMAND --help lists them);
-sweep, axle and map take --rounds N too. The earlier entry points (linkage-node-bench,
-linkage-soak, linkage-bench without a subcommand, --benchmark of linkage-sweep, linkage-axle
-and linkage-map) still work for one release, each with a note on stderr.
+sweep, axle, map, vehicle and kc take --rounds N too. The earlier entry points
+(linkage-node-bench, linkage-soak, linkage-bench without a subcommand, --benchmark of
+linkage-sweep, linkage-axle and linkage-map) still work for one release, each with a note on
+stderr.
 """
 
 import sys
@@ -24,13 +29,15 @@ import sys
 from ..cli import deprecated, EXIT_STATUS, fail, MISTAKE
 
 PROG = 'linkage-bench'
-ROUNDS = 5   # default --rounds of sweep, axle and map
+ROUNDS = 5   # default --rounds of sweep, axle, map and kc
 
 EPILOG = """examples:
   linkage-bench accuracy --quick -o bench-report
   linkage-bench sweep five_link --travel -80:80:1 --rounds 5
   linkage-bench axle demo_vehicle --axle front --rounds 21
   linkage-bench map double_wishbone --rounds 20
+  linkage-bench vehicle demo_vehicle --rounds 3
+  linkage-bench kc double_wishbone --travel -40:40:20 --rounds 5
 
 exit status: as the program timed; """ + EXIT_STATUS
 
@@ -60,6 +67,11 @@ def _replay(argv):
     return main(['bench', *argv])
 
 
+def _chrono(argv):
+    from .chrono import main
+    return main(argv)
+
+
 def _timed(module):
     """Return the runner of a program whose main(argv, rounds) times instead of solving."""
     def run(argv):
@@ -72,7 +84,8 @@ def _timed(module):
 
 COMMANDS = {'accuracy': _accuracy, 'node': _node, 'soak': _soak,
             'sweep': _timed('sweep'), 'axle': _timed('axle'), 'map': _timed('kinematic_map'),
-            'study': _study, 'replay': _replay}
+            'vehicle': _timed('vehicle'), 'study': _study, 'replay': _replay,
+            'kc': _timed('kc'), 'chrono': _chrono}
 
 
 def _rounds(argv, prog):

@@ -11,7 +11,10 @@ axis at the wheel centre (none if the radius is 0). 3D in mm, vehicle frame (ISO
 forward, y left, z up); plots in mm and deg.
 
 Entities: suspension/base_points, suspension/labels, suspension/links, suspension/carrier
-(Transform3D), suspension/carrier/joints, suspension/carrier/wheel, plots/travel_mm,
+(Transform3D), suspension/carrier/joints, suspension/carrier/wheel, with statics
+suspension/forces/contact and suspension/forces/pickup/<name> (Arrows3D, FORCE_SCALE mm per
+N: the contact wrench's force at the contact patch, each pickup's force on the body at its
+pickup), plots/travel_mm,
 plots/camber_deg, plots/toe_deg, and plots/rack_mm for a scene with a steer: rack link (whose
 links' body ends move with the rack). Labels are laid out not to cover each other in the
 opening view (label_layout): the link names at their body-side points for one corner, the
@@ -39,7 +42,7 @@ from rerun.encodings import Vec3DBatch
 
 from .label_layout import place_labels
 from ..core.base import camber_toe, carrier_points, matrix_from_quaternion, perpendicular, unit
-from ..core.measure import title
+from ..core.measure import contact_patch, title
 from ..core.model import link_polylines
 from ..core.solve import sweep, travel_range
 
@@ -64,8 +67,13 @@ ANCHOR_RADIUS = 0.01     # a label's anchor: a point too small to see
 WHEEL_LINE_RADIUS = 3.0
 AXES_LENGTH = 100.0
 HIDDEN_SCALE = 1e-6      # the carrier of a part of a run that ended: a 500 mm body, 0.5 um
+# Force arrows: 0.1 mm per N, a 1 kN force 100 mm long (a corner's pickups carry 0.1 to
+# 10 kN, drawn 10 mm to 1 m beside a suspension about 700 mm wide).
+FORCE_SCALE = 0.1
+ARROW_RADIUS = 3.0
 COLORS = {'sphere': (70, 130, 220), 'circle': (230, 140, 40), 'line': (60, 170, 90),
-          'base': (150, 150, 150), 'joint': (220, 70, 70), 'wheel': (190, 190, 190)}
+          'base': (150, 150, 150), 'joint': (220, 70, 70), 'wheel': (190, 190, 190),
+          'contact': (200, 40, 200), 'pickup': (240, 200, 30)}
 # Camera: from the front, outboard and above the corner (x forward, y outboard, z up).
 EYE_DIRECTION = (1.0, 0.8, 0.55)
 EYE_DISTANCE = 1.7      # times the size of the scene's bounding box
@@ -102,6 +110,20 @@ def wheel_circle(scene: Scene, segments: int = WHEEL_SEGMENTS) -> np.ndarray | N
     e2 = np.cross(axis, e1)
     angle = np.linspace(0.0, 2.0 * math.pi, segments + 1)
     return scene.wheel_radius * (np.cos(angle)[:, None] * e1 + np.sin(angle)[:, None] * e2)
+
+
+def contact_patches(scene: Scene, centers: ArrayLike, quaternions: ArrayLike) -> np.ndarray:
+    """
+    Return the contact patch (n, 3) mm of each pose: the wheel's lowest point in that pose.
+
+    centers (n, 3) mm, quaternions (n, 4) (x, y, z, w) of the carrier relative to design
+    (core.measure.contact_patch of the spin axis turned by each). The statics core holds the
+    unloaded pose's patch fixed in the carrier; under load the two differ by the loaded
+    rotation times the radius, a fraction of a mm in a drawing.
+    """
+    axis = unit(scene.wheel_center - scene.spin_axis_point)
+    axes = matrix_from_quaternion(np.asarray(quaternions, dtype=float)) @ axis
+    return contact_patch(np.asarray(centers, dtype=float), axes, scene.wheel_radius)
 
 
 def series(scene: Scene) -> list[str]:
@@ -349,6 +371,29 @@ def _strips_array(scene, points):
     offsets = np.concatenate([[0], np.cumsum(lengths)]).astype(np.int32)
     inner = Vec3DBatch(points.reshape(-1, 3).astype(np.float32)).as_arrow_array()
     return pa.ListArray.from_arrays(offsets, inner, type=LineStrip3DBatch._ARROW_DATATYPE)
+
+
+def log_forces(rec: rr.RecordingStream, scene: Scene, name: str, times_ns: Sequence[int],
+               sequence: Sequence[int], origins: ArrayLike, forces_n: ArrayLike,
+               root: str = '', style: bool = True) -> None:
+    """
+    Log one force over time as an arrow of FORCE_SCALE mm per N under suspension/forces/name.
+
+    name: 'contact' (the tyre's force at the contact patch) or 'pickup/<name>' (the force on
+    the body at that pickup); origins (n, 3) mm where it acts, forces_n (n, 3) N, vehicle
+    frame; times_ns (n,), sequence (n,). style: also log its colour and width (static: once
+    per entity is enough).
+    """
+    if len(times_ns) == 0:
+        return
+    path = entity(root, f'suspension/forces/{name}')
+    if style:
+        rec.log(path, rr.Arrows3D.from_fields(
+            radii=ARROW_RADIUS, colors=COLORS['contact' if name == 'contact' else 'pickup']),
+            static=True)
+    rec.send_columns(path, indexes=_indexes(times_ns, sequence), columns=rr.Arrows3D.columns(
+        origins=np.asarray(origins, dtype=float),
+        vectors=FORCE_SCALE * np.asarray(forces_n, dtype=float)))
 
 
 def send_hidden(rec: rr.RecordingStream, time_ns: int, sequence: int, root: str) -> None:

@@ -24,8 +24,9 @@ import rerun as rr
 
 from .errors import RecordingError
 from .output_file import claim, whereabouts
-from .rerun_draw import new_recording, send_hidden, send_poses, send_values
-from ..cdr import CdrError, float64_of, pose_of, to_cdr
+from .rerun_draw import contact_patches, log_forces, new_recording, send_hidden, \
+    send_poses, send_values
+from ..cdr import CdrError, float64_of, pose_of, to_cdr, wrench_of
 from ..core.base import MM_PER_M
 
 if TYPE_CHECKING:
@@ -36,18 +37,32 @@ if TYPE_CHECKING:
 
 def topic_role(topic: str) -> str | None:
     """
-    Return what a topic carries, from its last name.
+    Return what a topic carries, from its last name (and a pickup's, its folder).
 
-    'travel', 'rack', 'pose', 'camber', 'toe', or None for a topic that is not drawn.
+    'travel', 'rack', 'pose', 'camber', 'toe', 'wrench' (contact_wrench), 'pickup'
+    (pickup/<name>), or None for a topic that is not drawn.
     """
-    return ROLES.get(topic.rstrip('/').rsplit('/', 1)[-1])
+    parts = topic.rstrip('/').rsplit('/', 2)
+    if len(parts) > 1 and parts[-2] == PICKUP:
+        return 'pickup'
+    return ROLES.get(parts[-1])
 
 
 ROLES = {'wheel_travel': 'travel', 'steering_rack': 'rack', 'wheel_carrier_pose': 'pose',
-         'camber': 'camber', 'toe': 'toe'}
+         'camber': 'camber', 'toe': 'toe', 'contact_wrench': 'wrench'}
+PICKUP = 'pickup'
 FLOAT64 = 'std_msgs/msg/Float64'
+WRENCH = 'geometry_msgs/msg/WrenchStamped'
 ROLE_TYPES = {'travel': FLOAT64, 'rack': FLOAT64, 'camber': FLOAT64, 'toe': FLOAT64,
-              'pose': 'geometry_msgs/msg/PoseStamped'}   # the type each role is drawn from
+              'pose': 'geometry_msgs/msg/PoseStamped', 'wrench': WRENCH,
+              'pickup': WRENCH}   # the type each role is drawn from
+
+
+def role_reader(role: str):
+    """Return the function that reads a message of role in place (cdr: pose_of, ...)."""
+    return {'pose': pose_of, 'wrench': wrench_of, 'pickup': wrench_of}.get(role, float64_of)
+
+
 PLOTS = {'travel': 'travel_mm', 'rack': 'rack_mm', 'camber': 'camber_deg', 'toe': 'toe_deg'}
 BATCH_ROWS = 256       # rows buffered before they are sent as columns
 BATCH_DELAY = 0.5      # s (wall clock): or once the oldest buffered row is this old
@@ -121,7 +136,10 @@ class RerunRecorder:
     of its namespace (/front_left/camber; other corners' topics are not drawn).
 
     Commands (wheel_travel) advance the 'command' sequence; the rack (steering_rack), pose,
-    camber and toe are logged at the current command, each pose with the last rack; other
+    camber and toe are logged at the current command, each pose with the last rack. Forces
+    are arrows (rerun_draw.log_forces, FORCE_SCALE mm per N): the last contact_wrench's
+    force at the contact patch of each pose that follows it, and each pickup/<name> force
+    at its pickup (the scene's point, a rack link's moved with the rack); other
     topics (diagnostics) are not drawn, nor a message of another type than its topic's role
     (ROLE_TYPES), nor one whose bytes do not decode (cdr.CdrError): a hostile sample must not
     stop the mirror. Those are counted in skipped ({topic: count}). Rows are buffered and
@@ -158,6 +176,9 @@ class RerunRecorder:
             reason = getattr(exc, 'strerror', None) or exc
             raise RecordingError(path, f'cannot write ({reason})') from None
         self._racks = dict.fromkeys(self.scenes, 0.0)   # root: last rack (mm)
+        self._wrenches = dict.fromkeys(self.scenes)     # root: last contact force (N)
+        self._pickups = {}     # root: {pickup name: (point (3,) mm, moves with the rack)}
+        self._styled = set()   # (root, force) whose arrows' colour and width are logged
         self._rows = {}        # (root, role): [(receive_ns, sequence, value)]
         self._buffered = 0
         self._oldest = None
@@ -179,6 +200,8 @@ class RerunRecorder:
             if role == 'pose':
                 (x, y, z), q = pose_of(msg)
                 value = (x * MM_PER_M, y * MM_PER_M, z * MM_PER_M, *q, self._racks[root])
+            elif role in ('wrench', 'pickup'):
+                value = wrench_of(msg)[1]
             elif role in ('travel', 'rack'):
                 value = MM_PER_M * float64_of(msg)
             else:
@@ -190,6 +213,35 @@ class RerunRecorder:
             self.sequence += 1
         elif role == 'rack':
             self._racks[root] = value
+        elif role == 'wrench':    # drawn with the poses that answer with it
+            self._wrenches[root] = value
+            return
+        elif role == 'pickup':
+            role, value = self._pickup(root, topic, value)
+            if role is None:
+                self.skipped[topic] += 1
+                return
+        if role == 'pose' and self._wrenches[root] is not None:
+            self._add(root, 'contact', receive_ns, (*value[:7], *self._wrenches[root]))
+        self._add(root, role, receive_ns, value)
+
+    def _pickup(self, root, topic, force):
+        """Return the row key and value (point mm, force N) of a pickup's force, or None."""
+        if root not in self._pickups:   # where each is at rack 0, and how the rack moves it
+            from ..ros.pickups import pickup_points
+            scene = self.scenes[root]
+            at_zero = pickup_points(scene)
+            at_one = pickup_points(scene, rack_mm=1.0) if scene.steered else at_zero
+            self._pickups[root] = {name: (point, at_one[name] - point)
+                                   for name, point in at_zero.items()}
+        name = topic.rstrip('/').rsplit('/', 1)[-1]
+        if name not in self._pickups[root]:
+            return None, None
+        point, per_mm = self._pickups[root][name]
+        return f'pickup/{name}', (*(point + self._racks[root] * per_mm), *force)
+
+    def _add(self, root, role, receive_ns, value):
+        """Buffer one row of root's role; flush the rows when the batch is full or old."""
         self._rows.setdefault((root, role), []).append((receive_ns, self.sequence, value))
         self._buffered += 1
         now = time.monotonic()
@@ -207,6 +259,8 @@ class RerunRecorder:
         """
         if '' in self.scenes:
             return ''
+        if topic_role(topic) == 'pickup':    # /front_left/pickup/<name>
+            topic = topic.rstrip('/').rsplit('/', 1)[0]
         parts = topic.rstrip('/').rsplit('/', 2)
         return parts[1] if len(parts) == 3 and parts[1] in self.scenes else None
 
@@ -241,6 +295,13 @@ class RerunRecorder:
                 values = np.array(values)
                 send_poses(self._rec, self.scenes[root], times, sequence, values[:, :3],
                            values[:, 3:7], root, values[:, 7])
+            elif role == 'contact' or role.startswith('pickup/'):
+                values, styled = np.array(values), (root, role) in self._styled
+                origins = values[:, :3] if role != 'contact' else contact_patches(
+                    self.scenes[root], values[:, :3], values[:, 3:7])
+                log_forces(self._rec, self.scenes[root], role, times, sequence, origins,
+                           values[:, -3:], root, style=not styled)
+                self._styled.add((root, role))
             else:
                 send_values(self._rec, PLOTS[role], times, sequence, values, root)
             rows.clear()

@@ -13,6 +13,9 @@ Inputs, under the corner's prefix ('' or 'front_left/'):
     wheel_travel   std_msgs/Float64 (m, + = bump)
     steering_rack  std_msgs/Float64 (m, + = to the left), only if the scene steers
     joint_states   sensor_msgs/JointState, position of joint travel_joint (m), if it is set
+    contact_wrench geometry_msgs/WrenchStamped, the tyre's force (N) and moment (N m) at the
+                   contact patch, vehicle frame: with statics on (a scene with bushings, or
+                   parameter statics), each answer is the loaded pose at the last one
 All come raw (CDR bytes): a Float64 is read in place, a fraction of the cost of an rclpy
 message, and bytes that do not decode (linkage_ros.cdr.CdrError) are an ERROR status naming
 the topic and the byte count, with no pose, instead of an exception in the executor.
@@ -34,15 +37,16 @@ from __future__ import annotations
 from functools import partial
 from typing import Callable, Protocol, TYPE_CHECKING
 
-from geometry_msgs.msg import PoseStamped
+from geometry_msgs.msg import PoseStamped, WrenchStamped
 from sensor_msgs.msg import JointState
 from std_msgs.msg import Float64, Float64MultiArray
 from visualization_msgs.msg import MarkerArray
 
 from . import messages
 from .qos import publisher, subscription, topic_qos
-from ..cdr import CdrError, float64_of, from_cdr
-from ..protocol import OUTPUTS, outputs_of, Responder, SOLVED
+from ..cdr import CdrError, float64_of, from_cdr, wrench_of
+from ..protocol import CONTACT_WRENCH, OUTPUTS, outputs_of, Responder, SOLVED, statics_on, \
+    wrench_problem, WRENCH_TYPE
 
 if TYPE_CHECKING:
     from rclpy.node import Node
@@ -57,9 +61,11 @@ JOINT_STATE = 'sensor_msgs/msg/JointState'
 MESSAGES = {'geometry_msgs/msg/PoseStamped': PoseStamped, 'std_msgs/msg/Float64': Float64,
             'std_msgs/msg/Float64MultiArray': Float64MultiArray,
             'visualization_msgs/msg/MarkerArray': MarkerArray,
-            'sensor_msgs/msg/JointState': JointState}
+            'sensor_msgs/msg/JointState': JointState, WRENCH_TYPE: WrenchStamped}
 TF = '/tf'
+PICKUP = 'pickup'             # the output of the pickups' forces: one topic pickup/<name> each
 UNDECODABLE = 'undecodable'   # the kind of a bad command whose bytes do not decode
+BAD_WRENCH = 'bad wrench'     # the kind of a contact wrench refused (not finite, other frame)
 
 
 class Outlet(Protocol):
@@ -116,8 +122,9 @@ class Corner:
                                   self.on_joint_states, self.qos, raw=True)
             self.joints_topic = joints.topic_name
             self.listening.append(f'{self.joints_topic} (joint {self.joint}, m)')
-        self.rack_topic = None
+        self.rack_topic = self.wrench_topic = None
         self._listen_to_rack()
+        self._listen_to_wrench(params)
         # function(corner, solution, stamp) called after every answer, solved or not (the
         # vehicle's axles: ros/roll_centres.py)
         self.listeners = []
@@ -134,6 +141,11 @@ class Corner:
         self.responder.set_outputs(frames=frames)
         self._set_publishers()
 
+    @property
+    def statics(self):
+        """Return the corner's ros/pickups.CornerStatics while statics is on, else None."""
+        return self.responder.statics
+
     def _responder(self, scene: Scene, params: dict) -> Responder:
         # The node's answering protocol, shared with linkage-replay; the node's own timer
         # sends the periodic reports, so the responder's period clock is not used here.
@@ -141,7 +153,8 @@ class Corner:
             scene, method=params['method'], max_step_mm=params['max_step_mm'],
             condition_warn=params['condition_warn'], frame_id=self.frame_id,
             status_name=messages.status_name(self.node.get_fully_qualified_name(), scene.name),
-            period_ns=round(params['diagnostic_period'] * 1e9))
+            period_ns=round(params['diagnostic_period'] * 1e9),
+            statics=statics_on(scene, params['statics']), prefix=self.prefix)
         self.solver, self.health = responder.solver, responder.health
         self.status_name = responder.status_name
         return responder
@@ -153,6 +166,15 @@ class Corner:
                                 self.qos, raw=True)
             self.rack_topic = rack.topic_name
             self.listening.append(f'{self.rack_topic} (m)')
+
+    def _listen_to_wrench(self, params: dict) -> None:
+        """Subscribe contact_wrench if statics is on and it is not subscribed yet."""
+        if statics_on(self.scene, params['statics']) and self.wrench_topic is None:
+            wrench = subscription(self.node, WrenchStamped, self.prefix + CONTACT_WRENCH,
+                                  self.on_wrench, self.qos, raw=True)
+            self.wrench_topic = wrench.topic_name
+            self.listening.append(f'{self.wrench_topic} (N, N m at the contact patch, '
+                                  f'{self.frame_id})')
 
     def configure(self, params: dict) -> None:
         """
@@ -173,6 +195,7 @@ class Corner:
         self.scene = scene
         self._follow(scene, params)
         self._listen_to_rack()
+        self._listen_to_wrench(params)
         self._set_publishers()
 
     def _follow(self, scene: Scene, params: dict) -> None:
@@ -195,6 +218,10 @@ class Corner:
         matched; /tf goes to the outlet's transforms().
         """
         outputs = {o.name: o for o in self.responder.outputs}
+        if PICKUP in outputs:      # one topic per pickup of the scene
+            outputs.update({f'{PICKUP}/{name}': outputs[PICKUP]
+                            for name in self.responder.statics.names})
+            del outputs[PICKUP]
         for name in [n for n in self.publishers if n not in outputs]:
             self.node.destroy_publisher(self.publishers.pop(name))
         for name, output in outputs.items():
@@ -224,6 +251,25 @@ class Corner:
             return
         self.answer(value_mm if not rack else None, value_mm if rack else None, stamp,
                     lambda: f'{topic} {float64_of(data)!r} m')
+
+    def on_wrench(self, data: bytes) -> None:
+        """Take the tyre's wrench at the contact patch for the next answers; answer nothing."""
+        topic = self.wrench_topic
+        if self.outlet.received(topic, WRENCH_TYPE, data) is None:
+            return
+        try:
+            frame_id, force, torque = wrench_of(data)
+        except CdrError as exc:
+            self.refuse(topic, exc)
+            return
+        problem = wrench_problem(frame_id, force, torque, self.frame_id)
+        if self.responder.statics is None:   # subscribed for an earlier scene
+            problem = (f'scene {self.scene.name} has no bushings and parameter statics is '
+                       'false: a contact wrench moves nothing')
+        if problem:
+            self.refuse(topic, problem, BAD_WRENCH)
+            return
+        self.responder.statics.set_wrench(force, torque)
 
     def on_joint_states(self, data: bytes) -> None:
         # Answered at the message's header stamp, not at the time of receipt.
@@ -289,14 +335,20 @@ def corner_topics(scene: Scene, params: dict, prefix: str = '') -> list[str]:
         names.append('joint_states')
     if scene.steered:
         names.append('steering_rack')
-    names += [name for name in outputs if name not in always]
+    if statics_on(scene, params.get('statics')):
+        names.append(CONTACT_WRENCH)
+    names += [name for name in outputs if name not in always and name != PICKUP]
+    if PICKUP in outputs:
+        from .pickups import pickup_points
+        names += [f'{PICKUP}/{name}' for name in pickup_points(scene)]
     return [prefix + name for name in names]
 
 
 def corner_outputs(scene: Scene, params: dict, prefix: str = '') -> dict[str, str]:
     """Return {relative name: 'publisher' or 'subscription'} of a corner's topics."""
-    inputs = ('wheel_travel', 'joint_states', 'steering_rack')
-    return {name: 'subscription' if name.rsplit('/', 1)[-1] in inputs else 'publisher'
+    inputs = {prefix + name for name in ('wheel_travel', 'joint_states', 'steering_rack',
+                                         CONTACT_WRENCH)}
+    return {name: 'subscription' if name in inputs else 'publisher'
             for name in corner_topics(scene, params, prefix)}
 
 

@@ -51,7 +51,7 @@ Wheel travel in; wheel-carrier pose, camber, toe and solver health out (ROS 2, S
 parameters (-p NAME:=VALUE after --ros-args, or a params file under /**: ros__parameters:):
 {parameters}
 topics (relative names; a vehicle puts each corner's under its name, e.g. front_left/; all
-reliable, keep-last qos_depth, but /tf_static and robot_description: transient local, depth 1):
+reliable, keep-last qos_depth):
   in   wheel_travel        std_msgs/Float64           m, + = bump
   in   steering_rack       std_msgs/Float64           m, + = rack to the left (scenes with a
                                                       steer: rack link)
@@ -65,17 +65,26 @@ reliable, keep-last qos_depth, but /tf_static and robot_description: transient l
                                                       one status per corner, named '<node's
                                                       full name>: <scene or corner>'
   out  alignment, markers  Float64MultiArray, MarkerArray (when turned on)
-  out  elements            sensor_msgs/JointState     scenes with elements: each element's
-                                                      length (m) in position, its motion
-                                                      ratio (m/m) in velocity
-  out  /tf                 tf2_msgs/TFMessage         with tf: the frames of the carrier,
-                                                      wheel, links and arms, per answer
-  out  /tf_static          tf2_msgs/TFMessage         with tf: each wheel's frame on its
-                                                      carrier
-  out  robot_description   std_msgs/String            with tf: the URDF of the scene or
-                                                      vehicle
-  out  <axle>/roll_centre  geometry_msgs/PointStamped  a vehicle's axles (front/roll_centre):
-                                                      the roll centre in frame_id, m
+  out  elements            sensor_msgs/JointState     the scene's elements: length (m), motion
+                                                      ratio (scenes with elements)
+  in   contact_wrench      geometry_msgs/WrenchStamped  the tyre's force (N) and moment (N m)
+                                                      at the contact patch, in frame_id (with
+                                                      statics: a scene with bushings, or
+                                                      -p statics:=true); answers are then the
+                                                      loaded pose at the last one
+  out  pickup/<name>       geometry_msgs/WrenchStamped  with statics, per answer: the force (N)
+                                                      on the body at each pickup and a
+                                                      bushing's couple (N m); name
+                                                      <link>_base, <arm>_axis0, <arm>_axis1,
+                                                      <arm>_centre, <strut>_top or
+                                                      <spring>_body; in frame
+                                                      <prefix>pickup/<name> (with tf)
+  out  /tf, /tf_static     tf2_msgs/TFMessage         the bodies' frames per answer; the wheel
+                                                      and pickup frames (parameter tf)
+  out  robot_description   std_msgs/String            the URDF (parameter tf)
+  out  <axle>/roll_centre  geometry_msgs/PointStamped  a vehicle axle's roll centre (m,
+                                                      frame_id; vehicle files with axles)
+  in   /clock              rosgraph_msgs/Clock        with use_sim_time: the node clock
 
 The first start after an install compiles the numerical kernels (about 20 s, said once; a
 Ctrl-C stops it at once); later starts load them.

@@ -42,7 +42,17 @@ Topics (names relative to the node's namespace, /diagnostics absolute):
     pub /tf                 tf2_msgs/TFMessage          per answer, the frames of the corner's
                                                         carrier, links, arms and struts; with
                                                         parameter tf (true by default)
-    pub /tf_static          tf2_msgs/TFMessage          every wheel frame (fixed to its carrier)
+    pub /tf_static          tf2_msgs/TFMessage          every wheel frame (fixed to its carrier),
+                                                        and with statics every body pickup's
+                                                        frame '<prefix>pickup/<name>'
+    sub contact_wrench      geometry_msgs/WrenchStamped the tyre's force (N) and moment (N m)
+                                                        at the contact patch in frame_id; with
+                                                        statics on (parameter statics, or a
+                                                        scene with bushings) each answer is the
+                                                        loaded pose at the last one
+    pub pickup/<name>       geometry_msgs/WrenchStamped with statics on, per answer: the force
+                                                        (N) on the body at each pickup, in the
+                                                        pickup's frame (ros/pickups.py)
     pub robot_description   std_msgs/String             the URDF of the scene or vehicle
     sub /clock              rosgraph_msgs/Clock         only with use_sim_time: the node clock,
                                                         each message taken in turn, in order
@@ -185,6 +195,7 @@ class SuspensionNode(Node):
                 self.joint_states_topic = joint_states.topic_name
             self._check_overrides(corners, params)
             self.set_tf(params['tf'])
+            self._say_pickup_frames()
         except BaseException:
             self.sinks.close()
             super().destroy_node()
@@ -283,6 +294,17 @@ class SuspensionNode(Node):
         elif not on and self.tf_outputs is not None:
             self.tf_outputs.close()
             self.tf_outputs = None
+
+    def _say_pickup_frames(self):
+        """Say once, with statics on, when the pickups' TF frames are not published."""
+        if not any(c.statics is not None for c in self.corners.values()):
+            return
+        why = ('parameter tf is false' if self.tf_outputs is None else
+               'tf2_msgs is missing' if self.tf_outputs.missing else '')
+        if why:
+            self.get_logger().warning(
+                f'{why}: the pickup frames are unavailable; pickup/<name> wrenches are in '
+                f'{self.frame_id}, each acting at its pickup point (doc/node.md)')
 
     def describe(self):
         """Send /tf_static and robot_description again (after a change of scene)."""

@@ -80,6 +80,9 @@ PARAMETERS = {
                'them, no cost'),
     'markers': Spec(False, 'publish links and joints (visualization_msgs/MarkerArray) per '
                     'answer'),
+    'statics': Spec(False, 'take contact_wrench (geometry_msgs/WrenchStamped) and answer the '
+                    "loaded pose at the last one, with each pickup's force on pickup/<name>; "
+                    'on anyway for a scene with bushings'),
     'vehicle': Spec('', 'vehicle file (bundled name or path): one corner per wheel, topics '
                     'under the corner name; empty = the single scene of parameter scene'),
     # Each subscription holds at most this many samples: memory up to depth times the largest
@@ -100,6 +103,7 @@ FIXED = {
     'travel_joint': "the corner's joint_states subscription is made at start",
     'vehicle': 'the corners and their topics are made at start from the vehicle file',
     'qos_depth': 'every topic is made at start with its QoS',
+    'statics': 'the contact_wrench subscriptions and pickup topics are made at start',
     'use_sim_time': "the node's clock and its /clock subscription are set up at start",
 }
 

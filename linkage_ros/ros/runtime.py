@@ -47,6 +47,7 @@ from rclpy.parameter import Parameter
 from .parameters import checked, FIXED, PARAMETERS, unknown_parameter
 from ..cdr import to_cdr
 from ..core.base import LinkageError
+from ..protocol import statics_problem
 
 if TYPE_CHECKING:
     from rclpy.node import Node
@@ -179,6 +180,9 @@ class RuntimeParameters:
                                    f'{self.values["vehicle"]}: each corner has its scene from '
                                    'the vehicle file')
             pending['_scene'] = self._scene(pending['scene'])   # SceneError: the reason
+            problem = statics_problem(pending['_scene'], self.values['statics'])
+            if problem:
+                raise LinkageError('scene', problem)
         return pending
 
     def _scene(self, name):

@@ -12,8 +12,9 @@ TF of a solved corner: /tf per answer, /tf_static of the design-fixed frames, as
 Frames (linkage_ros.core.measure.bodies): per corner the carrier '<prefix>wheel_carrier' (the
 wheel_carrier_pose the node answers: its transform from frame_id is that pose, bit for bit),
 one frame per link, arm and strut '<prefix><constraint name>', all children of frame_id, and
-the wheel '<prefix>wheel', fixed to the carrier, on /tf_static. prefix: '' for a node of one
-scene, 'front_left/' for a vehicle's corner.
+the wheel '<prefix>wheel', fixed to the carrier, on /tf_static, with a corner's body pickups
+'<prefix>pickup/<name>' where statics is on (ros/pickups.py: its pickup wrenches name them).
+prefix: '' for a node of one scene, 'front_left/' for a vehicle's corner.
 
 The messages are built by linkage_ros.cdr without tf2_msgs (which has no wheel on the package
 index), so that every recording carries /tf; live publishing needs tf2_msgs installed (any
@@ -25,6 +26,8 @@ from __future__ import annotations
 
 import importlib
 from typing import TYPE_CHECKING
+
+import numpy as np
 
 from ..cdr import tf_message_cdr
 from ..core.base import M_PER_MM, quaternion_from_matrix
@@ -41,11 +44,19 @@ TF_TOPIC, TF_STATIC_TOPIC = '/tf', '/tf_static'
 class CornerFrames:
     """The TF frames of one corner: their names, and their transforms at a solved pose."""
 
-    def __init__(self, scene: Scene, frame_id: str = 'base_link', prefix: str = '') -> None:
+    def __init__(self, scene: Scene, frame_id: str = 'base_link', prefix: str = '',
+                 pickups: dict | None = None) -> None:
+        """
+        Name the frames of scene's bodies under prefix, children of frame_id.
+
+        pickups: {frame name: point (3,) mm} of the body pickups (statics on:
+        ros/pickups.CornerStatics.frame_points), static frames of frame_id's orientation.
+        """
         self.frame_id = frame_id
         self.bodies = corner_bodies(scene, prefix, taken=(frame_id,))
         self.names = self.bodies.names
         self._parents = (frame_id,) * len(self.names)
+        self.pickups = dict(pickups or {})
 
     def tf_cdr(self, solution: Solution, stamp: tuple[int, int]) -> bytes:
         """Return the TFMessage of every moving frame at a solved pose, stamped (sec, nanosec)."""
@@ -53,9 +64,16 @@ class CornerFrames:
                               body_poses(self.bodies, solution, M_PER_MM).tolist())
 
     def static_transforms(self) -> list[tuple[str, str, tuple, tuple]]:
-        """Return the design-fixed transforms [(parent, child, translation m, quaternion)]."""
+        """
+        Return the design-fixed transforms [(parent, child, translation m, quaternion)].
+
+        The wheel on the carrier, and each body pickup (if any) on frame_id at its point,
+        unrotated.
+        """
         q = quaternion_from_matrix(self.bodies.wheel_rotation)
-        return [(self.bodies.carrier, self.bodies.wheel, (0.0, 0.0, 0.0), tuple(q.tolist()))]
+        return [(self.bodies.carrier, self.bodies.wheel, (0.0, 0.0, 0.0), tuple(q.tolist())),
+                *((self.frame_id, name, tuple((np.asarray(point) * M_PER_MM).tolist()),
+                   (0.0, 0.0, 0.0, 1.0)) for name, point in self.pickups.items())]
 
 
 def static_cdr(corners: list[CornerFrames], stamp: tuple[int, int]) -> bytes:

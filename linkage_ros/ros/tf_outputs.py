@@ -63,7 +63,11 @@ class TfOutputs:
     def attach(self) -> None:
         """Give every corner the frames of its present scene."""
         for corner in self.corners.values():
-            corner.frames = CornerFrames(corner.scene, self.frame_id, corner.prefix)
+            # the pickups' frames only where /tf_static is published: the pickup wrenches
+            # name them then, else the vehicle frame (ros/pickups.py)
+            pickups = corner.statics.frame_points() \
+                if corner.statics is not None and not self.missing else None
+            corner.frames = CornerFrames(corner.scene, self.frame_id, corner.prefix, pickups)
 
     def send(self, data: bytes) -> None:
         """Publish one TFMessage (CDR bytes) on /tf, or only record it without tf2_msgs."""

@@ -95,15 +95,11 @@ def _check_size(samples: int, travels: int, workers: int) -> str:
     Returns what its time is estimated at, ' (about 3.2 h on 2 cores)', when it is a
     minute or more ('' otherwise): told before it starts, not found out after.
     """
-    from ..tools.map_memory import memory_room, Need
+    from ..tools.map_memory import Need, refuse_if_short
     values = samples * travels * len(SWEEP_COLUMNS)
-    need = Need(samples * travels, VALUE_BYTES * values, VALUE_BYTES * values)
-    room = memory_room()
-    if room is not None and room.wanted(need) > room.size:
-        raise LinkageError('--samples', f'{samples:,} variants x {counted(travels, "travel")} '
-                           f'need about {room.wanted(need) / 1e9:,.1f} GB of memory and '
-                           f'{room.size / 1e9:,.1f} GB is available ({room.limit}): take '
-                           'fewer samples or travels')
+    refuse_if_short(Need(samples * travels, VALUE_BYTES * values, VALUE_BYTES * values),
+                    '--samples', f'{samples:,} variants x {counted(travels, "travel")}',
+                    'take fewer samples or travels')
     cores = workers or os.cpu_count() or 1
     seconds = samples * travels * SECONDS_PER_SOLVE / cores
     if seconds < 60:

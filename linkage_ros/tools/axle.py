@@ -206,6 +206,18 @@ def benchmark(axle, heave, roll, rack, rounds):
         print(f'{PROG}: benchmark {scale}x done', file=sys.stderr)
 
 
+def stop_lines(axle, result) -> tuple[str, ...]:
+    """Say over which wheel travel each corner's stops carry a force (measure.stop_notes)."""
+    from ..core.measure import element_values, stop_notes
+    lines = ()
+    for k, scene in enumerate(axle.scenes):
+        if len(result.heave) and any(e.is_stop for e in scene.elements):
+            forces = element_values(scene, result.wheel_center[:, k], result.rotation[:, k],
+                                    result.rack).force
+            lines += stop_notes(scene, result.travel[:, k], forces)
+    return lines
+
+
 @program(PROG)
 def main(argv: list[str] | None = None, rounds: int = 0) -> int:
     """
@@ -236,7 +248,7 @@ def main(argv: list[str] | None = None, rounds: int = 0) -> int:
     print(f'{PROG}: {vehicle.name} {axle.name} axle ({axle.left.name}, {axle.right.name}): '
           f"{len(heave)} position{'' if len(heave) == 1 else 's'}", file=sys.stderr)
     result = solve_axle(axle, heave, np.radians(roll), rack)
-    for note in result.notes:
+    for note in result.notes + stop_lines(axle, result):
         print(f'{PROG}: {note}', file=sys.stderr)
     if with_rack and not axle.wheelbase > 0:
         print(f'{PROG}: {vehicle.source} has no wheelbase (and not two axles to derive it '

@@ -19,6 +19,7 @@ import copy
 import json
 import sys
 
+from .target import check_text_output, load_frames, write_text
 from .. import cli
 from ..core.base import LinkageError, M_PER_MM
 
@@ -106,25 +107,17 @@ def _main(argv):
                         'base_link)')
     args = parser.parse_args(argv)
     try:
-        from .kinematic_map import load_target
-        vehicle, corners = load_target(args.target)
-        if vehicle is None:
-            scenes, name = {'': next(iter(corners.values()))}, next(iter(corners.values())).name
-        else:
-            scenes, name = {f'{corner}/': s for corner, s in corners.items()}, vehicle.name
-        if args.output != '-':
-            inputs = [getattr(vehicle, 'source', '')] + [s.source for s in scenes.values()]
-            cli.check_output(args.output, '-o', inputs=tuple(p for p in inputs if p))
+        target = load_frames(args.target)
+        cli.warn(PROG, target.warnings)
+        check_text_output(args.output, target)
+        scenes = target.scenes
         text = layout_text(foxglove_layout(scenes, args.frame_id))
+        write_text(args.output, text)
     except (cli.Mistake, LinkageError) as exc:
         return cli.fail(PROG, exc)
-    if args.output == '-':
-        sys.stdout.write(text)
-    else:
-        with open(args.output, 'w', encoding='utf-8') as out:
-            out.write(text)
-        print(f'{PROG}: {name}: {len(scenes)} corner{"s" if len(scenes) > 1 else ""}, ground '
-              f'at z = {ground_z(scenes):.4f} m -> {args.output}', file=sys.stderr)
+    if args.output != '-':
+        print(f'{PROG}: {target.name}: {len(scenes)} corner{"s" if len(scenes) > 1 else ""}, '
+              f'ground at z = {ground_z(scenes):.4f} m -> {args.output}', file=sys.stderr)
     return cli.DONE
 
 

@@ -14,7 +14,6 @@ NaN and listed in out_of_reach.csv, never extrapolated (doc/maps.md).
 import argparse
 from functools import partial
 import math
-import os
 from pathlib import Path
 import re
 import sys
@@ -26,8 +25,8 @@ import yaml
 
 from .map_files import FORMATS, map_files, UNREACHED, write_map, write_unreached
 from .map_grid import axle_grid_map, AXLE_QUANTITIES, corner_map, Grid, GridMap, quantities
-from .map_memory import memory_needed, memory_room
-from ..cli import EXIT_STATUS, fail, Parser, program, same_file, SPAN, span, warn
+from .map_memory import memory_needed, refuse_if_short
+from ..cli import EXIT_STATUS, fail, output_folder, Parser, program, same_file, SPAN, span, warn
 from ..core.axle import axle_of
 from ..core.base import LinkageError
 from ..core.model import load_scene, load_vehicle, vehicle_dir
@@ -185,12 +184,8 @@ def solve_axle(axle, travel):
 def check_memory(jobs, formats):
     """Refuse maps that need more memory than this process may take (LinkageError)."""
     need = memory_needed(jobs, 'parquet' in formats)
-    room = memory_room()
-    if room is not None and room.wanted(need) > room.size:
-        raise LinkageError('grid', f'{need.points:,} points need about '
-                           f'{_gb(room.wanted(need))} of memory and {_gb(room.size)} is '
-                           f'available ({room.limit}): take a larger --travel or --rack '
-                           'step, or a shorter range')
+    refuse_if_short(need, 'grid', f'{need.points:,} points',
+                    'take a larger --travel or --rack step, or a shorter range')
 
 
 def check_names(folder, jobs, formats, inputs):
@@ -234,23 +229,6 @@ def formats_option(text):
     return kinds
 
 
-def output_folder(text):
-    """Make the -o folder if missing; LinkageError if it cannot be written into."""
-    folder = Path(text)
-    try:
-        folder.mkdir(parents=True, exist_ok=True)
-    except OSError as exc:
-        raise LinkageError('-o', f'cannot make the folder {text} '
-                           f'({exc.strerror or exc})') from None
-    if not os.access(folder, os.W_OK):
-        raise LinkageError('-o', f'cannot write into the folder {text}')
-    return folder
-
-
-def _gb(value):
-    return f'{value / 1e9:,.1f} GB'
-
-
 @program(PROG)
 def main(argv: list[str] | None = None, rounds: int = 0) -> int:
     """
@@ -269,7 +247,7 @@ def main(argv: list[str] | None = None, rounds: int = 0) -> int:
             return benchmark(corners, args.benchmark)
         formats = formats_option(args.format)   # pyarrow first: its memory is then in use
         check_memory(jobs, formats)
-        folder = output_folder(args.out)
+        folder = output_folder(args.out, '-o')
         check_names(folder, jobs, formats, [args.target, *(
             [vehicle.source] if vehicle else []), *(s.source for s in corners.values())])
     except LinkageError as exc:

@@ -68,6 +68,24 @@ def memory_needed(jobs, parquet: bool = False) -> Need:
                 data + parquet * PARQUET_ADDRESS_BYTES)
 
 
+def refuse_if_short(need: Need, field: str, what: str, advice: str) -> None:
+    """
+    Refuse a run whose Need does not fit the memory this process may take.
+
+    Raises LinkageError(field, '<what> need about 3.2 GB of memory and 1.0 GB is available
+    (<the limit>): <advice>'); returns quietly when it fits or no limit is known.
+    """
+    room = memory_room()
+    if room is not None and room.wanted(need) > room.size:
+        from ..core.base import LinkageError
+        raise LinkageError(field, f'{what} need about {_gb(room.wanted(need))} of memory and '
+                           f'{_gb(room.size)} is available ({room.limit}): {advice}')
+
+
+def _gb(value: float) -> str:
+    return f'{value / 1e9:,.1f} GB'
+
+
 def memory_room(cgroup_root: Path = CGROUP_ROOT) -> Room | None:
     """Return the smallest Room that applies to this process, or None if none is known."""
     rooms = [room for room in (mem_available(), address_space_room(),

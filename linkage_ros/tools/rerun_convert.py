@@ -13,13 +13,16 @@ for example:
 BAG is an MCAP file with the ROS 2 profile or a rosbag2 bag folder holding one. Reads
 wheel_travel, steering_rack, wheel_carrier_pose, camber and toe (by their last name, any
 namespace; std_msgs/msg/Float64 and geometry_msgs/msg/PoseStamped in CDR) and logs them as
-columns (see record.rerun_draw). A topic of such a name but of another type is skipped, with
-a line. The scene is --scene, else the one the recording stores (the scene or vehicle file's
-content, in its 'linkage_ros' metadata), else the one it names (custom data 'vehicle' or
-'scene'), else five_link. A bag cut short or damaged gives a warning naming what was found,
-and its readable messages are converted; a message whose bytes do not decode is left out and
-named. Either ends with status 1, even when nothing could be drawn (the .rrd then holds the
-scene alone). Progress goes to stderr.
+columns (see record.rerun_draw); with statics, contact_wrench and pickup/<name>
+(geometry_msgs/msg/WrenchStamped) as force arrows of 0.1 mm per N (1 kN: 100 mm): the
+contact force at the contact patch, each pickup's force on the body at its pickup. A topic
+of such a name but of another type is skipped, with a line. The scene is --scene, else the
+one the recording stores (the scene or vehicle file's content, in its 'linkage_ros'
+metadata), else the one it names (custom data 'vehicle' or 'scene'), else five_link. A bag
+cut short or damaged gives a warning naming what was found, and its readable messages are
+converted; a message whose bytes do not decode is left out and named. Either ends with
+status 1, even when nothing could be drawn (the .rrd then holds the scene alone). Progress
+goes to stderr.
 
 A vehicle commanded by joint_states (sensor_msgs/msg/JointState; the vehicle file names each
 corner's travel_joint and rack_joint) has each corner's travel and rack plotted from it. A
@@ -47,7 +50,8 @@ from ..record.stored import load_stored
 
 PROG = 'linkage-rerun'
 DEFAULT_SCENE = 'five_link'
-ROLES = 'wheel_travel, steering_rack, wheel_carrier_pose, camber or toe'
+ROLES = ('wheel_travel, steering_rack, wheel_carrier_pose, camber, toe, contact_wrench or '
+         'pickup/<name>')
 
 
 def drawable(bag):
@@ -58,8 +62,7 @@ def drawable(bag):
     its type (ROLE_TYPES) whose bytes decode; a topic of another type is in the dict, and a
     message that does not decode is counted in bag.undecoded (bag.losses()).
     """
-    from ..cdr import float64_of, pose_of
-    from ..record.rerun_view import ROLE_TYPES, topic_role
+    from ..record.rerun_view import role_reader, ROLE_TYPES, topic_role
     messages, foreign = [], {}
     for m in bag.messages:
         role = topic_role(m.topic)
@@ -67,7 +70,7 @@ def drawable(bag):
             continue
         if not m.carries(ROLE_TYPES[role]):
             foreign.setdefault(m.topic, f'{m.type_name or "no schema"} in {m.encoding}')
-        elif bag.decode(m, pose_of if role == 'pose' else float64_of) is not None:
+        elif bag.decode(m, role_reader(role)) is not None:
             messages.append(m)
     return messages, foreign
 

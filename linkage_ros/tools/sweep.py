@@ -254,11 +254,12 @@ def main(argv: list[str] | None = None, rounds: int = 0) -> int:
         return fail(PROG, f'{args.output or "stdout"}: cannot write the table '
                           f'({exc.strerror or exc})')
     if args.elements:
-        from ..core.measure import crossing_notes, element_values
-        warn(PROG, crossing_notes(scene, np.concatenate([r.travel for r in results]),
-                                  np.concatenate([element_values(
-                                      scene, r.wheel_center, r.rotation, r.rack).length
-                                      for r in results])))
+        from ..core.measure import crossing_notes, element_values, stop_notes
+        travel = np.concatenate([r.travel for r in results])
+        values = [element_values(scene, r.wheel_center, r.rotation, r.rack) for r in results]
+        warn(PROG, crossing_notes(scene, travel, np.concatenate([v.length for v in values])))
+        for line in stop_notes(scene, travel, np.concatenate([v.force for v in values])):
+            print(f'{PROG}: {line}', file=sys.stderr)
     failed = [r for r in results if not r.success]
     if failed:
         written = counted(sum(len(r.travel) for r in results), 'position')

@@ -12,6 +12,7 @@ carrier), so that RViz, Foxglove or Rerun place each body by the node's /tf.
 
 import sys
 
+from .target import check_text_output, load_frames, write_text
 from .. import cli
 from ..core.base import LinkageError
 
@@ -44,27 +45,17 @@ def _main(argv):
                         help="the root link: the node's frame_id (default: base_link)")
     args = parser.parse_args(argv)
     try:
-        from .kinematic_map import load_target
-        vehicle, corners = load_target(args.target)
-        if vehicle is None:
-            (scene,) = corners.values()
-            scenes, name = {'': scene}, scene.name
-        else:
-            scenes, name = {f'{corner}/': s for corner, s in corners.items()}, vehicle.name
-        cli.warn(PROG, vehicle.warnings if vehicle is not None else scene.warnings)
-        if args.output != '-':
-            inputs = [getattr(vehicle, 'source', '')] + [s.source for s in scenes.values()]
-            cli.check_output(args.output, '-o', inputs=tuple(p for p in inputs if p))
+        target = load_frames(args.target)
+        cli.warn(PROG, target.warnings)
+        check_text_output(args.output, target)
         from ..robot_description import robot_description
-        text = robot_description(scenes, args.frame_id, name)
+        text = robot_description(target.scenes, args.frame_id, target.name)
+        write_text(args.output, text)
     except (cli.Mistake, LinkageError) as exc:
         return cli.fail(PROG, exc)
-    if args.output == '-':
-        sys.stdout.write(text)
-    else:
-        with open(args.output, 'w', encoding='utf-8') as out:
-            out.write(text)
-        print(f'{PROG}: {name}: {text.count("<link ")} links -> {args.output}', file=sys.stderr)
+    if args.output != '-':
+        print(f'{PROG}: {target.name}: {text.count("<link ")} links -> {args.output}',
+              file=sys.stderr)
     return cli.DONE
 
 

@@ -149,7 +149,13 @@ def test_the_node_topics_that_carry_quantities_are_the_registry_topics():
     params = {name: spec.default for name, spec in PARAMETERS.items()}
     params.update(alignment=True, markers=True, travel_joint='wheel')
     topics = corner.corner_topics(load_scene('double_wishbone'), params)
-    carrying = set(topics) - {'markers', 'joint_states'}   # drawings; the vehicle's joints
+    # drawings; the vehicle's joints; statics (the scene has bushings): the tyre's wrench in and
+    # each pickup's wrench out, geometry_msgs/WrenchStamped whose fields are the message's own
+    statics = {'contact_wrench'} | {t for t in topics if t.startswith('pickup/')}
+    carrying = set(topics) - {'markers', 'joint_states'} - statics
+    assert statics == {'contact_wrench', 'pickup/upper_arm_axis0', 'pickup/upper_arm_axis1',
+                       'pickup/lower_arm_axis0',
+                       'pickup/lower_arm_axis1', 'pickup/tie_rod_base', 'pickup/spring_body'}
     assert carrying == set(registry.TOPICS)
     assert list(ANSWER_TYPES) == ['wheel_carrier_pose', 'camber', 'toe']
     assert set(ANSWER_TYPES) <= set(registry.TOPICS)

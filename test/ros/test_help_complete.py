@@ -52,15 +52,18 @@ def documented_name(topic: str) -> str:
     Return the name the help gives topic: '/front_left/camber' -> 'camber'.
 
     A vehicle's corner topics go under the corner's name and an axle's under the axle's
-    ('/front/roll_centre' -> '<axle>/roll_centre'); /diagnostics, /tf, /tf_static are named
+    ('/front/roll_centre' -> '<axle>/roll_centre'); the statics' pickup topics are one family
+    ('/pickup/lower_arm_axis1' -> 'pickup/<name>'); /diagnostics, /tf, /tf_static are named
     absolute; any other topic of the root namespace relative ('/camber' -> 'camber').
     """
     vehicle = load_vehicle('demo_vehicle')
     parts = topic.strip('/').split('/')
-    if len(parts) == 2 and parts[0] in vehicle.corners:
-        return parts[1]
-    if len(parts) == 2 and parts[0] in vehicle.axles.axles:
+    if len(parts) > 1 and parts[0] in vehicle.corners:
+        parts = parts[1:]
+    elif len(parts) == 2 and parts[0] in vehicle.axles.axles:
         return '<axle>/' + parts[1]
+    if len(parts) == 2 and parts[0] == 'pickup':
+        return 'pickup/<name>'
     assert len(parts) == 1, topic
     return topic if topic in ('/diagnostics', '/tf', '/tf_static') else parts[0]
 

@@ -33,7 +33,7 @@ def responder(scene):
 
 def test_the_outputs_of_a_scene_and_its_switches_come_from_one_table_in_its_order():
     five_link, plain = load_scene('five_link'), load_scene('chrono_generic_multilink')
-    assert [o.name for o in OUTPUTS] == EVERY
+    assert [o.name for o in OUTPUTS] == [*EVERY, 'pickup']   # pickup: with statics only
     on = {'alignment': True, 'markers': True, 'tf': True}
     assert [o.name for o in outputs_of(five_link, on)] == EVERY
     # chrono_generic_multilink declares no elements; switches off give the answer alone
@@ -51,7 +51,8 @@ def test_a_responder_builds_every_output_turned_on_in_the_tables_order():
     assert [o.name for o in corner.outputs] == EVERY
     reply = corner.answer(30.0, None, (4, 5))
     solution = reply.solution
-    assert [(n, t) for n, t, _ in reply.outputs] == [(o.name, o.type_name) for o in OUTPUTS]
+    assert [(n, t) for n, t, _ in reply.outputs] == [(o.name, o.type_name) for o in OUTPUTS
+                                                     if o.when != 'statics']
     out = {name: data for name, _, data in reply.outputs}
     pose = from_cdr('geometry_msgs/msg/PoseStamped', out['wheel_carrier_pose'])
     position = pose.pose.position
@@ -116,3 +117,34 @@ def test_the_node_publishes_the_responders_list_in_its_order(suspension_node, ex
         topics = [c.topic for _, c, _ in reader.iter_messages(log_time_order=False)]
     names = ['/' + n.lstrip('/') for n in EVERY]
     assert [t for t in topics if t in names] == names * 2
+
+
+def test_with_statics_the_pickups_follow_the_extras_each_in_its_static_frame():
+    from linkage_ros.cdr import transforms_of, wrench_of
+    from linkage_ros.ros.pickups import pickup_points
+    from linkage_ros.ros.tf import static_cdr
+    scene = load_scene('double_wishbone')
+    corner = Responder(scene, method='fast', max_step_mm=5.0, condition_warn=1e4,
+                       frame_id='base_link', status_name='s', period_ns=10**9, statics=True,
+                       prefix='front_left/')
+    frames = CornerFrames(scene, 'base_link', 'front_left/', corner.statics.frame_points())
+    corner.set_outputs(frames=frames)
+    points = pickup_points(scene)
+    assert [o.name for o in corner.outputs] == [*EVERY[:3], 'elements', '/tf', 'pickup']
+    reply = corner.answer(30.0, None, (4, 5))
+    names = [n for n, _, _ in reply.outputs]
+    assert names == [*EVERY[:3], 'elements', '/tf', *(f'pickup/{p}' for p in points)]
+    static = {child: (parent, translation, q) for _, parent, child, translation, q
+              in transforms_of(static_cdr([frames], (0, 0)))}
+    out = {n: d for n, _, d in reply.outputs}
+    for name, point in points.items():
+        frame_id, _, _ = wrench_of(out[f'pickup/{name}'])
+        assert frame_id == f'front_left/pickup/{name}'
+        parent, translation, q = static[frame_id]
+        assert parent == 'base_link' and tuple(q) == (0.0, 0.0, 0.0, 1.0)
+        assert translation == pytest.approx(point / 1000.0, abs=1e-15)
+    # without the frames (tf off), the wrenches name the vehicle frame
+    corner.set_outputs(frames=None)
+    reply = corner.answer(30.0, None, (4, 6))
+    assert {wrench_of(d)[0] for n, _, d in reply.outputs if n.startswith('pickup/')} == {
+        'base_link'}

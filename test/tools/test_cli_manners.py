@@ -297,7 +297,8 @@ def test_every_rerun_mistake_is_one_line_and_status_2_and_writes_nothing(
         ([str(named), '-o', out], 'gone_scene: scene: no such file, and not a bundled scene '
          '(bundled: '),
         ([str(foreign_bag), '-o', out], f'{foreign_bag}: no wheel_travel, steering_rack, '
-         'wheel_carrier_pose, camber or toe messages to convert (topics: /speed)'),
+         'wheel_carrier_pose, camber, toe, contact_wrench or pickup/<name> messages to '
+         'convert (topics: /speed)'),
     ]
     for argv, expected in mistakes:
         assert status_of(rerun_convert.main, argv) == 2, argv

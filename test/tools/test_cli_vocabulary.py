@@ -194,7 +194,7 @@ def test_linkage_bench_sweep_times_the_sweep_of_linkage_sweep(capsys):
      "rounds >= 1, got '0'"),
     (['axle', '--rounds'], "argument --rounds: expected a whole number of rounds >= 1, got ''"),
     (['magic'], "unknown benchmark 'magic': choose one of accuracy, node, soak, sweep, axle, "
-     'map, study, replay')])
+     'map, vehicle, study, replay, kc')])
 def test_a_linkage_bench_mistake_is_one_line_with_status_2(argv, says, capsys):
     status, out, err = outcome(bench_cli.main, argv, capsys)
     assert (status, out) == (2, '') and err.count('\n') == 1 and says in err, err

@@ -34,7 +34,8 @@ def run(name, *args, cwd=None):
 
 def test_every_documented_program_is_a_console_script():
     assert {'suspension_node', 'linkage-sweep', 'linkage-replay', 'linkage-rerun',
-            'linkage-plot', 'linkage-bench', 'linkage-node-bench', 'linkage-soak'} <= set(SCRIPTS)
+            'linkage-plot', 'linkage-bench', 'linkage-node-bench', 'linkage-soak',
+            'linkage-kc'} <= set(SCRIPTS)
 
 
 @pytest.mark.parametrize('name', SCRIPTS)

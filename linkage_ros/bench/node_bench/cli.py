@@ -23,7 +23,10 @@ Sections (all by default; --only picks some), sizes multiplied by --scale (run 1
   callback  the node's travel callback called in process (no subscribers): plain (the scene
             without its elements, tf off), with its elements (the elements topic), with TF on
             (/tf per answer: the node's default), with the alignment or markers outputs,
-            recording to MCAP, mirroring to Rerun, both (all but tf with tf off)
+            recording to MCAP, mirroring to Rerun, both (all but tf with tf off); and,
+            named in --modes, with statics (a contact wrench and a travel per command, both
+            callbacks timed): statics:=true on the scene (rigid), and bushings on every
+            arm and link (--modes statics,bushings)
 
 Tables go to stdout as CSV (the first cell of each header row names the section), progress
 to stderr; --plot writes latency against command rate (node and echo) as a PNG. Every
@@ -84,6 +87,9 @@ def parse_args(argv, prog='linkage-node-bench'):
                         help='start: launches per warm case (default 5)')
     parser.add_argument('--hz', type=float, default=1000.0, help='vehicle: steps per second')
     parser.add_argument('--seconds', type=float, default=5.0, help='vehicle: seconds per mode')
+    parser.add_argument('--modes', help='callback: the modes to run, comma separated '
+                        '(default: all but statics and bushings, which cost tens of ms a '
+                        'command; plain is always run first, the base of the ratios)')
     parser.add_argument('--plot', help='write latency against command rate here (PNG)')
     parser.add_argument('--quick', action='store_true',
                         help='a smoke run: every size cut to a tenth or less, low rates')

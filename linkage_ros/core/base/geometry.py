@@ -11,6 +11,7 @@ converted here and nowhere else: rotation vector -> matrix (exp_so3), matrix <->
 
 from __future__ import annotations
 
+import math
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -137,6 +138,18 @@ def local_coordinates(m: np.ndarray, n: np.ndarray, p: np.ndarray,
                       point: np.ndarray) -> np.ndarray:
     """Return the coordinates of point in the frame_from_points(m, n, p) frame, origin M."""
     return frame_from_points(m, n, p).T @ (point - m)
+
+
+def spin_axis_of(camber: float, toe: float, side_sign: float) -> np.ndarray:
+    """
+    Return the outboard spin-axis unit vector (3,) of a camber and toe (rad): camber_toe's inverse.
+
+    a = (cos c sin t, s cos c cos t, -sin c), s = side_sign (+1 left, -1 right); camber + =
+    top outboard, toe + = toe-in. Chrono::Vehicle turns its left spindle so too (Rz(-toe)
+    Rx(-camber), ChDoubleWishbone::Initialize).
+    """
+    return np.array([math.cos(camber) * math.sin(toe), side_sign * math.cos(camber)
+                     * math.cos(toe), -math.sin(camber)])
 
 
 def camber_toe(spin_axis: ArrayLike,

@@ -21,6 +21,7 @@ class Status(IntEnum):
     SINGULAR = 4       # the Jacobian is singular where the command needs it
     SUBSTEP_LIMIT = 5  # the walk needs more substeps than max_substeps allows
     NO_RACK = 6        # a rack command to a scene without a steer: rack link
+    NOT_CARRIED = 7    # statics: the load deflects a bushing beyond the model, or diverges
 
     @property
     def phrase(self) -> str:

@@ -14,7 +14,7 @@ from . import quantities
 from .alignment import Alignment, alignment, contact_patch, patch_offset
 from .bodies import Bodies, body_poses, corner_bodies, frame_along
 from .elements import (crossing_notes, element_columns, element_table, element_values,
-                       ElementModel, ElementValues, prepare, values_at)
+                       ElementModel, ElementValues, prepare, stop_notes, values_at)
 from .kingpin import geometric_kingpin, GeometricKingpin, kingpin_points
 from .motion import carrier_motion, guidance_rows, pose_batch
 from .mounts import mount_motion, mount_table
@@ -25,4 +25,4 @@ __all__ = ['Alignment', 'alignment', 'Bodies', 'body_poses', 'carrier_motion', '
            'element_columns', 'element_table', 'element_values', 'ElementModel', 'ElementValues',
            'frame_along', 'geometric_kingpin', 'GeometricKingpin', 'guidance_rows',
            'kingpin_points', 'mount_motion', 'mount_table', 'patch_offset', 'pose_batch',
-           'prepare', 'quantities', 'quantity', 'title', 'TOPICS', 'values_at']
+           'prepare', 'quantities', 'quantity', 'stop_notes', 'title', 'TOPICS', 'values_at']

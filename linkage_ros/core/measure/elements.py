@@ -12,7 +12,8 @@ At every solved position each element has (element_values):
     k and a free length L0, its force F = k (L0 - L) (N, + = compressed: pushing its ends
     apart) and the wheel rate dW/dz = k ratio^2 - F ratio_rate (N/mm), W = -F ratio being the
     vertical wheel load it carries (virtual work). With the installation ratio MR = -ratio
-    this is the textbook k MR^2 + F dMR/dz.
+    this is the textbook k MR^2 + F dMR/dz. A spring with a force table (model/elements.py)
+    has F from the table at its deflection L0 - L and k the slope of the table there.
 ratio and ratio_rate are exact (the implicit function theorem to second order, motion.py),
 computed compiled (element_kernel.py): a few microseconds per answer. Where an element's
 ends meet or pass through each other (its moving point no longer ahead of its body point
@@ -65,7 +66,8 @@ def prepare(scene: Scene, mech: Mechanism | None = None) -> ElementModel:
     direction = np.array([e.mount.point for e in elements]).reshape(-1, 3) - body
     springs = SpringTable(body, np.array([e.rate for e in elements]),
                           np.array([e.free_length for e in elements]),
-                          direction / np.linalg.norm(direction, axis=1, keepdims=True))
+                          direction / np.linalg.norm(direction, axis=1, keepdims=True),
+                          tuple(e.force_table for e in elements))
     return ElementModel(mech, pack_rows(guidance_rows(scene, mech)),
                         pack_elements(mount_table(scene, [e.mount for e in elements]), springs))
 
@@ -118,6 +120,29 @@ def crossing_notes(scene: Scene, travel: ArrayLike, length: ArrayLike) -> tuple[
                          f'other at {len(crossed)} of {len(travel)} positions, travel '
                          f'{crossed.min():g} to {crossed.max():g} mm: its length, ratio, force '
                          'and wheel rate are NaN there (doc/elements.md)')
+    return tuple(notes)
+
+
+def stop_notes(scene: Scene, travel: ArrayLike, force: ArrayLike) -> tuple[str, ...]:
+    """
+    Say, once per stop (a spring whose force table is zero at one end), where it engages.
+
+    travel (n,) mm and force (n, k) N (ElementValues.force) of n solved positions, in any
+    order: the travel range over which the stop carries a force, or that it does not.
+    """
+    travel, force = np.asarray(travel, dtype=float), np.asarray(force, dtype=float)
+    notes = []
+    for j, e in enumerate(scene.elements):
+        if not e.is_stop:
+            continue
+        engaged = travel[np.abs(np.nan_to_num(force[:, j])) > 0.0]
+        if len(engaged):
+            notes.append(f'{scene.name}: stop {e.name} engages: it carries a force from travel '
+                         f'{engaged.min():g} to {engaged.max():g} mm (largest '
+                         f'{np.nanmax(np.abs(force[:, j])):.6g} N)')
+        elif len(travel):
+            notes.append(f'{scene.name}: stop {e.name} does not engage between travel '
+                         f'{travel.min():g} and {travel.max():g} mm')
     return tuple(notes)
 
 

@@ -43,11 +43,21 @@ UNITS = {
     'N/mm': ('N/m', 1e3, 1e3),
     'Nm': ('Nm', 1.0, 1.0),
     'Nm/deg': ('Nm/rad', 1.0 / DEG, 1.0),
+    # compliance rates (core/statics): per kN and per kN m, written kn as the K&C columns are
+    'deg/kn': ('rad/N', DEG * 1e-3, 1e-3),
+    'mm/kn': ('m/N', 1e-6, 1e-6),
+    'deg/knm': ('rad/Nm', DEG * 1e-3, 1e-3),
+    'n': ('N', 1.0, 1.0),   # newtons, written n as the K&C columns are (linkage-kc --load)
     '%': ('1', 1e-2, 1e-2),
+    'kg': ('kg', 1.0, 1.0),
+    'Hz': ('Hz', 1.0, 1.0),
+    'deg/g': ('rad/mps2', DEG / 9.80665, DEG / 9.80665),
+    'deg/mm2': ('rad/m2', DEG * 1e6, 1e6),
     '1': ('1', 1.0, 1.0),
 }
 # What a template's placeholder stands for (a regular expression).
-PLACEHOLDERS = {'element': r'.+', 'side': r'left|right'}
+PLACEHOLDERS = {'element': r'.+', 'side': r'left|right', 'member': r'.+',
+                'pivot': r'.+_(?:axis0|axis1|centre)', 'strut': r'.+'}
 SIDES = ('left', 'right')
 
 
@@ -105,6 +115,8 @@ def _q(name, unit, sign, group, doc, needs=''):
 
 _STEER_AXIS = 'a steer: rack link'
 _PATCH = 'wheel_radius'
+_BUSHING = 'a bushing'
+_BUSHING_PATCH = 'a bushing, wheel_radius'
 _DECLARED = (
     # the sweep's leading columns (linkage-sweep, maps, study)
     _q('travel_mm', 'mm', '+ = bump', 'travel',
@@ -218,6 +230,116 @@ _DECLARED = (
        'a bar rate'),
     _q('arb_roll_stiffness_Nm_per_deg', 'Nm/deg', '', 'anti_roll_bar',
        "the bar's roll stiffness", 'a bar rate'),
+    # compliance at one travel, travel and rack held (core/statics, linkage-kc): first-order
+    # rates at the zero-load equilibrium; cp = the contact patch, wc = the wheel centre
+    _q('toe_per_fy_cp_deg_per_kn', 'deg/kn', '+ = toe-in per + y (left) force', 'kc_fy_cp',
+       'toe per lateral force at the contact patch', _BUSHING_PATCH),
+    _q('camber_per_fy_cp_deg_per_kn', 'deg/kn', '+ = top outboard per + y force', 'kc_fy_cp',
+       'camber per lateral force at the contact patch', _BUSHING_PATCH),
+    _q('wc_dy_per_fy_cp_mm_per_kn', 'mm/kn', '+ = left per + y force', 'kc_fy_cp',
+       "wheel centre's lateral move per lateral force at the contact patch", _BUSHING_PATCH),
+    _q('cp_dy_per_fy_cp_mm_per_kn', 'mm/kn', '+ = left per + y force', 'kc_fy_cp',
+       "contact patch's lateral move per lateral force there", _BUSHING_PATCH),
+    _q('jacking_per_fy_cp', '1', '+ = up per + y force', 'kc_fy_cp',
+       'holding (jacking) force change per lateral force at the contact patch, N/N',
+       _BUSHING_PATCH),
+    _q('toe_per_fx_cp_deg_per_kn', 'deg/kn', '+ = toe-in per + x (forward) force', 'kc_fx_cp',
+       'toe per longitudinal force at the contact patch (braking is -x)', _BUSHING_PATCH),
+    _q('camber_per_fx_cp_deg_per_kn', 'deg/kn', '+ = top outboard per + x force', 'kc_fx_cp',
+       'camber per longitudinal force at the contact patch', _BUSHING_PATCH),
+    _q('wc_dx_per_fx_cp_mm_per_kn', 'mm/kn', '+ = forward per + x force', 'kc_fx_cp',
+       "wheel centre's longitudinal move per longitudinal force at the contact patch",
+       _BUSHING_PATCH),
+    _q('toe_per_fx_wc_deg_per_kn', 'deg/kn', '+ = toe-in per + x force', 'kc_fx_wc',
+       'toe per longitudinal force at the wheel centre (traction)', _BUSHING),
+    _q('wc_dx_per_fx_wc_mm_per_kn', 'mm/kn', '+ = forward per + x force', 'kc_fx_wc',
+       "wheel centre's longitudinal move per longitudinal force there", _BUSHING),
+    _q('toe_per_mz_deg_per_knm', 'deg/knm', '+ = toe-in per + z moment', 'kc_mz',
+       'toe per moment about the z axis (aligning torque)', _BUSHING),
+    _q('camber_per_mz_deg_per_knm', 'deg/knm', '+ = top outboard per + z moment', 'kc_mz',
+       'camber per moment about the z axis', _BUSHING),
+    # a loaded solve (core/statics, linkage-kc --load): after the wheel columns, the forces
+    _q('holding_force_n', 'n', '+ = up', 'kc_loaded',
+       'vertical force at the wheel centre that holds the travel (the jacking force)'),
+    _q('{member}_force_n', 'n', '+ = tension (a link), + = compressed (a spring)', 'kc_loaded',
+       "a link's axial force, or a spring's force"),
+    _q('{pivot}_fx_n', 'n', '+ = forward', 'kc_loaded',
+       'force of an arm on the body at a pivot (<arm>_axis0, _axis1 or _centre), x'),
+    _q('{pivot}_fy_n', 'n', '+ = left', 'kc_loaded',
+       'force of an arm on the body at a pivot, y'),
+    _q('{pivot}_fz_n', 'n', '+ = up', 'kc_loaded', 'force of an arm on the body at a pivot, z'),
+    _q('{strut}_top_fx_n', 'n', '+ = forward', 'kc_loaded',
+       'force of a strut (line) on the body at its top mount, x'),
+    _q('{strut}_top_fy_n', 'n', '+ = left', 'kc_loaded',
+       'force of a strut on the body at its top mount, y'),
+    _q('{strut}_top_fz_n', 'n', '+ = up', 'kc_loaded',
+       'force of a strut on the body at its top mount, z'),
+)
+_SHEET = 'mass, tyre_rate'
+_DECLARED += (
+    # the setup sheet (linkage-vehicle; core/vehicle, doc/vehicle.md): a row per axle
+    _q('axle', '1', '', 'setup_axle', 'the row: front, rear or vehicle (text)'),
+    _q('axle_x_mm', 'mm', '+ = forward', 'setup_axle',
+       'x of the axle: the mean of its design contact patches'),
+    _q('sprung_mass_kg', 'kg', '', 'setup_axle',
+       "the sprung mass (the axle's share: statics over the wheelbase)", _SHEET),
+    _q('unsprung_mass_kg', 'kg', '', 'setup_axle', "the axle's two unsprung masses", _SHEET),
+    _q('tyre_rate_N_per_mm', 'N/mm', '', 'setup_axle', 'vertical rate of one tyre', _SHEET),
+    _q('wheel_rate_N_per_mm', 'N/mm', '', 'setup_axle',
+       "each wheel's rate in heave from every elastic part (exact ratios, preload term)",
+       _SHEET),
+    _q('ride_rate_N_per_mm', 'N/mm', '', 'setup_axle', 'the wheel rate in series with the tyre',
+       _SHEET),
+    _q('ride_frequency_Hz', 'Hz', '', 'setup_axle',
+       'sqrt(ride rate / sprung mass per wheel) / 2 pi', _SHEET),
+    _q('roll_stiffness_springs_Nm_per_deg', 'Nm/deg', '', 'setup_axle',
+       "d2 V / d roll2 of the axle's springs, the body rolled over the ground", _SHEET),
+    _q('roll_stiffness_bar_Nm_per_deg', 'Nm/deg', '', 'setup_axle',
+       "d2 V / d roll2 of the axle's anti-roll bar (0 without one)", _SHEET),
+    _q('roll_stiffness_Nm_per_deg', 'Nm/deg', '', 'setup_axle',
+       'roll stiffness of springs and bar (an axle), of both axles (the vehicle)', _SHEET),
+    _q('roll_stiffness_textbook_Nm_per_deg', 'Nm/deg', '', 'setup_axle',
+       '0.5 k MR^2 t^2 of the springs (design ratio, no preload) plus k_b ratio^2 of the bar',
+       _SHEET),
+    _q('load_transfer_geometric_N', 'N', '+ = onto the outer wheel', 'setup_axle',
+       'lateral load transfer at 1 g: sprung mass through the roll centre', _SHEET),
+    _q('load_transfer_elastic_N', 'N', '+ = onto the outer wheel', 'setup_axle',
+       'lateral load transfer at 1 g: through the roll stiffness', _SHEET),
+    _q('load_transfer_unsprung_N', 'N', '+ = onto the outer wheel', 'setup_axle',
+       'lateral load transfer at 1 g: the unsprung masses', _SHEET),
+    _q('load_transfer_N', 'N', '+ = onto the outer wheel', 'setup_axle',
+       'lateral load transfer at 1 g: the three paths', _SHEET),
+    _q('steering_ratio_deg_per_mm', 'deg/mm', '+ = rack to the left steers left',
+       'setup_axle', 'd mean steer / d rack (at rack 0 in the sheet)', 'a rack'),
+    _q('steering_ratio_change_deg_per_mm2', 'deg/mm2', '', 'setup_axle',
+       'd steering ratio / d rack', 'a rack'),
+    # the setup sheet: the vehicle's row
+    _q('mass_kg', 'kg', '', 'setup_vehicle', 'sprung plus four unsprung masses', _SHEET),
+    _q('cg_x_mm', 'mm', '+ = forward', 'setup_vehicle', "x of the sprung mass's centre",
+       _SHEET),
+    _q('cg_height_mm', 'mm', '+ = up', 'setup_vehicle',
+       "the sprung mass's centre above the ground", _SHEET),
+    _q('wheelbase_mm', 'mm', '', 'setup_vehicle', 'front minus rear axle x'),
+    _q('roll_axis_height_at_cg_mm', 'mm', '+ = up', 'setup_vehicle',
+       'the line through the front and rear roll centres, above the ground at cg_x', _SHEET),
+    _q('roll_moment_arm_mm', 'mm', '+ = cg above the axis', 'setup_vehicle',
+       'cg height less the roll axis height under it', _SHEET),
+    _q('roll_gradient_deg_per_g', 'deg/g', '+ = rolls outward', 'setup_vehicle',
+       'm_s d / (K - m_s g d), the overturning moment included', _SHEET),
+    _q('lltd_front_pct', '%', '', 'setup_vehicle',
+       "the front axle's share of the lateral load transfer", _SHEET),
+    _q('pitch_gradient_braking_deg_per_g', 'deg/g', '+ = nose down', 'setup_vehicle',
+       'body pitch per g of braking, springs less anti, tyres', _SHEET),
+    _q('pitch_gradient_drive_deg_per_g', 'deg/g', '+ = nose down', 'setup_vehicle',
+       'body pitch per g of drive, springs less anti, tyres', _SHEET),
+    _q('pitch_centre_braking_x_mm', 'mm', '+ = forward', 'setup_vehicle',
+       'where the side-view force lines of the two axles meet, braking'),
+    _q('pitch_centre_braking_height_mm', 'mm', '+ = up', 'setup_vehicle',
+       'its height above the ground'),
+    _q('pitch_centre_drive_x_mm', 'mm', '+ = forward', 'setup_vehicle',
+       'where the side-view lines through the wheel centres meet, drive'),
+    _q('pitch_centre_drive_height_mm', 'mm', '+ = up', 'setup_vehicle',
+       'its height above the ground'),
 )
 QUANTITIES = {q.name: q for q in _DECLARED}
 

@@ -17,18 +17,19 @@ from .constraint import Constraint
 from .elements import Element, parse_elements
 from .fields import Fields, FREE_KEYS, name_problem
 from .kingpin import check_kingpin, KingpinPoint
-from .mounts import Mount, parse_mount
+from .mounts import LINE_TOLERANCE, Mount, parse_mount
 from .scene import (link_fraction, link_polylines, load_scene, mirror, parse_scene,
                     resolve_scene_path, safe_stem, Scene, translate, UNITS_TO_MM, with_points)
 from .vehicle import load_vehicle, Vehicle
 from .yaml_file import FILE_LIMIT_BYTES, parse_yaml, read_yaml, SceneError, VALUES_LIMIT
 
 __all__ = ['AxleSpec', 'bundled_scenes', 'check_kingpin', 'config_dir', 'Constraint', 'Element',
-           'Fields', 'FILE_LIMIT_BYTES', 'FREE_KEYS', 'KingpinPoint', 'link_fraction',
-           'link_polylines', 'load_scene', 'load_vehicle', 'mirror', 'Mount', 'name_problem',
-           'parse_elements', 'parse_mount', 'parse_scene', 'parse_yaml', 'read_yaml',
-           'resolve_scene_path', 'safe_stem', 'Scene', 'scene_dir', 'SceneError', 'translate',
-           'UNITS_TO_MM', 'VALUES_LIMIT', 'Vehicle', 'vehicle_dir', 'VehicleAxles', 'with_points']
+           'Fields', 'FILE_LIMIT_BYTES', 'FREE_KEYS', 'KingpinPoint', 'LINE_TOLERANCE',
+           'link_fraction', 'link_polylines', 'load_scene', 'load_vehicle', 'mirror', 'Mount',
+           'name_problem', 'parse_elements', 'parse_mount', 'parse_scene', 'parse_yaml',
+           'read_yaml', 'resolve_scene_path', 'safe_stem', 'Scene', 'scene_dir', 'SceneError',
+           'translate', 'UNITS_TO_MM', 'VALUES_LIMIT', 'Vehicle', 'vehicle_dir', 'VehicleAxles',
+           'with_points']
 LAZY = ('AxleSpec', 'VehicleAxles')   # vehicle_axles.py: loaded by a vehicle file with axles
 
 

@@ -11,8 +11,12 @@ kingpin) read the type without the scene's parser, which reads them.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
+
+if TYPE_CHECKING:
+    from .bushing import Bushing
 
 EQUATIONS_PER_TYPE = {'sphere': 1, 'circle': 2, 'line': 2}
 
@@ -26,6 +30,7 @@ class Constraint:
     type 'circle': carrier point turns about the axis base[0]-base[1] (revolute arm, eqs. 3-4).
     type 'line': the carrier-fixed line through the carrier point and base[0] keeps passing
     through base[0] (MacPherson strut top mount).
+    bushing: None for a rigid constraint; an arm's or a link's bushing (bushing.Bushing).
     """
 
     name: str
@@ -33,6 +38,7 @@ class Constraint:
     base: np.ndarray      # (k, 3): k = 1 for sphere and line, 2 for circle
     carrier: np.ndarray   # (3,)
     steer: str = ''
+    bushing: Bushing | None = None
 
     @property
     def equations(self) -> int:

@@ -12,6 +12,14 @@ A scene may list elements, each between a body point and a point on the moving s
       - {name: spring, type: spring, body: [x, y, z], arm: lower_arm, point: [x, y, z],
          rate: 35.0, free_length: 320.0}
       - {name: strut, type: damper, along: strut}
+      - {name: bump_stop, type: spring, body: [x, y, z], arm: lower_arm, point: [x, y, z],
+         free_length: 300.0, force_table: [[0, 0], [10, 500], [20, 3000]]}
+
+A spring has a rate (linear) or a force_table: rows [deflection, force] (scene units and N,
+deflection free_length - length, + = compressed; force + = compressed), deflections rising,
+at least two rows. Between rows the force is interpolated linearly and outside the table it
+is held at the end rows' forces (as Chrono's ChFunctionInterp): its stiffness is the slope
+of the segment. A bump stop is such a spring whose force is zero up to a deflection.
 
 Coordinates, free_length and rate are in the scene's units (rate in N per unit of length:
 N/mm in a mm scene, N/m in an m scene); everything is mm and N/mm once loaded. Their values
@@ -35,7 +43,7 @@ if TYPE_CHECKING:
     from .constraint import Constraint
 
 TYPES = ('spring', 'damper', 'length')
-KEYS = ('name', 'type', 'body', 'point', 'rate', 'free_length') + tuple(KINDS)
+KEYS = ('name', 'type', 'body', 'point', 'rate', 'free_length', 'force_table') + tuple(KINDS)
 NAME = re.compile(r'^[A-Za-z][A-Za-z0-9_]*$')   # becomes the start of table column names
 
 
@@ -49,16 +57,55 @@ class Element:
     mount: Mount          # the moving-side point
     rate: float = math.nan          # N/mm (springs; NaN if not given)
     free_length: float = math.nan   # mm (springs; NaN if not given)
+    # (n, 2) rows [deflection mm, force N] of a nonlinear spring (then rate is NaN)
+    force_table: np.ndarray | None = None
 
     @property
     def has_rate(self) -> bool:
-        """Whether force and wheel rate are defined (a spring with rate and free_length)."""
-        return not math.isnan(self.rate)
+        """Whether force and wheel rate are defined (a spring with a rate or a force table)."""
+        return not math.isnan(self.rate) or self.force_table is not None
+
+    def spring_at(self, length: float) -> tuple[float, float, float]:
+        """
+        Return the spring's (force N, + = compressed; stiffness N/mm; energy N mm) at length.
+
+        length mm. A rate: k (L0 - L), k, k (L0 - L)^2 / 2. A force table: the force
+        interpolated at the deflection L0 - L and held outside the table, the slope of its
+        segment (0 outside), and the integral of the force from deflection 0: the same
+        interpolation as the compiled element_kernel.spring_at (its twin for the kernels).
+        """
+        deflection = self.free_length - length
+        if self.force_table is None:
+            return self.rate * deflection, self.rate, 0.5 * self.rate * deflection ** 2
+        d, f = self.force_table[:, 0], self.force_table[:, 1]
+        force = float(np.interp(deflection, d, f))
+        i = int(np.searchsorted(d, deflection))
+        inside = d[0] < deflection < d[-1]
+        slope = float((f[i] - f[i - 1]) / (d[i] - d[i - 1])) if inside else 0.0
+        return force, slope, _work(d, f, deflection) - _work(d, f, 0.0)
+
+    @property
+    def is_stop(self) -> bool:
+        """Whether the element is a stop: a force table whose force is zero at either end."""
+        table = self.force_table
+        return table is not None and (table[0, 1] == 0.0 or table[-1, 1] == 0.0)
 
     def transformed(self, flip: ArrayLike, offset: ArrayLike) -> Element:
         """Return the element with every point p at p * flip + offset (mirror, translate)."""
         return replace(self, body=self.body * flip + offset,
                        mount=self.mount.transformed(flip, offset))
+
+
+def _work(d: np.ndarray, f: np.ndarray, x: float) -> float:
+    """Return the integral of the held, interpolated table force from d[0] to x (N mm)."""
+    if x <= d[0]:
+        return float(f[0] * (x - d[0]))
+    k = int(np.searchsorted(d, x))   # d[k - 1] < x <= d[k], or k = len(d) past the end
+    whole = float(np.sum(0.5 * (f[1:k] + f[:k - 1]) * np.diff(d[:k])))
+    if k == len(d):
+        return whole + float(f[-1] * (x - d[-1]))
+    at = f[k - 1] + (f[k] - f[k - 1]) * (x - d[k - 1]) / (d[k] - d[k - 1])
+    return whole + 0.5 * float(f[k - 1] + at) * (x - d[k - 1])
 
 
 def parse_elements(check, items: object,
@@ -102,14 +149,50 @@ def _parse_element(check, item, index, constraints):
     if np.linalg.norm(mount.point - body) <= 1e-9 * max(1.0, float(np.abs(body).max())):
         check.fail(where, 'the body point and the moving point coincide at design: an element '
                    'of zero length has no direction')
-    rate, free_length = _spring(check, item, where, kind)
+    table = _force_table(check, item, where, kind)
+    rate, free_length = _spring(check, item, where, kind, table is not None)
     return Element(name=name, type=kind, body=body, mount=mount, rate=rate,
-                   free_length=free_length)
+                   free_length=free_length, force_table=table)
 
 
-def _spring(check, item, where, kind):
+def _force_table(check, item, where, kind):
+    """Return a spring's force table (n, 2) in mm and N, or None if not given."""
+    rows = item.get('force_table')
+    if rows is None:
+        return None
+    field_name = f'{where}.force_table'
+    if kind != 'spring':
+        check.fail(field_name, f'only a spring has a force table (this is a {kind})')
+    if item.get('rate') is not None:
+        check.fail(field_name, 'give rate or force_table, not both')
+    if not isinstance(rows, list) or len(rows) < 2:
+        check.fail(field_name, 'expected at least two rows [deflection, force]')
+    for i, row in enumerate(rows):
+        if not isinstance(row, (list, tuple)) or len(row) != 2:
+            check.fail(f'{field_name}[{i}]', f'expected a row [deflection, force], got {row!r}')
+        for j, key in enumerate(('deflection', 'force')):
+            check.number({key: row[j]}, key, f'{field_name}[{i}]', length=False)
+    table = np.array(rows, dtype=float)
+    steps = np.diff(table[:, 0])
+    if not np.all(steps > 0):
+        i = int(np.argmin(steps > 0)) + 1
+        check.fail(f'{field_name}[{i}]', f'deflection {table[i, 0]:g} does not rise above '
+                   f'the row before ({table[i - 1, 0]:g}): the rows must be sorted by '
+                   'deflection, each once')
+    return table * np.array([check.scale, 1.0])
+
+
+def _spring(check, item, where, kind, tabled=False):
     """Return (rate N/mm, free_length mm) of a spring, NaN, NaN if not given."""
     given = [key for key in ('rate', 'free_length') if item.get(key) is not None]
+    if tabled:
+        if 'free_length' not in given:
+            check.fail(f'{where}.free_length', 'missing: a force table needs the free length '
+                       'its deflections are measured from')
+        value = check.number(item, 'free_length', f'{where}.free_length')
+        if not value > 0:
+            check.fail(f'{where}.free_length', f'must be positive, got {value!r}')
+        return math.nan, value * check.scale
     if not given:
         return math.nan, math.nan
     if kind != 'spring':

@@ -33,7 +33,7 @@ from .layout import Layout, layout_of
 # LENGTH_LIMIT_MM, SceneError and within_length_limit are also read from here, where they were.
 from .yaml_file import read_yaml, SceneError  # noqa: F401 (SceneError: kept here)
 from ..base.errors import LinkageError
-from ..base.geometry import perpendicular, unit
+from ..base.geometry import perpendicular, spin_axis_of, unit
 from ..base.limits import LENGTH_LIMIT_MM, positions_needed, within_length_limit  # noqa: F401
 
 if TYPE_CHECKING:
@@ -62,7 +62,7 @@ SCENE_FREE_KEYS = FREE_KEYS + ('reference',)
 CARRIER_KEYS = ('wheel_center', 'spin_axis_point', 'static', 'third_point')
 STATIC_KEYS = ('camber', 'toe')
 TRAVEL_KEYS = ('min', 'max', 'step')
-ALL_CONSTRAINT_KEYS = ('name', 'type', 'base', 'axis', 'carrier', 'steer')
+ALL_CONSTRAINT_KEYS = ('name', 'type', 'base', 'axis', 'carrier', 'steer', 'bushing')
 
 
 @dataclass(frozen=True)
@@ -92,6 +92,11 @@ class Scene:
     def side_sign(self) -> float:
         """+1 for a left wheel, -1 for a right wheel (outboard direction along y)."""
         return 1.0 if self.side == 'left' else -1.0
+
+    @property
+    def has_bushings(self) -> bool:
+        """Whether a constraint declares a bushing (the scene then has statics compliance)."""
+        return any(c.bushing is not None for c in self.constraints)
 
     @property
     def steered(self) -> bool:
@@ -299,9 +304,7 @@ def _spin_axis_point(check, carrier, wheel_center, side, constraints):
                        'deg, or the spin axis does not point outboard')
         angles.append(math.radians(value))
     camber, toe = angles
-    sign = 1.0 if side == 'left' else -1.0
-    axis = np.array([math.cos(camber) * math.sin(toe), sign * math.cos(camber) * math.cos(toe),
-                     -math.sin(camber)])
+    axis = spin_axis_of(camber, toe, 1.0 if side == 'left' else -1.0)
     reach = [np.linalg.norm(c.carrier - wheel_center) for c in constraints]
     distance = float(np.mean(reach)) if reach and np.mean(reach) > 0 else 100.0
     return wheel_center - distance * axis
@@ -352,8 +355,12 @@ def _parse_constraint(check, item, index, scale):
     steer = item.get('steer', '')
     if steer not in ('', None, 'rack'):
         check.fail(f'{where}.steer', f"unknown value {steer!r} (expected 'rack')")
+    bushing = None
+    if item.get('bushing') is not None:   # bushing.py is read only by a scene that has one
+        from .bushing import parse_bushing
+        bushing = parse_bushing(check, item['bushing'], where, kind)
     return Constraint(name=name or f'{kind}_{index}', type=kind, base=base * scale,
-                      carrier=carrier * scale, steer=steer or '')
+                      carrier=carrier * scale, steer=steer or '', bushing=bushing)
 
 
 def _parse_travel(check, block, scale):
@@ -428,8 +435,7 @@ def _size(points):
 def mirror(scene: Scene) -> Scene:
     """Return the scene of the opposite wheel: every point mirrored in the x-z plane (y -> -y)."""
     flip = np.array([1.0, -1.0, 1.0])
-    constraints = tuple(Constraint(name=c.name, type=c.type, base=c.base * flip,
-                                   carrier=c.carrier * flip, steer=c.steer)
+    constraints = tuple(replace(c, base=c.base * flip, carrier=c.carrier * flip)
                         for c in scene.constraints)
     side = 'right' if scene.side == 'left' else 'left'
     return Scene(name=f'{scene.name}_{side}', source=scene.source, side=side, units=scene.units,
@@ -445,8 +451,7 @@ def mirror(scene: Scene) -> Scene:
 def translate(scene: Scene, offset: ArrayLike) -> Scene:
     """Return the scene moved by offset (3,) mm: a corner placed on the vehicle."""
     offset = np.asarray(offset, dtype=float)
-    constraints = tuple(Constraint(name=c.name, type=c.type, base=c.base + offset,
-                                   carrier=c.carrier + offset, steer=c.steer)
+    constraints = tuple(replace(c, base=c.base + offset, carrier=c.carrier + offset)
                         for c in scene.constraints)
     return replace(scene, wheel_center=scene.wheel_center + offset,
                    spin_axis_point=scene.spin_axis_point + offset,

@@ -40,12 +40,15 @@ if TYPE_CHECKING:
 
     from .scene import Scene
     from .vehicle_axles import VehicleAxles
+    from .vehicle_mass import MassData
 
 CORNER_NAME = re.compile(r'^[a-z][a-z0-9_]*$')   # becomes a ROS namespace
 
 # The keys of a vehicle file and of a corner; AXLE_KEYS are read by vehicle_axles.py.
 VEHICLE_KEYS = ('name', 'units', 'corners')
 AXLE_KEYS = ('wheelbase', 'cg_height', 'axles')
+MASS_KEYS = ('mass', 'tyre_rate')   # read by vehicle_mass.py
+FILE_KEYS = VEHICLE_KEYS + AXLE_KEYS + MASS_KEYS
 CORNER_KEYS = ('scene', 'offset', 'mirror', 'travel_joint', 'rack_joint')
 
 
@@ -60,6 +63,8 @@ class Vehicle:
     joints: dict[str, tuple[str, str]] = field(default_factory=dict)
     # wheelbase, cg_height and axles; None if the file has none of these keys
     axles: VehicleAxles | None = None
+    # masses and tyre rates (vehicle_mass.MassData); None: no setup sheet
+    mass: MassData | None = None
     # the file's other keys as read: description, source, notes, x_...
     extras: dict = field(default_factory=dict, compare=False)
 
@@ -76,9 +81,9 @@ def load_vehicle(name_or_path: str | PathLike) -> Vehicle:
     check = Fields(str(path))
     if not isinstance(data, dict) or not isinstance(data.get('corners'), dict) \
             or not data['corners']:
-        check.keys(data if isinstance(data, dict) else {}, VEHICLE_KEYS + AXLE_KEYS)
+        check.keys(data if isinstance(data, dict) else {}, FILE_KEYS)
         check.fail('corners', 'expected a mapping of corner names to {scene, offset, mirror}')
-    check.keys(data, VEHICLE_KEYS + AXLE_KEYS)
+    check.keys(data, FILE_KEYS)
     units = data.get('units', 'mm')
     if not isinstance(units, str) or units not in UNITS_TO_MM:
         check.fail('units', f'unknown value {units!r} (expected one of: mm, m)')
@@ -90,9 +95,21 @@ def load_vehicle(name_or_path: str | PathLike) -> Vehicle:
     if any(key in data for key in AXLE_KEYS):   # axle code loads only for a file that has axles
         from .vehicle_axles import parse_axles
         axles = parse_axles(path, data, corners, UNITS_TO_MM[units])
+    mass = None
+    if any(key in data for key in MASS_KEYS):   # so is the mass code
+        from .vehicle_mass import parse_mass
+        mass = parse_mass(path, data, axles, _axle_x(corners, axles), UNITS_TO_MM[units])
     return Vehicle(name=check.name(data, 'name') or path.stem, source=str(path),
-                   corners=corners, joints=joints, axles=axles,
-                   extras={k: v for k, v in data.items() if k not in VEHICLE_KEYS + AXLE_KEYS})
+                   corners=corners, joints=joints, axles=axles, mass=mass,
+                   extras={k: v for k, v in data.items() if k not in FILE_KEYS})
+
+
+def _axle_x(corners, axles):
+    """Return {axle name: x (mm) of the mean of its wheel centres} of a file's axles."""
+    if axles is None:
+        return {}
+    return {name: 0.5 * float(corners[a.left].wheel_center[0] + corners[a.right].wheel_center[0])
+            for name, a in axles.axles.items()}
 
 
 def _joints(path, corner, spec, scene):

@@ -35,9 +35,11 @@ JACOBIAN_KERNEL_DIGEST = 'ccd7f559764c998ede918fda448df86be47670feaf50368b44a789
 CARRIER, ARM, LINK, ALONG = 0, 1, 2, 3      # MountTable.kind
 # pack_rows columns: one row per guidance equation
 R_LINE, R_OFFSET, R_BASE, R_STEER, R_LENGTH, R_NORMAL, ROW_COLUMNS = 0, 1, 4, 7, 8, 9, 12
-# pack_elements columns: one row per element (a mount alone: body, rate, free length unused)
+# pack_elements columns: one row per element (a mount alone: body, rate, free length unused).
+# E_CURVE: the number n of rows of a spring's force table (0: none, the rate holds), whose
+# deflections (mm) then fill the n columns after it and its forces (N) the n after those.
 (E_KIND, E_OFFSET, E_BASE, E_AXIS, E_COEFF, E_STEER, E_BODY, E_RATE, E_FREE, E_DIRECTION,
- ELEMENT_COLUMNS) = 0, 1, 4, 7, 10, 13, 14, 17, 18, 19, 22
+ E_CURVE, ELEMENT_COLUMNS) = 0, 1, 4, 7, 10, 13, 14, 17, 18, 19, 22, 23
 # mm: an element is defined while its moving point stays more than this ahead of its body
 # point along its design direction (body to moving point). At or below it the two ends have
 # met or passed through each other, which no spring or damper can: its direction, ratio and
@@ -85,6 +87,7 @@ class SpringTable(NamedTuple):
     rate: np.ndarray          # (k,)
     free_length: np.ndarray   # (k,)
     direction: np.ndarray     # (k, 3) unit: body point to moving point at design
+    curves: tuple = ()        # per element None or its force table (n, 2): deflection mm, N
 
 
 class Poses(NamedTuple):
@@ -108,10 +111,19 @@ def pack_elements(mounts: MountTable, springs: SpringTable | None = None) -> np.
     if springs is None:
         springs = SpringTable(np.zeros((k, 3)), np.full(k, np.nan), np.full(k, np.nan),
                               np.zeros((k, 3)))
+    curves = [c if c is not None else np.empty((0, 2))
+              for c in (springs.curves or (None,) * k)]
+    rows = max([len(c) for c in curves] + [0])
+    packed = np.zeros((k, 2 * rows))
+    for j, c in enumerate(curves):
+        packed[j, :len(c)], packed[j, rows:rows + len(c)] = c[:, 0], c[:, 1]
+    # deflections in the first half of the packed columns, forces in the second: each half
+    # starts at the same column on every row; the kernel reads the first E_CURVE of each
+    width = ELEMENT_COLUMNS + 2 * rows
     return np.ascontiguousarray(np.column_stack((
         mounts.kind.astype(float), mounts.offset, mounts.base, mounts.axis, mounts.coeff,
         mounts.steer, springs.body, springs.rate, springs.free_length,
-        springs.direction)).reshape(k, ELEMENT_COLUMNS))
+        springs.direction, [len(c) for c in curves], packed)).reshape(k, width))
 
 
 @jit
@@ -244,9 +256,35 @@ def elements_at(rows, table, center, rotation, rack, jac, values, work, pivots):
         ratio = (dx * vx + dy * vy + dz * vz) / length
         rate2 = (dx * point[2, 0] + dy * point[2, 1] + dz * point[2, 2]
                  + vx * vx + vy * vy + vz * vz - ratio * ratio) / length
-        force = table[j, E_RATE] * (table[j, E_FREE] - length)
+        force, stiffness = spring_at(table[j], table.shape[1], length)
         values[0, j], values[1, j], values[2, j] = length, ratio, rate2
-        values[3, j], values[4, j] = force, table[j, E_RATE] * ratio * ratio - force * rate2
+        values[3, j], values[4, j] = force, stiffness * ratio * ratio - force * rate2
+
+
+@jit
+def spring_at(row, width, length):
+    """
+    Return a spring's (force N, + = compressed; stiffness dF/d deflection N/mm) at length mm.
+
+    The rate's k (L0 - L), k; or its force table (E_CURVE) at the deflection L0 - L,
+    interpolated linearly and held at the end values outside, as Chrono's ChFunctionInterp
+    (no extrapolation): the stiffness is the slope of the table's segment there, 0 outside.
+    """
+    n = int(row[E_CURVE])
+    deflection = row[E_FREE] - length
+    if n == 0:
+        return row[E_RATE] * deflection, row[E_RATE]
+    d0 = E_CURVE + 1
+    f0 = d0 + (width - d0) // 2
+    if deflection <= row[d0]:
+        return row[f0], 0.0
+    if deflection >= row[d0 + n - 1]:
+        return row[f0 + n - 1], 0.0
+    i = 1
+    while row[d0 + i] < deflection:
+        i += 1
+    slope = (row[f0 + i] - row[f0 + i - 1]) / (row[d0 + i] - row[d0 + i - 1])
+    return row[f0 + i - 1] + slope * (deflection - row[d0 + i - 1]), slope
 
 
 @jit

@@ -1,0 +1,106 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
+"""
+The force at every pickup of a solved equilibrium (STATICS_SPEC.md, 'Units and signs').
+
+From the multipliers (a constraint's force on a point is -lambda dc/dx, on the body as on the
+moving parts) and the energies (a bushing's force on the body is K d at its point B, with the
+couple d x K d of its offset and its rotational torque; a spring pulls its body end with
+rate (length - free length) along itself). An arm without a bushing is a rigid revolute: its
+pivot forces balance the arm (ball joint and spring mounts), the axial force, which a rigid
+revolute leaves undetermined, shared equally (the least-norm pair). N, N m, mm.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .rotation import energy_terms, log_so3
+from .system import CARRIER, Item, point_of, position, spring_terms
+from ..base.geometry import cross
+
+
+def pickup_forces(scene, system, eq, force: np.ndarray) -> dict:
+    """Return the Loaded force fields of an equilibrium (dicts keyed by pickup)."""
+    pose, lam = eq.pose, eq.multipliers
+    links, balls, points, body, moments = {}, {}, {}, {}, {}
+    arm_loads = {}   # hinge body -> list of (point, force on the arm)
+
+    def add(key, point, f, m=None):
+        points[key] = np.asarray(point, dtype=float)
+        body[key] = body.get(key, np.zeros(3)) + f
+        if m is not None:
+            moments[key] = moments.get(key, np.zeros(3)) + m
+
+    for (name, kind, items, data), mult in zip(system.constraints, lam):
+        xs = [position(system, pose, it)[0] for it in items]
+        if kind == 'link':
+            d = xs[0] - xs[1]
+            links[name] = float(mult * np.linalg.norm(d) / data)
+            balls[name] = -mult * d / data
+            if items[1].body < 0:
+                add(f'{name}_base', xs[1], mult * d / data)
+        elif kind == 'ball':
+            balls[name] = balls.get(name, np.zeros(3)) + mult * np.eye(3)[data]
+            if system.bodies[items[0].body].kind == 'hinge':
+                arm_loads.setdefault(items[0].body, []).append((xs[0], -mult * np.eye(3)[data]))
+        elif kind == 'line':
+            balls[name] = balls.get(name, np.zeros(3)) + mult * xs[1]
+            add(f'{name}_top', data, -mult * xs[1])
+    springs = {}
+    for element, end, moving in system.springs:
+        x_move = point_of(system, pose, moving)
+        _, grads, _ = spring_terms(element, end.x0, x_move)
+        springs[element.name] = element.spring_at(float(np.linalg.norm(x_move - end.x0)))[0]
+        add(f'{element.name}_body', end.x0, -grads[0])
+        for w, it in moving:
+            on_move = -w * grads[1]
+            if it.body < 0:   # the share at a rigid link's base goes to the body there
+                link = scene.constraints[element.mount.constraint].name
+                add(f'{link}_base', it.x0, on_move)
+            elif system.bodies[it.body].kind == CARRIER:
+                # a link that carries the spring passes its share at the carrier end on to
+                # the carrier, beside its axial force (STATICS_SPEC.md DISAGREEMENTS 1)
+                link = scene.constraints[element.mount.constraint].name
+                balls[link] = balls.get(link, np.zeros(3)) + on_move
+            elif system.bodies[it.body].kind == 'hinge':
+                arm_loads.setdefault(it.body, []).append((position(system, pose, it)[0],
+                                                          on_move))
+    for b in system.bushings:
+        d = position(system, pose, Item(b.body, b.x0))[0] - b.at
+        f = b.stiff @ d
+        couple = cross(d, f)
+        if b.turn is not None:
+            couple = couple + energy_terms(log_so3(pose.r[b.body]), b.turn)[1]
+        add(b.key, b.at, f, couple / 1000.0)
+    for j, k in system.body_of.items():
+        if system.bodies[k].kind == 'hinge':
+            c = scene.constraints[j]
+            for end, f in zip(('axis0', 'axis1'), _pivots(c.base, arm_loads.get(k, []))):
+                add(f'{c.name}_{end}', c.base[0 if end == 'axis0' else 1], f)
+    arms = [b.key for b in system.bushings if scene.constraints[b.constraint].type == 'circle']
+    arms += [f'{c.name}_{end}' for c in scene.constraints
+             if c.type == 'circle' and c.bushing is None for end in ('axis0', 'axis1')]
+    pivots = {key: body[key] for key in arms}
+    return {'link_forces_n': links, 'ball_joint_forces_n': balls, 'spring_forces_n': springs,
+            'pivot_forces_n': pivots, 'body_forces_n': body, 'body_points_mm': points,
+            'body_moments_nm': moments}
+
+
+def _pivots(axis_points, loads):
+    """
+    Return the forces (3,) N a rigid revolute's pivots exert on the body.
+
+    loads: those on its arm [(point (3,), force (3,)), ...]. The reactions on the arm, P0 at
+    axis[0] and P1 at axis[1], balance them: P0 + P1 = -F, L x P1 = -M (moments about axis[0],
+    L = axis[1] - axis[0]; M has no part along L at equilibrium). That fixes P1 across L,
+    -(M x L) / |L|^2; along L the axial force is shared equally (the least-norm pair).
+    """
+    a0, a1 = axis_points
+    total = sum((f for _, f in loads), np.zeros(3))
+    moment = sum((cross(p - a0, f) for p, f in loads), np.zeros(3))
+    span = a1 - a0
+    along = span / np.linalg.norm(span)
+    p1 = -cross(moment, span) / (span @ span) - 0.5 * (total @ along) * along
+    return total + p1, -p1   # on the body: -P0 = F + P1, -P1

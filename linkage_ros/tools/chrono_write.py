@@ -1,0 +1,54 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
+"""
+Writers of chrono_import's results: a scene YAML file and a Chrono JSON file.
+
+The scene is written as the bundled scenes are (one flow mapping per constraint and element,
+floats as Python's repr, so that reading the file back gives the very same numbers), headed
+by comments that record the source file, its template and what was not imported.
+"""
+
+from __future__ import annotations
+
+import json
+import re
+
+import yaml
+
+PLAIN = re.compile(r'^[A-Za-z_][A-Za-z0-9_]*$')
+
+
+def scene_text(scene: dict, header: list) -> str:
+    """Return the YAML text of a scene mapping, headed by comment lines."""
+    lines = [f'# {line}' if line else '#' for line in header]
+    for key, value in scene.items():
+        if key in ('constraints', 'elements'):
+            lines.append(f'{key}:')
+            lines += [f'  - {_flow(item)}' for item in value]
+        elif isinstance(value, dict):
+            lines.append(f'{key}:')
+            lines += [f'  {k}: {_flow(v)}' for k, v in value.items()]
+        else:
+            lines.append(f'{key}: {_flow(value)}')
+    return '\n'.join(lines) + '\n'
+
+
+def _flow(value) -> str:
+    if isinstance(value, dict):
+        return '{' + ', '.join(f'{k}: {_flow(v)}' for k, v in value.items()) + '}'
+    if isinstance(value, (list, tuple)):
+        return '[' + ', '.join(_flow(v) for v in value) + ']'
+    if isinstance(value, bool) or value is None:
+        return yaml.safe_dump(value).split('\n')[0]
+    if isinstance(value, (int, float)):
+        return repr(float(value))
+    text = str(value)
+    if PLAIN.match(text) and yaml.safe_load(text) == text:   # not true, null, ...
+        return text
+    return json.dumps(text)   # a YAML double-quoted scalar
+
+
+def json_text(data: dict) -> str:
+    """Return a Chrono JSON file's text (no comments: Chrono and CARLA both read it)."""
+    return json.dumps(data, indent=2, allow_nan=False) + '\n'

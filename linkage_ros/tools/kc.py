@@ -1,0 +1,306 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
+"""
+linkage-kc: the compliance (the C of K&C) of a scene with bushings, or its loaded pose and forces.
+
+Without a load, the table gives the compliance rates at each travel (and rack), the travel
+held at the wheel centre as a K&C rig's wheel pad holds it: toe, camber and displacement per
+kN of lateral and longitudinal force at the contact patch and at the wheel centre, per kN m
+of aligning torque, and the jacking force per lateral force. With --load (and --moment), the
+table gives the loaded pose and what every link, pivot and spring carries. Model, signs and
+units: doc/kc.md. The table goes to stdout (or to -o FILE), progress and errors to stderr.
+"""
+
+import math
+import sys
+
+import numpy as np
+
+from ..cli import (check_outputs, counted, EXIT_STATUS, fail, Parser, plot_problem, program,
+                   SPAN, span, warn, whole_file)
+from ..core.base import check_position_count, LinkageError, positions_needed
+from ..core.model import load_scene, SceneError
+from ..core.solve import travel_range
+
+PROG = 'linkage-kc'
+# The 6x6 matrix's rows (the wheel centre's response) and columns (the load at the wheel
+# centre), units in the labels: entry [i, j] is response i per unit of load j.
+MATRIX_ROWS = ('dx_mm', 'dy_mm', 'dz_mm', 'rx_deg', 'ry_deg', 'rz_deg')
+MATRIX_COLUMNS = ('fx_kn', 'fy_kn', 'fz_kn', 'mx_knm', 'my_knm', 'mz_knm')
+MATRIX_CORNER = 'response_per_load'
+
+EPILOG = """columns, without a load: travel_mm (+ = bump), rack_mm with --rack, then the
+  compliance rates (doc/kc.md): toe_ and camber_per_fy_cp_deg_per_kn, wc_dy_ and
+  cp_dy_per_fy_cp_mm_per_kn, jacking_per_fy_cp (N/N), toe_ and camber_per_fx_cp_deg_per_kn,
+  wc_dx_per_fx_cp_mm_per_kn, toe_per_fx_wc_deg_per_kn, wc_dx_per_fx_wc_mm_per_kn, toe_ and
+  camber_per_mz_deg_per_knm. Toe + = toe-in, camber + = top outboard, forces and moments in
+  the vehicle frame (x forward, y left, z up); cp the contact patch, wc the wheel centre.
+columns, with --load or --moment: travel_mm, rack_mm with --rack, camber_deg, toe_deg,
+  wheel_center_x/y/z_mm, holding_force_n (the vertical force at the wheel centre that holds
+  the travel, + = up), <link>_force_n (+ = tension), <arm>_<pivot>_fx/fy/fz_n (the force of
+  the arm on the body at pivot axis0, axis1 or centre), <spring>_force_n
+  (+ = compressed) and <strut>_top_fx/fy/fz_n (a strut's force on the body at its top).
+
+examples:
+  linkage-kc double_wishbone --travel -40:40:20
+  linkage-kc double_wishbone --travel 0 --matrix double_wishbone_compliance.csv
+  linkage-kc double_wishbone --travel 0 --load 0,4000,0 --at cp -o cornering.csv
+  linkage-kc double_wishbone --travel 0 --moment 0,0,100 --plot aligning.png
+
+Travels and racks are plain numbers of mm; one value is one position, FROM:TO:STEP a range
+(TO included). --matrix and the picture of a loaded solve are of one position. Timing:
+linkage-bench kc.
+
+exit status: 0 every position solved; 1 a position is out of reach, or a load the linkage
+cannot carry (a bushing beyond the model's validity, or no equilibrium: the line names the
+load and the last residual; the rows solved before it are written); """ + EXIT_STATUS
+
+
+def vector(text: str) -> tuple:
+    """Read X,Y,Z (three finite numbers) into a tuple: an argparse type."""
+    import argparse
+    try:
+        values = tuple(float(v) for v in text.split(','))
+    except ValueError:
+        values = ()
+    if len(values) != 3 or not all(math.isfinite(v) for v in values):
+        raise argparse.ArgumentTypeError(f'expected X,Y,Z, three finite numbers, got {text!r}')
+    return values
+
+
+def parse_args(argv, rounds=0):
+    """Read the command line; a mistake exits with one line and status 2."""
+    parser = Parser(PROG, __doc__, EPILOG)
+    parser.add_argument('scene', help='bundled scene name (e.g. double_wishbone) or path to a '
+                        'YAML file')
+    parser.add_argument('--travel', type=span, metavar=SPAN, required=True,
+                        help='wheel travel, mm, + = bump: one value or a range')
+    parser.add_argument('--rack', type=span, metavar=SPAN,
+                        help='steering rack travel, mm (+ = rack to the left); adds rack_mm; '
+                        'a range solves a travel x rack grid')
+    parser.add_argument('--load', type=vector, metavar='FX,FY,FZ',
+                        help='force on the wheel, N, vehicle frame (needs --at)')
+    parser.add_argument('--at', choices=('cp', 'wc'),
+                        help="where the force acts: cp the contact patch (needs the scene's "
+                        'wheel_radius), wc the wheel centre')
+    parser.add_argument('--moment', type=vector, metavar='MX,MY,MZ',
+                        help='moment on the wheel, N m, vehicle frame')
+    parser.add_argument('--columns', metavar='NAME,...',
+                        help='write only these columns (after travel_mm and rack_mm)')
+    parser.add_argument('-o', '--output', '--csv', dest='output', metavar='FILE',
+                        help='write the table to this file (default: stdout)')
+    parser.add_argument('--matrix', metavar='FILE',
+                        help='write the 6x6 compliance matrix of the wheel centre (csv, mm and '
+                        'deg per kN and kN m) at the one position given')
+    parser.add_argument('--plot', metavar='FILE',
+                        help='draw the rates against travel, or with a load the loaded '
+                        'mechanism in front and side views with its forces (PNG)')
+    args = parser.parse_args(argv)
+    args.rounds = rounds
+    if args.load is not None and args.at is None:
+        parser.error('--load needs --at cp or --at wc (where the force acts)')
+    if args.at is not None and args.load is None:
+        parser.error('--at says where the force of --load acts: give --load FX,FY,FZ')
+    args.loaded = args.load is not None or args.moment is not None
+    if args.loaded and args.matrix:
+        parser.error('--matrix is the compliance at zero load: leave out --load and --moment')
+    return args
+
+
+def positions(args):
+    """Return (travels, racks) of the request (mm), or raise LinkageError naming the option."""
+    count = positions_needed(*args.travel, '--travel')
+    racks = np.zeros(1)
+    if args.rack is not None:
+        positions_needed(*args.rack, '--rack')   # before a range too long is made
+        racks = travel_range(*args.rack)
+    check_position_count(count * len(racks), '--rack',
+                         f'{counted(count, "travel")} x {counted(len(racks), "rack")}')
+    travels = travel_range(*args.travel)
+    one = len(travels) * len(racks) == 1
+    for option in ('matrix', 'plot'):
+        if getattr(args, option) and not one and (option == 'matrix' or args.loaded):
+            what = 'the matrix' if option == 'matrix' else 'the loaded mechanism'
+            many = counted(len(travels) * len(racks), 'position')
+            raise LinkageError(f'--{option}', f'{what} is of one position: give one --travel '
+                               f'(and one --rack), not {many}')
+    return travels, racks
+
+
+def check_request(scene, args):
+    """Raise LinkageError for what the scene cannot do: a contact patch, a rack, a column."""
+    if args.at == 'cp' and not scene.wheel_radius > 0:
+        raise LinkageError('--at cp', f'{scene.name} has no wheel_radius, so no contact patch: '
+                           'give wheel_radius in the scene, or load at the wheel centre (--at wc)')
+    if args.rack is not None and not scene.steered:
+        raise LinkageError('--rack', f'{scene.name}: no constraint is marked steer: rack, so a '
+                           'rack input moves nothing')
+
+
+def loaded_header(scene, result):
+    """
+    Return the columns of a loaded solve after travel and rack, from the registry's templates.
+
+    The wheel's columns, the holding force, each link's force, each pivot's force on the body
+    (x, y, z), each spring's force (the issue's order), then each strut's force on the body at
+    its top mount (x, y, z): the Loaded's names.
+    """
+    from ..core.measure import quantities
+    wheel = [n for n in quantities.columns('wheel') if n.startswith(('camber', 'toe', 'wheel'))]
+    holding, member, *pivot = quantities.names('kc_loaded')[:5]
+    top = quantities.names('kc_loaded')[5:]
+    return (wheel + [holding] + [member.format(member=n) for n in result.link_forces_n]
+            + [t.format(pivot=p) for p in result.pivot_forces_n for t in pivot]
+            + [member.format(member=n) for n in result.spring_forces_n]
+            + [t.format(strut=s) for s in struts(scene) for t in top])
+
+
+def struts(scene):
+    """Return the names of the scene's line constraints (struts), in constraint order."""
+    return [c.name for c in scene.constraints if c.type == 'line']
+
+
+def loaded_row(scene, result):
+    """Return the values of loaded_header of a Loaded (mm, deg, N)."""
+    row = [result.camber_deg, result.toe_deg, *result.wheel_center_mm, result.holding_force_n]
+    row += list(result.link_forces_n.values())
+    row += [v for force in result.pivot_forces_n.values() for v in force]
+    row += list(result.spring_forces_n.values())
+    row += [v for name in struts(scene) for v in result.body_forces_n[f'{name}_top']]
+    return row
+
+
+def select(header, wanted):
+    """Return the indices of the wanted columns in header; LinkageError names an unknown one."""
+    if wanted is None:
+        return list(range(len(header)))
+    names = [w.strip() for w in wanted.split(',') if w.strip()]
+    unknown = [n for n in names if n not in header]
+    if unknown or not names:
+        problem = f'unknown column {unknown[0]!r}' if unknown else 'no column named'
+        raise LinkageError('--columns', f'{problem}: choose from {", ".join(header)}')
+    return [header.index(n) for n in names]
+
+
+def write_csv(header, rows, stream):
+    """Write a table as CSV, values to 10 significant digits (no '-0')."""
+    row_format = ','.join(['%.10g'] * len(header)) + '\n'
+    stream.write(','.join(header) + '\n')
+    stream.writelines(row_format % tuple(row) for row in (np.asarray(rows, float).reshape(
+        -1, len(header)) + 0.0).tolist())
+
+
+def write_matrix(matrix, stream):
+    """Write the 6x6 wheel-centre compliance as CSV with labelled rows and columns."""
+    stream.write(','.join((MATRIX_CORNER,) + MATRIX_COLUMNS) + '\n')
+    for label, row in zip(MATRIX_ROWS, np.asarray(matrix, float) + 0.0):
+        stream.write(','.join([label] + ['%.10g' % v for v in row]) + '\n')
+
+
+def load_of(args):
+    """Return the statics Load of the request (a moment alone acts at the wheel centre)."""
+    from ..core.statics import Load
+    return Load(force_n=args.load or (0.0, 0.0, 0.0), at=args.at or 'wc',
+                moment_nm=args.moment or (0.0, 0.0, 0.0))
+
+
+def solve(scene, args, travels, racks):
+    """
+    Solve every position: (header, rows, results, failure); failure '' when all solved.
+
+    Rack by rack, travel by travel; the first position that fails ends the table there (its
+    message is the failure). header and rows hold the columns --columns keeps; results: the
+    Compliance or Loaded of each solved position. An unknown column raises LinkageError once
+    the first position has named the columns, before anything is said or written.
+    """
+    from ..core.base import Status
+    from ..core.statics import compliance, solve_loaded
+    lead = ['travel_mm'] + (['rack_mm'] if args.rack is not None else [])
+    header, chosen, rows, results = None, None, [], []
+    load = load_of(args) if args.loaded else None
+    for rack in racks:
+        for travel in travels:
+            if load is None:
+                result = compliance(scene, travel_mm=float(travel), rack_mm=float(rack))
+            else:
+                result = solve_loaded(scene, travel_mm=float(travel), load=load,
+                                      rack_mm=float(rack))
+            if result.status != Status.OK:   # the message names the travel (and the load)
+                failure = f'ERROR {result.status.name}: {result.message}'
+                return header or lead, rows, results, failure
+            values = list(result.rates.values()) if load is None else loaded_row(scene, result)
+            if header is None:
+                names = list(result.rates) if load is None else loaded_header(scene, result)
+                chosen = list(range(len(lead))) + [
+                    len(lead) + i for i in select(names, args.columns)]
+                header = [(lead + names)[i] for i in chosen]
+                announce(scene, args, len(travels) * len(racks))
+            row = [travel] + ([rack] if len(lead) > 1 else []) + values
+            rows.append([row[i] for i in chosen])
+            results.append(result)
+    return header, rows, results, ''
+
+
+def announce(scene, args, count):
+    """Say on stderr what is being solved (once the request is known to be sound)."""
+    what = f'loaded by {load_of(args)}' if args.loaded else 'compliance rates'
+    print(f'{PROG}: {scene.name}: {what}, {counted(count, "position")}', file=sys.stderr)
+
+
+@program(PROG)
+def main(argv: list[str] | None = None, rounds: int = 0) -> int:
+    """
+    Run linkage-kc: 0 when done, 1 if a position fails (out of reach, not carried), 2 mistake.
+
+    rounds > 0 times the rates and a loaded solve against a kinematic solve instead
+    (linkage-bench kc).
+    """
+    args = parse_args(argv, rounds)
+    try:
+        scene = load_scene(args.scene)
+        travels, racks = positions(args)
+        check_request(scene, args)
+        outputs = (('-o', args.output), ('--matrix', args.matrix), ('--plot', args.plot))
+        check_outputs([(option, path) for option, path in outputs if path], [scene.source])
+    except (SceneError, LinkageError) as exc:
+        return fail(PROG, exc)
+    warn(PROG, scene.warnings)
+    problem = args.plot and plot_problem(args.plot)
+    if problem:
+        return fail(PROG, f'--plot: {problem}')
+    from ..core.warmup import compile_if_cold
+    compile_if_cold(PROG)
+    if args.rounds:
+        from .kc_bench import benchmark
+        return benchmark(scene, travels, racks, load_of(args) if args.loaded else None,
+                         args.rounds)
+    try:
+        header, rows, results, failure = solve(scene, args, travels, racks)
+    except LinkageError as exc:   # an unknown column
+        return fail(PROG, exc)
+    if args.output:
+        with whole_file(args.output) as stream:
+            write_csv(header, rows, stream)
+    else:
+        write_csv(header, rows, sys.stdout)
+        sys.stdout.flush()
+    if args.matrix and results:
+        with whole_file(args.matrix) as stream:
+            write_matrix(results[0].matrix, stream)
+    if args.plot and results:
+        from .kc_plot import plot_loaded, plot_rates
+        if args.loaded:
+            plot_loaded(scene, results[0], load_of(args), args.plot)
+        else:
+            plot_rates(scene, header, rows, args.plot)
+        print(f'{PROG}: wrote {args.plot}', file=sys.stderr)
+    if failure:
+        print(f'{PROG}: {failure} ({counted(len(rows), "position")} written)', file=sys.stderr)
+        return 1
+    print(f'{PROG}: done', file=sys.stderr)
+    return 0
+
+
+if __name__ == '__main__':
+    sys.exit(main())

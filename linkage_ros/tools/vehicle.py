@@ -1,0 +1,143 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
+"""
+linkage-vehicle: the setup sheet of a vehicle: rates, frequencies, roll, load transfer, pitch.
+
+    linkage-vehicle VEHICLE [--csv FILE] [--plot FILE] [--tables DIR]
+
+One table (CSV), a row per axle (front, rear) and one for the vehicle, the units in the column
+names (doc/vehicle.md gives every formula and its source, doc/quantities.md every column). The
+vehicle file needs `mass` and `tyre_rate` (config/vehicles/demo_vehicle.yaml); without them it
+has no setup sheet, and says so in one line. --tables writes each axle's quantities over
+heave, roll and rack (front_heave.csv, front_roll.csv, front_rack.csv, rear_heave.csv, ...).
+"""
+
+import csv
+import math
+import sys
+
+from ..cli import (EXIT_STATUS, fail, output_folder, Parser, plot_problem, program, warn,
+                   writable_file)
+from ..core.base import LinkageError
+from ..core.model import load_vehicle, SceneError
+from ..core.warmup import compile_if_cold
+
+PROG = 'linkage-vehicle'
+
+EPILOG = """examples:
+  linkage-vehicle demo_vehicle
+  linkage-vehicle demo_vehicle --csv sheet.csv --plot sheet.png
+  linkage-vehicle demo_vehicle --tables sheet_tables
+
+columns (the axle rows, then the vehicle's; empty where a column is not the row's): axle,
+wheel_rate_N_per_mm, ride_rate_N_per_mm, ride_frequency_Hz, roll_stiffness_springs_Nm_per_deg,
+roll_stiffness_bar_Nm_per_deg, roll_stiffness_Nm_per_deg, roll_stiffness_textbook_Nm_per_deg,
+roll_centre_height_mm, the anti quantities, load_transfer_*_N (at 1 g), steering_ratio_*;
+roll_axis_height_at_cg_mm, roll_moment_arm_mm, roll_gradient_deg_per_g, lltd_front_pct,
+pitch_gradient_*_deg_per_g, pitch_centre_*_mm. Timing: linkage-bench vehicle.
+
+exit status: 0 the sheet written; 1 a table stopped at a corner's travel limits or out of
+reach (the message names where; the sheet is of what was solved); """ + EXIT_STATUS
+
+
+def parse_args(argv):
+    parser = Parser(PROG, __doc__, EPILOG)
+    parser.add_argument('vehicle', help='bundled vehicle name or path to a vehicle YAML file '
+                        'with mass and tyre_rate')
+    parser.add_argument('-o', '--output', '--csv', dest='output', metavar='FILE',
+                        help='write the sheet to this CSV file (default: stdout)')
+    parser.add_argument('--plot', metavar='FILE', help='draw the sheet to this PNG file '
+                        '(needs matplotlib)')
+    parser.add_argument('--tables', metavar='DIR', help="write each axle's heave, roll and "
+                        'rack tables into this folder (made if missing)')
+    return parser.parse_args(argv)
+
+
+def sheet_table(sheet):
+    """Return (header, rows) of a SetupSheet: 'axle' first, every column once, in order."""
+    header = ['axle'] + list(dict.fromkeys(k for row in sheet.rows.values() for k in row))
+    rows = [[name] + [row.get(k) for k in header[1:]] for name, row in sheet.rows.items()]
+    return header, rows
+
+
+def write_csv(header, rows, stream):
+    """Write the sheet as CSV: numbers to 10 significant digits, '' where a row has none."""
+    writer = csv.writer(stream, lineterminator='\n')
+    writer.writerow(header)
+    for row in rows:
+        writer.writerow([v if isinstance(v, str) else '' if v is None or math.isnan(v)
+                         else f'{v + 0.0:.10g}' for v in row])
+
+
+def problem_of(vehicle):
+    """Say in a few words why a loaded vehicle has no setup sheet; '' if it has one."""
+    if vehicle.mass is None:
+        return (f'{vehicle.name} ({vehicle.source}) has no setup sheet: its file has no mass '
+                'block (mass: sprung, front_share or cg_x, unsprung; tyre_rate: '
+                'doc/vehicle.md)')
+    for name in ('front', 'rear'):
+        spec = vehicle.axles.axles[name]
+        for corner in (spec.left, spec.right):
+            if not any(e.has_rate for e in vehicle.corners[corner].elements):
+                return (f'{vehicle.source}: corners.{corner}: its scene has no spring with a '
+                        'rate and free_length: the wheel rate, ride rate and roll stiffness '
+                        'need one')
+    return ''
+
+
+@program(PROG)
+def main(argv=None, rounds=0):
+    """Run linkage-vehicle: 0 when done, 1 if a table stopped early, 2 for a mistake."""
+    args = parse_args(argv)
+    try:
+        vehicle = load_vehicle(args.vehicle)
+    except SceneError as exc:
+        return fail(PROG, exc)
+    warn(PROG, vehicle.warnings)
+    problem = problem_of(vehicle)
+    if problem:
+        return fail(PROG, problem)
+    for option, path in (('-o', args.output), ('--plot', args.plot)):
+        problem = path and (plot_problem(path) if option == '--plot' else writable_file(path))
+        if problem:
+            return fail(PROG, f'{option}: {problem}')
+    try:
+        folder = args.tables and output_folder(args.tables, '--tables')
+    except LinkageError as exc:
+        return fail(PROG, exc)
+    compile_if_cold(PROG)
+    from ..core.vehicle import setup_sheet
+    if rounds:
+        from ..bench.sheet import benchmark
+        benchmark(vehicle, setup_sheet, rounds)
+        return 0
+    sheet = setup_sheet(vehicle)
+    for note in sheet.notes:
+        print(f'{PROG}: {note}', file=sys.stderr)
+    header, rows = sheet_table(sheet)
+    if args.output:
+        with open(args.output, 'w', newline='') as stream:
+            write_csv(header, rows, stream)
+    else:
+        write_csv(header, rows, sys.stdout)
+        sys.stdout.flush()
+    if folder:
+        for name, sheet_axle in sheet.axles.items():
+            for table, columns in sheet_axle.tables.items():
+                with open(folder / f'{name}_{table}.csv', 'w', newline='') as stream:
+                    write_csv(list(columns), [list(r) for r in zip(*columns.values())], stream)
+    if args.plot:
+        from .vehicle_plot import plot_sheet
+        plot_sheet(sheet, args.plot)
+        print(f'{PROG}: wrote {args.plot}', file=sys.stderr)
+    for message in sheet.messages:
+        print(f'{PROG}: {message}', file=sys.stderr)
+    if sheet.messages:
+        return 1
+    print(f'{PROG}: done', file=sys.stderr)
+    return 0
+
+
+if __name__ == '__main__':
+    sys.exit(main())
