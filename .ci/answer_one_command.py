@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """CI, colcon route: send one wheel travel to a running suspension_node and check its pose.
 
 Exits 0 when the pose of a 50 mm bump arrives (wheel centre 50 mm above design), 1 if no

@@ -1,10 +1,15 @@
 #!/bin/bash
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 # Run the commands of README.md and doc/*.md as written, from the root of a checkout where
 # command 1 has run (by hand, not in CI: it starts nodes and takes a few minutes).
 # Usage: bash .ci/readme_commands.sh          the commands, but the long ones
 #        LONG=1 bash .ci/readme_commands.sh   also the benchmarks, the soak and the screenshots
 # Not run here: command 2 and the inner-loop pytest (the suite: .ci/run runs it), the colcon
-# route of doc/node.md (.ci/run runs it), the linkage-plot commands that rewrite the committed
+# route of doc/node.md (.ci/run runs it), `ros2 launch` in README.md and doc/node.md (it needs
+# a full ROS install: the launch tooling has no wheel; test/ros/test_launch_file.py checks the
+# file), the linkage-plot commands that rewrite the committed
 # pictures (test/tools/test_plots.py and test/tools/test_axle_plot.py run them into a temporary folder),
 # and the Python of doc/maps.md, doc/elements.md and doc/testing.md (test/tools/test_map_doc.py,
 # test/core/test_elements.py and test/ros/test_plugin_example.py run it). Not run even with LONG=1: the

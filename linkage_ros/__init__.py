@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 linkage_ros: kinematics of spatial multi-link suspensions (Alexandru 2018) for ROS 2.
 

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 ROS 2 messages as CDR bytes, the form in which DDS carries them and MCAP stores them.
 

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 What /diagnostics says about one corner, kept the way diagnostic_updater keeps it.
 

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 The robot description (URDF) of a scene or a vehicle, for RViz, Foxglove and Rerun.
 

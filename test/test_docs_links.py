@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 Every relative link of README.md and doc/*.md reaches a file, and its anchor a heading there.
 

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """The Rerun screenshot recipes of doc/: the pointer starts off the viewer's window."""
 
 from pathlib import Path

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 The solvers linkage-bench compares, and the catalogue of entries (Entry) that runs them.
 

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 linkage-bench vehicle: the time of a vehicle's setup sheet at 1x, 10x and 100x its table sizes.
 

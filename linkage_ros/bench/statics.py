@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 Timing of the statics (issue 29): rates and one loaded solve against one kinematic solve.
 

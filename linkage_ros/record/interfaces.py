@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 ROS 2 interfaces as rosbag2 stores them in an MCAP file: schemas, type hashes, QoS profiles.
 

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 Where the labels of a 3D view go so that none covers another (pure geometry, no Rerun).
 

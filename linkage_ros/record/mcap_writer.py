@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 MCAP recording in the layout rosbag2's MCAP storage plugin writes (Jazzy).
 

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 How a suspension is drawn in Rerun: the scene in 3D, the plots, the blueprint, the columns.
 

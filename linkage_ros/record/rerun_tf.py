@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 A Rerun view of a recording drawn from what any ROS viewer draws: its URDF and its TF.
 

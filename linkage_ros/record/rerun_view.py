@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 Rerun mirror of a run: RerunRecorder, the sink that writes what the node does to a .rrd file.
 

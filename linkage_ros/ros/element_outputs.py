@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 A corner's springs, dampers and lengths on suspension_node: lengths and motion ratios per answer.
 

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 Where ROS traffic goes: the user's ROS domain, private contexts, a private network for tests.
 

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 visualization_msgs/MarkerArray of one solved position: links and joints, pure, no DDS.
 

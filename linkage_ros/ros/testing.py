@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 pytest plugin for launch-free tests of suspension_node: real rclpy and DDS, no launch.
 

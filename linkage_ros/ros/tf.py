@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 TF of a solved corner: /tf per answer, /tf_static of the design-fixed frames, as CDR bytes.
 

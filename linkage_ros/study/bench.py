@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 Benchmark of the studies: python -m linkage_ros.study.bench [--sizes N ...] [--repeats R].
 

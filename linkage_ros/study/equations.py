@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 The guidance equations' values and Jacobians at poses, on jets.Jet values carrying d/dH.
 

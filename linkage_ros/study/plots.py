@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 Pictures of the studies (matplotlib, the plot extra): a tolerance stack-up, a fit.
 

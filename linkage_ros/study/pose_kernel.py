@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 Compiled sensitivities of the sweep's columns to the hardpoints, by closed forms.
 
@@ -26,8 +29,8 @@ from ..core.solve.jacobian_kernel import factor, solve
 
 # sha256 of so3.py and of jacobian_kernel.py, whose rotate and LU (factor, solve) are
 # compiled in here: numba's cache follows each file alone (test_kernel checks them)
-SO3_DIGEST = '63b60c6921d8498a47cf8a0a86bdda0a2f05c7473f028ff5e6d7b18de31758ea'
-JACOBIAN_KERNEL_DIGEST = '9aaaebd12e421b96856c917aeca3135397c228124eef0fe193d1176386b7aac5'
+SO3_DIGEST = '862efb847a68465a5f68ec100893bccc4658d8a7278ad25575f0da1dc9d158aa'
+JACOBIAN_KERNEL_DIGEST = 'ccd7f559764c998ede918fda448df86be47670feaf50368b44a7896fbfb2097d'
 
 jit = njit(cache=True, nogil=True, error_model='numpy')
 

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 Exact sensitivities of a suspension's quantities to its hardpoints (implicit function theorem).
 

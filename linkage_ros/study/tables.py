@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 The tables of the studies, written as CSV (exact decimal) or Parquet (by the file's suffix).
 

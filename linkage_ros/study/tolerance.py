@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 Tolerance stack-up: how hardpoint and length tolerances spread camber, toe and wheel centre.
 

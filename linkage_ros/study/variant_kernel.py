@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 A compiled solve batched over mechanism variants: each variant at n travels, from the design's.
 
@@ -27,8 +30,8 @@ from ..core.measure import columns
 from ..core.solve import kernel
 
 # sha256 of the files compiled in (test_kernel checks them)
-KERNEL_DIGEST = 'aac551c5ae7e0ce7eefb2d02eae639375599903a43e8c3ba5170f5430657f31f'
-SO3_DIGEST = '63b60c6921d8498a47cf8a0a86bdda0a2f05c7473f028ff5e6d7b18de31758ea'
+KERNEL_DIGEST = 'c0a029c4e5e1c091f63da6488d3ba82bb2cf3db8526578c301bd167c62db1392'
+SO3_DIGEST = '862efb847a68465a5f68ec100893bccc4658d8a7278ad25575f0da1dc9d158aa'
 # What out holds per (variant, travel), in order: the registry's 'wheel' quantities (camber,
 # toe, wheel centre x, y, z; camber and toe in rad here, deg in tables)
 QUANTITIES = tuple(columns('wheel'))

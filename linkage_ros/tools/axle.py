@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 linkage-axle: solve an axle of a vehicle in heave, roll and steer; write a CSV table (mm, deg).
 

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 linkage-chrono: import Chrono::Vehicle suspension and vehicle JSON files, export scenes to them.
 

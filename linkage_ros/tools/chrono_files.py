@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 The files of linkage-chrono: a Chrono file in, the scene (or vehicle) text out, checked.
 

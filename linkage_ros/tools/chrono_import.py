@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 Chrono::Vehicle suspension JSON -> a scene mapping (units m, left side), with notes.
 

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 Chrono::Vehicle JSON files read as Chrono reads them, and the values in them checked.
 

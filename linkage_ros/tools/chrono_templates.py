@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 Chrono::Vehicle's named suspension templates as data: their parts, point keys and scene names.
 

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 linkage-kc: the compliance (the C of K&C) of a scene with bushings, or its loaded pose and forces.
 

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 The files of a kinematic map: CSV in long form, NumPy .npz of axes and arrays, Parquet.
 

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 Kinematic maps: every quantity of the tables, solved on a regular grid, for lookup tables.
 

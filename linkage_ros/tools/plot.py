@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 linkage-plot: the pictures of README.md and doc/, as PNG files (needs matplotlib: the plot extra).
 

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 linkage-replay: solve the wheel-travel commands of a recorded run, or republish them on ROS.
 

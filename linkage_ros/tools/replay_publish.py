@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 Republish recorded commands on ROS 2 at their recorded pace (linkage-replay publish).
 

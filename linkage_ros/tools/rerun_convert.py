@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 linkage-rerun: convert a recorded run (MCAP) into a Rerun .rrd for offline viewing.
 

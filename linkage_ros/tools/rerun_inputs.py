@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 What linkage-rerun draws beyond a bag's own topics: the parts of a run, and joint_states.
 

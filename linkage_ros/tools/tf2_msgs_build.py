@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 linkage-tf2-msgs: build tf2_msgs (TFMessage) into this Python environment, for live /tf.
 

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """linkage-bench chrono: its table (the timing itself lives in doc/benchmarks.md)."""
 
 from pathlib import Path

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """linkage-bench vehicle: the setup sheet timed at multiples of its table sizes."""
 
 from linkage_ros.bench.sheet import benchmark

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """linkage-soak: what it counts is what the node did (its speed is for the benchmark to say)."""
 
 import csv

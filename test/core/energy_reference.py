@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 An independent statics of a scene with bushings: minimum potential energy over 6-DOF bodies.
 

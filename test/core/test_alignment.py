@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """Exact derivatives and the alignment set, checked against finite differences of sweeps."""
 
 from linkage_ros.core.measure import alignment

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 Anti-roll bars of axles: the bar's angles and twist, its ratios, its roll stiffness.
 

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 Axle quantities (core.axle.axle) against computations of their own, on every bundled scene.
 

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """Bushings in scene files: read in N/mm, checked, refused in one line naming the field."""
 
 import math

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 Springs, dampers and lengths: their lengths, motion ratios, forces and wheel rates.
 

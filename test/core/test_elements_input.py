@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """Elements in scene files: a mistake is one line naming the file and field, status 2."""
 
 from pathlib import Path

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """The kinematics core: reference agreement, residuals, paper = fast, Jacobians, continuation."""
 
 from pathlib import Path

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 The extended-precision 6-DOF reference and the baseline solvers of linkage-bench.
 

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """Scene loading: every malformed scene fails with one SceneError naming file, field, problem."""
 
 import copy

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 Names and paths of scene and vehicle files that could break the node (issue 27, items 2, 3, 6).
 

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 Static alignment in a scene: the design camber and toe in degrees instead of a spin-axis point.
 

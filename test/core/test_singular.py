@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 A singular mechanism is an answer with a status, never an exception (issue 23 item 2).
 

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """The compiled statics (core/statics/kernel.py) against its numpy twin (system.py, newton.py)."""
 
 import hashlib

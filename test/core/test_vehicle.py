@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """Vehicle files: four corners, right-hand side by mirroring, placed by offsets."""
 
 from pathlib import Path

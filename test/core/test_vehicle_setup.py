@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 The setup sheet's rates, roll stiffness, roll gradient and load transfer (core/vehicle).
 

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 linkage_ros.core.warmup: telling that the kernels must be compiled, and compiling them aside.
 

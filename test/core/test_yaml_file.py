@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 Reading scene and vehicle files: one line for a file that is not plain YAML, bounded cost.
 

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 Damaged recordings: each kind of damage made with real corrupt bytes, named exactly.
 

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 CDR layouts built in place (linkage_ros.cdr): byte for byte what rclpy serializes.
 

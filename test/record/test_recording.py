@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 McapRecorder writes the layout rosbag2's MCAP storage writes; read back by independent readers.
 

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 The Rerun mirror draws the statics topics as arrows: contact_wrench and pickup/<name>.
 

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """The alignment and marker message builders, pure: no DDS."""
 
 from builtin_interfaces.msg import Time

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 Fuzzed commands to an in-process suspension_node: arbitrary JointState and Float64 messages.
 

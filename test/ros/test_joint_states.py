@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 suspension_node's joint_states input (sensor_msgs/JointState), over real DDS in process.
 

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """linkage_ros.ros.messages: Solution (mm, rad) -> ROS messages (m, rad), without DDS."""
 
 import math

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 suspension_node with statics over real rclpy and DDS: contact_wrench in, loaded poses out.
 

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 The outputs of an answered command: one declared table (protocol.OUTPUTS), one list per answer.
 

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 suspension_node's parameters changed while it runs, through rcl_interfaces SetParameters.
 

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 suspension_node's SetParameters under hostile or careless requests (issue 27, items 2-8).
 

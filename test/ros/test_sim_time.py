@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 use_sim_time: with a /clock publisher every stamp suspension_node writes is simulated time.
 

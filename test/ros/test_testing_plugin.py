@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """linkage_ros.ros.testing, the pytest plugin: its fixtures in use, and what it leaves alone."""
 
 from importlib.metadata import entry_points

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 The TF frames of a solved corner (linkage_ros.core.measure.bodies, linkage_ros.ros.tf).
 

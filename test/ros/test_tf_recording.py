@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 Recordings carry /tf, /tf_static and /robot_description: the node's and linkage-replay's.
 

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 linkage-study on a real Dask cluster: a scheduler and two worker processes on this machine.
 

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """linkage-study fit: hardpoints fitted to target curves, checked by sweeping the written scene."""
 
 from pathlib import Path

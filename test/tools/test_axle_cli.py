@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """linkage-axle and the axles of vehicle files: columns, units, statuses, one-line mistakes."""
 
 import csv

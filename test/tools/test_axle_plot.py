@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """linkage-plot roll-centre: the axle picture of doc/axle.md, and its one-line mistakes."""
 
 from pathlib import Path

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """Bad Chrono files: one line naming the problem, exit status 2, nothing written."""
 
 import json

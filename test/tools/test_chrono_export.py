@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 Scenes exported to Chrono::Vehicle JSON (linkage-chrono export) and read back.
 

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 One command-line vocabulary: --travel/--rack FROM[:TO:STEP], -o/--output, linkage-bench.
 

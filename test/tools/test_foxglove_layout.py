@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 The Foxglove layout of a scene or a vehicle (linkage-foxglove, tools/foxglove_layout.py).
 

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 Fuzzed input files: scene and vehicle YAML, and bags of arbitrary or damaged bytes.
 

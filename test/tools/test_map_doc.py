@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """doc/maps.md: its Python runs as written, and its table of mid-cell errors is what it prints."""
 
 import contextlib

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 linkage-replay: solves the commands of a bag into a new bag, republishes them, recovers cuts.
 

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 linkage-replay against hostile and extreme input: each case of issue 23 that concerns it.
 

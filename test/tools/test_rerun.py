@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 Rerun mirror: geometry drawn from the pose alone, and the .rrd read back headless.
 

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 linkage-rerun on what users and attackers hand it, and what the view shows of a steered run.
 

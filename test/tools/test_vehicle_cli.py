@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """linkage-vehicle: the setup sheet as a table and pictures; bad input one line, status 2."""
 
 import csv

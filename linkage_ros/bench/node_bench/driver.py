@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """The driver of linkage-node-bench: sends commands to a node process, times its answers."""
 
 import time

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """The node processes linkage-node-bench measures: started in a namespace, stopped, found."""
 
 import os

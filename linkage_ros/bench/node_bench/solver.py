@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """Sections core and sweep of linkage-node-bench: the solver alone, no ROS."""
 
 import contextlib

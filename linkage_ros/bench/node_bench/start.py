@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """Section start of linkage-node-bench: from a process's launch to its first answer."""
 
 import os

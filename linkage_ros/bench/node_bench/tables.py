@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """What linkage-node-bench prints: progress on stderr, CSV tables on stdout."""
 
 import sys

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """Section vehicle of linkage-node-bench: four corners against a four-corner echo node."""
 
 import sys

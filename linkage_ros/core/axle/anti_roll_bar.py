@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 An axle's anti-roll bar: its twist, its ratios to roll and to wheel travel, its roll stiffness.
 

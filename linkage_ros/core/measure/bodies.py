@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 The moving bodies of a corner and their frames: the carrier, the wheel, each link, arm, strut.
 

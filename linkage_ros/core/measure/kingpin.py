@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 The geometric kingpin axis: the line through two ball joints, real or virtual (beyond the paper).
 

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 The carrier's motion per unit of wheel travel, to second order, exact (beyond the paper).
 

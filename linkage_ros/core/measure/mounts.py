@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 The motion of mounts (model/mounts.py: points on the carrier, an arm, a link, a strut).
 

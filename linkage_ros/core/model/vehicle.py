@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 Vehicle files: a scene per corner, placed on the vehicle, right corners by mirroring.
 

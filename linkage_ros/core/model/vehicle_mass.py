@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 The masses of a vehicle file and its tyres' vertical rates: what a setup sheet needs.
 

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 Reading a scene or vehicle file: plain YAML data, within bounds, or one line that says why not.
 

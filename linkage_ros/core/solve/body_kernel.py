@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 Compiled kernel of the bodies' frames at a pose (bodies.py: what each frame is).
 
@@ -17,7 +20,7 @@ import numpy as np
 from ..base.so3 import quaternion as so3_quaternion
 
 # sha256 of so3.py (test_kernel checks it, as kernel.SO3_DIGEST)
-SO3_DIGEST = '63b60c6921d8498a47cf8a0a86bdda0a2f05c7473f028ff5e6d7b18de31758ea'
+SO3_DIGEST = '862efb847a68465a5f68ec100893bccc4658d8a7278ad25575f0da1dc9d158aa'
 CARRIER, LINK, ARM, STRUT = 0, 1, 2, 3      # KIND
 # table columns: the body's kind, its carrier joint (index into the carrier offsets), 1 for a
 # link whose body end moves with the rack, its design origin (3) and frame (3 x 3, row-major:

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 Compiled kernels of the elements: the carrier's motion to second order, mount points, lengths.
 
@@ -26,9 +29,9 @@ from .jacobian_kernel import factor, solve
 from ..base.so3 import rotate
 
 # sha256 of so3.py (test_kernel checks it, as kernel.SO3_DIGEST)
-SO3_DIGEST = '63b60c6921d8498a47cf8a0a86bdda0a2f05c7473f028ff5e6d7b18de31758ea'
+SO3_DIGEST = '862efb847a68465a5f68ec100893bccc4658d8a7278ad25575f0da1dc9d158aa'
 # sha256 of jacobian_kernel.py (its LU, factor and solve, compiled in here; as kernel.py)
-JACOBIAN_KERNEL_DIGEST = '9aaaebd12e421b96856c917aeca3135397c228124eef0fe193d1176386b7aac5'
+JACOBIAN_KERNEL_DIGEST = 'ccd7f559764c998ede918fda448df86be47670feaf50368b44a7896fbfb2097d'
 CARRIER, ARM, LINK, ALONG = 0, 1, 2, 3      # MountTable.kind
 # pack_rows columns: one row per guidance equation
 R_LINE, R_OFFSET, R_BASE, R_STEER, R_LENGTH, R_NORMAL, ROW_COLUMNS = 0, 1, 4, 7, 8, 9, 12

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 Compiled kernels of the fast method: guidance equations, Newton, tangent, branch check, walk.
 
@@ -35,9 +38,9 @@ from .jacobian_kernel import condition, determinant, FREE, solve_free  # noqa: F
 from ..base.so3 import camber_toe, quaternion, rotate, turn
 
 # sha256 of so3.py (test_kernel checks it and says the value to set after an edit there)
-SO3_DIGEST = '63b60c6921d8498a47cf8a0a86bdda0a2f05c7473f028ff5e6d7b18de31758ea'
+SO3_DIGEST = '862efb847a68465a5f68ec100893bccc4658d8a7278ad25575f0da1dc9d158aa'
 # sha256 of jacobian_kernel.py (the linear algebra compiled in here; test_kernel checks it)
-JACOBIAN_KERNEL_DIGEST = '9aaaebd12e421b96856c917aeca3135397c228124eef0fe193d1176386b7aac5'
+JACOBIAN_KERNEL_DIGEST = 'ccd7f559764c998ede918fda448df86be47670feaf50368b44a7896fbfb2097d'
 SPHERE, LINE = 0.0, 1.0   # equation table columns (see above)
 KIND, POINT, BASE, LENGTH, STEER, NORMAL = 0, 1, 4, 7, 8, 9
 COLUMNS = 12

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 The mechanism of a scene: its 5 guidance equations as a table, on the carrier pose (M, R).
 

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 The fast variant: Newton on the carrier pose, tangent predictor, branch-checked steps.
 

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 statics: a corner under load, with bushings (issue 29; STATICS_SPEC.md).
 

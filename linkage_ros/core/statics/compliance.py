@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 Compliance at one travel: first-order rates from the factorised KKT system (issue 29 item 3).
 

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 The force at every pickup of a solved equilibrium (STATICS_SPEC.md, 'Units and signs').
 

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 The statics compiled (numba): the Lagrangian's derivatives and Newton on the KKT system.
 
@@ -21,8 +24,8 @@ import numpy as np
 from .rotation import energy_terms, log_so3
 from ..base.so3 import turn
 
-SO3_DIGEST = '63b60c6921d8498a47cf8a0a86bdda0a2f05c7473f028ff5e6d7b18de31758ea'
-ROTATION_DIGEST = '46381f885a2d9e959f5ecbe6f7d1fb677d44a46aa5c6ddb069ef4cf313dcf307'
+SO3_DIGEST = '862efb847a68465a5f68ec100893bccc4658d8a7278ad25575f0da1dc9d158aa'
+ROTATION_DIGEST = 'f322a3f0d12e66096812e993ee192608911b206f74f9cce6e370fd44fb4e37ea'
 CARRIER, ARM, HINGE, BASE = 0, 1, 2, 3
 LINK, BALL, LINE, TRAVEL, SPRING, BUSH, LOAD = 0, 1, 2, 3, 4, 5, 6
 jit = njit(cache=True, nogil=True, error_model='numpy')

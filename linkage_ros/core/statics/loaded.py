@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 A corner under load: its equilibrium pose and the force at every pickup (STATICS_SPEC.md).
 

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """Pack a System (system.py) into the arrays of the compiled statics (kernel.Model)."""
 
 from __future__ import annotations

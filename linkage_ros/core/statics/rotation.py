@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 A bushing's rotational energy on SO(3): the rotation vector of an arm and its derivatives.
 

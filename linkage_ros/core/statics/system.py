@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 The statics of a corner as bodies, points, constraints and energies (STATICS_SPEC.md).
 

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 vehicle: the setup sheet of a vehicle with masses, from its axles' exact kinematics.
 

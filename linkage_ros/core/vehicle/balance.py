@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 The vehicle's balance from its axles: roll axis, roll gradient, load transfer, pitch.
 

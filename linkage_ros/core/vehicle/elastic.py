@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 An axle's elastic parts as one energy of its two wheel travels: rates and roll stiffness.
 

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
 """
 A vehicle's setup sheet: per axle and for the vehicle, from the exact kinematics and its masses.
 

@@ -1,0 +1,183 @@
+#!/usr/bin/env python3
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+"""
+Give every source file of the package its SPDX header; safe to run again and again.
+
+    python3 .ci/spdx_headers.py           add the header where it is missing, list those files
+    python3 .ci/spdx_headers.py --check   change nothing; list the files without it, status 1
+
+The header is the two comment lines of the REUSE specification (3.x) that
+ros_license_toolkit's scanner (scancode) reads as the Apache-2.0 expression:
+
+    # SPDX-FileCopyrightText: 2026 linkage_ros authors
+    # SPDX-License-Identifier: Apache-2.0
+
+A file has it when both tags are among its first HEAD_LINES lines (any holder on the
+copyright tag: a file taken from elsewhere keeps its own notice too). A line that must stay
+first (a shebang, then a PEP 263 encoding line) stays first; the header follows it, then a
+blank line. Only the missing tag is added, so a second run changes nothing.
+
+A file's sha256 may be written in another file (a kernel module names the digest of each file
+numba compiles into it, test/core/test_kernel.py checks them): where a file changes here,
+every quoted copy of its old digest in the source files becomes the new one, and so on for the
+files that change by that. A file merged in from a branch that had no headers may quote the
+digest a file had without its header: such a copy is made the file's digest too.
+
+Source files: the Python files and shell scripts (a .sh, or a file starting with #!) that git
+knows or would add (tracked, or untracked and not ignored) under ROOTS. Data (YAML scenes, the
+test resources) carries no header: the package's licence covers it (package.xml).
+"""
+
+from __future__ import annotations
+
+import hashlib
+from pathlib import Path
+import re
+import subprocess
+import sys
+
+REPO = Path(__file__).resolve().parent.parent
+ROOTS = ('linkage_ros', 'test', '.ci', 'launch', 'setup.py')
+COPYRIGHT = '# SPDX-FileCopyrightText: 2026 linkage_ros authors'
+LICENSE = '# SPDX-License-Identifier: Apache-2.0'
+# The tags as REUSE and scancode find them, in any comment form.
+COPYRIGHT_TAG = re.compile(r'SPDX-FileCopyrightText:\s*\S')
+LICENSE_TAG = re.compile(r'SPDX-License-Identifier:\s*Apache-2\.0\b')
+HEAD_LINES = 10                  # the header is looked for at the top only
+ENCODING = re.compile(r'^[ \t\f]*#.*?coding[:=][ \t]*[-\w.]+')    # PEP 263
+
+
+def source_files(repo: Path = REPO) -> list[Path]:
+    """Return the package's Python files and shell scripts under ROOTS, sorted."""
+    try:
+        listed = subprocess.run(
+            ['git', '-C', str(repo), 'ls-files', '--cached', '--others', '--exclude-standard',
+             '--', *ROOTS], check=True, capture_output=True, text=True).stdout.split('\n')
+        paths = {repo / name for name in listed if name}
+    except (OSError, subprocess.CalledProcessError):     # not a git checkout: walk the roots
+        paths = {path for root in ROOTS for path in
+                 ([repo / root] if (repo / root).is_file() else (repo / root).rglob('*'))
+                 if '__pycache__' not in path.parts}
+    return sorted(path for path in paths if path.is_file() and is_source(path))
+
+
+def is_source(path: Path) -> bool:
+    """Say whether path is a Python file or a shell script (by suffix or shebang)."""
+    if path.suffix in ('.py', '.sh'):
+        return True
+    if path.suffix:
+        return False
+    with path.open('rb') as stream:
+        return stream.read(2) == b'#!'
+
+
+def missing(text: str) -> list[str]:
+    """Return the header lines text lacks among its first HEAD_LINES lines, in header order."""
+    head = '\n'.join(text.split('\n')[:HEAD_LINES])
+    return [line for line, tag in ((COPYRIGHT, COPYRIGHT_TAG), (LICENSE, LICENSE_TAG))
+            if not tag.search(head)]
+
+
+def with_header(text: str) -> str:
+    """Return text with the missing header lines after its shebang and encoding lines."""
+    lines = missing(text)
+    if not lines:
+        return text
+    body = text.split('\n')
+    keep = 0                                   # lines that must stay first
+    if body and body[0].startswith('#!'):
+        keep = 1
+    if len(body) > keep and keep < 2 and ENCODING.match(body[keep]):
+        keep += 1
+    rest = body[keep:]
+    present = any(COPYRIGHT_TAG.search(line) or LICENSE_TAG.search(line)
+                  for line in rest[:HEAD_LINES])
+    # A half header: the missing tag goes beside the one there, with no blank line between.
+    gap = [] if present or not rest or not rest[0].strip() else ['']
+    return '\n'.join(body[:keep] + lines + gap + rest)
+
+
+def digest(data: bytes) -> str:
+    """Return the sha256 of data in hex, as the kernel modules write it."""
+    return hashlib.sha256(data).hexdigest()
+
+
+def write_keeping_digests(changes: dict[Path, str], files: list[Path]) -> list[Path]:
+    """
+    Write changes {path: new text}; carry each changed file's digest into files that quote it.
+
+    Return every path written, the ones changed for a digest after those given.
+    """
+    written = []
+    pending = dict(changes)
+    while pending:
+        path, text = pending.popitem()
+        old, new = digest(path.read_bytes()), digest(text.encode('utf-8'))
+        path.write_text(text, encoding='utf-8')
+        written.append(path)
+        for other in files:
+            content = pending.get(other) or other.read_text(encoding='utf-8')
+            if f"'{old}'" in content and old != new:
+                pending[other] = content.replace(f"'{old}'", f"'{new}'")
+    return list(dict.fromkeys(written))
+
+
+def without_header(text: str) -> str:
+    """Return text as it was before with_header gave it the header (text if it has none)."""
+    lines = text.split('\n')
+    for keep in range(3):
+        if lines[keep:keep + 2] == [COPYRIGHT, LICENSE]:
+            gap = 1 if len(lines) > keep + 2 and not lines[keep + 2].strip() else 0
+            return '\n'.join(lines[:keep] + lines[keep + 2 + gap:])
+    return text
+
+
+def headerless_digests(files: list[Path]) -> dict[Path, str]:
+    """
+    Return {path: text} of the files that quote a digest of another file without its header.
+
+    Each such copy replaced by that file's digest (the files as they are on disk).
+    """
+    stale = {}
+    for path in files:
+        text = path.read_text(encoding='utf-8')
+        if without_header(text) != text:
+            stale[digest(without_header(text).encode('utf-8'))] = digest(text.encode('utf-8'))
+    changes = {}
+    for path in files:
+        text = path.read_text(encoding='utf-8')
+        fixed = text
+        for old, new in stale.items():
+            fixed = fixed.replace(f"'{old}'", f"'{new}'")
+        if fixed != text:
+            changes[path] = fixed
+    return changes
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Add the header where missing (or with --check only list those files); see the module."""
+    argv = sys.argv[1:] if argv is None else argv
+    check = argv == ['--check']
+    if argv and not check:
+        print('usage: spdx_headers.py [--check]', file=sys.stderr)
+        return 2
+    files = source_files()
+    lacking = [path for path in files if missing(path.read_text(encoding='utf-8'))]
+    if check:
+        for path in lacking:
+            print(path.relative_to(REPO))
+        if lacking:
+            print(f'{len(lacking)} file(s) without the SPDX header: python3 '
+                  '.ci/spdx_headers.py adds it', file=sys.stderr)
+        return 1 if lacking else 0
+    changes = {path: with_header(path.read_text(encoding='utf-8')) for path in lacking}
+    written = write_keeping_digests(changes, files)
+    written += write_keeping_digests(headerless_digests(files), files)
+    for path in dict.fromkeys(written):
+        print(path.relative_to(REPO))
+    return 0
+
+
+if __name__ == '__main__':
+    sys.exit(main())

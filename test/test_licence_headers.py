@@ -1,0 +1,98 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
+"""
+Every source file carries its SPDX header, and .ci/spdx_headers.py adds it idempotently.
+
+The check and the header are the script's own (loaded from .ci/), so that what the test asks
+for is what the script writes.
+"""
+
+import importlib.util
+from pathlib import Path
+
+import pytest
+
+PACKAGE = Path(__file__).resolve().parent.parent
+SPEC = importlib.util.spec_from_file_location('spdx_headers', PACKAGE / '.ci' / 'spdx_headers.py')
+spdx = importlib.util.module_from_spec(SPEC)
+SPEC.loader.exec_module(spdx)
+HEADER = [spdx.COPYRIGHT, spdx.LICENSE]
+
+
+@pytest.mark.linter
+def test_every_python_file_of_the_package_and_its_tests_has_the_spdx_header():
+    files = spdx.source_files(PACKAGE)
+    python = [path for path in files if path.suffix == '.py']
+    assert len(python) > 100, 'the package and its tests were not found'
+    for root in ('linkage_ros', 'test', '.ci'):
+        assert any(path.is_relative_to(PACKAGE / root) for path in python), root
+    lacking = [str(path.relative_to(PACKAGE)) for path in files
+               if spdx.missing(path.read_text(encoding='utf-8'))]
+    assert lacking == [], 'without the SPDX header (python3 .ci/spdx_headers.py adds it)'
+
+
+@pytest.mark.linter
+def test_the_licence_file_is_the_apache_2_0_text_package_xml_declares():
+    text = (PACKAGE / 'LICENSE').read_text(encoding='utf-8')
+    assert 'Apache License\n                           Version 2.0, January 2004' in text
+    assert 'END OF TERMS AND CONDITIONS' in text
+    assert '<license>Apache-2.0</license>' in (PACKAGE / 'package.xml').read_text()
+
+
+def test_the_header_goes_after_a_shebang_and_an_encoding_line_then_a_blank_line():
+    text = '#!/usr/bin/env python3\n# -*- coding: utf-8 -*-\n"""Doc."""\n'
+    assert spdx.with_header(text).split('\n') == [
+        '#!/usr/bin/env python3', '# -*- coding: utf-8 -*-', *HEADER, '', '"""Doc."""', '']
+
+
+def test_the_header_goes_first_in_a_file_without_a_shebang():
+    assert spdx.with_header('"""Doc."""\n').split('\n') == [*HEADER, '', '"""Doc."""', '']
+
+
+def test_a_second_run_changes_nothing():
+    for text in ('"""Doc."""\n', '#!/bin/bash\nset -e\n', '', 'x = 1'):
+        once = spdx.with_header(text)
+        assert spdx.with_header(once) == once
+        assert spdx.missing(once) == []
+
+
+def test_a_file_with_only_one_tag_gets_only_the_other():
+    text = f'{spdx.LICENSE}\n"""Doc."""\n'
+    assert spdx.with_header(text) == f'{spdx.COPYRIGHT}\n{text}'
+
+
+def test_a_copyright_tag_of_another_holder_counts_as_the_copyright_line():
+    text = '# SPDX-FileCopyrightText: 2017 Open Source Robotics Foundation, Inc.\n' \
+        f'{spdx.LICENSE}\n'
+    assert spdx.missing(text) == []
+
+
+def test_a_header_below_the_first_lines_does_not_count():
+    text = '\n' * spdx.HEAD_LINES + '\n'.join(HEADER) + '\n'
+    assert spdx.missing(text) == HEADER
+
+
+def test_a_digest_of_a_file_given_its_header_is_carried_into_the_files_that_quote_it(tmp_path):
+    compiled_in, kernel, user = (tmp_path / name for name in ('so3.py', 'kernel.py', 'user.py'))
+    compiled_in.write_text('"""Rotations."""\n')
+    kernel.write_text(f"DIGEST = '{spdx.digest(compiled_in.read_bytes())}'\n")
+    user.write_text(f"KERNEL = '{spdx.digest(kernel.read_bytes())}'\n")
+    files = [compiled_in, kernel, user]
+    changes = {path: spdx.with_header(path.read_text()) for path in files}
+    written = spdx.write_keeping_digests(changes, files)
+    assert sorted(written) == sorted(files)
+    assert spdx.missing(compiled_in.read_text()) == []
+    assert f"'{spdx.digest(compiled_in.read_bytes())}'" in kernel.read_text()
+    assert f"'{spdx.digest(kernel.read_bytes())}'" in user.read_text()
+
+
+def test_a_digest_of_a_file_before_its_header_becomes_its_digest_with_it(tmp_path):
+    # A branch merged in without headers quotes the digest so3.py had without its own.
+    compiled_in, kernel = tmp_path / 'so3.py', tmp_path / 'kernel.py'
+    bare = '"""Rotations."""\n'
+    compiled_in.write_text(spdx.with_header(bare))
+    kernel.write_text(f"DIGEST = '{spdx.digest(bare.encode())}'\n")
+    changes = spdx.headerless_digests([compiled_in, kernel])
+    assert changes == {kernel: f"DIGEST = '{spdx.digest(compiled_in.read_bytes())}'\n"}
+    assert spdx.without_header(compiled_in.read_text()) == bare
