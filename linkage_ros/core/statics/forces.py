@@ -11,16 +11,36 @@ revolute leaves undetermined, shared equally (the least-norm pair). N, N m, mm.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
+from . import kernel
+from .pack import pack
 from .rotation import energy_terms, log_so3
-from .system import Item, point_of, position, spring_terms
+from .system import spring_terms
 from ..base.geometry import cross
 
+EYE = np.eye(3)
 
-def pickup_forces(scene, system, eq, force: np.ndarray) -> dict:
-    """Return the Loaded force fields of an equilibrium (dicts keyed by pickup)."""
+
+def item_places(system, model, pose) -> np.ndarray:
+    """
+    Return where every item of a System is at a pose, (T, 3, 3) mm, in pack.py's term order.
+
+    model: the System's kernel.Model (None: packed here). Terms: the constraints in order,
+    then the springs (slot 0 the body end, then the moving items), the bushings, the load.
+    """
+    model = pack(system) if model is None else model
+    out = np.empty((len(model.t_kind), 3, 3))
+    kernel.places(tuple(model), pose.c, pose.r, out)
+    return out
+
+
+def pickup_forces(scene, system, eq, force: np.ndarray, at: np.ndarray) -> dict:
+    """Return the Loaded force fields of an equilibrium (dicts keyed by pickup); at: places."""
     pose, lam = eq.pose, eq.multipliers
+    m, springs_at = len(system.constraints), len(system.constraints) + len(system.springs)
     links, balls, points, body, moments = {}, {}, {}, {}, {}
     arm_loads = {}   # hinge body -> list of (point, force on the arm)
 
@@ -30,38 +50,36 @@ def pickup_forces(scene, system, eq, force: np.ndarray) -> dict:
         if m is not None:
             moments[key] = moments.get(key, np.zeros(3)) + m
 
-    for (name, kind, items, data), mult in zip(system.constraints, lam):
-        xs = [position(system, pose, it)[0] for it in items]
+    for (name, kind, items, data), mult, xs in zip(system.constraints, lam, at):
         if kind == 'link':
             d = xs[0] - xs[1]
-            links[name] = float(mult * np.linalg.norm(d) / data)
+            links[name] = float(mult * math.sqrt(d @ d) / data)
             balls[name] = -mult * d / data
             if items[1].body < 0:
                 add(f'{name}_base', xs[1], mult * d / data)
         elif kind == 'ball':
-            balls[name] = balls.get(name, np.zeros(3)) + mult * np.eye(3)[data]
+            balls[name] = balls.get(name, np.zeros(3)) + mult * EYE[data]
             if system.bodies[items[0].body].kind == 'hinge':
-                arm_loads.setdefault(items[0].body, []).append((xs[0], -mult * np.eye(3)[data]))
+                arm_loads.setdefault(items[0].body, []).append((xs[0], -mult * EYE[data]))
         elif kind == 'line':
             balls[name] = balls.get(name, np.zeros(3)) + mult * xs[1]
             add(f'{name}_top', data, -mult * xs[1])
     springs = {}
-    for element, end, moving in system.springs:
-        x_move = point_of(system, pose, moving)
+    for (element, end, moving), xs in zip(system.springs, at[m:springs_at]):
+        x_move = sum(w * x for (w, _), x in zip(moving, xs[1:]))
         _, grads, _ = spring_terms(element, end.x0, x_move)
-        springs[element.name] = float(element.rate * (element.free_length
-                                                      - np.linalg.norm(x_move - end.x0)))
+        gap = x_move - end.x0
+        springs[element.name] = float(element.rate * (element.free_length - math.sqrt(gap @ gap)))
         add(f'{element.name}_body', end.x0, -grads[0])
-        for w, it in moving:
+        for (w, it), x in zip(moving, xs[1:]):
             on_move = -w * grads[1]
             if it.body < 0:   # the share at a rigid link's base goes to the body there
                 link = scene.constraints[element.mount.constraint].name
                 add(f'{link}_base', it.x0, on_move)
             elif system.bodies[it.body].kind == 'hinge':
-                arm_loads.setdefault(it.body, []).append((position(system, pose, it)[0],
-                                                          on_move))
-    for b in system.bushings:
-        d = position(system, pose, Item(b.body, b.x0))[0] - b.at
+                arm_loads.setdefault(it.body, []).append((x, on_move))
+    for b, xs in zip(system.bushings, at[springs_at:]):
+        d = xs[0] - b.at
         f = b.stiff @ d
         couple = cross(d, f)
         if b.turn is not None:

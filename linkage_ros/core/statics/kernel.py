@@ -70,6 +70,20 @@ def _place(model, c, r, body, x0, trans, x, v):
 
 
 @jit
+def places(fields, c, r, out):
+    """Write where every term's items are at a pose, out (T, 3, 3) mm (unused slots: NaN)."""
+    model = Model(*fields)
+    v = np.empty(3)
+    for t in range(len(model.t_kind)):
+        for a in range(3):
+            body = model.it_body[t, a]
+            if body == -2:
+                out[t, a] = np.nan
+            else:
+                _place(model, c, r, body, model.it_x0[t, a], model.it_trans[t, a], out[t, a], v)
+
+
+@jit
 def _jac(model, body, v, trans, out):
     """Write d x / d q_body (3, size) of an item into out[:, :size]."""
     kind = model.b_kind[body]

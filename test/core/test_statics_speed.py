@@ -1,0 +1,53 @@
+"""The statics' shortcuts (core/statics/loaded.py) give the answers of the long way."""
+
+from pathlib import Path
+
+from linkage_ros.core.model import load_scene
+from linkage_ros.core.statics import compliance, Load, loaded, solve_loaded
+from linkage_ros.core.statics.forces import item_places
+from linkage_ros.core.statics.system import Item, position
+import numpy as np
+import pytest
+
+BUSHED = str(Path(__file__).resolve().parents[1] / 'data' / 'double_wishbone_bushings.yaml')
+LOAD = Load((300.0, 2000.0, -500.0), 'cp', (40.0, -20.0, 150.0))
+
+
+def test_a_zero_load_state_continued_from_the_last_one_equals_the_one_from_kinematics(
+        monkeypatch):
+    """Continued from travel 10 mm, the state at 12 mm needs no arm poses from kinematics."""
+    cold_scene, warm_scene = load_scene(BUSHED), load_scene(BUSHED)
+    cold = compliance(cold_scene, 12.0), solve_loaded(cold_scene, 12.0, LOAD)
+    compliance(warm_scene, 10.0)
+
+    def refused(*args):
+        raise AssertionError('the kinematic start was taken')
+
+    monkeypatch.setattr(loaded, 'initial_pose', refused)
+    warm = compliance(warm_scene, 12.0), solve_loaded(warm_scene, 12.0, LOAD)
+    for key, value in cold[0].rates.items():
+        assert warm[0].rates[key] == pytest.approx(value, rel=1e-9, abs=1e-12), key
+    assert np.abs(warm[1].wheel_center_mm - cold[1].wheel_center_mm).max() < 1e-9
+    scale = max(np.linalg.norm(f) for f in cold[1].body_forces_n.values())
+    for key, force in cold[1].body_forces_n.items():
+        assert np.abs(warm[1].body_forces_n[key] - force).max() < 1e-9 * scale, key
+
+
+def test_the_compiled_item_places_are_where_the_system_puts_each_item():
+    """pickup_forces reads the places kernel.places writes; system.position is the check."""
+    scene = load_scene('five_link')   # a spring on a link: weighted moving items
+    base = loaded.unloaded(scene, 20.0)
+    at = item_places(base.system, base.model, base.eq.pose)
+    system, pose = base.system, base.eq.pose
+    m = len(system.constraints)
+    for i, (_, _, items, _) in enumerate(system.constraints):
+        for a, item in enumerate(items):
+            assert np.abs(at[i, a] - position(system, pose, item)[0]).max() < 1e-12
+    for s, (_, end, moving) in enumerate(system.springs):
+        for a, item in enumerate([end] + [it for _, it in moving]):
+            assert np.abs(at[m + s, a] - position(system, pose, item)[0]).max() < 1e-12
+    first = m + len(system.springs)
+    for b, bush in enumerate(system.bushings):
+        place = position(system, pose, Item(bush.body, bush.x0))[0]
+        assert np.abs(at[first + b, 0] - place).max() < 1e-12
+    assert np.abs(at[-1, 0] - position(system, pose, system.load_item)[0]).max() < 1e-12
