@@ -1,5 +1,6 @@
 """The statics' shortcuts (core/statics/loaded.py) give the answers of the long way."""
 
+import importlib
 from pathlib import Path
 
 from linkage_ros.core.model import load_scene
@@ -51,3 +52,22 @@ def test_the_compiled_item_places_are_where_the_system_puts_each_item():
         place = position(system, pose, Item(bush.body, bush.x0))[0]
         assert np.abs(at[first + b, 0] - place).max() < 1e-12
     assert np.abs(at[-1, 0] - position(system, pose, system.load_item)[0]).max() < 1e-12
+
+
+def test_rates_asked_again_at_the_same_state_are_not_solved_again_and_are_a_copy(monkeypatch):
+    scene = load_scene(BUSHED)
+    first = compliance(scene, 15.0)
+    first.rates['toe_per_fx_wc_deg_per_kn'] = 99.0   # the caller's to change
+    first.matrix[0, 0] = 99.0
+
+    def refused(*args):
+        raise AssertionError('the KKT system was solved again')
+
+    monkeypatch.setattr(importlib.import_module('linkage_ros.core.statics.compliance'), 'kkt',
+                        refused)
+    again = compliance(scene, 15.0)
+    fresh = load_scene(BUSHED)
+    monkeypatch.undo()
+    expected = compliance(fresh, 15.0)
+    assert again.rates == expected.rates   # same code path on the same input: exactly equal
+    assert np.array_equal(again.matrix, expected.matrix)

@@ -17,7 +17,7 @@ travel is held.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 import math
 
 import numpy as np
@@ -35,6 +35,8 @@ PER_KN = 1000.0            # N per kN
 PER_KNM = 1e6              # N mm per kN m
 DEG = 180.0 / math.pi
 EX, EY = np.array([1.0, 0.0, 0.0]), np.array([0.0, 1.0, 0.0])
+# the rates of the last zero-load equilibrium (loaded.LAST), kept on the Scene: (it, rates)
+LAST_RATES = '_statics_last_rates'
 
 
 @dataclass(frozen=True)
@@ -58,9 +60,12 @@ def angle_gradients(spin_axis: np.ndarray, side_sign: float) -> tuple[np.ndarray
     """
     ax, ay, az = spin_axis
     flat = math.hypot(ax, ay)
-    d_camber = -np.array([-az * ax / flat, -az * ay / flat, flat]) / (az * az + flat * flat)
-    d_toe = side_sign * np.array([ay, -ax, 0.0]) / (ax * ax + ay * ay)
-    return cross(spin_axis, d_camber), cross(spin_axis, d_toe)
+    by_axis = np.array([[-az * ax / flat, -az * ay / flat, flat],   # d camber / d a
+                        [ay, -ax, 0.0]])                                # d toe / d a
+    by_axis[0] *= -1.0 / (az * az + flat * flat)
+    by_axis[1] *= side_sign / (ax * ax + ay * ay)
+    d_camber, d_toe = cross(spin_axis, by_axis)
+    return d_camber, d_toe
 
 
 def compliance(scene, travel_mm: float = 0.0, rack_mm: float = 0.0,
@@ -74,6 +79,17 @@ def compliance(scene, travel_mm: float = 0.0, rack_mm: float = 0.0,
     base = unloaded(scene, travel_mm, rack_mm, continuation, compiled)
     if base.status != Status.OK:
         return Compliance(base.status, base.message, float(travel_mm))
+    last = scene.__dict__.get(LAST_RATES)
+    if last is None or last[0] is not base:   # not yet at this zero-load state
+        last = (base, _rates(scene, base, travel_mm))
+        scene.__dict__[LAST_RATES] = last
+    done = last[1]   # a copy: the caller may change what it is given
+    return replace(done, rates=dict(done.rates), matrix=done.matrix.copy(),
+                   matrix_si=done.matrix_si.copy())
+
+
+def _rates(scene, base, travel_mm: float) -> Compliance:
+    """Return the Compliance at a solved zero-load state (loaded.Unloaded)."""
     system, eq = base.system, base.eq
     n, m = system.size, len(system.constraints)
     rot = eq.pose.r[0]
