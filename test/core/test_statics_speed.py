@@ -4,7 +4,7 @@ import importlib
 from pathlib import Path
 
 from linkage_ros.core.model import load_scene
-from linkage_ros.core.statics import compliance, Load, loaded, solve_loaded
+from linkage_ros.core.statics import compliance, kernel, Load, loaded, solve_loaded
 from linkage_ros.core.statics.forces import item_places
 from linkage_ros.core.statics.system import Item, position
 import numpy as np
@@ -71,3 +71,12 @@ def test_rates_asked_again_at_the_same_state_are_not_solved_again_and_are_a_copy
     expected = compliance(fresh, 15.0)
     assert again.rates == expected.rates   # same code path on the same input: exactly equal
     assert np.array_equal(again.matrix, expected.matrix)
+
+
+def test_newton_stops_when_its_next_step_is_predicted_below_round_off():
+    """Steps 0.711, 1.77e-3, 3.0e-9 mm (a zero-load solve): the next, ~9e-21, is not taken."""
+    tol = 1e-11 * 216.0   # TOL_STEP times the lever
+    assert not kernel.converged(0.711, 0.0, tol)            # the first step: no prediction
+    assert not kernel.converged(1.77e-3, 0.711, tol)        # next ~1e-8: still to be taken
+    assert kernel.converged(3.0e-9, 1.77e-3, tol)
+    assert kernel.converged(1e-9, 0.0, tol)                 # below the tolerance itself

@@ -23,6 +23,9 @@ from ..base.so3 import turn
 
 SO3_DIGEST = '63b60c6921d8498a47cf8a0a86bdda0a2f05c7473f028ff5e6d7b18de31758ea'
 ROTATION_DIGEST = '46381f885a2d9e959f5ecbe6f7d1fb677d44a46aa5c6ddb069ef4cf313dcf307'
+# a Newton step predicted (quadratic convergence) below this fraction of the tolerance is not
+# taken (converged()): it would move the pose by round-off
+PREDICTED = 1e-3
 CARRIER, ARM, HINGE, BASE = 0, 1, 2, 3
 LINK, BALL, LINE, TRAVEL, SPRING, BUSH, LOAD = 0, 1, 2, 3, 4, 5, 6
 jit = njit(cache=True, nogil=True, error_model='numpy')
@@ -272,6 +275,17 @@ def _scaled_max(model, vec, lever, divide):
 
 
 @jit
+def converged(size, last, tol):
+    """
+    Tell whether Newton has converged: its step (scaled) is below tol, or the next one will be.
+
+    Newton converges quadratically: the next step is about size^3 / last^2 (last: the step
+    before). Below PREDICTED * tol it is round-off: the step after it is not taken.
+    """
+    return size < tol or size * size * size < PREDICTED * tol * last * last
+
+
+@jit
 def newton(fields, c, r, lam, force, moment, lever, tol_step, max_iter, hess, rows):
     """
     Solve the equilibrium from (c, r, lam) in place; return (ok, iterations, residual N).
@@ -283,6 +297,7 @@ def newton(fields, c, r, lam, force, moment, lever, tol_step, max_iter, hess, ro
     n, m = model.n, model.m
     grad, values = np.empty(n), np.empty(m)
     matrix, rhs = np.zeros((n + m, n + m)), np.empty(n + m)
+    last = 0.0   # no step before the first
     for iteration in range(1, max_iter + 1):
         assemble(model, c, r, lam, force, moment, grad, hess, values, rows)
         matrix[:n, :n] = hess
@@ -298,11 +313,12 @@ def newton(fields, c, r, lam, force, moment, lever, tol_step, max_iter, hess, ro
         lam[:] = sol[n:]
         _move(model, c, r, step)
         size = _scaled_max(model, step, lever, False)
-        if size < tol_step * max(1.0, lever):
+        if converged(size, last, tol_step * max(1.0, lever)):
             assemble(model, c, r, lam, force, moment, grad, hess, values, rows)
             return True, iteration, _scaled_max(model, grad, lever, True)
         if not size < 1e3 * lever:
             break
+        last = size
     assemble(model, c, r, lam, force, moment, grad, hess, values, rows)
     return False, max_iter, _scaled_max(model, grad, lever, True)
 
