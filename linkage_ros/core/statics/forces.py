@@ -46,24 +46,27 @@ def pickup_forces(scene, system, eq, force: np.ndarray, at: np.ndarray) -> dict:
 
     def add(key, point, f, m=None):
         points[key] = np.asarray(point, dtype=float)
-        body[key] = body.get(key, np.zeros(3)) + f
+        before = body.get(key)
+        body[key] = f if before is None else before + f
         if m is not None:
-            moments[key] = moments.get(key, np.zeros(3)) + m
+            moments[key] = m if key not in moments else moments[key] + m
 
-    for (name, kind, items, data), mult, xs in zip(system.constraints, lam, at):
+    for i, ((name, kind, items, data), xs) in enumerate(zip(system.constraints, at)):
         if kind == 'link':
             d = xs[0] - xs[1]
-            links[name] = float(mult * math.sqrt(d @ d) / data)
-            balls[name] = -mult * d / data
+            scale = lam[i] / data
+            links[name] = float(scale * math.sqrt(d @ d))
+            balls[name] = -scale * d
             if items[1].body < 0:
-                add(f'{name}_base', xs[1], mult * d / data)
+                add(f'{name}_base', xs[1], scale * d)
         elif kind == 'ball':
-            balls[name] = balls.get(name, np.zeros(3)) + mult * EYE[data]
-            if system.bodies[items[0].body].kind == 'hinge':
-                arm_loads.setdefault(items[0].body, []).append((xs[0], -mult * EYE[data]))
+            if data == 0:   # the first of a ball joint's three rows, x, y, z (system.build)
+                balls[name] = lam[i:i + 3].copy()
+                if system.bodies[items[0].body].kind == 'hinge':
+                    arm_loads.setdefault(items[0].body, []).append((xs[0], -lam[i:i + 3]))
         elif kind == 'line':
-            balls[name] = balls.get(name, np.zeros(3)) + mult * xs[1]
-            add(f'{name}_top', data, -mult * xs[1])
+            balls[name] = balls.get(name, np.zeros(3)) + lam[i] * xs[1]
+            add(f'{name}_top', data, -lam[i] * xs[1])
     springs = {}
     for (element, end, moving), xs in zip(system.springs, at[m:springs_at]):
         x_move = sum(w * x for (w, _), x in zip(moving, xs[1:]))
@@ -78,13 +81,18 @@ def pickup_forces(scene, system, eq, force: np.ndarray, at: np.ndarray) -> dict:
                 add(f'{link}_base', it.x0, on_move)
             elif system.bodies[it.body].kind == 'hinge':
                 arm_loads.setdefault(it.body, []).append((x, on_move))
-    for b, xs in zip(system.bushings, at[springs_at:]):
-        d = xs[0] - b.at
-        f = b.stiff @ d
-        couple = cross(d, f)
-        if b.turn is not None:
-            couple = couple + energy_terms(log_so3(pose.r[b.body]), b.turn)[1]
-        add(b.key, b.at, f, couple / 1000.0)
+    if system.bushings:   # all at once: K d at B, its couple d x K d, the rotational torque
+        bushes = system.bushings
+        d = at[springs_at:springs_at + len(bushes), 0] - np.array([b.at for b in bushes])
+        f = (np.array([b.stiff for b in bushes]) @ d[:, :, None])[:, :, 0]
+        couples = cross(d, f)
+        torques = {}   # per arm body: its bushings share one rotation
+        for b, fb, couple in zip(bushes, f, couples):
+            if b.turn is not None:
+                if b.body not in torques:
+                    torques[b.body] = energy_terms(log_so3(pose.r[b.body]), b.turn)[1]
+                couple = couple + torques[b.body]
+            add(b.key, b.at, fb, couple / 1000.0)
     for j, k in system.body_of.items():
         if system.bodies[k].kind == 'hinge':
             c = scene.constraints[j]
