@@ -61,10 +61,10 @@ def test_rates_asked_again_at_the_same_state_are_not_solved_again_and_are_a_copy
     first.matrix[0, 0] = 99.0
 
     def refused(*args):
-        raise AssertionError('the KKT system was solved again')
+        raise AssertionError('the rates were solved again')
 
-    monkeypatch.setattr(importlib.import_module('linkage_ros.core.statics.compliance'), 'kkt',
-                        refused)
+    monkeypatch.setattr(importlib.import_module('linkage_ros.core.statics.compliance'),
+                        '_rates', refused)
     again = compliance(scene, 15.0)
     fresh = load_scene(BUSHED)
     monkeypatch.undo()

@@ -22,6 +22,7 @@ import math
 
 import numpy as np
 
+from . import kernel
 from .loaded import load_point, unloaded
 from .newton import kkt
 from ..base.geometry import cross
@@ -105,7 +106,8 @@ def _rates(scene, base, travel_mm: float) -> Compliance:
     loads[1, 6] = loads[0, 7] = 1.0
     loads[3:6, 6], loads[3:6, 7] = cross(patch, EY), cross(patch, EX)
     # one solve of the KKT matrix for every load (implicit function theorem)
-    sol = np.linalg.solve(kkt(eq.hess, eq.rows), loads)
+    sol = (np.linalg.solve(kkt(eq.hess, eq.rows), loads) if base.model is None
+           else kernel.kkt_solve(eq.hess, eq.rows, loads))
     dm, w, held = sol[:3], sol[3:6], -sol[n + m - 1]
     toe, camber = d_toe @ w, d_camber @ w
     rates = {'toe_per_fx_wc_deg_per_kn': toe[0] * DEG * PER_KN,

@@ -324,6 +324,17 @@ def newton(fields, c, r, lam, force, moment, lever, tol_step, max_iter, hess, ro
 
 
 @jit
+def kkt_solve(hess, rows, rhs):
+    """Return the solution of [[H, J^T], [J, 0]] x = rhs (n + m, k): newton.kkt, compiled."""
+    n, m = hess.shape[0], rows.shape[0]
+    matrix = np.zeros((n + m, n + m))
+    matrix[:n, :n] = hess
+    matrix[:n, n:] = rows.T
+    matrix[n:, :n] = rows
+    return np.linalg.solve(matrix, rhs)
+
+
+@jit
 def _move(model, c, r, step):
     """Move every body by a coordinate step: c += T dq, R <- exp(W dq) R."""
     for k in range(len(model.b_kind)):
