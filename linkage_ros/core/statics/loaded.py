@@ -224,19 +224,14 @@ def solve_loaded(scene, travel_mm: float = 0.0, load: Load = Load(), rack_mm: fl
         it_x0[len(it_x0) - 1, 0] = x0
         model = model._replace(it_x0=it_x0)
     eq = newton.loaded(system, model, base.eq, force, moment, base.lever)
-    said = (f'load {tuple(float(f) for f in load.force_n)} N at {load.at}, moment '
-            f'{tuple(float(m) for m in load.moment_nm)} N m')
     if not eq.ok:
-        return Loaded(Status.NOT_CARRIED, f'{said} is not carried at travel {travel_mm:g} mm: '
-                      f'no convergence (last residual {eq.residual:.3g} N)', float(travel_mm),
-                      residual=eq.residual, iterations=eq.iterations)
+        return _not_carried(load, travel_mm, eq, 'no convergence (last residual '
+                            f'{eq.residual:.3g} N)')
     at = item_places(system, model, eq.pose)
     forces = pickup_forces(scene, system, eq, force, at)
     beyond = _beyond_validity(system, eq, at)
     if beyond:
-        return Loaded(Status.NOT_CARRIED, f'{said} is not carried at travel {travel_mm:g} mm: '
-                      f'{beyond} (residual {eq.residual:.3g} N)', float(travel_mm),
-                      residual=eq.residual, iterations=eq.iterations)
+        return _not_carried(load, travel_mm, eq, f'{beyond} (residual {eq.residual:.3g} N)')
     mech = compile_scene(scene)
     c, r = eq.pose.c[0], eq.pose.r[0]
     camber, toe = camber_toe(r @ mech.spin_axis, scene.side_sign)
@@ -247,17 +242,31 @@ def solve_loaded(scene, travel_mm: float = 0.0, load: Load = Load(), rack_mm: fl
                   **forces)
 
 
+def _not_carried(load: Load, travel_mm: float, eq, why: str) -> Loaded:
+    """Return the NOT_CARRIED Loaded of a load at a travel, naming the load and why."""
+    said = (f'load {tuple(float(f) for f in load.force_n)} N at {load.at}, moment '
+            f'{tuple(float(m) for m in load.moment_nm)} N m')
+    return Loaded(Status.NOT_CARRIED, f'{said} is not carried at travel {travel_mm:g} mm: '
+                  f'{why}', float(travel_mm), residual=eq.residual, iterations=eq.iterations)
+
+
 def _beyond_validity(system, eq, at: np.ndarray) -> str:
     """Say which bushing deflects beyond the model's validity, '' if none does; at: places."""
+    bushes = system.bushings
+    if not bushes:
+        return ''
     first = len(system.constraints) + len(system.springs)   # the bushings' terms (pack.py)
-    for b, xs in zip(system.bushings, at[first:]):
-        d = xs[0] - b.at
-        size = math.sqrt(d @ d)
+    d = at[first:first + len(bushes), 0] - np.array([b.at for b in bushes])
+    sizes = np.sqrt((d * d).sum(axis=1)).tolist()
+    turns = {}   # per arm body: its rotation vector (its bushings share it)
+    for b, size in zip(bushes, sizes):
         if size > MAX_DEFLECTION_MM:
             return (f'bushing {b.key} deflects {size:.3g} mm, beyond the '
                     f"model's {MAX_DEFLECTION_MM:g} mm")
         if system.bodies[b.body].kind == 'arm':
-            phi = log_so3(eq.pose.r[b.body])
+            if b.body not in turns:
+                turns[b.body] = log_so3(eq.pose.r[b.body])
+            phi = turns[b.body]
             across = phi - (phi @ b.axis) * b.axis
             conical = math.degrees(math.sqrt(across @ across))
             if conical > MAX_CONICAL_DEG:
