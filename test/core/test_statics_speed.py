@@ -52,6 +52,9 @@ def test_the_compiled_item_places_are_where_the_system_puts_each_item():
         place = position(system, pose, Item(bush.body, bush.x0))[0]
         assert np.abs(at[first + b, 0] - place).max() < 1e-12
     assert np.abs(at[-1, 0] - position(system, pose, system.load_item)[0]).max() < 1e-12
+    by_numpy = item_places(system, None, pose)   # the numpy path's places: the same
+    assert np.array_equal(np.isnan(by_numpy), np.isnan(at))
+    assert np.nanmax(np.abs(by_numpy - at)) < 1e-12
 
 
 def test_rates_asked_again_at_the_same_state_are_not_solved_again_and_are_a_copy(monkeypatch):

@@ -16,9 +16,8 @@ import math
 import numpy as np
 
 from . import kernel
-from .pack import pack
 from .rotation import energy_terms, log_so3
-from .system import spring_terms
+from .system import Item, position, spring_terms
 from ..base.geometry import cross
 
 EYE = np.eye(3)
@@ -28,12 +27,21 @@ def item_places(system, model, pose) -> np.ndarray:
     """
     Return where every item of a System is at a pose, (T, 3, 3) mm, in pack.py's term order.
 
-    model: the System's kernel.Model (None: packed here). Terms: the constraints in order,
-    then the springs (slot 0 the body end, then the moving items), the bushings, the load.
+    model: the System's kernel.Model (kernel.places), or None: by system.position (the
+    numpy path). Terms: the constraints in order, then the springs (slot 0 the body end,
+    then the moving items), the bushings, the load; unused slots NaN.
     """
-    model = pack(system) if model is None else model
-    out = np.empty((len(model.t_kind), 3, 3))
-    kernel.places(tuple(model), pose.c, pose.r, out)
+    if model is not None:
+        out = np.empty((len(model.t_kind), 3, 3))
+        kernel.places(tuple(model), pose.c, pose.r, out)
+        return out
+    terms = ([items for _, _, items, _ in system.constraints]
+             + [[end] + [it for _, it in moving] for _, end, moving in system.springs]
+             + [[Item(b.body, b.x0)] for b in system.bushings] + [[system.load_item]])
+    out = np.full((len(terms), 3, 3), np.nan)
+    for t, items in enumerate(terms):
+        for a, item in enumerate(items):
+            out[t, a] = position(system, pose, item)[0]
     return out
 
 
