@@ -26,7 +26,11 @@ in well under a second. A program calls, before its first solve:
                                      it for seconds at a time inside LLVM; the child is
                                      killed if the wait is interrupted
 
-`python -m linkage_ros.core.warmup` compiles ahead of time (after an install, say).
+Each takes statics=False: True adds the statics kernels (STATICS_MODULES: compiled by
+solve_loaded and compliance), for a program or node whose scene has bushings or that is asked
+for statics (wants_statics); the others neither check nor compile them.
+
+`python -m linkage_ros.core.warmup [--statics]` compiles ahead of time (after an install, say).
 """
 
 import importlib
@@ -38,15 +42,24 @@ import sys
 KERNEL_MODULES = ('linkage_ros.core.base.so3', 'linkage_ros.core.solve.jacobian_kernel',
                   'linkage_ros.core.solve.kernel', 'linkage_ros.core.solve.element_kernel',
                   'linkage_ros.core.solve.body_kernel')
+# The statics' (only for a scene with bushings, or when statics is asked for).
+STATICS_MODULES = ('linkage_ros.core.statics.rotation', 'linkage_ros.core.statics.kernel')
 MESSAGE = 'compiling the numerical kernels, once, about 20 s'
+STATICS_FLAG = '--statics'
 _said = False
 
 
-def uncached_kernels() -> list:
+def wants_statics(scene, asked: bool = False) -> bool:
+    """Tell whether a program on a scene solves statics: asked to, or the scene has bushings."""
+    return bool(asked or scene.has_bushings)
+
+
+def uncached_kernels(statics: bool = False) -> list:
     """Return the names (module.function) of kernels numba's on-disk cache lacks (yet)."""
     from numba.core.dispatcher import Dispatcher
 
-    return [f'{module.rsplit(".", 1)[1]}.{name}' for module in KERNEL_MODULES
+    modules = KERNEL_MODULES + (STATICS_MODULES if statics else ())
+    return [f'{module.rsplit(".", 1)[1]}.{name}' for module in modules
             for name, value in vars(importlib.import_module(module)).items()
             if isinstance(value, Dispatcher) and not _in_cache(value)]
 
@@ -66,15 +79,15 @@ def _in_cache(dispatcher) -> bool:
         return True
 
 
-def cold() -> bool:
+def cold(statics: bool = False) -> bool:
     """Tell whether the next solve compiles kernels (about 20 s) instead of loading them."""
-    return bool(uncached_kernels())
+    return bool(uncached_kernels(statics))
 
 
-def say_if_cold(prog: str, file=None) -> bool:
+def say_if_cold(prog: str, file=None, statics: bool = False) -> bool:
     """If cold(), say once per process on file (stderr) that the kernels are being compiled."""
     global _said
-    if not cold():
+    if not cold(statics):
         return False
     if not _said:
         print(f'{prog}: {MESSAGE}', file=file or sys.stderr, flush=True)
@@ -82,20 +95,20 @@ def say_if_cold(prog: str, file=None) -> bool:
     return True
 
 
-def compile_if_cold(prog: str) -> bool:
+def compile_if_cold(prog: str, statics: bool = False) -> bool:
     """
     If cold(), say so once (say_if_cold) and compile every kernel in a child process.
 
     Every kernel, not only those this program needs: else the next program would be cold
     again, and say so again. The wait is interruptible (compile_in_child). Returns cold().
     """
-    if not say_if_cold(prog):
+    if not say_if_cold(prog, statics=statics):
         return False
-    compile_in_child()
+    compile_in_child(statics)
     return True
 
 
-def compile_kernels() -> None:
+def compile_kernels(statics: bool = False) -> None:
     """Solve along every path the programs take, so that every kernel is compiled and cached."""
     import numpy as np
 
@@ -114,6 +127,8 @@ def compile_kernels() -> None:
         alignment(steered, cont.mech, solution.wheel_center, solution.rotation, solution.rack)
         sweep(steered, np.linspace(-20.0, 20.0, 5), method=method, rack=2.0)
     _compile_elements_and_axles(load_scene('five_link'))
+    if statics:
+        _compile_statics(load_scene('five_link'))
 
 
 def _compile_elements_and_axles(scene) -> None:
@@ -147,7 +162,20 @@ def _compile_elements_and_axles(scene) -> None:
     body_poses(corner_bodies(scene), solution)     # the node's /tf (TF is on by default)
 
 
-def compile_in_child() -> bool:
+def _compile_statics(scene) -> None:
+    """Solve a loaded equilibrium and the rates of a scene given bushings on every joint."""
+    from dataclasses import replace
+
+    from .model.bushing import Bushing
+    from .statics import compliance, Load, solve_loaded
+    bushed = replace(scene, constraints=[
+        c if c.type == 'line' else replace(c, bushing=Bushing(2000.0, 5000.0, 1.0, 5.0))
+        for c in scene.constraints])
+    compliance(bushed, 5.0)   # a zero-load state from the kinematics, then continued
+    solve_loaded(bushed, 6.0, Load((0.0, 1000.0, 0.0), 'cp', (0.0, 0.0, 10.0)))
+
+
+def compile_in_child(statics: bool = False) -> bool:
     """
     Run compile_kernels in a child process and wait for it; True if it finished well.
 
@@ -156,7 +184,8 @@ def compile_in_child() -> bool:
     handler's) kills the child and is raised on. False if the child failed: the compile then
     happens in this process, at the first solve.
     """
-    child = subprocess.Popen([sys.executable, '-m', __name__], stdin=subprocess.DEVNULL,
+    flags = [STATICS_FLAG] if statics else []
+    child = subprocess.Popen([sys.executable, '-m', __name__, *flags], stdin=subprocess.DEVNULL,
                              stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
                              start_new_session=True, env=os.environ.copy())
     try:
@@ -168,4 +197,4 @@ def compile_in_child() -> bool:
 
 
 if __name__ == '__main__':
-    compile_kernels()
+    compile_kernels(STATICS_FLAG in sys.argv[1:])

@@ -174,10 +174,15 @@ def main(args: list[str] | None = None) -> int:
         return 2
 
 
-def compile_kernels() -> None:
-    """Compile the kernels in a child process if numba's cache lacks them, saying so once."""
-    if warmup.say_if_cold(PROG):
-        warmup.compile_in_child()
+def compile_kernels(statics: bool = False) -> None:
+    """
+    Compile the kernels in a child process if numba's cache lacks them, saying so once.
+
+    statics: the statics kernels too (a scene with bushings, or statics asked for:
+    warmup.wants_statics), so that the first loaded answer does not compile them.
+    """
+    if warmup.say_if_cold(PROG, statics=statics):
+        warmup.compile_in_child(statics)
 
 
 def init_ros(argv: list[str]) -> None:

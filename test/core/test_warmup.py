@@ -62,3 +62,15 @@ def test_a_program_s_first_run_says_it_compiles_once_and_leaves_every_kernel_cac
     status, err = sweep_program(tmp_path, tmp_path / 'again.csv')
     assert status == 0 and warmup.MESSAGE not in err
     assert (tmp_path / 'again.csv').read_text() == (tmp_path / 'first.csv').read_text()
+
+
+def test_the_statics_kernels_are_checked_and_compiled_only_when_asked_for(tmp_path):
+    # A program without statics neither waits for nor compiles the statics kernels; one with
+    # (statics=True: a scene with bushings) finds them cold, and warm after its compile.
+    status, out, err = python(
+        'from linkage_ros.core import warmup\n'
+        'warmup.compile_in_child()\n'
+        'print(warmup.cold(), warmup.cold(statics=True))\n'
+        'warmup.compile_in_child(statics=True)\n'
+        'print(warmup.uncached_kernels(statics=True))\n', tmp_path)
+    assert (status, out, err) == (0, 'False True\n[]\n', '')

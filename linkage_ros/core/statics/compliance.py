@@ -20,11 +20,12 @@ travel is held.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 import math
 
 import numpy as np
 
+from . import kernel
 from .loaded import load_point, unloaded
 from .newton import kkt
 from ..base.geometry import cross
@@ -37,7 +38,10 @@ RATE_COLUMNS = tuple(names('kc_fy_cp', 'kc_fx_cp', 'kc_fx_wc', 'kc_mz'))
 PER_KN = 1000.0            # N per kN
 PER_KNM = 1e6              # N mm per kN m
 DEG = 180.0 / math.pi
-EX, EY = np.array([1.0, 0.0, 0.0]), np.array([0.0, 1.0, 0.0])
+EY_EX = np.array([[0.0, 1.0, 0.0], [1.0, 0.0, 0.0]])   # Fy, Fx at the patch
+EYE6 = np.eye(6)
+# the rates of the last zero-load equilibrium (loaded.LAST), kept on the Scene: (it, rates)
+LAST_RATES = '_statics_last_rates'
 
 
 @dataclass(frozen=True)
@@ -59,11 +63,13 @@ def angle_gradients(spin_axis: np.ndarray, side_sign: float) -> tuple[np.ndarray
     camber = -atan2(a_z, |a_xy|), toe = atan2(a_x, s a_y) (geometry.camber_toe); a moves by
     w x a, so d/dw = a x d/da.
     """
-    ax, ay, az = spin_axis
+    ax, ay, az = spin_axis.tolist()   # Python floats: less overhead per number
     flat = math.hypot(ax, ay)
-    d_camber = -np.array([-az * ax / flat, -az * ay / flat, flat]) / (az * az + flat * flat)
-    d_toe = side_sign * np.array([ay, -ax, 0.0]) / (ax * ax + ay * ay)
-    return cross(spin_axis, d_camber), cross(spin_axis, d_toe)
+    tilt, turn = az * az + flat * flat, ax * ax + ay * ay
+    by_axis = np.array([[az * ax / flat / tilt, az * ay / flat / tilt, -flat / tilt],  # camber
+                        [side_sign * ay / turn, side_sign * -ax / turn, 0.0]])         # toe
+    d_camber, d_toe = cross(spin_axis, by_axis)
+    return d_camber, d_toe
 
 
 def compliance(scene, travel_mm: float = 0.0, rack_mm: float = 0.0,
@@ -77,6 +83,17 @@ def compliance(scene, travel_mm: float = 0.0, rack_mm: float = 0.0,
     base = unloaded(scene, travel_mm, rack_mm, continuation, compiled)
     if base.status != Status.OK:
         return Compliance(base.status, base.message, float(travel_mm))
+    last = scene.__dict__.get(LAST_RATES)
+    if last is None or last[0] is not base:   # not yet at this zero-load state
+        last = (base, _rates(scene, base, travel_mm))
+        scene.__dict__[LAST_RATES] = last
+    done = last[1]   # a copy: the caller may change what it is given
+    return replace(done, rates=dict(done.rates), matrix=done.matrix.copy(),
+                   matrix_si=done.matrix_si.copy())
+
+
+def _rates(scene, base, travel_mm: float) -> Compliance:
+    """Return the Compliance at a solved zero-load state (loaded.Unloaded)."""
     system, eq = base.system, base.eq
     n, m = system.size, len(system.constraints)
     rot = eq.pose.r[0]
@@ -88,27 +105,30 @@ def compliance(scene, travel_mm: float = 0.0, rack_mm: float = 0.0,
     # generalized loads (columns): [force (3,), moment about the wheel centre (3,)] per N or
     # per N mm: Fx, Fy, Fz, Mx, My, Mz at the wheel centre, then Fy and Fx at the patch
     loads = np.zeros((n + m, 8))
-    loads[:6, :6] = np.eye(6)
+    loads[:6, :6] = EYE6
     loads[1, 6] = loads[0, 7] = 1.0
-    loads[3:6, 6], loads[3:6, 7] = cross(patch, EY), cross(patch, EX)
+    loads[3:6, 6:8] = cross(patch, EY_EX).T
     # one solve of the KKT matrix for every load (implicit function theorem)
-    sol = np.linalg.solve(kkt(eq.hess, eq.rows), loads)
+    sol = (np.linalg.solve(kkt(eq.hess, eq.rows), loads) if base.model is None
+           else kernel.kkt_solve(eq.hess, eq.rows, loads))
     dm, w, held = sol[:3], sol[3:6], -sol[n + m - 1]
-    toe, camber = d_toe @ w, d_camber @ w
+    # as Python floats (the same arithmetic, less overhead per number)
+    toe, camber, held = (d_toe @ w).tolist(), (d_camber @ w).tolist(), held.tolist()
+    (dx, dy, _), (wx, _, wz), (px, _, pz) = dm.tolist(), w.tolist(), patch.tolist()
     rates = {'toe_per_fx_wc_deg_per_kn': toe[0] * DEG * PER_KN,
-             'wc_dx_per_fx_wc_mm_per_kn': dm[0, 0] * PER_KN,
+             'wc_dx_per_fx_wc_mm_per_kn': dx[0] * PER_KN,
              'toe_per_mz_deg_per_knm': toe[5] * DEG * PER_KNM,
              'camber_per_mz_deg_per_knm': camber[5] * DEG * PER_KNM}
     if scene.wheel_radius > 0:
-        patch_dy = dm[1, 6] + (w[2, 6] * patch[0] - w[0, 6] * patch[2])   # (w x patch)_y
+        patch_dy = dy[6] + (wz[6] * px - wx[6] * pz)   # (w x patch)_y
         rates.update({'toe_per_fy_cp_deg_per_kn': toe[6] * DEG * PER_KN,
                       'camber_per_fy_cp_deg_per_kn': camber[6] * DEG * PER_KN,
-                      'wc_dy_per_fy_cp_mm_per_kn': dm[1, 6] * PER_KN,
+                      'wc_dy_per_fy_cp_mm_per_kn': dy[6] * PER_KN,
                       'cp_dy_per_fy_cp_mm_per_kn': patch_dy * PER_KN,
                       'jacking_per_fy_cp': held[6],
                       'toe_per_fx_cp_deg_per_kn': toe[7] * DEG * PER_KN,
                       'camber_per_fx_cp_deg_per_kn': camber[7] * DEG * PER_KN,
-                      'wc_dx_per_fx_cp_mm_per_kn': dm[0, 7] * PER_KN})
+                      'wc_dx_per_fx_cp_mm_per_kn': dx[7] * PER_KN})
     si = np.vstack((dm[:, :6] * 1e-3, w[:, :6]))   # m and rad per N and per N mm
     si[:, 3:] *= 1e3                                # per N m
     matrix = si.copy()

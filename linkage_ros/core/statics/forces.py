@@ -14,47 +14,78 @@ revolute leaves undetermined, shared equally (the least-norm pair). N, N m, mm.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
+from . import kernel
 from .rotation import energy_terms, log_so3
-from .system import CARRIER, Item, point_of, position, spring_terms
+from .system import CARRIER, Item, position, spring_terms
 from ..base.geometry import cross
 
+EYE = np.eye(3)
 
-def pickup_forces(scene, system, eq, force: np.ndarray) -> dict:
-    """Return the Loaded force fields of an equilibrium (dicts keyed by pickup)."""
+
+def item_places(system, model, pose) -> np.ndarray:
+    """
+    Return where every item of a System is at a pose, (T, 3, 3) mm, in pack.py's term order.
+
+    model: the System's kernel.Model (kernel.places), or None: by system.position (the
+    numpy path). Terms: the constraints in order, then the springs (slot 0 the body end,
+    then the moving items), the bushings, the load; unused slots NaN.
+    """
+    if model is not None:
+        out = np.empty((len(model.t_kind), 3, 3))
+        kernel.places(tuple(model), pose.c, pose.r, out)
+        return out
+    terms = ([items for _, _, items, _ in system.constraints]
+             + [[end] + [it for _, it in moving] for _, end, moving in system.springs]
+             + [[Item(b.body, b.x0)] for b in system.bushings] + [[system.load_item]])
+    out = np.full((len(terms), 3, 3), np.nan)
+    for t, items in enumerate(terms):
+        for a, item in enumerate(items):
+            out[t, a] = position(system, pose, item)[0]
+    return out
+
+
+def pickup_forces(scene, system, eq, force: np.ndarray, at: np.ndarray) -> dict:
+    """Return the Loaded force fields of an equilibrium (dicts keyed by pickup); at: places."""
     pose, lam = eq.pose, eq.multipliers
+    m, springs_at = len(system.constraints), len(system.constraints) + len(system.springs)
     links, balls, points, body, moments = {}, {}, {}, {}, {}
     arm_loads = {}   # hinge body -> list of (point, force on the arm)
 
     def add(key, point, f, m=None):
         points[key] = np.asarray(point, dtype=float)
-        body[key] = body.get(key, np.zeros(3)) + f
+        before = body.get(key)
+        body[key] = f if before is None else before + f
         if m is not None:
-            moments[key] = moments.get(key, np.zeros(3)) + m
+            moments[key] = m if key not in moments else moments[key] + m
 
-    for (name, kind, items, data), mult in zip(system.constraints, lam):
-        xs = [position(system, pose, it)[0] for it in items]
+    for i, ((name, kind, items, data), xs) in enumerate(zip(system.constraints, at)):
         if kind == 'link':
             d = xs[0] - xs[1]
-            links[name] = float(mult * np.linalg.norm(d) / data)
-            balls[name] = -mult * d / data
+            scale = lam[i] / data
+            links[name] = float(scale * math.sqrt(d @ d))
+            balls[name] = -scale * d
             if items[1].body < 0:
-                add(f'{name}_base', xs[1], mult * d / data)
+                add(f'{name}_base', xs[1], scale * d)
         elif kind == 'ball':
-            balls[name] = balls.get(name, np.zeros(3)) + mult * np.eye(3)[data]
-            if system.bodies[items[0].body].kind == 'hinge':
-                arm_loads.setdefault(items[0].body, []).append((xs[0], -mult * np.eye(3)[data]))
+            if data == 0:   # the first of a ball joint's three rows, x, y, z (system.build)
+                balls[name] = lam[i:i + 3].copy()
+                if system.bodies[items[0].body].kind == 'hinge':
+                    arm_loads.setdefault(items[0].body, []).append((xs[0], -lam[i:i + 3]))
         elif kind == 'line':
-            balls[name] = balls.get(name, np.zeros(3)) + mult * xs[1]
-            add(f'{name}_top', data, -mult * xs[1])
+            balls[name] = balls.get(name, np.zeros(3)) + lam[i] * xs[1]
+            add(f'{name}_top', data, -lam[i] * xs[1])
     springs = {}
-    for element, end, moving in system.springs:
-        x_move = point_of(system, pose, moving)
+    for (element, end, moving), xs in zip(system.springs, at[m:springs_at]):
+        x_move = sum(w * x for (w, _), x in zip(moving, xs[1:]))
         _, grads, _ = spring_terms(element, end.x0, x_move)
-        springs[element.name] = element.spring_at(float(np.linalg.norm(x_move - end.x0)))[0]
+        gap = x_move - end.x0
+        springs[element.name] = element.spring_at(math.sqrt(gap @ gap))[0]   # rate or table
         add(f'{element.name}_body', end.x0, -grads[0])
-        for w, it in moving:
+        for (w, it), x in zip(moving, xs[1:]):
             on_move = -w * grads[1]
             if it.body < 0:   # the share at a rigid link's base goes to the body there
                 link = scene.constraints[element.mount.constraint].name
@@ -65,15 +96,19 @@ def pickup_forces(scene, system, eq, force: np.ndarray) -> dict:
                 link = scene.constraints[element.mount.constraint].name
                 balls[link] = balls.get(link, np.zeros(3)) + on_move
             elif system.bodies[it.body].kind == 'hinge':
-                arm_loads.setdefault(it.body, []).append((position(system, pose, it)[0],
-                                                          on_move))
-    for b in system.bushings:
-        d = position(system, pose, Item(b.body, b.x0))[0] - b.at
-        f = b.stiff @ d
-        couple = cross(d, f)
-        if b.turn is not None:
-            couple = couple + energy_terms(log_so3(pose.r[b.body]), b.turn)[1]
-        add(b.key, b.at, f, couple / 1000.0)
+                arm_loads.setdefault(it.body, []).append((x, on_move))
+    if system.bushings:   # all at once: K d at B, its couple d x K d, the rotational torque
+        bushes = system.bushings
+        d = at[springs_at:springs_at + len(bushes), 0] - np.array([b.at for b in bushes])
+        f = (np.array([b.stiff for b in bushes]) @ d[:, :, None])[:, :, 0]
+        couples = cross(d, f)
+        torques = {}   # per arm body: its bushings share one rotation
+        for b, fb, couple in zip(bushes, f, couples):
+            if b.turn is not None:
+                if b.body not in torques:
+                    torques[b.body] = energy_terms(log_so3(pose.r[b.body]), b.turn)[1]
+                couple = couple + torques[b.body]
+            add(b.key, b.at, fb, couple / 1000.0)
     for j, k in system.body_of.items():
         if system.bodies[k].kind == 'hinge':
             c = scene.constraints[j]

@@ -26,6 +26,9 @@ from ..base.so3 import turn
 
 SO3_DIGEST = '862efb847a68465a5f68ec100893bccc4658d8a7278ad25575f0da1dc9d158aa'
 ROTATION_DIGEST = 'f322a3f0d12e66096812e993ee192608911b206f74f9cce6e370fd44fb4e37ea'
+# a Newton step predicted (quadratic convergence) below this fraction of the tolerance is not
+# taken (converged()): it would move the pose by round-off
+PREDICTED = 1e-3
 CARRIER, ARM, HINGE, BASE = 0, 1, 2, 3
 LINK, BALL, LINE, TRAVEL, SPRING, BUSH, LOAD = 0, 1, 2, 3, 4, 5, 6
 jit = njit(cache=True, nogil=True, error_model='numpy')
@@ -70,6 +73,20 @@ def _place(model, c, r, body, x0, trans, x, v):
     for i in range(3):
         v[i] = r[body, i, 0] * d0 + r[body, i, 1] * d1 + r[body, i, 2] * d2
         x[i] = v[i] + c[body, i] * trans
+
+
+@jit
+def places(fields, c, r, out):
+    """Write where every term's items are at a pose, out (T, 3, 3) mm (unused slots: NaN)."""
+    model = Model(*fields)
+    v = np.empty(3)
+    for t in range(len(model.t_kind)):
+        for a in range(3):
+            body = model.it_body[t, a]
+            if body == -2:
+                out[t, a] = np.nan
+            else:
+                _place(model, c, r, body, model.it_x0[t, a], model.it_trans[t, a], out[t, a], v)
 
 
 @jit
@@ -261,6 +278,17 @@ def _scaled_max(model, vec, lever, divide):
 
 
 @jit
+def converged(size, last, tol):
+    """
+    Tell whether Newton has converged: its step (scaled) is below tol, or the next one will be.
+
+    Newton converges quadratically: the next step is about size^3 / last^2 (last: the step
+    before). Below PREDICTED * tol it is round-off: the step after it is not taken.
+    """
+    return size < tol or size * size * size < PREDICTED * tol * last * last
+
+
+@jit
 def newton(fields, c, r, lam, force, moment, lever, tol_step, max_iter, hess, rows):
     """
     Solve the equilibrium from (c, r, lam) in place; return (ok, iterations, residual N).
@@ -272,6 +300,7 @@ def newton(fields, c, r, lam, force, moment, lever, tol_step, max_iter, hess, ro
     n, m = model.n, model.m
     grad, values = np.empty(n), np.empty(m)
     matrix, rhs = np.zeros((n + m, n + m)), np.empty(n + m)
+    last = 0.0   # no step before the first
     for iteration in range(1, max_iter + 1):
         assemble(model, c, r, lam, force, moment, grad, hess, values, rows)
         matrix[:n, :n] = hess
@@ -287,13 +316,25 @@ def newton(fields, c, r, lam, force, moment, lever, tol_step, max_iter, hess, ro
         lam[:] = sol[n:]
         _move(model, c, r, step)
         size = _scaled_max(model, step, lever, False)
-        if size < tol_step * max(1.0, lever):
+        if converged(size, last, tol_step * max(1.0, lever)):
             assemble(model, c, r, lam, force, moment, grad, hess, values, rows)
             return True, iteration, _scaled_max(model, grad, lever, True)
         if not size < 1e3 * lever:
             break
+        last = size
     assemble(model, c, r, lam, force, moment, grad, hess, values, rows)
     return False, max_iter, _scaled_max(model, grad, lever, True)
+
+
+@jit
+def kkt_solve(hess, rows, rhs):
+    """Return the solution of [[H, J^T], [J, 0]] x = rhs (n + m, k): newton.kkt, compiled."""
+    n, m = hess.shape[0], rows.shape[0]
+    matrix = np.zeros((n + m, n + m))
+    matrix[:n, :n] = hess
+    matrix[:n, n:] = rows.T
+    matrix[n:, :n] = rows
+    return np.linalg.solve(matrix, rhs)
 
 
 @jit

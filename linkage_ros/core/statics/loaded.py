@@ -22,10 +22,10 @@ from typing import NamedTuple
 import numpy as np
 
 from . import newton
-from .forces import pickup_forces
+from .forces import item_places, pickup_forces
 from .pack import pack
 from .rotation import log_so3
-from .system import build, initial_pose, Item, position, System
+from .system import build, initial_pose, Pose, System
 from ..base.errors import LinkageError
 from ..base.finite import all_finite, is_finite_number
 from ..base.geometry import camber_toe
@@ -94,7 +94,10 @@ class Unloaded(NamedTuple):
 # where a Scene keeps its statics Systems and packed Models, by rack (as compile_scene does)
 PREPARED = '_statics'
 RACKS_KEPT = 16
-LAST = '_statics_last'   # the last zero-load equilibrium solved: (travel, rack, compiled), it
+LAST = '_statics_last'   # the last zero-load equilibrium solved: key, it, kinematic (M, R)
+# a last zero-load equilibrium at most this far in travel (same rack) starts the next Newton
+# (a node at 1 kHz, a sweep): fewer iterations, and no arm poses to set up from the kinematics
+WARM_MM = 5.0
 
 
 def prepared(scene, rack_mm: float, z: float, load_x0: np.ndarray, compiled: bool = True):
@@ -148,6 +151,8 @@ def unloaded(scene, travel_mm: float, rack_mm: float = 0.0,
     """
     Solve the zero-load equilibrium at travel and rack (mm), from the kinematic pose.
 
+    Or from the last one solved at the same rack within WARM_MM of travel (_predicted), when
+    that converges.
     compiled False: by newton_python (numpy), the check of the compiled kernel. The last
     one solved is kept on the Scene and returned again for the same travel and rack (a rig
     or a node loading one position with many loads; rates and loads at one travel).
@@ -166,17 +171,39 @@ def unloaded(scene, travel_mm: float, rack_mm: float = 0.0,
     mech = compile_scene(scene)
     z = float(mech.design_center[2] + travel_mm)
     system, model = prepared(scene, float(rack_mm), z, mech.design_center, compiled)
-    pose = initial_pose(system, scene, kin.wheel_center, kin.rotation)
     lever = mech.lever
-    eq = newton.loaded(system, model, newton.Equilibrium(
-        True, pose, np.zeros(len(system.constraints)), None, None, 0.0, 0), np.zeros(3),
-        np.zeros(3), lever)
+    center, rotation = np.asarray(kin.wheel_center), np.asarray(kin.rotation)
+    eq = None
+    if (last is not None and last[0][1:] == key[1:]
+            and abs(last[0][0] - key[0]) <= WARM_MM):
+        eq = newton.loaded(system, model, _predicted(last, center, rotation), np.zeros(3),
+                           np.zeros(3), lever)
+    if eq is None or not eq.ok:   # a cold start, or the warm one failed: from the kinematics
+        pose = initial_pose(system, scene, center, rotation)
+        eq = newton.loaded(system, model, newton.Equilibrium(
+            True, pose, np.zeros(len(system.constraints)), None, None, 0.0, 0), np.zeros(3),
+            np.zeros(3), lever)
     if not eq.ok:
         return Unloaded(Status.NOT_CARRIED, f'the zero load is not carried at travel '
                         f'{travel_mm:g} mm: no convergence (residual {eq.residual:.3g} N)')
     done = Unloaded(Status.OK, 'ok', system, eq, lever, model)
-    scene.__dict__[LAST] = (key, done)
+    scene.__dict__[LAST] = (key, done, (center.copy(), rotation.copy()))
     return done
+
+
+def _predicted(last, center: np.ndarray, rotation: np.ndarray) -> newton.Equilibrium:
+    """
+    Return a Newton start from the last zero-load equilibrium (a 'last' entry of LAST).
+
+    Its carrier is moved as the kinematic pose moved since (the deflection carried over);
+    the other bodies and the multipliers are kept.
+    """
+    _, done, (center0, rotation0) = last
+    pose = done.eq.pose
+    c, r = pose.c.copy(), pose.r.copy()
+    c[0] = pose.c[0] + center - center0
+    r[0] = rotation @ rotation0.T @ pose.r[0]
+    return newton.Equilibrium(True, Pose(c, r), done.eq.multipliers.copy(), None, None, 0.0, 0)
 
 
 def load_point(scene, base: Unloaded, at: str) -> np.ndarray:
@@ -212,38 +239,51 @@ def solve_loaded(scene, travel_mm: float = 0.0, load: Load = Load(), rack_mm: fl
         it_x0[len(it_x0) - 1, 0] = x0
         model = model._replace(it_x0=it_x0)
     eq = newton.loaded(system, model, base.eq, force, moment, base.lever)
-    said = (f'load {tuple(float(f) for f in load.force_n)} N at {load.at}, moment '
-            f'{tuple(float(m) for m in load.moment_nm)} N m')
     if not eq.ok:
-        return Loaded(Status.NOT_CARRIED, f'{said} is not carried at travel {travel_mm:g} mm: '
-                      f'no convergence (last residual {eq.residual:.3g} N)', float(travel_mm),
-                      residual=eq.residual, iterations=eq.iterations)
-    forces = pickup_forces(scene, system, eq, force)
-    beyond = _beyond_validity(system, eq)
+        return _not_carried(load, travel_mm, eq, 'no convergence (last residual '
+                            f'{eq.residual:.3g} N)')
+    at = item_places(system, model, eq.pose)
+    forces = pickup_forces(scene, system, eq, force, at)
+    beyond = _beyond_validity(system, eq, at)
     if beyond:
-        return Loaded(Status.NOT_CARRIED, f'{said} is not carried at travel {travel_mm:g} mm: '
-                      f'{beyond} (residual {eq.residual:.3g} N)', float(travel_mm),
-                      residual=eq.residual, iterations=eq.iterations)
+        return _not_carried(load, travel_mm, eq, f'{beyond} (residual {eq.residual:.3g} N)')
     mech = compile_scene(scene)
     c, r = eq.pose.c[0], eq.pose.r[0]
     camber, toe = camber_toe(r @ mech.spin_axis, scene.side_sign)
     return Loaded(Status.OK, 'ok', float(travel_mm), math.degrees(camber), math.degrees(toe),
                   c.copy(), r.copy(), holding_force_n=-float(eq.multipliers[-1]),
-                  load_point_mm=position(system, eq.pose, system.load_item)[0],
+                  load_point_mm=at[-1, 0].copy(),
                   residual=eq.residual, iterations=eq.iterations, rack_mm=float(rack_mm),
                   **forces)
 
 
-def _beyond_validity(system, eq) -> str:
-    """Say which bushing deflects beyond the model's validity, '' if none does."""
-    for b in system.bushings:
-        d = position(system, eq.pose, Item(b.body, b.x0))[0] - b.at
-        if np.linalg.norm(d) > MAX_DEFLECTION_MM:
-            return (f'bushing {b.key} deflects {np.linalg.norm(d):.3g} mm, beyond the '
+def _not_carried(load: Load, travel_mm: float, eq, why: str) -> Loaded:
+    """Return the NOT_CARRIED Loaded of a load at a travel, naming the load and why."""
+    said = (f'load {tuple(float(f) for f in load.force_n)} N at {load.at}, moment '
+            f'{tuple(float(m) for m in load.moment_nm)} N m')
+    return Loaded(Status.NOT_CARRIED, f'{said} is not carried at travel {travel_mm:g} mm: '
+                  f'{why}', float(travel_mm), residual=eq.residual, iterations=eq.iterations)
+
+
+def _beyond_validity(system, eq, at: np.ndarray) -> str:
+    """Say which bushing deflects beyond the model's validity, '' if none does; at: places."""
+    bushes = system.bushings
+    if not bushes:
+        return ''
+    first = len(system.constraints) + len(system.springs)   # the bushings' terms (pack.py)
+    d = at[first:first + len(bushes), 0] - np.array([b.at for b in bushes])
+    sizes = np.sqrt((d * d).sum(axis=1)).tolist()
+    turns = {}   # per arm body: its rotation vector (its bushings share it)
+    for b, size in zip(bushes, sizes):
+        if size > MAX_DEFLECTION_MM:
+            return (f'bushing {b.key} deflects {size:.3g} mm, beyond the '
                     f"model's {MAX_DEFLECTION_MM:g} mm")
         if system.bodies[b.body].kind == 'arm':
-            phi = log_so3(eq.pose.r[b.body])
-            conical = math.degrees(np.linalg.norm(phi - (phi @ b.axis) * b.axis))
+            if b.body not in turns:
+                turns[b.body] = log_so3(eq.pose.r[b.body])
+            phi = turns[b.body]
+            across = phi - (phi @ b.axis) * b.axis
+            conical = math.degrees(math.sqrt(across @ across))
             if conical > MAX_CONICAL_DEG:
                 return (f'bushing {b.key} turns {conical:.3g} deg conically, beyond the '
                         f"model's {MAX_CONICAL_DEG:g} deg")

@@ -75,7 +75,7 @@ def newton(system: System, model: kernel.Model, pose: Pose, multipliers: np.ndar
 def newton_python(system: System, pose: Pose, multipliers: np.ndarray, force: np.ndarray,
                   moment: np.ndarray, lever: float) -> Equilibrium:
     """Solve one equilibrium by Newton (numpy) from pose and multipliers; ok False if not."""
-    n = system.size
+    n, last = system.size, 0.0   # no step before the first
     for iteration in range(1, MAX_ITER + 1):
         grad, hess, values, rows, _ = assemble(system, pose, multipliers, force, moment)
         rhs = -np.concatenate((grad - rows.T @ multipliers, values))
@@ -88,12 +88,13 @@ def newton_python(system: System, pose: Pose, multipliers: np.ndarray, force: np
         step, multipliers = sol[:n], sol[n:]
         pose = moved(system, pose, step)
         size = _step_size(system, step, lever)
-        if size < TOL_STEP * max(1.0, lever):
+        if kernel.converged(size, last, TOL_STEP * max(1.0, lever)):
             grad, hess, values, rows, _ = assemble(system, pose, multipliers, force, moment)
             return Equilibrium(True, pose, multipliers, hess, rows,
                                imbalance(system, grad, lever), iteration)
         if not size < 1e3 * lever:   # diverging (or NaN)
             break
+        last = size
     grad, hess, values, rows, _ = assemble(system, pose, multipliers, force, moment)
     residual = imbalance(system, grad, lever)
     return Equilibrium(False, pose, multipliers, hess, rows,
