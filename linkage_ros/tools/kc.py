@@ -72,8 +72,8 @@ def vector(text: str) -> tuple:
 def parse_args(argv, rounds=0):
     """Read the command line; a mistake exits with one line and status 2."""
     parser = Parser(PROG, __doc__, EPILOG)
-    parser.add_argument('scene', help='bundled scene name (e.g. double_wishbone_bushings) or path to a '
-                        'YAML file')
+    parser.add_argument('scene', help='bundled scene name (e.g. double_wishbone_bushings) or '
+                        'path to a YAML file')
     parser.add_argument('--travel', type=span, metavar=SPAN, required=True,
                         help='wheel travel, mm, + = bump: one value or a range')
     parser.add_argument('--rack', type=span, metavar=SPAN,

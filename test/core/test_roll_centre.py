@@ -77,9 +77,10 @@ def _formulas(function):
                         isinstance(node.left, ast.Constant) and node.left.value == 1
                         and ast.unparse(right.left) == ast.unparse(right.right))):
                 found.add('contact patch')
+        # omega x (patch - centre); a force's moment, patch x F, is another formula
         if (isinstance(node, ast.Call)
                 and getattr(node.func, 'id', getattr(node.func, 'attr', '')) == 'cross'
-                and any('patch' in ast.unparse(a) for a in node.args)):
+                and len(node.args) == 2 and 'patch' in ast.unparse(node.args[1])):
             found.add("a contact patch's velocity")
     return found
 

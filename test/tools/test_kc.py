@@ -5,8 +5,8 @@
 linkage-kc end to end: its tables are the statics API's numbers, its files read back whole.
 
 Run as a user runs it (the installed console script, in a subprocess) on the bundled
-double_wishbone_bushings, which declares bushings. Values are written to 10 significant digits, so a
-table agrees with the API to 1e-9 relative (plus an absolute floor for values near zero).
+double_wishbone_bushings, which declares bushings. Values are written to 10 significant digits,
+so a table agrees with the API to 1e-9 relative (plus an absolute floor for values near zero).
 """
 
 import csv
@@ -208,7 +208,8 @@ def test_linkage_bench_kc_prints_1x_10x_and_100x_side_by_side():
     status, out, err = run('kc', SCENE, '--travel', '0', '--rounds', '1', program=BENCH)
     lines = out.splitlines()
     assert status == 0, err
-    assert lines[0].startswith('double_wishbone_bushings: 1 positions (1x); loaded by F (0, 1000, 0)')
+    assert lines[0].startswith('double_wishbone_bushings: 1 positions (1x); loaded by '
+                               'F (0, 1000, 0)')
     assert lines[1].split() == ['positions', 'kinematic_us', 'rates_us', 'loaded_us',
                                 'rates/kinematic', 'loaded/kinematic']
     rows = np.array([line.split() for line in lines[2:]], dtype=float)

@@ -26,19 +26,9 @@ import math
 
 import numpy as np
 
+from ..base.geometry import point_velocity
 from ..measure.alignment import contact_patch, patch_offset
 from ..solve import jacobian_kernel
-
-
-def point_velocity(v_center, omega, offset):
-    """
-    Return the velocity (x, y, z) of a carrier point: v_center + omega x offset.
-
-    v_center: the wheel centre's velocity, omega: the carrier's angular velocity, offset: the
-    point less the wheel centre (mm), each a triple of floats or of arrays (n,).
-    """
-    (vx, vy, vz), (wx, wy, wz), (dx, dy, dz) = v_center, omega, offset
-    return vx + (wy * dz - wz * dy), vy + (wz * dx - wx * dz), vz + (wx * dy - wy * dx)
 
 
 def meet(left, right):

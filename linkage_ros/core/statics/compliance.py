@@ -28,7 +28,7 @@ import numpy as np
 from . import kernel
 from .loaded import load_point, unloaded
 from .newton import kkt
-from ..base.geometry import cross
+from ..base.geometry import cross, point_velocity
 from ..base.status import Status
 from ..measure.quantities import names
 from ..solve.continuation import Continuation
@@ -114,13 +114,13 @@ def _rates(scene, base, travel_mm: float) -> Compliance:
     dm, w, held = sol[:3], sol[3:6], -sol[n + m - 1]
     # as Python floats (the same arithmetic, less overhead per number)
     toe, camber, held = (d_toe @ w).tolist(), (d_camber @ w).tolist(), held.tolist()
-    (dx, dy, _), (wx, _, wz), (px, _, pz) = dm.tolist(), w.tolist(), patch.tolist()
+    dx, dy = dm[:2].tolist()
     rates = {'toe_per_fx_wc_deg_per_kn': toe[0] * DEG * PER_KN,
              'wc_dx_per_fx_wc_mm_per_kn': dx[0] * PER_KN,
              'toe_per_mz_deg_per_knm': toe[5] * DEG * PER_KNM,
              'camber_per_mz_deg_per_knm': camber[5] * DEG * PER_KNM}
     if scene.wheel_radius > 0:
-        patch_dy = dy[6] + (wz[6] * px - wx[6] * pz)   # (w x patch)_y
+        patch_dy = float(point_velocity(dm[:, 6], w[:, 6], patch)[1])   # the patch's move
         rates.update({'toe_per_fy_cp_deg_per_kn': toe[6] * DEG * PER_KN,
                       'camber_per_fy_cp_deg_per_kn': camber[6] * DEG * PER_KN,
                       'wc_dy_per_fy_cp_mm_per_kn': dy[6] * PER_KN,
