@@ -78,6 +78,17 @@ exit status: 0 stopped by Ctrl-C (SIGINT) or SIGTERM, at any time: the command i
 """
 
 
+LIFECYCLE_HELP = """suspension_lifecycle_node: suspension_node as a managed (lifecycle) node. It
+starts unconfigured; drive it with the standard <node>/change_state service (ros2 lifecycle
+set /suspension_kinematics configure, activate, deactivate, cleanup, shutdown): configure
+parses the scene or vehicle, compiles the kernels and creates the topics (a bad scene fails
+it, with its reason on the log); it answers only while active; shutdown closes the
+recordings and ends the process (status 0). Parameters are read at configure. Otherwise as
+suspension_node:
+
+"""
+
+
 def help_text() -> str:
     """Return the text of suspension_node --help: the parameters with defaults and ranges."""
     return HELP.format(parameters='\n'.join(help_lines()))
@@ -118,12 +129,17 @@ class Signals:
             raise Stopped(number)
 
 
-def main(args: list[str] | None = None) -> int:
+def lifecycle_main(args: list[str] | None = None) -> int:
+    """Run suspension_lifecycle_node: the managed node (ros/lifecycle.py); as main."""
+    return main(args, managed=True)
+
+
+def main(args: list[str] | None = None, managed: bool = False) -> int:
     """Run suspension_node: 0 when stopped by SIGINT or SIGTERM, 2 for a mistake."""
     argv = sys.argv[1:] if args is None else list(args)
     own = argv[:argv.index('--ros-args')] if '--ros-args' in argv else argv
     if {'-h', '--help'} & set(own):          # before ROS starts
-        print(help_text(), end='')
+        print(LIFECYCLE_HELP * managed + help_text(), end='')
         return 0
     if own:
         print(f'{PROG}: unknown argument {own[0]!r}: parameters go after --ros-args, '
@@ -137,7 +153,11 @@ def main(args: list[str] | None = None) -> int:
     node = None
     try:
         init_ros(argv)
-        node = SuspensionNode(before_solving=compile_kernels)
+        if managed:
+            from .lifecycle import ManagedSuspensionNode
+            node = ManagedSuspensionNode(before_solving=compile_kernels)
+        else:
+            node = SuspensionNode(before_solving=compile_kernels)
         return run(node, signals)
     except Stopped:
         if node is not None:
@@ -207,7 +227,8 @@ def run(node: Node, signals: Signals | None = None) -> int:
         executor.add_node(node)
         # Finite timeouts on purpose too: with rclpy 7.1.6, EventsExecutor.spin_once()
         # without one busy-waits holding the GIL and never runs a callback.
-        while not signals.requested and node.context.ok():
+        while not signals.requested and node.context.ok() \
+                and not getattr(node, 'finished', False):   # a managed node shut down
             executor.spin_once(timeout_sec=POLL)
     except ExternalShutdownException:    # the context was shut down by someone else
         pass
