@@ -27,7 +27,7 @@ import math
 from typing import TYPE_CHECKING
 
 from ..cdr import float64_of, pose_of
-from ..core.base import M_PER_MM
+from ..core.base import M_PER_MM, MM_PER_M
 
 if TYPE_CHECKING:
     from rclpy.node import Node
@@ -61,8 +61,10 @@ def serve_corners(node: Node, corners: dict[str, Corner]) -> dict:
             node.get_logger().warning(MISSING)
             node._said_solve = True
         return {}
+    # as deep as the topics (qos_depth): a simulator's burst of requests is not lost
     return {name: node.create_service(kind, corner.prefix + 'solve',
-                                      SolveAnswers(node, name, corner).solve)
+                                      SolveAnswers(node, name, corner).solve,
+                                      qos_profile=node.qos)
             for name, corner in corners.items()}
 
 
@@ -79,7 +81,8 @@ class SolveAnswers:
         why = self._refusal(request)
         if why:
             return refused(response, why)
-        travel_mm, rack_mm = request.travel / M_PER_MM, request.rack / M_PER_MM
+        # as the topics read a command (messages.command_mm): the same float, bit for bit
+        travel_mm, rack_mm = request.travel * MM_PER_M, request.rack * MM_PER_M
         if not self.corner.scene.steered and rack_mm == 0.0:
             rack_mm = None    # no rack link: the rack stays where it is (none)
         now = self.node.clock.now().nanoseconds
