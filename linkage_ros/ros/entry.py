@@ -37,6 +37,7 @@ if TYPE_CHECKING:
     from rclpy.node import Node
 
 PROG = 'suspension_node'
+LIFECYCLE_PROG = 'suspension_lifecycle_node'
 POLL = 0.1    # s: the longest the executor waits before it looks whether a signal came
 # rclpy's exception for ROS arguments it does not know (a class of its C extension).
 UNKNOWN_ROS_ARGS = getattr(_rclpy, 'UnknownROSArgsError', ())
@@ -136,14 +137,15 @@ def lifecycle_main(args: list[str] | None = None) -> int:
 
 def main(args: list[str] | None = None, managed: bool = False) -> int:
     """Run suspension_node: 0 when stopped by SIGINT or SIGTERM, 2 for a mistake."""
+    prog = LIFECYCLE_PROG if managed else PROG
     argv = sys.argv[1:] if args is None else list(args)
     own = argv[:argv.index('--ros-args')] if '--ros-args' in argv else argv
     if {'-h', '--help'} & set(own):          # before ROS starts
         print(LIFECYCLE_HELP * managed + help_text(), end='')
         return 0
     if own:
-        print(f'{PROG}: unknown argument {own[0]!r}: parameters go after --ros-args, '
-              f'as -p name:=value (see {PROG} --help)', file=sys.stderr)
+        print(f'{prog}: unknown argument {own[0]!r}: parameters go after --ros-args, '
+              f'as -p name:=value (see {prog} --help)', file=sys.stderr)
         return 2
     # A file-size limit (ulimit -f) would kill the process at the limit: make it an error of
     # the write instead, which stops the recording and is reported, while the node goes on.
@@ -166,7 +168,7 @@ def main(args: list[str] | None = None, managed: bool = False) -> int:
         return 0
     except (ValueError, OSError, ImportError, ParameterException) as exc:
         # LinkageError (a ValueError): its message names the file, field or parameter.
-        print(f'{PROG}: {exc}', file=sys.stderr)
+        print(f'{prog}: {exc}', file=sys.stderr)
         rclpy.try_shutdown()
         return 2
 

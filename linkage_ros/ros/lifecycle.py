@@ -105,7 +105,7 @@ class ManagedSuspensionNode(LifecycleNodeMixin, SuspensionNode):
         return TransitionCallbackReturn.SUCCESS
 
     def on_error(self, state) -> TransitionCallbackReturn:
-        """A transition raised: release everything, back to unconfigured."""
+        """Release everything after a transition that raised: unconfigured again."""
         self.get_logger().error(f'a transition from {state.label} failed: released')
         self._release()
         return TransitionCallbackReturn.SUCCESS

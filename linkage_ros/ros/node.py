@@ -80,8 +80,8 @@ from .parameters import PARAMETERS
 from .qos import clock_qos, latched_qos, offered, publisher, QOS, QOS_DEPTH, subscription, \
     topic_qos, unknown_overrides
 from .runtime import RuntimeParameters
-from .solve_service import serve_corners
 from .sinks import check_outputs, open_sinks, recording_metadata, Sinks
+from .solve_service import serve_corners
 from ..cdr import CdrError, from_cdr, to_cdr, type_name
 from ..core.base import LinkageError
 from ..core.model import load_scene

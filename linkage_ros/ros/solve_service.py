@@ -140,4 +140,3 @@ def refused(response, why: str):
     response.status_text = f'REFUSED: {why}'
     response.iterations = 0
     return response
-

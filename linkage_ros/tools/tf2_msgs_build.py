@@ -179,5 +179,6 @@ def main(argv=None) -> int:
           '<corner>/solve', file=sys.stderr)
     return cli.DONE
 
+
 if __name__ == '__main__':
     sys.exit(main())

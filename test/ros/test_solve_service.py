@@ -95,12 +95,12 @@ def test_service_answers_equal_topic_answers_for_1000_calls_at_1_khz(
 
 @needs_interfaces
 @pytest.mark.parametrize('request_fields,status,says', [
-    (dict(corner='front_left', travel=0.01), 255, "REFUSED: no corner 'front_left' here"),
-    (dict(travel=math.nan), Status.NOT_FINITE, 'NOT_FINITE: '),
-    (dict(travel=math.inf), Status.NOT_FINITE, 'NOT_FINITE: '),
-    (dict(travel=5.0), Status.OUT_OF_REACH, 'OUT_OF_REACH: '),
-    (dict(travel=0.01, rack=0.002), Status.NO_RACK, 'NO_RACK: '),
-    (dict(travel=0.01, use_wrench=True), 255,
+    ({'corner': 'front_left', 'travel': 0.01}, 255, "REFUSED: no corner 'front_left' here"),
+    ({'travel': math.nan}, Status.NOT_FINITE, 'NOT_FINITE: '),
+    ({'travel': math.inf}, Status.NOT_FINITE, 'NOT_FINITE: '),
+    ({'travel': 5.0}, Status.OUT_OF_REACH, 'OUT_OF_REACH: '),
+    ({'travel': 0.01, 'rack': 0.002}, Status.NO_RACK, 'NO_RACK: '),
+    ({'travel': 0.01, 'use_wrench': True}, 255,
      'REFUSED: statics is not available for corner five_link'),
 ])
 def test_a_bad_request_gets_an_error_status_and_no_pose(
