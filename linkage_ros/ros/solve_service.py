@@ -124,7 +124,8 @@ def fill(response, reply):
     pose.orientation.x, pose.orientation.y = qx, qy
     pose.orientation.z, pose.orientation.w = qz, qw
     response.status = int(solution.status)
-    response.status_text = f'{solution.status.name}: {solution.message}'
+    response.status_text = 'OK' if solution.success else (
+        f'{solution.status.name}: {solution.message}')
     response.residual = solution.residual * M_PER_MM
     response.iterations = int(solution.iterations)
     return response

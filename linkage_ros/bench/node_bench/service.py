@@ -23,7 +23,7 @@ from ...ros.solve_service import solve_type
 
 
 def bench_service(args, log_dir, domain_id):
-    """The node's round trip by topic and by its solve service, in alternating rounds."""
+    """Time the node's round trip by topic and by its solve service, in alternating rounds."""
     kind = solve_type()
     if kind is None:
         progress('service: skipped: linkage_ros_interfaces is not built here (linkage-tf2-msgs '
@@ -98,4 +98,3 @@ def bench_lifecycle(args, log_dir, domain_id):
     table(['lifecycle', 'configures', 'median_ms', 'max_ms'],
           [(case, len(values), float(np.median(values) * 1e3), float(max(values) * 1e3))
            for case, values in (('configure cold', cold), ('configure warm', warm))])
-
