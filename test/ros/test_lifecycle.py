@@ -12,8 +12,11 @@ import math
 
 from lifecycle_msgs.msg import State, Transition
 from lifecycle_msgs.srv import ChangeState, GetState
+from linkage_ros.ros.lifecycle import ManagedSuspensionNode
 from linkage_ros.ros.node import NODE_NAME
 from linkage_ros.ros.testing import Probe, read_mcap_ros2, spin_until
+from rclpy.lifecycle import TransitionCallbackReturn
+from rclpy.parameter import Parameter
 
 WAIT = 20.0   # s: cross-process discovery is ~0.04 s or ~3 s
 COMPILE = 120.0   # s: a configure on a cold numba cache compiles the kernels (~20 s alone)
@@ -94,3 +97,41 @@ def test_lifecycle_node_with_a_bad_scene_fails_configure_with_its_reason(
     assert failed[0].endswith(f'configure failed: {missing}: file: cannot read (No such file '
                               'or directory)')
     assert 'Traceback' not in err
+
+
+def entity_names(node):
+    return sorted([*(p.topic_name for p in node.publishers),
+                   *(s.topic_name for s in node.subscriptions),
+                   *(s.srv_name for s in node.services)])
+
+
+def test_cleanup_releases_what_configure_made_and_configure_works_again(
+        ros_context, tmp_path):
+    path = tmp_path / 'run.mcap'
+    node = ManagedSuspensionNode(context=ros_context, parameter_overrides=[
+        Parameter('record_mcap', value=str(path))])
+    try:
+        unconfigured = entity_names(node)
+        assert '/wheel_travel' not in unconfigured
+        assert node.trigger_configure() == TransitionCallbackReturn.SUCCESS
+        assert {'/wheel_travel', '/wheel_carrier_pose'} <= set(entity_names(node))
+        assert node.trigger_cleanup() == TransitionCallbackReturn.SUCCESS
+        assert entity_names(node) == unconfigured
+        # closed: a whole file that reads back, with what configure sent and no answer
+        assert sorted(read_mcap_ros2(path)) == ['/robot_description', '/tf_static']
+        assert node.trigger_configure() == TransitionCallbackReturn.SUCCESS
+    finally:
+        node.destroy_node()
+
+
+def test_a_parameter_change_while_configured_is_refused_saying_why(ros_context):
+    node = ManagedSuspensionNode(context=ros_context)
+    try:
+        assert node.set_parameters([Parameter('method', value='paper')])[0].successful
+        assert node.trigger_configure() == TransitionCallbackReturn.SUCCESS
+        result = node.set_parameters([Parameter('method', value='fast')])[0]
+        assert (result.successful, result.reason) == (False, (
+            'the parameters are read at configure: cleanup, set them, then configure again'))
+        assert node.corners[''].method == 'paper'
+    finally:
+        node.destroy_node()
