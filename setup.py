@@ -24,8 +24,7 @@ setup(
         ('share/' + package_name + '/config/interfaces/tf2_msgs/msg',
          glob('config/interfaces/tf2_msgs/msg/*')),
         ('share/' + package_name + '/config/interfaces/linkage_ros_interfaces',
-         glob('config/interfaces/linkage_ros_interfaces/*.*')
-         + ['config/interfaces/linkage_ros_interfaces/COLCON_IGNORE']),
+         glob('config/interfaces/linkage_ros_interfaces/*.*')),
         ('share/' + package_name + '/config/interfaces/linkage_ros_interfaces/srv',
          glob('config/interfaces/linkage_ros_interfaces/srv/*')),
         ('share/' + package_name + '/config/study', glob('config/study/*.yaml')),
