@@ -26,6 +26,7 @@ Parameters are read at configure: a change while configured is refused with that
 from __future__ import annotations
 
 from rcl_interfaces.msg import SetParametersResult
+from rclpy.exceptions import ParameterException
 from rclpy.lifecycle import LifecycleNodeMixin, TransitionCallbackReturn
 
 from . import parameters
@@ -73,7 +74,7 @@ class ManagedSuspensionNode(LifecycleNodeMixin, SuspensionNode):
         self._made = self._entities()
         try:
             params = self._wire(self._sinks, self._before_solving, clock=False)
-        except (ValueError, OSError, ImportError) as exc:
+        except (ValueError, OSError, ImportError, ParameterException) as exc:
             # LinkageError (a ValueError): its message names the file, field or parameter.
             self.get_logger().error(f'configure failed: {exc}')
             self._release()

@@ -16,8 +16,9 @@ Sections (all by default; --only picks some), sizes multiplied by --scale (run 1
             ping-pong; then a ladder of command rates (lost commands, lag, latency)
   service   suspension_node asked by topic and by its <corner>/solve service, alternately, one
             command when the previous is answered: the round trips and their ratio
-  lifecycle suspension_lifecycle_node's configure (change_state), cold (a new process's
-            first) and warm (after cleanup), --starts processes
+  lifecycle suspension_lifecycle_node's configure (change_state): cold (an empty numba
+            cache), the first of a new process (warm cache, --starts processes) and again
+            after a cleanup
   vehicle   vehicle:=demo_vehicle against a four-corner echo node, four corners at --hz each
             for --seconds: one Float64 per corner per step, then one JointState per step; the
             step latency is from sending a step to the last of its four poses

@@ -6,11 +6,12 @@ service    one suspension_node process, asked alternately by topic (wheel_travel
            Solve), one command when the previous is answered (ping-pong), in alternating
            rounds; the round trip of each and their ratio (goal: service <= 2x topic)
 lifecycle  suspension_lifecycle_node: the time of change_state configure (parse the scene,
-           load the kernels, create the topics), cold (the first configure of a new
-           process: the kernels loaded from numba's cache into it) and warm (a configure
-           after cleanup in the same process)
+           load or compile the kernels, create the topics): cold (numba's cache empty: the
+           kernels compiled), the first of a new process (loaded from the cache) and again
+           after a cleanup in the same process
 """
 
+import tempfile
 import time
 
 import numpy as np
@@ -64,37 +65,49 @@ def bench_service(args, log_dir, domain_id):
 
 
 def bench_lifecycle(args, log_dir, domain_id):
-    """Time change_state configure: cold (a new process's first) and warm (after cleanup)."""
+    """
+    Time change_state configure: cold, a new process's first, and after cleanup.
+
+    cold: numba's cache empty (the kernels compiled in configure), one process; first: the
+    first configure of each of --starts new processes (the kernels loaded from the cache);
+    again: three configures after a cleanup in each of those processes.
+    """
+    times = {'cold': [], 'first': [], 'again': []}
+    with tempfile.TemporaryDirectory() as empty:
+        configures(args, log_dir, domain_id, 'cold', {'NUMBA_CACHE_DIR': empty}, times['cold'])
+    for start in range(args.starts):
+        configures(args, log_dir, domain_id, str(start), {}, times['first'], times['again'])
+        progress(f'lifecycle: process {start + 1}/{args.starts}')
+    table(['lifecycle', 'configures', 'median_ms', 'max_ms'],
+          [(f'configure {case}', len(values), float(np.median(values) * 1e3),
+            float(max(values) * 1e3)) for case, values in times.items()])
+
+
+def configures(args, log_dir, domain_id, name, env, first, again=None):
+    """Start suspension_lifecycle_node; time its first configure, then 3 after cleanup."""
     from lifecycle_msgs.msg import Transition
     from lifecycle_msgs.srv import ChangeState
 
     from ...ros.node import NODE_NAME
     script = str(node_script()).replace('suspension_node', 'suspension_lifecycle_node')
-    cold, warm = [], []
-    for start in range(args.starts):
-        target = Target(f'lifecycle_{start}', [script, '--ros-args', '-p',
-                                               f'scene:={args.scene}'], domain_id, log_dir)
-        try:
-            driver = target.driver
-            client = driver.node.create_client(ChangeState, f'{NODE_NAME}/change_state')
-            if not driver.spin_until(client.service_is_ready, 20.0):
-                raise RuntimeError('suspension_lifecycle_node serves no change_state')
+    target = Target(f'lifecycle_{name}', [script, '--ros-args', '-p', f'scene:={args.scene}'],
+                    domain_id, log_dir, env=env)
+    try:
+        driver = target.driver
+        client = driver.node.create_client(ChangeState, f'{NODE_NAME}/change_state')
+        if not driver.spin_until(client.service_is_ready, 20.0):
+            raise RuntimeError('suspension_lifecycle_node serves no change_state')
 
-            def change(label):
-                began = time.perf_counter()
-                future = client.call_async(ChangeState.Request(
-                    transition=Transition(label=label)))
-                if not driver.spin_until(future.done, 120.0) or not future.result().success:
-                    raise RuntimeError(f'{label} failed')
-                return time.perf_counter() - began
+        def change(label):
+            began = time.perf_counter()
+            future = client.call_async(ChangeState.Request(transition=Transition(label=label)))
+            if not driver.spin_until(future.done, 300.0) or not future.result().success:
+                raise RuntimeError(f'{label} failed')
+            return time.perf_counter() - began
 
-            cold.append(change('configure'))
-            for _ in range(3):
-                change('cleanup')
-                warm.append(change('configure'))
-        finally:
-            target.close()
-        progress(f'lifecycle: process {start + 1}/{args.starts}')
-    table(['lifecycle', 'configures', 'median_ms', 'max_ms'],
-          [(case, len(values), float(np.median(values) * 1e3), float(max(values) * 1e3))
-           for case, values in (('configure cold', cold), ('configure warm', warm))])
+        first.append(change('configure'))
+        for _ in range(3 if again is not None else 0):
+            change('cleanup')
+            again.append(change('configure'))
+    finally:
+        target.close()
