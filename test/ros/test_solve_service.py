@@ -10,6 +10,9 @@ it) the node serves no solve service and says why, once.
 """
 
 import math
+from pathlib import Path
+import subprocess
+import sys
 import time
 
 from geometry_msgs.msg import PoseStamped
@@ -126,3 +129,20 @@ def test_without_the_interface_package_the_node_serves_no_solve_and_says_why_onc
     assert not [s for s in node.services if s.srv_name.endswith('solve')]
     said = [line for line in capfd.readouterr().err.splitlines() if 'solve' in line]
     assert len(said) == 1 and said[0].endswith(solve_service.MISSING)
+
+
+@needs_interfaces
+def test_node_bench_quick_run_prints_the_service_and_lifecycle_tables(domain_id):
+    # A smoke run of the two sections: the tables' structure, not their (machine) timings.
+    result = subprocess.run(
+        [str(Path(sys.executable).parent / 'linkage-node-bench'), '--quick', '--starts', '1',
+         '--only', 'service,lifecycle'], capture_output=True, text=True, timeout=300)
+    assert result.returncode == 0, result.stderr
+    tables = {}
+    for block in result.stdout.strip().split('\n\n'):
+        rows = [line.split(',') for line in block.splitlines()]
+        tables[rows[0][0]] = rows
+    assert list(tables) == ['service', 'lifecycle']
+    assert [(r[0], r[1]) for r in tables['service'][1:]] == [('topic', '48'), ('service', '48')]
+    assert [(r[0], r[1]) for r in tables['lifecycle'][1:]] == [('configure first', '1'),
+                                                               ('configure again', '3')]

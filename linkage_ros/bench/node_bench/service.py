@@ -68,13 +68,18 @@ def bench_lifecycle(args, log_dir, domain_id):
     """
     Time change_state configure: cold, a new process's first, and after cleanup.
 
-    cold: numba's cache empty (the kernels compiled in configure), one process; first: the
+    cold: numba's cache empty (the kernels compiled in configure), one process, not with
+    --quick; first: the
     first configure of each of --starts new processes (the kernels loaded from the cache);
     again: three configures after a cleanup in each of those processes.
     """
     times = {'cold': [], 'first': [], 'again': []}
-    with tempfile.TemporaryDirectory() as empty:
-        configures(args, log_dir, domain_id, 'cold', {'NUMBA_CACHE_DIR': empty}, times['cold'])
+    if args.quick:     # a smoke run: no compile
+        del times['cold']
+    else:
+        with tempfile.TemporaryDirectory() as empty:
+            configures(args, log_dir, domain_id, 'cold', {'NUMBA_CACHE_DIR': empty},
+                       times['cold'])
     for start in range(args.starts):
         configures(args, log_dir, domain_id, str(start), {}, times['first'], times['again'])
         progress(f'lifecycle: process {start + 1}/{args.starts}')
