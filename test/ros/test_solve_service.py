@@ -146,3 +146,24 @@ def test_node_bench_quick_run_prints_the_service_and_lifecycle_tables(domain_id)
     assert [(r[0], r[1]) for r in tables['service'][1:]] == [('topic', '48'), ('service', '48')]
     assert [(r[0], r[1]) for r in tables['lifecycle'][1:]] == [('configure first', '1'),
                                                                ('configure again', '3')]
+
+
+@needs_interfaces
+def test_a_vehicle_serves_each_corner_which_refuses_another_corner_s_request(
+        ros_context, executor, suspension_node):
+    import rclpy
+    node = suspension_node(vehicle='demo_vehicle', tf=False)
+    assert sorted(s.srv_name for s in node.services if s.srv_name.endswith('/solve')) == [
+        f'{corner}/solve' for corner in sorted(node.corners)]
+    client_node = rclpy.create_node('client', context=ros_context)
+    executor.add_node(client_node)
+    client = client_node.create_client(Solve, '/front_left/solve')
+    assert spin_until(executor, client.service_is_ready, WAIT)
+    answers = []
+    for corner in ('front_left', 'rear_right'):
+        future = client.call_async(Solve.Request(corner=corner, travel=0.02))
+        assert spin_until(executor, future.done, WAIT)
+        answers.append(future.result())
+    assert [a.status for a in answers] == [Status.OK, Solve.Response.REFUSED]
+    assert answers[1].status_text == ("REFUSED: no corner 'rear_right' here: this is the solve "
+                                      "service of 'front_left'")
