@@ -3,6 +3,8 @@ The suspension_node process: its command line, its start, its signals and its st
 
     main(args) -> exit status   --help, the mistakes (one line, status 2), the first compile
                                 of the kernels, then the node until SIGINT or SIGTERM (0)
+    lifecycle_main(args)        the same for suspension_lifecycle_node (ros/lifecycle.py), which
+                                also ends once shut down through change_state (status 0)
     run(node, signals) -> 0     spin a node until SIGINT or SIGTERM, then stop it cleanly
 
 Stopping: SIGINT and SIGTERM are Python handlers of this module (rclpy's are not installed: it
