@@ -129,5 +129,16 @@ class ManagedSuspensionNode(LifecycleNodeMixin, SuspensionNode):
         self.configured = False
         self.sinks = type(self.sinks)([], self._sink_failed, self.get_logger().error)
 
+    def destroy_node(self):
+        """
+        Destroy the node, then its lifecycle state machine.
+
+        rclpy leaves the state machine to the garbage collector, which may run it in a forked
+        child (a multiprocessing pool) where finalizing it crashes the child: it is destroyed
+        here, once the node is.
+        """
+        super().destroy_node()
+        self._state_machine.destroy_when_not_in_use()
+
 
 __all__ = ['ManagedSuspensionNode']

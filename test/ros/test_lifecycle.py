@@ -8,7 +8,9 @@ while inactive, closes its recording at shutdown and then ends with status 0. A 
 fails configure with its one-line reason, and the node stays unconfigured.
 """
 
+import gc
 import math
+import multiprocessing
 
 from lifecycle_msgs.msg import State, Transition
 from lifecycle_msgs.srv import ChangeState, GetState
@@ -135,3 +137,18 @@ def test_a_parameter_change_while_configured_is_refused_saying_why(ros_context):
         assert node.corners[''].method == 'paper'
     finally:
         node.destroy_node()
+
+
+def collect_garbage():
+    gc.collect()
+
+
+def test_a_destroyed_node_leaves_nothing_that_crashes_a_forked_child(ros_context):
+    # rclpy left the lifecycle state machine to the garbage collector: collected in a child
+    # forked later (flake8's process pool in the same pytest run) it crashed the child, and
+    # the pool waited for it for ever.
+    ManagedSuspensionNode(context=ros_context).destroy_node()
+    child = multiprocessing.get_context('fork').Process(target=collect_garbage)
+    child.start()
+    child.join(WAIT)
+    assert child.exitcode == 0
