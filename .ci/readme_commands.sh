@@ -84,6 +84,18 @@ NODE=$!
 .venv/bin/python drive.py | tail -1; echo "rc=$?"
 kill -INT $NODE; wait $NODE; echo "node rc=$?"
 unset FASTRTPS_DEFAULT_PROFILES_FILE
+step solve service and managed node
+.venv/bin/suspension_node > node9.log 2>&1 &
+NODE=$!
+sed -n '/^# solve.py/,/^rclpy.try_shutdown()/p' doc/node.md > solve.py
+.venv/bin/python solve.py; echo "rc=$?"
+kill -INT $NODE; wait $NODE; echo "node rc=$?"
+ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST .venv/bin/suspension_lifecycle_node > node10.log 2>&1 &
+NODE=$!
+sed -n '/^# manage.py/,/^rclpy.try_shutdown()/p' doc/node.md > manage.py
+ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST .venv/bin/python manage.py; echo "rc=$?"
+.venv/bin/python drive.py | tail -1; echo "rc=$?"
+kill -INT $NODE; wait $NODE; echo "node rc=$?"
 step set params while the node runs
 .venv/bin/suspension_node > node6.log 2>&1 &
 NODE=$!

@@ -45,15 +45,14 @@ from visualization_msgs.msg import MarkerArray
 from . import messages
 from .qos import publisher, subscription, topic_qos
 from ..cdr import CdrError, float64_of, from_cdr, wrench_of
-from ..protocol import CONTACT_WRENCH, OUTPUTS, outputs_of, Responder, SOLVED, statics_on, \
-    wrench_problem, WRENCH_TYPE
+from ..protocol import CONTACT_WRENCH, OUTPUTS, outputs_of, Reply, Responder, SOLVED, \
+    statics_on, wrench_problem, WRENCH_TYPE
 
 if TYPE_CHECKING:
     from rclpy.node import Node
     from rclpy.publisher import Publisher
 
     from ..core.model import Scene
-    from ..core.solve import Solution
 
 FLOAT64 = 'std_msgs/msg/Float64'
 JOINT_STATE = 'sensor_msgs/msg/JointState'
@@ -287,16 +286,17 @@ class Corner:
                         lambda: joints_sent(topic, msg, [self.joint]))
 
     def answer(self, travel_mm: float | None, rack_mm: float | None, stamp: tuple[int, int],
-               sent: Callable[[], str]) -> Solution:
+               sent: Callable[[], str]) -> Reply:
         """
-        Solve a command, publish the answer, count it into the health; return the Solution.
+        Solve a command, publish the answer, count it into the health; return the Reply.
 
         travel_mm and rack_mm: the command (None = unchanged); stamp: (sec, nanosec) of the
         answer; sent: a function that says what was sent where (e.g. '/wheel_travel 0.5 m'),
         called for the messages about a bad command. A solved command publishes the
         Responder's outputs in its order (the pose, camber and toe, then the extras turned
         on); a failed one publishes nothing and goes to the console (the outlet throttles it).
-        A failure or a change of level goes to /diagnostics at once.
+        A failure or a change of level goes to /diagnostics at once. The Reply (protocol.py)
+        holds the Solution and the outputs published (the solve service reads them back).
         """
         reply = self.responder.answer(travel_mm, rack_mm, stamp, sent)
         solution, sends = reply.solution, self.sends
@@ -308,7 +308,7 @@ class Corner:
             listener(self, solution, stamp)
         if reply.report:
             self.outlet.report([self])
-        return solution
+        return reply
 
     def refuse(self, topic: str, error: CdrError | str, kind: str = UNDECODABLE) -> None:
         """Count an input that cannot be answered (bytes that do not decode): ERROR, no pose."""

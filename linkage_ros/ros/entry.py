@@ -6,6 +6,8 @@ The suspension_node process: its command line, its start, its signals and its st
 
     main(args) -> exit status   --help, the mistakes (one line, status 2), the first compile
                                 of the kernels, then the node until SIGINT or SIGTERM (0)
+    lifecycle_main(args)        the same for suspension_lifecycle_node (ros/lifecycle.py), which
+                                also ends once shut down through change_state (status 0)
     run(node, signals) -> 0     spin a node until SIGINT or SIGTERM, then stop it cleanly
 
 Stopping: SIGINT and SIGTERM are Python handlers of this module (rclpy's are not installed: it
@@ -40,6 +42,7 @@ if TYPE_CHECKING:
     from rclpy.node import Node
 
 PROG = 'suspension_node'
+LIFECYCLE_PROG = 'suspension_lifecycle_node'
 POLL = 0.1    # s: the longest the executor waits before it looks whether a signal came
 # rclpy's exception for ROS arguments it does not know (a class of its C extension).
 UNKNOWN_ROS_ARGS = getattr(_rclpy, 'UnknownROSArgsError', ())
@@ -101,6 +104,17 @@ exit status: 0 stopped by Ctrl-C (SIGINT) or SIGTERM, at any time: the command i
 """
 
 
+LIFECYCLE_HELP = """suspension_lifecycle_node: suspension_node as a managed (lifecycle) node. It
+starts unconfigured; drive it with the standard <node>/change_state service (ros2 lifecycle
+set /suspension_kinematics configure, activate, deactivate, cleanup, shutdown): configure
+parses the scene or vehicle, compiles the kernels and creates the topics (a bad scene fails
+it, with its reason on the log); it answers only while active; shutdown closes the
+recordings and ends the process (status 0). Parameters are read at configure. Otherwise as
+suspension_node:
+
+"""
+
+
 def help_text() -> str:
     """Return the text of suspension_node --help: the parameters with defaults and ranges."""
     return HELP.format(parameters='\n'.join(help_lines()))
@@ -141,16 +155,22 @@ class Signals:
             raise Stopped(number)
 
 
-def main(args: list[str] | None = None) -> int:
+def lifecycle_main(args: list[str] | None = None) -> int:
+    """Run suspension_lifecycle_node: the managed node (ros/lifecycle.py); as main."""
+    return main(args, managed=True)
+
+
+def main(args: list[str] | None = None, managed: bool = False) -> int:
     """Run suspension_node: 0 when stopped by SIGINT or SIGTERM, 2 for a mistake."""
+    prog = LIFECYCLE_PROG if managed else PROG
     argv = sys.argv[1:] if args is None else list(args)
     own = argv[:argv.index('--ros-args')] if '--ros-args' in argv else argv
     if {'-h', '--help'} & set(own):          # before ROS starts
-        print(help_text(), end='')
+        print(LIFECYCLE_HELP * managed + help_text(), end='')
         return 0
     if own:
-        print(f'{PROG}: unknown argument {own[0]!r}: parameters go after --ros-args, '
-              f'as -p name:=value (see {PROG} --help)', file=sys.stderr)
+        print(f'{prog}: unknown argument {own[0]!r}: parameters go after --ros-args, '
+              f'as -p name:=value (see {prog} --help)', file=sys.stderr)
         return 2
     # A file-size limit (ulimit -f) would kill the process at the limit: make it an error of
     # the write instead, which stops the recording and is reported, while the node goes on.
@@ -160,7 +180,11 @@ def main(args: list[str] | None = None) -> int:
     node = None
     try:
         init_ros(argv)
-        node = SuspensionNode(before_solving=compile_kernels)
+        if managed:
+            from .lifecycle import ManagedSuspensionNode
+            node = ManagedSuspensionNode(before_solving=compile_kernels)
+        else:
+            node = SuspensionNode(before_solving=compile_kernels)
         return run(node, signals)
     except Stopped:
         if node is not None:
@@ -169,7 +193,7 @@ def main(args: list[str] | None = None) -> int:
         return 0
     except (ValueError, OSError, ImportError, ParameterException) as exc:
         # LinkageError (a ValueError): its message names the file, field or parameter.
-        print(f'{PROG}: {exc}', file=sys.stderr)
+        print(f'{prog}: {exc}', file=sys.stderr)
         rclpy.try_shutdown()
         return 2
 
@@ -235,7 +259,8 @@ def run(node: Node, signals: Signals | None = None) -> int:
         executor.add_node(node)
         # Finite timeouts on purpose too: with rclpy 7.1.6, EventsExecutor.spin_once()
         # without one busy-waits holding the GIL and never runs a callback.
-        while not signals.requested and node.context.ok():
+        while not signals.requested and node.context.ok() \
+                and not getattr(node, 'finished', False):   # a managed node shut down
             executor.spin_once(timeout_sec=POLL)
     except ExternalShutdownException:    # the context was shut down by someone else
         pass

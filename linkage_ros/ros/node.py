@@ -94,6 +94,7 @@ from .qos import clock_qos, latched_qos, offered, publisher, QOS, QOS_DEPTH, sub
     topic_qos, unknown_overrides
 from .runtime import RuntimeParameters
 from .sinks import check_outputs, open_sinks, recording_metadata, Sinks
+from .solve_service import serve_corners
 from ..cdr import CdrError, from_cdr, to_cdr, type_name
 from ..core.base import LinkageError
 from ..core.model import load_scene
@@ -157,51 +158,71 @@ class SuspensionNode(Node):
         entry compiles the kernels there, interruptibly). kwargs go to rclpy Node. A mistake
         raises LinkageError (a ValueError) naming the parameter, file or field.
         """
+        self._begin(kwargs)
+        try:
+            params = self._wire(sinks, before_solving)
+        except BaseException:
+            self.sinks.close()
+            super().destroy_node()
+            raise
+        self._start(params)
+        self.runtime = RuntimeParameters(self, params)
+
+    def _begin(self, kwargs):
+        """Make the rclpy node, with nothing of the node's own yet (no sinks, no corners)."""
         super().__init__(NODE_NAME, **{
             **kwargs, 'automatically_declare_parameters_from_overrides': True})
         self.sinks = Sinks([], self._sink_failed, self.get_logger().error)
         self.faults, self._bad_said, self.corners = [], {}, {}
         self.taking_commands = True
         self.clock = self.get_clock()
-        try:
-            params = parameters.declare(self)
+        self.tf_outputs = None
+
+    def _wire(self, sinks, before_solving, clock=True):
+        """
+        Read the parameters, load the scenes, open the sinks and make the corners' topics.
+
+        Returns the parameters' values; a mistake raises LinkageError, with whatever was made
+        left for the caller to release. clock: take /clock in order (once per node).
+        """
+        params = parameters.declare(self)
+        if clock:
             self._take_clock_in_order(params['qos_depth'])
-            corners = load_corners(params)
-            check_outputs(params, corners.inputs)
-            scenes = {prefix: scene for prefix, (scene, _, _) in corners.scenes.items()}
-            self.qos = topic_qos(params['qos_depth'])
-            self.sinks.active = open_sinks(
-                params, scenes, self._offered_qos(corners, params),
-                recording_metadata(params, corners.files)) + list(sinks)
-            if before_solving is not None:
-                before_solving()
-            self.frame_id = params['frame_id']
-            self.diagnostics_pub = publisher(self, DiagnosticArray, '/diagnostics', self.qos)
-            self.corners = {prefix.rstrip('/'): Corner(self, self, scene, params, prefix,
-                                                       *joints)
-                            for prefix, (scene, *joints) in corners.scenes.items()}
-            self.roll_centres = None
-            if corners.axles is not None:   # a vehicle without axles imports none of it
-                from .roll_centres import RollCentres
-                self.roll_centres = RollCentres(self, self, corners.axles, self.corners,
-                                                self.qos, self.frame_id,
-                                                self.get_logger().warning)
-            self.robot_name, self.tf_outputs = corners.name, None
-            self.joint_corners = [c for c in self.corners.values()
-                                  if c.travel_joint or c.rack_joint]
-            if self.joint_corners:
-                joint_states = subscription(self, JointState, 'joint_states',
-                                            self.on_vehicle_joint_states, self.qos, raw=True)
-                self.joint_states_topic = joint_states.topic_name
-            self._check_overrides(corners, params)
-            self.set_tf(params['tf'])
-            self._say_pickup_frames()
-        except BaseException:
-            self.sinks.close()
-            super().destroy_node()
-            raise
+        corners = load_corners(params)
+        check_outputs(params, corners.inputs)
+        scenes = {prefix: scene for prefix, (scene, _, _) in corners.scenes.items()}
+        self.qos = topic_qos(params['qos_depth'])
+        self.sinks.active = open_sinks(
+            params, scenes, self._offered_qos(corners, params),
+            recording_metadata(params, corners.files)) + list(sinks)
+        if before_solving is not None:
+            before_solving()
+        self.frame_id = params['frame_id']
+        self.diagnostics_pub = publisher(self, DiagnosticArray, '/diagnostics', self.qos)
+        self.corners = {prefix.rstrip('/'): Corner(self, self, scene, params, prefix, *joints)
+                        for prefix, (scene, *joints) in corners.scenes.items()}
+        self.roll_centres = None
+        if corners.axles is not None:   # a vehicle without axles imports none of it
+            from .roll_centres import RollCentres
+            self.roll_centres = RollCentres(self, self, corners.axles, self.corners,
+                                            self.qos, self.frame_id,
+                                            self.get_logger().warning)
+        self.robot_name, self.tf_outputs = corners.name, None
+        self.joint_corners = [c for c in self.corners.values()
+                              if c.travel_joint or c.rack_joint]
+        if self.joint_corners:
+            joint_states = subscription(self, JointState, 'joint_states',
+                                        self.on_vehicle_joint_states, self.qos, raw=True)
+            self.joint_states_topic = joint_states.topic_name
+        self._check_overrides(corners, params)
+        self.set_tf(params['tf'])
+        self._say_pickup_frames()
+        self.solve_services = serve_corners(self, self.corners)
+        return params
+
+    def _start(self, params):
+        """Start the diagnostics timer and say what the node serves."""
         self.timer = self.create_timer(params['diagnostic_period'], self.on_diagnostic_period)
-        self.runtime = RuntimeParameters(self, params)
         for corner in self.corners.values():
             self.get_logger().info(
                 f'scene {corner.scene.name} ({corner.scene.source}), method '

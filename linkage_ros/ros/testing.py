@@ -264,14 +264,16 @@ def live_tf_topics():
 
 def node_warnings(err):
     """
-    Return the [WARN] lines of a node's stderr, but the one-time tf2_msgs notice.
+    Return the [WARN] lines of a node's stderr, but the one-time notices of what is not built.
 
-    That notice says what this environment lacks (no tf2_msgs), not what the test did.
+    Those notices (no tf2_msgs, no linkage_ros_interfaces) say what this environment lacks,
+    not what the test did.
     """
+    from .solve_service import MISSING, solve_type
     from .tf import tf2_msgs_missing
-    missing = tf2_msgs_missing()
+    missing = [text for text in (tf2_msgs_missing(), solve_type() is None and MISSING) if text]
     return [line for line in err.splitlines()
-            if '[WARN]' in line and not (missing and line.endswith(missing))]
+            if '[WARN]' in line and not any(line.endswith(text) for text in missing)]
 
 
 def urdf_differences(a, b, abs_tol=1e-12):

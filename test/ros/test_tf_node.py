@@ -152,7 +152,8 @@ def test_linkage_tf2_msgs_without_a_compiler_says_so_and_builds_nothing(tmp_path
     done = subprocess.run([str(tool), '--force', *(['--optional'] * optional)], env=env,
                           capture_output=True, text=True, timeout=120)
     assert done.returncode == status
-    assert done.stderr == ('linkage-tf2-msgs: cannot build tf2_msgs here: it needs a C '
-                           'compiler (Debian: build-essential) and a C++ compiler (Debian: '
-                           'build-essential); suspension_node records /tf but publishes it '
-                           'only where tf2_msgs is installed\n')
+    assert done.stderr == ('linkage-tf2-msgs: cannot build tf2_msgs and linkage_ros_interfaces '
+                           'here: it needs a C compiler (Debian: build-essential) and a C++ '
+                           'compiler (Debian: build-essential); suspension_node records /tf '
+                           'but publishes it only where tf2_msgs is installed, and '
+                           'suspension_node serves no <corner>/solve service\n')

@@ -17,6 +17,11 @@ Sections (all by default; --only picks some), sizes multiplied by --scale (run 1
   latency   suspension_node against a bare rclpy echo node (Float64 in, PoseStamped out),
             each in its own process, measured alternately: paced at --latency-rate, and
             ping-pong; then a ladder of command rates (lost commands, lag, latency)
+  service   suspension_node asked by topic and by its <corner>/solve service, alternately, one
+            command when the previous is answered: the round trips and their ratio
+  lifecycle suspension_lifecycle_node's configure (change_state): cold (an empty numba
+            cache), the first of a new process (warm cache, --starts processes) and again
+            after a cleanup
   vehicle   vehicle:=demo_vehicle against a four-corner echo node, four corners at --hz each
             for --seconds: one Float64 per corner per step, then one JointState per step; the
             step latency is from sending a step to the last of its four poses
@@ -46,6 +51,7 @@ import tempfile
 from .callback import bench_callback
 from .echo import echo_main
 from .latency import bench_latency
+from .service import bench_lifecycle, bench_service
 from .solver import bench_core, bench_sweep
 from .start import bench_start, start_once
 from .tables import progress
@@ -56,7 +62,7 @@ from ...core.model import load_scene
 from ...core.warmup import compile_if_cold
 from ...ros.isolation import environment_domain_id
 
-SECTIONS = ('core', 'sweep', 'start', 'latency', 'vehicle', 'callback')
+SECTIONS = ('core', 'sweep', 'start', 'latency', 'service', 'lifecycle', 'vehicle', 'callback')
 DEFAULT_RATES = (250, 500, 1000, 2000, 4000)
 
 
@@ -154,6 +160,10 @@ def main(argv: list[str] | None = None, prog: str = 'linkage-node-bench') -> int
                 plot_latency({name: [(r[1], r[7], r[8]) for r in ladder if r[0] == name and r[3]]
                               for name in ('node', 'echo')}, args.plot)
                 progress(f'wrote {args.plot}')
+        if 'service' in args.only:
+            bench_service(args, log_dir, args.domain_id)
+        if 'lifecycle' in args.only:
+            bench_lifecycle(args, log_dir, args.domain_id)
         if 'vehicle' in args.only:
             bench_vehicle(args, log_dir, args.domain_id)
         if 'callback' in args.only:

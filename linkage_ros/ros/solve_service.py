@@ -1,0 +1,146 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
+"""
+The <corner>/solve service: one command, one answer, for simulators that step in lockstep.
+
+    services = serve_corners(node, corners)   # {corner name: rclpy Service}; {} without the
+                                              # interface package (said once on the log)
+
+linkage_ros_interfaces/srv/Solve (config/interfaces/linkage_ros_interfaces, built by
+linkage-tf2-msgs): request corner, travel (m), rack (m), wrench and use_wrench; response the
+pose (geometry_msgs/Pose: wheel centre in m in frame_id, carrier rotation relative to design),
+camber and toe (rad), status (linkage_ros.core.base.Status, or REFUSED), status_text, residual
+(m) and iterations.
+
+A request is answered by the corner itself (ros/corner.Corner.answer, its Responder): it is
+solved from the corner's last good pose, moves it, and publishes the same answer on the
+corner's topics (the pose, camber, toe and the extras turned on), so that recordings and TF see
+every step. The response's pose, camber and toe are read back from the very CDR bytes
+published (cdr.pose_of, cdr.float64_of): a service answer and the topic answer to the same
+command are equal, bit for bit. A request the solver cannot take (a corner of another name, a
+wrench: statics is not available yet, a node that is not active) is refused with status
+REFUSED and no pose (NaN), the corner untouched; a command that cannot be solved (NaN travel,
+out of reach) has its Status and no pose, as on the topics. Never an exception.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import TYPE_CHECKING
+
+from ..cdr import float64_of, pose_of
+from ..core.base import M_PER_MM, MM_PER_M
+
+if TYPE_CHECKING:
+    from rclpy.node import Node
+
+    from .corner import Corner
+
+MISSING = ('linkage_ros_interfaces cannot be imported (it has no wheel on the package index): '
+           'no <corner>/solve service; `linkage-tf2-msgs` builds it into this environment '
+           '(needs a C/C++ compiler and the Python headers)')
+
+
+def solve_type():
+    """Return the Solve service class, or None where linkage_ros_interfaces is not built."""
+    try:
+        from linkage_ros_interfaces.srv import Solve
+    except ImportError:
+        return None
+    return Solve
+
+
+def serve_corners(node: Node, corners: dict[str, Corner]) -> dict:
+    """
+    Serve <corner>/solve for each of corners on node; {corner name: Service}.
+
+    node is the corners' Outlet (ros/node.py): its taking_commands says whether it answers
+    now, its clock stamps the answer. Without the interface package: none, said once.
+    """
+    kind = solve_type()
+    if kind is None:
+        if not getattr(node, '_said_solve', False):
+            node.get_logger().warning(MISSING)
+            node._said_solve = True
+        return {}
+    # as deep as the topics (qos_depth): a simulator's burst of requests is not lost
+    return {name: node.create_service(kind, corner.prefix + 'solve',
+                                      SolveAnswers(node, name, corner).solve,
+                                      qos_profile=node.qos)
+            for name, corner in corners.items()}
+
+
+class SolveAnswers:
+    """The answers of one corner's solve service."""
+
+    def __init__(self, node: Node, name: str, corner: Corner) -> None:
+        self.node, self.corner = node, corner
+        # the names a request may give: the corner's, or '' and the scene's for one scene
+        self.names = {name} if name else {'', corner.scene.name}
+
+    def solve(self, request, response):
+        """Answer one request (never raises: a bad one is a status and its text)."""
+        why = self._refusal(request)
+        if why:
+            return refused(response, why)
+        # as the topics read a command (messages.command_mm): the same float, bit for bit
+        travel_mm, rack_mm = request.travel * MM_PER_M, request.rack * MM_PER_M
+        if not self.corner.scene.steered and rack_mm == 0.0:
+            rack_mm = None    # no rack link: the rack stays where it is (none)
+        now = self.node.clock.now().nanoseconds
+        reply = self.corner.answer(travel_mm, rack_mm, divmod(now, 1_000_000_000),
+                                   lambda: self._sent(request))
+        return fill(response, reply)
+
+    def _refusal(self, request) -> str:
+        """Say why a request is not solved at all, or ''."""
+        corner = self.corner
+        if request.corner not in self.names:
+            return (f'no corner {request.corner!r} here: this is the solve service of '
+                    f'{" or ".join(repr(n) for n in sorted(self.names))}')
+        if request.use_wrench:
+            return (f'statics is not available for corner {request.corner or corner.scene.name}'
+                    ': a request with use_wrench cannot be answered yet')
+        if not self.node.taking_commands:
+            return 'the node is not active: it answers no command now'
+        return ''
+
+    def _sent(self, request) -> str:
+        """Say what was asked, for the console and diagnostics of a failed command."""
+        return (f'{self.corner.prefix}solve travel {request.travel!r} m, rack '
+                f'{request.rack!r} m')
+
+
+def fill(response, reply):
+    """Fill response from a Responder Reply: its published bytes, or NaN and the Status."""
+    solution = reply.solution
+    pose = response.pose
+    outputs = {name: data for name, _, data in reply.outputs}
+    if solution.success:
+        (x, y, z), (qx, qy, qz, qw) = pose_of(outputs['wheel_carrier_pose'])
+        response.camber = float64_of(outputs['camber'])
+        response.toe = float64_of(outputs['toe'])
+    else:
+        x = y = z = qx = qy = qz = qw = response.camber = response.toe = math.nan
+    pose.position.x, pose.position.y, pose.position.z = x, y, z
+    pose.orientation.x, pose.orientation.y = qx, qy
+    pose.orientation.z, pose.orientation.w = qz, qw
+    response.status = int(solution.status)
+    response.status_text = 'OK' if solution.success else (
+        f'{solution.status.name}: {solution.message}')
+    response.residual = solution.residual * M_PER_MM
+    response.iterations = int(solution.iterations)
+    return response
+
+
+def refused(response, why: str):
+    """Fill response for a request that was not solved: REFUSED, no pose (NaN)."""
+    pose = response.pose
+    pose.position.x = pose.position.y = pose.position.z = math.nan
+    pose.orientation.x = pose.orientation.y = pose.orientation.z = math.nan
+    pose.orientation.w = response.camber = response.toe = response.residual = math.nan
+    response.status = response.REFUSED
+    response.status_text = f'REFUSED: {why}'
+    response.iterations = 0
+    return response
