@@ -18,8 +18,11 @@ solved from the corner's last good pose, moves it, and publishes the same answer
 corner's topics (the pose, camber, toe and the extras turned on), so that recordings and TF see
 every step. The response's pose, camber and toe are read back from the very CDR bytes
 published (cdr.pose_of, cdr.float64_of): a service answer and the topic answer to the same
-command are equal, bit for bit. A request the solver cannot take (a corner of another name, a
-wrench: statics is not available yet, a node that is not active) is refused with status
+command are equal, bit for bit. A request with use_wrench sets the corner's contact wrench
+(the tyre's force and moment at the contact patch, vehicle frame), as a contact_wrench message
+does, and is answered with the loaded pose: it needs statics on (a scene with bushings, or
+parameter statics). A request the solver cannot take (a corner of another name, a wrench on a
+corner without statics or not finite, a node that is not active) is refused with status
 REFUSED and no pose (NaN), the corner untouched; a command that cannot be solved (NaN travel,
 out of reach) has its Status and no pose, as on the topics. Never an exception.
 """
@@ -31,6 +34,7 @@ from typing import TYPE_CHECKING
 
 from ..cdr import float64_of, pose_of
 from ..core.base import M_PER_MM, MM_PER_M
+from ..protocol import wrench_problem
 
 if TYPE_CHECKING:
     from rclpy.node import Node
@@ -86,6 +90,8 @@ class SolveAnswers:
             return refused(response, why)
         # as the topics read a command (messages.command_mm): the same float, bit for bit
         travel_mm, rack_mm = request.travel * MM_PER_M, request.rack * MM_PER_M
+        if request.use_wrench:   # as a contact_wrench message would: kept for what follows
+            self.corner.statics.set_wrench(*wrench_parts(request.wrench))
         if not self.corner.scene.steered and rack_mm == 0.0:
             rack_mm = None    # no rack link: the rack stays where it is (none)
         now = self.node.clock.now().nanoseconds
@@ -99,17 +105,28 @@ class SolveAnswers:
         if request.corner not in self.names:
             return (f'no corner {request.corner!r} here: this is the solve service of '
                     f'{" or ".join(repr(n) for n in sorted(self.names))}')
-        if request.use_wrench:
-            return (f'statics is not available for corner {request.corner or corner.scene.name}'
-                    ': a request with use_wrench cannot be answered yet')
         if not self.node.taking_commands:
             return 'the node is not active: it answers no command now'
+        if request.use_wrench:
+            if corner.statics is None:
+                return (f'scene {corner.scene.name} has no bushings and parameter statics is '
+                        'false: use_wrench moves nothing')
+            force, torque = wrench_parts(request.wrench)
+            problem = wrench_problem(corner.frame_id, force, torque, corner.frame_id)
+            if problem:
+                return problem
         return ''
 
     def _sent(self, request) -> str:
         """Say what was asked, for the console and diagnostics of a failed command."""
         return (f'{self.corner.prefix}solve travel {request.travel!r} m, rack '
                 f'{request.rack!r} m')
+
+
+def wrench_parts(wrench) -> tuple[tuple, tuple]:
+    """Return (force, torque) of a geometry_msgs/Wrench as triples of floats (N, N m)."""
+    f, t = wrench.force, wrench.torque
+    return (f.x, f.y, f.z), (t.x, t.y, t.z)
 
 
 def fill(response, reply):

@@ -107,7 +107,7 @@ def test_service_answers_equal_topic_answers_for_1000_calls_at_1_khz(
     ({'travel': 5.0}, Status.OUT_OF_REACH, 'OUT_OF_REACH: '),
     ({'travel': 0.01, 'rack': 0.002}, Status.NO_RACK, 'NO_RACK: '),
     ({'travel': 0.01, 'use_wrench': True}, 255,
-     'REFUSED: statics is not available for corner five_link'),
+     'REFUSED: scene five_link has no bushings and parameter statics is false'),
 ])
 def test_a_bad_request_gets_an_error_status_and_no_pose(
         ros_context, executor, suspension_node, request_fields, status, says):
@@ -170,3 +170,42 @@ def test_a_vehicle_serves_each_corner_which_refuses_another_corner_s_request(
     assert [a.status for a in answers] == [Status.OK, Solve.Response.REFUSED]
     assert answers[1].status_text == ("REFUSED: no corner 'rear_right' here: this is the solve "
                                       "service of 'front_left'")
+
+
+@needs_interfaces
+def test_a_request_with_a_wrench_answers_the_loaded_pose_the_core_gives(
+        ros_context, executor, suspension_node):
+    # five_link_bushings: statics on. The response is solve_loaded's pose at that travel and
+    # wrench (continued from the corner's kinematic pose, as the node's answers are), in SI,
+    # to round-off; a later request without use_wrench keeps the wrench, as the topic does.
+    from geometry_msgs.msg import Wrench
+    from linkage_ros.core.base import quaternion_from_matrix
+    from linkage_ros.core.model import load_scene
+    from linkage_ros.core.solve import Continuation
+    from linkage_ros.core.statics import Load, solve_loaded
+    import rclpy
+    suspension_node(scene='five_link_bushings')
+    client_node = rclpy.create_node('client', context=ros_context)
+    client = client_node.create_client(Solve, 'solve')
+    executor.add_node(client_node)
+    assert spin_until(executor, client.service_is_ready, WAIT)
+    scene = load_scene('five_link_bushings')
+    continuation = Continuation(scene)
+    wrench = Wrench()
+    wrench.force.y, wrench.force.x, wrench.torque.z = 3000.0, -1500.0, 40.0
+    for travel_m, use in ((0.02, True), (0.01, False)):
+        future = client.call_async(Solve.Request(travel=travel_m, wrench=wrench,
+                                                 use_wrench=use))
+        assert spin_until(executor, future.done, WAIT)
+        answer = future.result()
+        assert answer.status == Status.OK, answer.status_text
+        assert continuation.solve(travel_m * 1000.0).success
+        loaded = solve_loaded(scene, travel_mm=travel_m * 1000.0, rack_mm=0.0,
+                              load=Load((-1500.0, 3000.0, 0.0), 'cp', (0.0, 0.0, 40.0)),
+                              continuation=continuation)
+        p, q = answer.pose.position, answer.pose.orientation
+        assert [p.x, p.y, p.z] == pytest.approx((loaded.wheel_center_mm * 1e-3).tolist(),
+                                                rel=0, abs=1e-12)
+        assert [q.x, q.y, q.z, q.w] == pytest.approx(
+            quaternion_from_matrix(loaded.rotation).tolist(), rel=0, abs=1e-12)
+        assert answer.toe == pytest.approx(math.radians(loaded.toe_deg), rel=0, abs=1e-12)
