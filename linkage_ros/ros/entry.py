@@ -88,6 +88,10 @@ reliable, keep-last qos_depth):
   out  <axle>/roll_centre  geometry_msgs/PointStamped  a vehicle axle's roll centre (m,
                                                       frame_id; vehicle files with axles)
   in   /clock              rosgraph_msgs/Clock        with use_sim_time: the node clock
+  srv  solve               linkage_ros_interfaces/    one command, one answer (travel, rack,
+       srv/Solve                                      optional wrench in; pose, camber, toe,
+                                                      status out), equal to the topic answer
+                                                      (where linkage-tf2-msgs built it)
 
 The first start after an install compiles the numerical kernels (about 20 s, said once; a
 Ctrl-C stops it at once); later starts load them.

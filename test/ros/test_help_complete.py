@@ -16,6 +16,7 @@ from pathlib import Path
 import re
 
 from linkage_ros.core.model import load_vehicle
+from linkage_ros.ros import solve_service
 from linkage_ros.ros.entry import help_text
 from linkage_ros.ros.parameters import ROS_PARAMETERS, ROS_PREFIXES
 from linkage_ros.ros.testing import live_tf_topics
@@ -113,3 +114,18 @@ def test_help_lists_every_parameter_with_its_default(suspension_node, executor):
     for name in parameters:
         assert re.search(rf'^  {name} +\S', text, re.M), f'{name} missing from --help'
     assert re.search(r'^  tf +True ', text, re.M)
+
+
+@pytest.mark.parametrize('start', STARTS)
+def test_help_lists_every_service_the_node_serves_but_rclpy_s_own(
+        suspension_node, executor, start):
+    # rclpy's parameter and type-description services are every node's; the node's own are
+    # the corners' solve services (where linkage-tf2-msgs built linkage_ros_interfaces).
+    node = suspension_node(**STARTS[start])
+    served = node.get_service_names_and_types_by_node(node.get_name(), node.get_namespace())
+    own = {name.rsplit('/', 1)[1] for name, types in served
+           if not types[0].startswith(('rcl_interfaces/', 'type_description_interfaces/'))}
+    if solve_service.solve_type() is not None:
+        assert own == {'solve'}
+    missing = sorted(name for name in own if not listed(name, help_section('topics')))
+    assert missing == [], f'services of the node ({start}) missing from suspension_node --help'
