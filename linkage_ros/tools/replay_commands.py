@@ -113,10 +113,13 @@ class Commands:
         """Return the lines (without the program's name) that say what was not used."""
         lines = []
         path = self.bag.path
+        from ..cdr import SOLVE_REQUEST
+        needs = {self.wrench_topic: f'contact wrenches are {WRENCH_TYPE}',
+                 beside(self.topic, SOLVE_TOPIC): f'solve requests are {SOLVE_REQUEST}'}
         for (topic, type_name), count in self.skipped.items():
             lines.append(f'{path}: {count} message{"s" if count > 1 else ""} of '
-                         f'{type_name or "no schema"} on {topic} skipped: commands are '
-                         f'{FLOAT64}')
+                         f'{type_name or "no schema"} on {topic} skipped: '
+                         f'{needs.get(topic, f"commands are {FLOAT64}")}')
         if self.lost:
             message, error = self.lost[0]
             total = len(self.lost) + len(self.commands)

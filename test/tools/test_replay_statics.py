@@ -97,3 +97,15 @@ def test_a_refused_wrench_is_an_error_in_the_replay_s_diagnostics_as_on_the_node
               for s in m.status if s.level == ERROR]
     assert len(errors) == 2
     assert all('/contact_wrench' in e and 'finite' in e for e in errors)
+
+
+def test_a_message_of_another_type_on_contact_wrench_is_skipped_naming_the_type_it_needs(
+        tmp_path, capsys):
+    from std_msgs.msg import Float64
+    from test_replay import write_commands
+    bag = tmp_path / 'run.mcap'
+    write_commands(bag, [0.01, 0.02], extra=[('/contact_wrench', 'std_msgs/msg/Float64',
+                                              Float64(data=1.0))])
+    assert main(['solve', str(bag), '-o', str(tmp_path / 'out.mcap'), '--scene', SCENE]) == 0
+    assert ('1 message of std_msgs/msg/Float64 on /contact_wrench skipped: contact wrenches '
+            'are geometry_msgs/msg/WrenchStamped') in capsys.readouterr().err
