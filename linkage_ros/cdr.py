@@ -11,6 +11,7 @@ Pure functions, usable without DDS: the recorders, the replay and the node share
     point_stamped_cdr(stamp, frame_id, point)          -> geometry_msgs/PointStamped, no rclpy
     wrench_stamped_cdr(stamp, frame_id, force, torque) -> geometry_msgs/WrenchStamped, no rclpy
     wrench_of(CDR)                                     -> (frame_id, force, torque), in place
+    solve_request_of(CDR)                              -> a Solve request's fields, in place
     joint_state_cdr(stamp, frame_id, names, position)  -> sensor_msgs/JointState, no rclpy
     tf_message_cdr(stamp, parents, children, translations, quaternions)
                                                        -> tf2_msgs/TFMessage, no tf2_msgs
@@ -278,6 +279,23 @@ def wrench_of(data: bytes) -> tuple[str, tuple[float, ...], tuple[float, ...]]:
     frame_id = reader.string()
     values = reader.unpack('6d', 8)
     return frame_id, values[:3], values[3:]
+
+
+SOLVE_REQUEST = 'linkage_ros_interfaces/srv/Solve_Request'
+
+
+def solve_request_of(data: bytes) -> tuple[str, float, float, tuple, tuple, bool]:
+    """
+    Read (corner, travel m, rack m, force N, torque N m, use_wrench) of a Solve request.
+
+    linkage_ros_interfaces/srv/Solve's request as the node records it (ros/solve_service.py),
+    from CDR bytes in place, without the interface package; CdrError if too short.
+    """
+    reader = _Reader(SOLVE_REQUEST, data, _order(SOLVE_REQUEST, data, 8))
+    corner = reader.string()
+    travel, rack, *wrench = reader.unpack('8d', 8)
+    (use_wrench,) = reader.unpack('B', 1)
+    return corner, travel, rack, tuple(wrench[:3]), tuple(wrench[3:]), bool(use_wrench)
 
 
 def from_cdr(type_name: str, data: bytes) -> Any:

@@ -7,7 +7,9 @@ ROS 2 interfaces as rosbag2 stores them in an MCAP file: schemas, type hashes, Q
     message_definition('std_msgs/msg/Float64')  -> the 'ros2msg' schema text: the .msg text
                                                    with every dependency appended, as
                                                    rosbag2_storage_mcap's message_definition_cache
-                                                   writes it
+                                                   writes it; a service's request or
+                                                   response ('pkg/srv/Solve_Request') is
+                                                   that half of its .srv
     type_hash(type name)                        -> 'RIHS01_...' from the installed .json
     qos_profile_dict(QoSProfile or dict)        -> the profile as rosbag2 (metadata version 9)
                                                    writes it
@@ -45,6 +47,8 @@ _PRIMITIVES = {'bool', 'byte', 'char', 'float32', 'float64', 'int8', 'uint8', 'i
 # rosbag2_storage_mcap's MSG_FIELD_TYPE_REGEX: the first word of a line is a field type.
 _FIELD_TYPE = re.compile(r'(?:^|\n)\s*([a-zA-Z0-9_/]+)(?:\[[^\]]*\])?\s+')
 _TYPE_NAME = re.compile(r'^([a-zA-Z][a-zA-Z0-9_]*)/(?:msg/)?([a-zA-Z][a-zA-Z0-9_]*)$')
+# A service's request or response, recorded as a message of its own ('pkg/srv/Name_Request')
+_SRV_HALF = re.compile(r'^([a-zA-Z][a-zA-Z0-9_]*)/srv/([a-zA-Z][a-zA-Z0-9_]*)_(Request|Response)$')
 
 
 def share_dirs():
@@ -71,6 +75,21 @@ def _split_type(type_name):
         raise RecordingError(f'type {type_name!r}', 'expected a ROS 2 message type like '
                              "'std_msgs/msg/Float64'")
     return match.group(1), match.group(2)
+
+
+def _interface_text(type_name):
+    """Return the .msg text of a type, or that half of its .srv for a service's half."""
+    half = _SRV_HALF.match(type_name)
+    if half is None:
+        return _interface_file(type_name, '.msg').read_text()
+    package, name, which = half.groups()
+    for share in share_dirs():
+        path = share / package / 'srv' / f'{name}.srv'
+        if path.is_file():
+            request, _, response = path.read_text().partition('\n---\n')
+            return request + '\n' if which == 'Request' else response
+    raise RecordingError(f'type {type_name!r}', f'no {name}.srv found (searched '
+                         f'{", ".join(str(s / package / "srv") for s in share_dirs())})')
 
 
 def _interface_file(type_name, suffix):
@@ -104,8 +123,9 @@ def message_definition(type_name):
     seen = set()
 
     def append(name):
-        package, _ = _split_type(name)
-        text = _interface_file(name, '.msg').read_text()
+        half = _SRV_HALF.match(name)
+        package = half.group(1) if half else _split_type(name)[0]
+        text = _interface_text(name)
         for dep in msg_dependencies(text, package):
             if dep not in seen:
                 seen.add(dep)
@@ -117,6 +137,8 @@ def message_definition(type_name):
 
 def type_hash(type_name):
     """Return the 'RIHS01_...' hash of a type, from its installed .json ('' if none)."""
+    if _SRV_HALF.match(type_name):    # the hash of a service's half is in its .srv's .json
+        return ''
     try:
         data = json.loads(_interface_file(type_name, '.json').read_text())
     except RecordingError:

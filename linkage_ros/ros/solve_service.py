@@ -25,6 +25,11 @@ parameter statics). A request the solver cannot take (a corner of another name, 
 corner without statics or not finite, a node that is not active) is refused with status
 REFUSED and no pose (NaN), the corner untouched; a command that cannot be solved (NaN travel,
 out of reach) has its Status and no pose, as on the topics. Never an exception.
+
+A request taken (not refused) is an input like the topics' commands: recorded, at receipt, on
+the service's name (<corner>/solve) as the request itself (type
+linkage_ros_interfaces/srv/Solve_Request, its schema the request half of Solve.srv), its
+receipt time the answer's stamp; linkage-replay solve answers it again (doc/recording.md).
 """
 
 from __future__ import annotations
@@ -32,7 +37,7 @@ from __future__ import annotations
 import math
 from typing import TYPE_CHECKING
 
-from ..cdr import float64_of, pose_of
+from ..cdr import float64_of, pose_of, SOLVE_REQUEST, to_cdr
 from ..core.base import M_PER_MM, MM_PER_M
 from ..protocol import wrench_problem
 
@@ -80,6 +85,7 @@ class SolveAnswers:
 
     def __init__(self, node: Node, name: str, corner: Corner) -> None:
         self.node, self.corner = node, corner
+        self.topic = node.resolve_service_name(corner.prefix + 'solve')
         # the names a request may give: the corner's, or '' and the scene's for one scene
         self.names = {name} if name else {'', corner.scene.name}
 
@@ -88,15 +94,18 @@ class SolveAnswers:
         why = self._refusal(request)
         if why:
             return refused(response, why)
+        # an input like the topics' commands: recorded at receipt, on the service's name, as
+        # the request itself (linkage-replay solve answers it again); its time stamps the answer
+        stamp = self.node.received(self.topic, SOLVE_REQUEST, to_cdr(request))
+        if stamp is None:
+            return refused(response, 'the node is not active: it answers no command now')
         # as the topics read a command (messages.command_mm): the same float, bit for bit
         travel_mm, rack_mm = request.travel * MM_PER_M, request.rack * MM_PER_M
         if request.use_wrench:   # as a contact_wrench message would: kept for what follows
             self.corner.statics.set_wrench(*wrench_parts(request.wrench))
         if not self.corner.scene.steered and rack_mm == 0.0:
             rack_mm = None    # no rack link: the rack stays where it is (none)
-        now = self.node.clock.now().nanoseconds
-        reply = self.corner.answer(travel_mm, rack_mm, divmod(now, 1_000_000_000),
-                                   lambda: self._sent(request))
+        reply = self.corner.answer(travel_mm, rack_mm, stamp, lambda: self._sent(request))
         return fill(response, reply)
 
     def _refusal(self, request) -> str:

@@ -162,8 +162,9 @@ def run(args):
                                   SWEEP_HZ if args.hz is None else args.hz)
         status, stored = cli.DONE, None
     source = bag_path or 'sweep'
-    if args.command == 'publish':
-        return _publish(args, commands, source, status)
+    if args.command == 'publish':   # the Float64 commands: travel and rack
+        from .replay_commands import WRENCH
+        return _publish(args, [c for c in commands if c.kind != WRENCH], source, status)
     compile_if_cold(PROG)
     if args.command == 'bench':
         if not commands:

@@ -12,7 +12,12 @@ The commands linkage-replay works on: read from a bag, or made for a sweep.
 
 A command is std_msgs/msg/Float64 in CDR, in m: wheel travel on the command topic, and the
 steering rack on steering_rack in its namespace (/front_left/wheel_travel:
-/front_left/steering_rack), both in the recorded order, as the node answered them. A message
+/front_left/steering_rack), both in the recorded order, as the node answered them. Beside
+them, the contact wrenches the node took on contact_wrench in that namespace
+(geometry_msgs/msg/WrenchStamped, kind WRENCH, its CDR kept): replayed in their place among
+the commands, answering nothing, as the node took them; and the requests its solve service
+took, recorded on solve in that namespace (linkage_ros_interfaces/srv/Solve_Request, kind
+SOLVE, its CDR kept), each one command of travel and rack (and its wrench). A message
 that does not decode (too short, not CDR) is lost and named; messages of another type on a
 command topic are skipped with a line. Times are ns since the epoch, the recording's receive
 (log) time.
@@ -34,7 +39,10 @@ PARAMETER_EVENT = 'rcl_interfaces/msg/ParameterEvent'
 PARAMETER_EVENTS = '/parameter_events'
 DEFAULT_TOPIC = '/wheel_travel'
 RACK_TOPIC = 'steering_rack'    # the rack commands' name, in the command topic's namespace
-TRAVEL, RACK = 'travel', 'rack'
+WRENCH_TOPIC = 'contact_wrench'  # the contact wrenches', beside the command topic
+WRENCH_TYPE = 'geometry_msgs/msg/WrenchStamped'
+SOLVE_TOPIC = 'solve'    # the solve service's requests, recorded beside the command topic
+TRAVEL, RACK, WRENCH, SOLVE = 'travel', 'rack', 'wrench', 'solve'
 # The run-time parameters that change what the node answers (ros/runtime.py): replayed
 REPLAYED = ('scene', 'method', 'max_step_mm', 'condition_warn', 'diagnostic_period')
 SWEEP_HZ = 50.0
@@ -54,13 +62,16 @@ class Command:
     """
     One command: receive (log) and publish time in ns, its value in m, and its kind.
 
-    kind: TRAVEL (wheel travel, the value's name for history) or RACK (steering rack).
+    kind: TRAVEL (wheel travel, the value's name for history), RACK (steering rack) or
+    WRENCH (a contact wrench: travel 0.0, data its WrenchStamped CDR as recorded) or SOLVE
+    (a solve service request: travel its travel, data its Solve_Request CDR as recorded).
     """
 
     log_time: int
     publish_time: int
     travel: float
     kind: str = TRAVEL
+    data: bytes = b''
 
 
 @dataclass(frozen=True)
@@ -93,14 +104,22 @@ class Commands:
         """Return the steering-rack topic beside the travel topic (qualified)."""
         return rack_topic(self.topic)
 
+    @property
+    def wrench_topic(self):
+        """Return the contact-wrench topic beside the travel topic (qualified)."""
+        return wrench_topic(self.topic)
+
     def warnings(self):
         """Return the lines (without the program's name) that say what was not used."""
         lines = []
         path = self.bag.path
+        from ..cdr import SOLVE_REQUEST
+        needs = {self.wrench_topic: f'contact wrenches are {WRENCH_TYPE}',
+                 beside(self.topic, SOLVE_TOPIC): f'solve requests are {SOLVE_REQUEST}'}
         for (topic, type_name), count in self.skipped.items():
             lines.append(f'{path}: {count} message{"s" if count > 1 else ""} of '
-                         f'{type_name or "no schema"} on {topic} skipped: commands are '
-                         f'{FLOAT64}')
+                         f'{type_name or "no schema"} on {topic} skipped: '
+                         f'{needs.get(topic, f"commands are {FLOAT64}")}')
         if self.lost:
             message, error = self.lost[0]
             total = len(self.lost) + len(self.commands)
@@ -114,6 +133,16 @@ class Commands:
 def rack_topic(topic):
     """Return the steering-rack topic in the namespace of a travel topic (qualified)."""
     return topic.rsplit('/', 1)[0] + '/' + RACK_TOPIC
+
+
+def wrench_topic(topic):
+    """Return the contact-wrench topic in the namespace of a travel topic (qualified)."""
+    return topic.rsplit('/', 1)[0] + '/' + WRENCH_TOPIC
+
+
+def beside(topic, name):
+    """Return the topic name in the namespace of a travel topic (qualified)."""
+    return topic.rsplit('/', 1)[0] + '/' + name
 
 
 def seconds(time_ns):
@@ -139,37 +168,47 @@ def read_commands(path, topic=DEFAULT_TOPIC):
     bag that does not hold the topic among what could be read, no commands: the damage is
     the caller's warning.
     """
-    from ..cdr import CdrError, float64_of
+    from ..cdr import CdrError, float64_of, SOLVE_REQUEST, solve_request_of, wrench_of
     from ..record.interfaces import qualified
     from ..record.mcap_reader import read_bag
     bag = read_bag(path)
     name = qualified(topic)
     result = Commands([], bag, name)
-    if name not in bag.topics:
+    served = beside(name, SOLVE_TOPIC) in bag.topics   # a run driven by the solve service
+    if name not in bag.topics and not served:
         if bag.truncated:   # the damage may have taken it: what was read is used (nothing)
             return result
         raise ReplayError(path, f'no topic {name} (topics present: {topic_list(bag)}); '
                           'choose the wheel-travel topic with --topic')
-    if bag.encodings.get(name) != 'cdr' or (bag.topics[name] != FLOAT64 and not any(
-            m.type_name == FLOAT64 for m in bag.messages if m.topic == name)):
+    if name in bag.topics and (bag.encodings.get(name) != 'cdr' or (
+            bag.topics[name] != FLOAT64 and not any(
+                m.type_name == FLOAT64 for m in bag.messages if m.topic == name))):
         raise ReplayError(path, f'topic {name} carries {bag.topics[name] or "no schema"} '
                           f"('{bag.encodings.get(name)}' encoding), but wheel-travel commands "
                           f'must be {FLOAT64} in cdr (topics present: {topic_list(bag)})')
-    kinds = {name: TRAVEL, result.rack_topic: RACK}
+    kinds = {name: TRAVEL, result.rack_topic: RACK, result.wrench_topic: WRENCH,
+             beside(name, SOLVE_TOPIC): SOLVE}
+    types = {WRENCH: WRENCH_TYPE, SOLVE: SOLVE_REQUEST}
     for m in bag.messages:
         kind = kinds.get(m.topic)
         if kind is None:
             continue
-        if not m.carries(FLOAT64):
+        if not m.carries(types.get(kind, FLOAT64)):
             key = (m.topic, m.type_name)
             result.skipped[key] = result.skipped.get(key, 0) + 1
             continue
         try:
-            value = float64_of(m.data)
+            if kind == WRENCH:
+                wrench_of(m.data)       # that it decodes: the node refuses what does not
+                value, data = 0.0, bytes(m.data)
+            elif kind == SOLVE:
+                value, data = solve_request_of(m.data)[1], bytes(m.data)
+            else:
+                value, data = float64_of(m.data), b''
         except CdrError as exc:
             result.lost.append((m, exc))
             continue
-        result.commands.append(Command(m.log_time, m.publish_time, value, kind))
+        result.commands.append(Command(m.log_time, m.publish_time, value, kind, data))
     # in the order the node took them (file order where times tie)
     result.commands.sort(key=lambda c: c.log_time)
     return result

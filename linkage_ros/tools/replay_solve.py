@@ -24,7 +24,7 @@ import sys
 import time
 
 from .replay_commands import DEFAULT_TOPIC, FLOAT64, stamp_of
-from ..core.base import LinkageError
+from ..core.base import LinkageError, MM_PER_M
 from ..protocol import Responder
 
 DIAGNOSTIC_ARRAY = 'diagnostic_msgs/msg/DiagnosticArray'
@@ -75,13 +75,53 @@ class _Corner:
         self.responder = Responder(scene, method=s['method'], max_step_mm=s['max_step_mm'],
                                    condition_warn=s['condition_warn'], frame_id=s['frame_id'],
                                    status_name=status_name(scene),
-                                   period_ns=int(round(s['diagnostic_period'] * 1e9)))
+                                   period_ns=int(round(s['diagnostic_period'] * 1e9)),
+                                   prefix=self.prefix)
         if old is not None:
             self.responder.follow(old)
         # the node's outputs with its defaults: TF on, alignment and markers off; the
-        # scene's elements for a scene with elements (protocol.OUTPUTS)
-        self.frames = CornerFrames(scene, s['frame_id'], self.prefix)
+        # scene's elements for a scene with elements (protocol.OUTPUTS); with statics, the
+        # pickups' frames, which its pickup wrenches name (ros/tf_outputs.py)
+        statics = self.responder.statics
+        self.frames = CornerFrames(scene, s['frame_id'], self.prefix,
+                                   statics.frame_points() if statics is not None else None)
         self.responder.set_outputs(frames=self.frames)
+
+    def take_wrench(self, data):
+        """
+        Take a recorded contact wrench as the node does (ros/corner.Corner.on_wrench).
+
+        Returns '' if taken, else why it is refused (not finite, another frame, no statics):
+        the caller counts the refusal into the health and reports at once, as the node does.
+        """
+        from ..cdr import wrench_of
+        return self._take(*wrench_of(data))
+
+    def _take(self, frame_id, force, torque):
+        from ..protocol import wrench_problem
+        problem = wrench_problem(frame_id, force, torque, self.settings['frame_id'])
+        if self.responder.statics is None:
+            problem = (f'scene {self.scene.name} has no bushings and parameter statics is '
+                       'false: a contact wrench moves nothing')
+        if not problem:
+            self.responder.statics.set_wrench(force, torque)
+        return problem
+
+    def take_request(self, data, service):
+        """
+        Return (travel_mm, rack_mm, sent) of a recorded solve request, its wrench taken.
+
+        As ros/solve_service.SolveAnswers.solve takes it: the node records only the requests
+        it takes (a wrench it refuses is not recorded), so the wrench is set as it is.
+        """
+        from ..cdr import solve_request_of
+        _, travel, rack, force, torque, use_wrench = solve_request_of(data)
+        if use_wrench:
+            self._take(self.settings['frame_id'], force, torque)
+        travel_mm, rack_mm = travel * MM_PER_M, rack * MM_PER_M
+        if not self.scene.steered and rack_mm == 0.0:
+            rack_mm = None    # no rack link: the rack stays where it is (none)
+        return travel_mm, rack_mm, f'{service} travel {travel!r} m, rack {rack!r} m'  # the node's
 
     def change(self, values, scenes, time_ns):
         """
@@ -116,18 +156,25 @@ def solve_commands(commands, scene, method, sinks, topic=DEFAULT_TOPIC, progress
     period). Outputs are in the command topic's namespace; frame_id defaults to the node's.
 
     commands: travel and rack commands (replay_commands.Command) in the order received, rack
-    ones solved at the last travel. changes: the node's run-time parameter changes
-    (replay_commands.Change), each applied at its time as ros/runtime.py applies it, and
-    recorded on /parameter_events: new solver settings at the pose held; a new scene
-    (scenes: {scene parameter value: Scene}) from its design position, with its
-    /tf_static and robot_description sent again and /diagnostics at once, as the node does.
+    ones solved at the last travel; contact wrenches among them (kind WRENCH) are taken as
+    the node takes them (ros/corner.Corner.on_wrench: protocol.wrench_problem refuses a
+    wrench not finite or in another frame, an ERROR reported at once) and held for the
+    answers after them (the loaded pose, the pickups' forces); solve service requests (kind
+    SOLVE) are answered as the service answers them, travel and rack at once (ros/
+    solve_service.py). changes: the node's run-time parameter changes (replay_commands.Change),
+    each applied at its time as ros/runtime.py applies it, and recorded on /parameter_events:
+    new solver settings at the pose held; a new scene (scenes: {scene parameter value:
+    Scene}) from its design position, with its /tf_static and robot_description sent again
+    and /diagnostics at once, as the node does.
 
     Frames: those of the node's corner in the command topic's namespace ('' for /wheel_travel,
     'front_left/' for /front_left/wheel_travel), in frame_id.
 
     Returns the number of commands that could not be solved.
     """
-    from .replay_commands import PARAMETER_EVENT, PARAMETER_EVENTS, RACK, rack_topic
+    from .replay_commands import beside, PARAMETER_EVENT, PARAMETER_EVENTS, RACK, rack_topic, \
+        SOLVE, SOLVE_TOPIC, WRENCH, WRENCH_TYPE, wrench_topic
+    from ..cdr import SOLVE_REQUEST
     from ..cdr import float64_cdr, string_cdr, to_cdr
     from ..record.interfaces import qualified
     from ..robot_description import robot_description
@@ -135,7 +182,7 @@ def solve_commands(commands, scene, method, sinks, topic=DEFAULT_TOPIC, progress
     from ..ros.tf import static_cdr, TF_STATIC_TOPIC, TF_TYPE
     defaults = node_defaults()
     topic = qualified(topic)
-    rack = rack_topic(topic)
+    rack, wrench, solve = rack_topic(topic), wrench_topic(topic), beside(topic, SOLVE_TOPIC)
     namespace = topic.rsplit('/', 1)[0]
     period_s = defaults['diagnostic_period'] if period_s is None else period_s
     frame_id = frame_id or defaults['frame_id']
@@ -181,12 +228,25 @@ def solve_commands(commands, scene, method, sinks, topic=DEFAULT_TOPIC, progress
         if due is not None:           # the period ended before this command
             report(due)
             responder.health.reset_period()
-        name = rack if command.kind == RACK else topic
-        emit(name, FLOAT64, float64_cdr(command.travel), t, command.publish_time)
-        value_mm = command.travel * 1000.0
-        reply = responder.answer(None if command.kind == RACK else value_mm,
-                                 value_mm if command.kind == RACK else None, divmod(t, 10**9),
-                                 lambda: f'{name} {command.travel!r} m')
+        if command.kind == WRENCH:     # taken for the answers that follow; answers nothing
+            emit(wrench, WRENCH_TYPE, command.data, t, command.publish_time)
+            problem = corner.take_wrench(command.data)
+            if problem:               # refused as the node refuses it: ERROR, at once
+                responder.health.refuse(f'{wrench}: {problem}')
+                report(t)
+            if progress:
+                progress.update(i + 1)
+            continue
+        if command.kind == SOLVE:      # a solve service request: travel and rack at once
+            emit(solve, SOLVE_REQUEST, command.data, t, command.publish_time)
+            travel_mm, rack_mm, sent = corner.take_request(command.data, prefix + SOLVE_TOPIC)
+        else:
+            name = rack if command.kind == RACK else topic
+            emit(name, FLOAT64, float64_cdr(command.travel), t, command.publish_time)
+            value_mm = command.travel * MM_PER_M      # as messages.command_mm reads it
+            travel_mm, rack_mm = (None, value_mm) if command.kind == RACK else (value_mm, None)
+            sent = lambda: f'{name} {command.travel!r} m'  # noqa: E731 (only on failure)
+        reply = responder.answer(travel_mm, rack_mm, divmod(t, 10**9), sent)
         for output, type_name, data in reply.outputs:     # the node's list, in its order
             emit(output if output.startswith('/') else f'{namespace}/{output}', type_name,
                  data, t)
