@@ -35,7 +35,7 @@ step sweep out of reach
 .venv/bin/linkage-sweep five_link --travel 0:1000:100 > /dev/null; echo "rc=$?"
 step sweep elements
 .venv/bin/linkage-sweep double_wishbone --travel -40:40:40 --elements 2>/dev/null | cut -d, -f1,13-; echo "rc=${PIPESTATUS[0]}"
-step chrono import and export (doc/chrono.md)
+step "chrono import and export (doc/chrono.md)"
 .venv/bin/linkage-chrono import config/chrono/generic/suspension/DoubleWishbone.json -o dw.yaml; echo "rc=$?"
 .venv/bin/linkage-sweep dw.yaml --travel -40:40:40 --elements > dw.csv; echo "rc=$?"
 .venv/bin/linkage-chrono export dw.yaml -o dw.json --like config/chrono/generic/suspension/DoubleWishbone.json; echo "rc=$?"
