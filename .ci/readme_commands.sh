@@ -144,6 +144,7 @@ if [ "${LONG:-0}" = 1 ]; then
     .venv/bin/linkage-bench axle demo_vehicle --axle rear --roll -3:3:0.5 --heave -40:40:10 --rounds 11 > /dev/null; echo "rc=$?"
     .venv/bin/linkage-bench vehicle demo_vehicle --rounds 3 > /dev/null; echo "rc=$?"
     .venv/bin/linkage-bench kc double_wishbone_bushings --travel -40:40:20 --rounds 3; echo "rc=$?"
+    .venv/bin/python -m linkage_ros.bench.statics double_wishbone_bushings --rounds 1 10 100; echo "rc=$?"
     .venv/bin/linkage-bench accuracy --quick -o bench-report; echo "rc=$?"
     ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST .venv/bin/linkage-bench node --plot node_latency.png > node_bench.csv; echo "rc=$?"
     ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST .venv/bin/linkage-bench soak > soak.csv; echo "rc=$?"

@@ -86,3 +86,32 @@ def test_newton_stops_when_its_next_step_is_predicted_below_round_off():
     assert not kernel.converged(1.77e-3, 0.711, tol)        # next ~1e-8: still to be taken
     assert kernel.converged(3.0e-9, 1.77e-3, tol)
     assert kernel.converged(1e-9, 0.0, tol)                 # below the tolerance itself
+
+
+def _turned(rotation, axis, deg):
+    """Return rotation turned by deg about the unit axis (3,) (Rodrigues)."""
+    k = np.array([[0.0, -axis[2], axis[1]], [axis[2], 0.0, -axis[0]], [-axis[1], axis[0], 0.0]])
+    a = np.radians(deg)
+    return (np.eye(3) + np.sin(a) * k + (1.0 - np.cos(a)) * k @ k) @ rotation
+
+
+TURNS = [(4.9, True, ''), (5.1, True, 'conically'), (30.0, False, '')]
+
+
+@pytest.mark.parametrize('deg, across, said', TURNS)
+def test_the_validity_check_names_an_arm_turned_conically_beyond_5_deg_only(
+        deg, across, said):
+    """Turned across its axis beyond 5 deg an arm is named; about its axis (torsion) not."""
+    scene = load_scene(BUSHED)
+    base = loaded.unloaded(scene, 0.0)
+    bush = next(b for b in base.system.bushings if base.system.bodies[b.body].kind == 'arm')
+    axis = np.cross(bush.axis, (0.0, 0.0, 1.0)) if across else bush.axis
+    axis = axis / np.linalg.norm(axis)
+    r = base.eq.pose.r.copy()
+    r[bush.body] = _turned(r[bush.body], axis, deg)
+    eq = base.eq._replace(pose=base.eq.pose._replace(r=r))
+    at = item_places(base.system, base.model, base.eq.pose)
+    message = loaded._beyond_validity(base.system, eq, at)
+    assert (said in message) if said else message == ''
+    if said:
+        assert message.startswith(f'bushing {bush.key} turns ')

@@ -38,6 +38,8 @@ PLACES = ('cp', 'wc')
 # The model's validity (STATICS_SPEC.md): beyond these a load is not carried
 MAX_DEFLECTION_MM = 10.0
 MAX_CONICAL_DEG = 5.0
+# trace 1 + 2 cos(angle) of a rotation surely within MAX_CONICAL_DEG (_beyond_validity)
+QUICK_TRACE = 1.0 + 2.0 * math.cos(math.radians(0.999 * MAX_CONICAL_DEG))
 
 
 @dataclass(frozen=True)
@@ -272,7 +274,15 @@ def _beyond_validity(system, eq, at: np.ndarray) -> str:
         return ''
     first = len(system.constraints) + len(system.springs)   # the bushings' terms (pack.py)
     d = at[first:first + len(bushes), 0] - np.array([b.at for b in bushes])
-    sizes = np.sqrt((d * d).sum(axis=1)).tolist()
+    sizes = np.sqrt((d * d).sum(axis=1))
+    # the usual answer at once: no deflection beyond, and no arm turned beyond the conical
+    # limit in all (a rotation's conical part is at most its angle; the margin covers
+    # round-off); else (or a NaN) each bushing in turn, to name the first beyond
+    arms = {b.body for b in bushes if system.bodies[b.body].kind == 'arm'}
+    if sizes.max() <= MAX_DEFLECTION_MM and all(
+            _trace(eq.pose.r[k]) >= QUICK_TRACE for k in arms):
+        return ''
+    sizes = sizes.tolist()
     turns = {}   # per arm body: its rotation vector (its bushings share it)
     for b, size in zip(bushes, sizes):
         if size > MAX_DEFLECTION_MM:
@@ -288,3 +298,8 @@ def _beyond_validity(system, eq, at: np.ndarray) -> str:
                 return (f'bushing {b.key} turns {conical:.3g} deg conically, beyond the '
                         f"model's {MAX_CONICAL_DEG:g} deg")
     return ''
+
+
+def _trace(rotation: np.ndarray) -> float:
+    """Return the trace of a rotation matrix (3, 3): 1 + 2 cos(its angle)."""
+    return float(rotation[0, 0] + rotation[1, 1] + rotation[2, 2])
