@@ -299,6 +299,11 @@ def write_csv(header, rows, stream) -> None:
         -1, len(header)) + 0.0).tolist())
 
 
+def summary(doc: str) -> str:
+    """Return a program module's one-line summary: its docstring's first line after 'prog: '."""
+    return doc.strip().splitlines()[0].split(': ', 1)[1]
+
+
 def counted(count: int, noun: str) -> str:
     """Say a count with its noun in the right number: '1 position', '3 positions'."""
     return f'{count} {noun}' + ('' if count == 1 else 's')
