@@ -25,6 +25,8 @@ import sys
 import tempfile
 from typing import NamedTuple
 
+import numpy as np
+
 from .core.base import LinkageError
 
 DONE, DAMAGED, MISTAKE = 0, 1, 2
@@ -287,6 +289,19 @@ def _umask() -> int:
     mask = os.umask(0o022)
     os.umask(mask)
     return mask
+
+
+def write_csv(header, rows, stream) -> None:
+    """Write a numeric table (rows: (n, len(header)), n may be 0) as CSV, 10 digits, no '-0'."""
+    row_format = ','.join(['%.10g'] * len(header)) + '\n'
+    stream.write(','.join(header) + '\n')
+    stream.writelines(row_format % tuple(row) for row in (np.asarray(rows, float).reshape(
+        -1, len(header)) + 0.0).tolist())
+
+
+def summary(doc: str) -> str:
+    """Return a program module's one-line summary: its docstring's first line after 'prog: '."""
+    return doc.strip().splitlines()[0].split(': ', 1)[1]
 
 
 def counted(count: int, noun: str) -> str:

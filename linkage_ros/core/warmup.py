@@ -4,10 +4,10 @@
 """
 The first compile of the numerical kernels: tell whether it is due, say so once, do it.
 
-numba compiles the kernels (KERNEL_MODULES: linkage_ros.core.base.so3, jacobian_kernel, kernel,
-element_kernel, body_kernel) on first use (about 20 s) and keeps the machine code in its
-on-disk cache (NUMBA_CACHE_DIR, else __pycache__ beside each module); later processes load it
-in well under a second. A program calls, before its first solve:
+numba compiles the kernels (KERNEL_MODULES: linkage_ros.core.base.so3, force_table,
+jacobian_kernel, kernel, element_kernel, body_kernel) on first use (about 20 s) and keeps the
+machine code in its on-disk cache (NUMBA_CACHE_DIR, else __pycache__ beside each module);
+later processes load it in well under a second. A program calls, before its first solve:
 
     cold() -> bool                   numba's cache lacks a kernel: the next solve compiles
     say_if_cold(prog, file=stderr)   print 'prog: compiling the numerical kernels, once, about
@@ -39,7 +39,8 @@ import subprocess
 import sys
 
 # The modules of numba-compiled functions (each one's own cache files).
-KERNEL_MODULES = ('linkage_ros.core.base.so3', 'linkage_ros.core.solve.jacobian_kernel',
+KERNEL_MODULES = ('linkage_ros.core.base.so3', 'linkage_ros.core.base.force_table',
+                  'linkage_ros.core.solve.jacobian_kernel',
                   'linkage_ros.core.solve.kernel', 'linkage_ros.core.solve.element_kernel',
                   'linkage_ros.core.solve.body_kernel')
 # The statics' (only for a scene with bushings, or when statics is asked for).
@@ -136,6 +137,7 @@ def _compile_elements_and_axles(scene) -> None:
     import numpy as np
 
     from .axle.axle import axle_of, slopes, solve_axle
+    from .base.force_table import table_force
     from .measure.bodies import body_poses, corner_bodies
     from .measure.elements import element_values, prepare, values_at
     from .measure.motion import carrier_motion, guidance_rows, pose_batch
@@ -160,6 +162,7 @@ def _compile_elements_and_axles(scene) -> None:
                  poses)
     solve_axle(axle_of(load_vehicle('demo_vehicle'), 'front'), [-10.0, 0.0, 10.0])
     body_poses(corner_bodies(scene), solution)     # the node's /tf (TF is on by default)
+    table_force(np.array([0.0, 1.0]), np.array([0.0, 1.0]), 0.5)   # Element.spring_at's
 
 
 def _compile_statics(scene) -> None:

@@ -8,7 +8,7 @@ Names: `<constraint>.base` (a link's or a strut's body point), `<constraint>.axi
 `<constraint>.axis1` (an arm's revolute axis), `<constraint>.carrier` (the carrier joint),
 `wheel_center` and `spin_axis_point`. Coordinates are mm, vehicle frame, design position.
 
-A moved design is the same Scene with other points (scene.with_points: no file written or
+A moved design is the same Scene with other points (scene_moves.with_points: no file written or
 read); a fitted design is written as the scene file it would be (scene_data_with): a spring
 or damper on a link stays at its fraction of the link; one on an arm or the carrier keeps
 its coordinates; a scene given with static camber and toe gets its spin_axis_point written

@@ -17,7 +17,8 @@ import time
 
 import numpy as np
 
-from ..cli import EXIT_STATUS, fail, Parser, program, SPAN, span, warn, writable_file
+from ..cli import (EXIT_STATUS, fail, Parser, program, SPAN, span, warn, writable_file,
+                   write_csv)
 from ..core.axle import ACKERMANN_MIN_STEER, solve_axle, wheel_travels
 from ..core.base import LinkageError, positions_needed
 from ..core.model import load_vehicle, SceneError
@@ -159,13 +160,6 @@ def bar_columns(bar, values):
         columns += [('arb_torque_Nm', values.torque), ('arb_roll_moment_Nm', values.roll_moment),
                     ('arb_roll_stiffness_Nm_per_deg', values.roll_stiffness)]
     return columns
-
-
-def write_csv(header, rows, stream):
-    """Write a table to stream as CSV, values to 10 significant digits (no '-0')."""
-    row_format = ','.join(['%.10g'] * len(header)) + '\n'
-    stream.write(','.join(header) + '\n')
-    stream.writelines(row_format % tuple(row) for row in (rows + 0.0).tolist())
 
 
 def benchmark(axle, heave, roll, rack, rounds):

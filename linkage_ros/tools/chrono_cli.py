@@ -35,7 +35,7 @@ def main(argv=None):
 
 @cli.program(PROG)
 def _main(argv):
-    parser = cli.Parser(PROG, __doc__.strip().splitlines()[0].split(': ', 1)[1], EPILOG)
+    parser = cli.Parser(PROG, cli.summary(__doc__), EPILOG)
     sub = parser.add_subparsers(dest='command', metavar='{import,export}', required=True,
                                 parser_class=cli.Parser)
     one = sub.add_parser('import', help='a Chrono suspension or vehicle JSON file -> a scene '

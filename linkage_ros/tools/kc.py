@@ -18,7 +18,7 @@ import sys
 import numpy as np
 
 from ..cli import (check_outputs, counted, EXIT_STATUS, fail, Parser, plot_problem, program,
-                   SPAN, span, warn, whole_file)
+                   SPAN, span, warn, whole_file, write_csv)
 from ..core.base import check_position_count, LinkageError, positions_needed
 from ..core.model import load_scene, SceneError
 from ..core.solve import travel_range
@@ -181,14 +181,6 @@ def select(header, wanted):
         problem = f'unknown column {unknown[0]!r}' if unknown else 'no column named'
         raise LinkageError('--columns', f'{problem}: choose from {", ".join(header)}')
     return [header.index(n) for n in names]
-
-
-def write_csv(header, rows, stream):
-    """Write a table as CSV, values to 10 significant digits (no '-0')."""
-    row_format = ','.join(['%.10g'] * len(header)) + '\n'
-    stream.write(','.join(header) + '\n')
-    stream.writelines(row_format % tuple(row) for row in (np.asarray(rows, float).reshape(
-        -1, len(header)) + 0.0).tolist())
 
 
 def write_matrix(matrix, stream):

@@ -36,7 +36,7 @@ def main(argv=None):
 
 @cli.program(PROG)
 def _main(argv):
-    parser = cli.Parser(PROG, __doc__.strip().splitlines()[0].split(': ', 1)[1], EPILOG)
+    parser = cli.Parser(PROG, cli.summary(__doc__), EPILOG)
     parser.add_argument('target', metavar='SCENE_OR_VEHICLE',
                         help='bundled scene or vehicle name, or the path of either file')
     parser.add_argument('-o', '--output', metavar='FILE', required=True,

@@ -139,11 +139,7 @@ def anti(ax, sheet):
                 ax.plot(table['heave_mm'], table[column], style, color=COLOURS[name],
                         label=f'{name} {column[:-4].replace("_", "-")}')
     ax.axhline(0.0, color='0.5', lw=0.8)
-    ax.set_xlabel('heave_mm (+ = bump)')
-    ax.set_ylabel('%')
-    ax.set_title('anti-dive, anti-lift and anti-squat against travel', fontsize=10)
-    ax.legend(fontsize=8)
-    ax.grid(True, alpha=0.3)
+    _finish(ax, 'heave_mm (+ = bump)', '%', 'anti-dive, anti-lift and anti-squat against travel')
 
 
 def roll_stiffness(ax, sheet):
@@ -157,37 +153,37 @@ def roll_stiffness(ax, sheet):
                 color=COLOURS[name], label=f'{name}: springs only')
         ax.axhline(s.row['roll_stiffness_textbook_Nm_per_deg'], ls='--', color=COLOURS[name],
                    lw=0.8, label=f'{name}: textbook 0.5 k MR^2 t^2 (+ bar)')
-    ax.set_xlabel('roll_deg (+ = right side down)')
-    ax.set_ylabel('roll_stiffness_Nm_per_deg')
     ax.set_ylim(bottom=0.0)
-    ax.set_title('roll stiffness against roll', fontsize=10)
-    ax.legend(fontsize=8)
-    ax.grid(True, alpha=0.3)
+    _finish(ax, 'roll_deg (+ = right side down)', 'roll_stiffness_Nm_per_deg',
+            'roll stiffness against roll')
 
 
 def ackermann(ax, sheet):
     """Draw Ackermann (%) against the mean steer of each steered axle."""
-    for name in AXLES:
-        table = sheet.axles[name].tables.get('rack')
-        if table is not None:
-            ax.plot(table['mean_steer_deg'], table['ackermann_pct'], '.-', color=COLOURS[name],
-                    ms=3, label=f'{name} axle')
-    ax.set_xlabel('mean_steer_deg (+ = to the left)')
-    ax.set_ylabel('ackermann_pct (100 = Ackermann, 0 = parallel)')
-    ax.set_title('Ackermann against steer (none below 1 deg)', fontsize=10)
-    ax.legend(fontsize=8)
-    ax.grid(True, alpha=0.3)
+    _rack_panel(ax, sheet, 'mean_steer_deg', 'ackermann_pct', '.-',
+                'ackermann_pct (100 = Ackermann, 0 = parallel)',
+                'Ackermann against steer (none below 1 deg)', ms=3)
 
 
 def steering_ratio(ax, sheet):
     """Draw the steering ratio (deg of mean steer per mm of rack) against the rack."""
+    _rack_panel(ax, sheet, 'rack_mm', 'steering_ratio_deg_per_mm', '-',
+                'steering_ratio_deg_per_mm', 'steering ratio against rack travel')
+
+
+def _rack_panel(ax, sheet, x, y, style, ylabel, title, **line):
+    """Draw column y against column x of each steered axle's rack table (x + = to the left)."""
     for name in AXLES:
         table = sheet.axles[name].tables.get('rack')
         if table is not None:
-            ax.plot(table['rack_mm'], table['steering_ratio_deg_per_mm'], '-',
-                    color=COLOURS[name], label=f'{name} axle')
-    ax.set_xlabel('rack_mm (+ = to the left)')
-    ax.set_ylabel('steering_ratio_deg_per_mm')
-    ax.set_title('steering ratio against rack travel', fontsize=10)
+            ax.plot(table[x], table[y], style, color=COLOURS[name], label=f'{name} axle', **line)
+    _finish(ax, f'{x} (+ = to the left)', ylabel, title)
+
+
+def _finish(ax, xlabel, ylabel, title):
+    """Label a panel's axes, title it, and give it a legend and a light grid."""
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.set_title(title, fontsize=10)
     ax.legend(fontsize=8)
     ax.grid(True, alpha=0.3)

@@ -14,7 +14,7 @@ stress scene, float64 round-off alone is 1.7e-9 mm, so the bound scales with the
 import hashlib
 from pathlib import Path
 
-from linkage_ros.core.base import camber_toe, matrix_from_quaternion, so3
+from linkage_ros.core.base import camber_toe, force_table, matrix_from_quaternion, so3
 from linkage_ros.core.model import bundled_scenes, load_scene
 from linkage_ros.core.solve import (body_kernel, Continuation, element_kernel, jacobian_kernel,
                                     kernel, state, sweep)
@@ -77,6 +77,7 @@ def test_one_command_at_a_time_equals_the_batched_sweep_and_the_paper_method(nam
     (kernel, 'so3.py', 'SO3_DIGEST'), (element_kernel, 'so3.py', 'SO3_DIGEST'),
     (kernel, 'jacobian_kernel.py', 'JACOBIAN_KERNEL_DIGEST'),
     (element_kernel, 'jacobian_kernel.py', 'JACOBIAN_KERNEL_DIGEST'),
+    (element_kernel, 'force_table.py', 'FORCE_TABLE_DIGEST'),
     (pose_kernel, 'so3.py', 'SO3_DIGEST'),
     (pose_kernel, 'jacobian_kernel.py', 'JACOBIAN_KERNEL_DIGEST'),
     (body_kernel, 'so3.py', 'SO3_DIGEST'),
@@ -86,8 +87,8 @@ def test_a_kernel_module_names_the_digest_of_each_file_it_compiles_in(module, co
                                                                       attribute):
     # numba's cache follows each file alone: a module that compiles another file's functions
     # in (so3.py's rotations, jacobian_kernel.py's linear algebra) must change when it does.
-    source = {'so3.py': so3, 'jacobian_kernel.py': jacobian_kernel,
-              'kernel.py': kernel}[compiled_in]
+    source = {'so3.py': so3, 'jacobian_kernel.py': jacobian_kernel, 'kernel.py': kernel,
+              'force_table.py': force_table}[compiled_in]
     digest = hashlib.sha256(Path(source.__file__).read_bytes()).hexdigest()
     name = Path(module.__file__).name
     assert getattr(module, attribute) == digest, (

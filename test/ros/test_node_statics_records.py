@@ -24,14 +24,20 @@ STATICS_MODULES = ('linkage_ros.core.statics', 'linkage_ros.ros.pickups',
                    'linkage_ros.core.model.bushing')
 
 
-def test_the_mcap_holds_the_contact_wrench_and_every_pickup_topic(suspension_node, probe,
-                                                                  tmp_path):
-    path = tmp_path / 'run.mcap'
-    node = suspension_node(scene=str(bushing_scene(tmp_path)), record_mcap=str(path),
-                           diagnostic_period=3600.0)
+def _one_wrench(suspension_node, probe, scene_path, **params):
+    """Start the node on the bushing scene, send FORCE, MOMENT at 20 mm; (node, Wrenches)."""
+    node = suspension_node(scene=str(scene_path), diagnostic_period=3600.0, **params)
     wrenches = Wrenches(probe, node)
     wrenches.send(FORCE, MOMENT)
     probe.ask(0.02)
+    return node, wrenches
+
+
+def test_the_mcap_holds_the_contact_wrench_and_every_pickup_topic(suspension_node, probe,
+                                                                  tmp_path):
+    path = tmp_path / 'run.mcap'
+    node, wrenches = _one_wrench(suspension_node, probe, bushing_scene(tmp_path),
+                                 record_mcap=str(path))
     sent = wrenches.last()
     names = list(pickup_points(node.corners[''].scene))
     node.destroy_node()
@@ -54,11 +60,7 @@ def test_linkage_rerun_draws_the_recorded_forces_as_arrows(suspension_node, prob
     from linkage_ros.tools.rerun_convert import main
     scene_path = bushing_scene(tmp_path)
     path = tmp_path / 'run.mcap'
-    node = suspension_node(scene=str(scene_path), record_mcap=str(path),
-                           diagnostic_period=3600.0)
-    wrenches = Wrenches(probe, node)
-    wrenches.send(FORCE, MOMENT)
-    probe.ask(0.02)
+    node, wrenches = _one_wrench(suspension_node, probe, scene_path, record_mcap=str(path))
     sent = wrenches.last()
     node.destroy_node()
     out = tmp_path / 'run.rrd'
@@ -79,11 +81,8 @@ def test_linkage_rerun_draws_the_recorded_forces_as_arrows(suspension_node, prob
 
 def test_the_node_mirror_to_rerun_draws_the_forces_too(suspension_node, probe, tmp_path):
     out = tmp_path / 'live.rrd'
-    node = suspension_node(scene=str(bushing_scene(tmp_path)), rerun_rrd=str(out),
-                           diagnostic_period=3600.0)
-    wrenches = Wrenches(probe, node)
-    wrenches.send(FORCE, MOMENT)
-    probe.ask(0.02)
+    node, wrenches = _one_wrench(suspension_node, probe, bushing_scene(tmp_path),
+                                 rerun_rrd=str(out))
     wrenches.last()
     node.destroy_node()
     reader = RrdReader(str(out))

@@ -42,7 +42,7 @@ def round_trip(name, tmp_path):
 def test_export_then_import_gives_every_bundled_scenes_hardpoints(name, tmp_path):
     scene, back = load_scene(name), round_trip(name, tmp_path)
     if scene.side == 'right':
-        from linkage_ros.core.model.scene import mirror
+        from linkage_ros.core.model import mirror
         scene = mirror(scene)
     assert sorted(c.type for c in back.constraints) == sorted(c.type for c in scene.constraints)
     np.testing.assert_allclose(back.wheel_center, scene.wheel_center, atol=1e-9)
@@ -93,7 +93,7 @@ def test_like_keeps_every_other_field_of_the_original(tmp_path):
 def test_like_replaces_the_points_of_a_moved_design(tmp_path):
     original = CHRONO / 'generic/suspension/DoubleWishbone.json'
     scene = load_scene('chrono_generic_doublewishbone')
-    from linkage_ros.core.model.scene import with_points
+    from linkage_ros.core.model import with_points
     moved = with_points(scene, scene.points + [0.0, 0.0, 5.0])
     data, _, _ = export_scene(moved, read_chrono(original), str(original))
     before = read_chrono(original)

@@ -23,6 +23,7 @@ if TYPE_CHECKING:
 
 M_PER_MM = 1e-3   # the core works in mm; ROS messages and recordings are in m
 MM_PER_M = 1e3
+N_MM_PER_NM_DEG = MM_PER_M * 180.0 / math.pi   # a torsional rate: N m/deg -> N mm/rad
 
 
 def unit(v: ArrayLike) -> np.ndarray:

@@ -18,8 +18,9 @@ from .elements import Element, parse_elements
 from .fields import Fields, FREE_KEYS, name_problem
 from .kingpin import check_kingpin, KingpinPoint
 from .mounts import LINE_TOLERANCE, Mount, parse_mount
-from .scene import (link_fraction, link_polylines, load_scene, mirror, parse_scene,
-                    resolve_scene_path, safe_stem, Scene, translate, UNITS_TO_MM, with_points)
+from .scene import (link_polylines, load_scene, parse_scene, resolve_scene_path, safe_stem,
+                    Scene, UNITS_TO_MM)
+from .scene_moves import link_fraction, mirror, translate, with_points
 from .vehicle import load_vehicle, Vehicle
 from .yaml_file import FILE_LIMIT_BYTES, parse_yaml, read_yaml, SceneError, VALUES_LIMIT
 

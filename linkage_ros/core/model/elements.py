@@ -36,6 +36,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from .mounts import KINDS, Mount, parse_mount
+from ..base.force_table import table_force
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
@@ -71,18 +72,15 @@ class Element:
 
         length mm. A rate: k (L0 - L), k, k (L0 - L)^2 / 2. A force table: the force
         interpolated at the deflection L0 - L and held outside the table, the slope of its
-        segment (0 outside), and the integral of the force from deflection 0: the same
-        interpolation as the compiled element_kernel.spring_at (its twin for the kernels).
+        segment (0 outside; base.table_force, which the kernels compile in too), and the
+        integral of the force from deflection 0.
         """
         deflection = self.free_length - length
         if self.force_table is None:
             return self.rate * deflection, self.rate, 0.5 * self.rate * deflection ** 2
-        d, f = self.force_table[:, 0], self.force_table[:, 1]
-        force = float(np.interp(deflection, d, f))
-        i = int(np.searchsorted(d, deflection))
-        inside = d[0] < deflection < d[-1]
-        slope = float((f[i] - f[i - 1]) / (d[i] - d[i - 1])) if inside else 0.0
-        return force, slope, _work(d, f, deflection) - _work(d, f, 0.0)
+        d, f = (np.ascontiguousarray(column, float) for column in self.force_table.T)
+        force, slope = table_force(d, f, float(deflection))
+        return float(force), float(slope), _work(d, f, deflection) - _work(d, f, 0.0)
 
     @property
     def is_stop(self) -> bool:

@@ -30,7 +30,8 @@ from typing import TYPE_CHECKING
 
 from .bundled import is_bare_name, resolve, vehicle_dir  # noqa: F401 (vehicle_dir: kept here)
 from .fields import Fields
-from .scene import load_scene, mirror, resolve_scene_path, SceneError, translate, UNITS_TO_MM
+from .scene import load_scene, resolve_scene_path, SceneError, UNITS_TO_MM
+from .scene_moves import mirror, translate
 from .yaml_file import read_yaml
 from ..base.finite import is_finite_number
 from ..base.limits import LENGTH_LIMIT_MM, within_length_limit

@@ -26,12 +26,15 @@ from numba import njit
 import numpy as np
 
 from .jacobian_kernel import factor, solve
+from ..base.force_table import table_force
 from ..base.so3 import rotate
 
 # sha256 of so3.py (test_kernel checks it, as kernel.SO3_DIGEST)
 SO3_DIGEST = '862efb847a68465a5f68ec100893bccc4658d8a7278ad25575f0da1dc9d158aa'
 # sha256 of jacobian_kernel.py (its LU, factor and solve, compiled in here; as kernel.py)
 JACOBIAN_KERNEL_DIGEST = 'ccd7f559764c998ede918fda448df86be47670feaf50368b44a7896fbfb2097d'
+# sha256 of base/force_table.py (a spring's force table, compiled in here by spring_at)
+FORCE_TABLE_DIGEST = '346feb4092ce978e6e4a4404d799b759c6b543b914b5a7b17b6adb98596648da'
 CARRIER, ARM, LINK, ALONG = 0, 1, 2, 3      # MountTable.kind
 # pack_rows columns: one row per guidance equation
 R_LINE, R_OFFSET, R_BASE, R_STEER, R_LENGTH, R_NORMAL, ROW_COLUMNS = 0, 1, 4, 7, 8, 9, 12
@@ -266,9 +269,8 @@ def spring_at(row, width, length):
     """
     Return a spring's (force N, + = compressed; stiffness dF/d deflection N/mm) at length mm.
 
-    The rate's k (L0 - L), k; or its force table (E_CURVE) at the deflection L0 - L,
-    interpolated linearly and held at the end values outside, as Chrono's ChFunctionInterp
-    (no extrapolation): the stiffness is the slope of the table's segment there, 0 outside.
+    The rate's k (L0 - L), k; or its force table (E_CURVE) at the deflection L0 - L
+    (base.force_table.table_force: held outside the table, stiffness 0 there).
     """
     n = int(row[E_CURVE])
     deflection = row[E_FREE] - length
@@ -276,15 +278,7 @@ def spring_at(row, width, length):
         return row[E_RATE] * deflection, row[E_RATE]
     d0 = E_CURVE + 1
     f0 = d0 + (width - d0) // 2
-    if deflection <= row[d0]:
-        return row[f0], 0.0
-    if deflection >= row[d0 + n - 1]:
-        return row[f0 + n - 1], 0.0
-    i = 1
-    while row[d0 + i] < deflection:
-        i += 1
-    slope = (row[f0 + i] - row[f0 + i - 1]) / (row[d0 + i] - row[d0 + i - 1])
-    return row[f0 + i - 1] + slope * (deflection - row[d0 + i - 1]), slope
+    return table_force(row[d0:d0 + n], row[f0:f0 + n], deflection)
 
 
 @jit

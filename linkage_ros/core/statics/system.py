@@ -26,13 +26,12 @@ from typing import NamedTuple
 import numpy as np
 
 from .rotation import energy_terms, log_so3, skew
-from ..base.geometry import cross, exp_so3, unit
+from ..base.geometry import cross, exp_so3, N_MM_PER_NM_DEG, unit
 from ..solve.mechanism import compile_scene
 
 CARRIER, ARM, HINGE, BASE = 'carrier', 'arm', 'hinge', 'base'   # body kinds
 SIZES = {CARRIER: 6, ARM: 6, HINGE: 1, BASE: 3}
 EYE = np.eye(3)
-N_MM_PER_NM_DEG = 1000.0 * 180.0 / math.pi   # N m/deg -> N mm/rad
 
 
 class Item(NamedTuple):

@@ -30,18 +30,18 @@ s'' = t sec^2 phi tan phi. mm, N, rad; reported in N m/deg.
 
 from __future__ import annotations
 
-import math
 from typing import NamedTuple, TYPE_CHECKING
 
 import numpy as np
 
+from ..base.geometry import N_MM_PER_NM_DEG
 from ..measure.elements import element_values
 
 if TYPE_CHECKING:
     from ..axle.axle import Axle, AxleResult
 
 # N mm per rad -> N m per deg
-NMM_PER_RAD_TO_NM_PER_DEG = math.pi / 180.0 / 1000.0
+NMM_PER_RAD_TO_NM_PER_DEG = 1.0 / N_MM_PER_NM_DEG
 
 
 class Elastic(NamedTuple):
@@ -77,7 +77,7 @@ def bar(axle: Axle, result: AxleResult) -> Elastic | None:
     """Return the anti-roll bar as a part; None without a bar or without its rate."""
     if result.bar is None or not axle.anti_roll_bar.has_rate:
         return None
-    k = axle.anti_roll_bar.rate * 1000.0 * 180.0 / math.pi       # N m/deg -> N mm/rad
+    k = axle.anti_roll_bar.rate * N_MM_PER_NM_DEG
     values = result.bar
     tau = values.twist
     grad = values.ratio_travel                                    # (theta_L', -theta_R')
