@@ -94,6 +94,7 @@ ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST .venv/bin/suspension_lifecycle_node > no
 NODE=$!
 sed -n '/^# manage.py/,/^rclpy.try_shutdown()/p' doc/node.md > manage.py
 ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST .venv/bin/python manage.py; echo "rc=$?"
+rm -f solve.py manage.py
 .venv/bin/python drive.py | tail -1; echo "rc=$?"
 kill -INT $NODE; wait $NODE; echo "node rc=$?"
 step set params while the node runs

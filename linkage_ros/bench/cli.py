@@ -26,7 +26,7 @@ stderr.
 
 import sys
 
-from ..cli import deprecated, EXIT_STATUS, fail, MISTAKE
+from ..cli import deprecated, EXIT_STATUS, fail, MISTAKE, program
 
 PROG = 'linkage-bench'
 ROUNDS = 5   # default --rounds of sweep, axle, map and kc
@@ -107,6 +107,7 @@ def _rounds(argv, prog):
     return rounds, rest
 
 
+@program(PROG)
 def main(argv: list[str] | None = None) -> int:
     """Run the benchmark a subcommand names; without one, accuracy (the earlier spelling)."""
     argv = list(sys.argv[1:] if argv is None else argv)

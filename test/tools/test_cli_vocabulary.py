@@ -12,6 +12,8 @@ on stderr naming the new one (kept for one release).
 import argparse
 import csv
 import io
+import subprocess
+import sys
 
 from linkage_ros import cli
 from linkage_ros.bench import cli as bench_cli
@@ -248,3 +250,12 @@ def test_plot_output_as_the_old_path_still_writes_and_notes_o(tmp_path, capsys):
                              capsys)
     assert status == 0 and (tmp_path / 'b.png').stat().st_size > 0
     assert err.startswith(note('linkage-plot', 'OUT.png as a PATH', '-o/--output OUT.png'))
+
+
+def test_linkage_bench_help_into_a_closed_pipe_ends_quietly_as_cat_does():
+    # linkage-bench --help | head -1 printed a BrokenPipeError traceback (.ci/readme_commands.sh)
+    bench = subprocess.Popen([sys.executable, '-m', 'linkage_ros.bench.cli', '--help'],
+                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    bench.stdout.close()          # the reader is gone before the help is written
+    err = bench.stderr.read()
+    assert (bench.wait(timeout=60), err) == (128 + 13, '')   # SIGPIPE's status, as cat's
