@@ -69,7 +69,7 @@ class _Corner:
         self._build(scene)
 
     def _build(self, scene):
-        from ..ros.tf import CornerFrames
+        from ..ros.tf import CornerFrames, tf2_msgs_missing
         old, s = self.responder, self.settings
         self.scene = scene
         self.responder = Responder(scene, method=s['method'], max_step_mm=s['max_step_mm'],
@@ -82,9 +82,11 @@ class _Corner:
         # the node's outputs with its defaults: TF on, alignment and markers off; the
         # scene's elements for a scene with elements (protocol.OUTPUTS); with statics, the
         # pickups' frames, which its pickup wrenches name (ros/tf_outputs.py)
+        # (as ros/tf_outputs.py: only where tf2_msgs imports; else the wrenches name frame_id)
         statics = self.responder.statics
+        pickups = statics is not None and not tf2_msgs_missing()
         self.frames = CornerFrames(scene, s['frame_id'], self.prefix,
-                                   statics.frame_points() if statics is not None else None)
+                                   statics.frame_points() if pickups else None)
         self.responder.set_outputs(frames=self.frames)
 
     def take_wrench(self, data):

@@ -121,9 +121,12 @@ def test_a_scheduler_address_without_a_port_number_is_one_line_and_no_traceback(
 
 def test_ctrl_c_during_a_study_ends_it_at_once_with_status_130_and_no_traceback(tmp_path):
     # Ctrl-C reaches the whole process group, the local workers too.
+    # SIGINT as a terminal's program has it: a test run started in the background (`cmd &` in
+    # a script) ignores SIGINT, and Python then installs no KeyboardInterrupt for its children
     study = subprocess.Popen([PROG, *TOLERANCE, '--samples', '4000000', '--workers', '2',
                               '-o', 'out.csv'], cwd=tmp_path, stderr=subprocess.PIPE,
-                             text=True, start_new_session=True)
+                             text=True, start_new_session=True,
+                             preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
     lines = []
     for line in study.stderr:   # the first batches done: the workers are running
         lines.append(line)
