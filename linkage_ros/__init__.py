@@ -5,8 +5,9 @@
 linkage_ros: kinematics of spatial multi-link suspensions (Alexandru 2018) for ROS 2.
 
     linkage_ros.core     the kinematics, ROS-free (its public names are re-exported here)
-    linkage_ros.cdr      ROS 2 messages as CDR bytes, shared by the node and the recorders
     linkage_ros.cli      what every program does with a user's mistake
+    linkage_ros.answer   what a corner answers, ROS-free (the protocol, health, CDR messages,
+                         TF frames, pickups, the URDF), shared by the node and linkage-replay
     linkage_ros.ros      suspension_node, its messages and diagnostics, the pytest plugin
     linkage_ros.record   MCAP and Rerun files of a run
     linkage_ros.tools    linkage-sweep, linkage-replay, linkage-rerun, plots

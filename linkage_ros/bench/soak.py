@@ -28,7 +28,7 @@ import rclpy
 from rclpy.experimental import EventsExecutor
 from rclpy.parameter import Parameter
 
-from ..cdr import float64_cdr, pose_of
+from ..answer.cdr import float64_cdr, pose_of
 from ..cli import EXIT_STATUS, Parser, program
 from ..core.base import all_finite, LinkageError
 from ..core.model import load_scene

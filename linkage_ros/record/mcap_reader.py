@@ -30,7 +30,7 @@ import yaml
 from .errors import RecordingError
 from .interfaces import MESSAGE_ENCODING, qualified, SCHEMA_ENCODING
 from .mcap_scan import MCAP_MAGIC, Scan
-from ..cdr import CdrError, from_cdr
+from ..answer.cdr import CdrError, from_cdr
 
 
 class BagSchema(NamedTuple):

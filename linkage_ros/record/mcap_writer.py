@@ -33,7 +33,7 @@ from .interfaces import (DEFAULT_QOS, dump, message_definition, MESSAGE_ENCODING
                          METADATA_VERSION, PROFILE, qos_profile_dict, qualified,
                          SCHEMA_ENCODING, type_hash)
 from .output_file import claim, whereabouts
-from ..cdr import to_cdr
+from ..answer.cdr import to_cdr
 
 CHUNK_SIZE = 64 * 1024         # bytes of uncompressed messages per chunk
 FLUSH_PERIOD = 1.0             # s: longest a message waits in memory before its chunk is written

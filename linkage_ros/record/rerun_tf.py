@@ -39,7 +39,7 @@ import rerun as rr
 import rerun.blueprint as rrb
 
 from .rerun_draw import APP_ID, EYE_DIRECTION, EYE_DISTANCE, framed, TIME
-from ..cdr import CdrError, float64_of, string_of, transforms_of
+from ..answer.cdr import CdrError, float64_of, string_of, transforms_of
 from ..core.base import LinkageError, unit
 from ..core.model import name_problem
 

@@ -26,7 +26,7 @@ from .errors import RecordingError
 from .output_file import claim, whereabouts
 from .rerun_draw import contact_patches, log_forces, new_recording, send_hidden, \
     send_poses, send_values
-from ..cdr import CdrError, float64_of, pose_of, to_cdr, wrench_of
+from ..answer.cdr import CdrError, float64_of, pose_of, to_cdr, wrench_of
 from ..core.base import MM_PER_M
 
 if TYPE_CHECKING:
@@ -228,7 +228,7 @@ class RerunRecorder:
     def _pickup(self, root, topic, force):
         """Return the row key and value (point mm, force N) of a pickup's force, or None."""
         if root not in self._pickups:   # where each is at rack 0, and how the rack moves it
-            from ..ros.pickups import pickup_points
+            from ..answer.pickups import pickup_points
             scene = self.scenes[root]
             at_zero = pickup_points(scene)
             at_one = pickup_points(scene, rack_mm=1.0) if scene.steered else at_zero

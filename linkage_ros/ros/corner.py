@@ -17,7 +17,7 @@ Inputs, under the corner's prefix ('' or 'front_left/'):
                    contact patch, vehicle frame: with statics on (a scene with bushings, or
                    parameter statics), each answer is the loaded pose at the last one
 All come raw (CDR bytes): a Float64 is read in place, a fraction of the cost of an rclpy
-message, and bytes that do not decode (linkage_ros.cdr.CdrError) are an ERROR status naming
+message, and bytes that do not decode (linkage_ros.answer.cdr.CdrError) are an ERROR status naming
 the topic and the byte count, with no pose, instead of an exception in the executor.
 
 While the node runs, its parameters may change (ros/runtime.py): the corner then takes new
@@ -44,8 +44,8 @@ from visualization_msgs.msg import MarkerArray
 
 from . import messages
 from .qos import publisher, subscription, topic_qos
-from ..cdr import CdrError, float64_of, from_cdr, wrench_of
-from ..protocol import CONTACT_WRENCH, OUTPUTS, outputs_of, Reply, Responder, SOLVED, \
+from ..answer.cdr import CdrError, float64_of, from_cdr, wrench_of
+from ..answer.protocol import CONTACT_WRENCH, OUTPUTS, outputs_of, Reply, Responder, SOLVED, \
     statics_on, wrench_problem, WRENCH_TYPE
 
 if TYPE_CHECKING:
@@ -131,7 +131,7 @@ class Corner:
 
     @property
     def frames(self):
-        """Return the corner's CornerFrames (ros/tf.py) while TF is on, else None."""
+        """Return the corner's CornerFrames (answer/frames.py) while TF is on, else None."""
         return self.responder.frames
 
     @frames.setter
@@ -142,7 +142,7 @@ class Corner:
 
     @property
     def statics(self):
-        """Return the corner's ros/pickups.CornerStatics while statics is on, else None."""
+        """Return the corner's answer/pickups.CornerStatics while statics is on, else None."""
         return self.responder.statics
 
     def _responder(self, scene: Scene, params: dict) -> Responder:
@@ -153,7 +153,8 @@ class Corner:
             condition_warn=params['condition_warn'], frame_id=self.frame_id,
             status_name=messages.status_name(self.node.get_fully_qualified_name(), scene.name),
             period_ns=round(params['diagnostic_period'] * 1e9),
-            statics=statics_on(scene, params['statics']), prefix=self.prefix)
+            statics=statics_on(scene, params['statics']), prefix=self.prefix,
+            builders=messages.BUILDERS)
         self.solver, self.health = responder.solver, responder.health
         self.status_name = responder.status_name
         return responder
@@ -339,7 +340,7 @@ def corner_topics(scene: Scene, params: dict, prefix: str = '') -> list[str]:
         names.append(CONTACT_WRENCH)
     names += [name for name in outputs if name not in always and name != PICKUP]
     if PICKUP in outputs:
-        from .pickups import pickup_points
+        from ..answer.pickups import pickup_points
         names += [f'{PICKUP}/{name}' for name in pickup_points(scene)]
     return [prefix + name for name in names]
 

@@ -18,9 +18,11 @@ conversion happens here and only here:
                                                           in SI, named by the layout's labels
     alignment_builder(scene, mech, frame_id)           -> build(solution, stamp): the
                                                           alignment output (protocol.OUTPUTS)
+    BUILDERS                                           -> the makers of the alignment and
+                                                          markers outputs, for a Responder
 
 The answer to a solved command (pose, camber, toe as CDR bytes) is built by
-linkage_ros.protocol.answer_outputs, which the node and linkage-replay share; a failed
+linkage_ros.answer.protocol.answer_outputs, which the node and linkage-replay share; a failed
 Solution has no pose and gets none, so no NaN can reach a pose topic; its Health says ERROR
 with the reason.
 """
@@ -32,7 +34,7 @@ from typing import TYPE_CHECKING
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
 from std_msgs.msg import Float64MultiArray, MultiArrayDimension, MultiArrayLayout
 
-from ..cdr import float64_of
+from ..answer.cdr import float64_of
 from ..core.base import M_PER_MM, MM_PER_M
 from ..core.measure import quantity, TOPICS
 
@@ -42,15 +44,15 @@ if TYPE_CHECKING:
     from builtin_interfaces.msg import Time
     from sensor_msgs.msg import JointState
 
+    from ..answer.health import Health
     from ..core.measure import Alignment
-    from ..health import Health
 
 
 def command_mm(data: bytes) -> float:
     """
     Read a Float64 command in CDR bytes (wheel travel or steering rack, m) in mm (core unit).
 
-    Bytes that do not hold a Float64 (too short, not CDR) raise linkage_ros.cdr.CdrError.
+    Bytes that do not hold a Float64 (too short, not CDR) raise linkage_ros.answer.cdr.CdrError.
     """
     return float64_of(data) * MM_PER_M
 
@@ -126,12 +128,26 @@ def alignment_builder(scene, mech, frame_id):
     return build
 
 
+def _markers_builder(responder):
+    from .markers import markers_builder    # visualization_msgs: only once markers are on
+    return markers_builder(responder.scene, responder.frame_id)
+
+
+# The outputs of a corner whose messages are rclpy's, handed to the ROS-free Responder
+# (answer/protocol.py): {output name: make(responder) -> build(solution, stamp)}.
+BUILDERS = {
+    'alignment': lambda responder: alignment_builder(responder.scene, responder.solver.mech,
+                                                     responder.frame_id),
+    'markers': _markers_builder,
+}
+
+
 def alignment_values(msg: Float64MultiArray) -> dict[str, float]:
     """Return {label: value} of an alignment message, for its readers."""
     return {dim.label: value for dim, value in zip(msg.layout.dim, msg.data)}
 
 
-# The answer to a command is sent as CDR bytes built directly (linkage_ros.cdr): rclpy's
+# The answer to a command is sent as CDR bytes built directly (linkage_ros.answer.cdr): rclpy's
 # message classes cost about 20 us to build a PoseStamped and 10 more to serialize it, most
 # of the node's callback.
 def status_name(node: str, corner: str) -> str:
@@ -147,7 +163,7 @@ def status_name(node: str, corner: str) -> str:
 def health_status(health: Health, name: str, hardware_id: str,
                   method: str) -> DiagnosticStatus:
     """
-    Return a corner's Health (linkage_ros.health) as a DiagnosticStatus.
+    Return a corner's Health (linkage_ros.answer.health) as a DiagnosticStatus.
 
     Values are in SI and the keys name their units.
 

@@ -35,7 +35,7 @@ Topics (names relative to the node's namespace, /diagnostics absolute):
     pub elements            sensor_msgs/JointState      the scene's elements: position = length
                                                         (m), velocity = motion ratio (m/m); only
                                                         for a scene with elements
-                                                        (ros/element_outputs.py)
+                                                        (answer/elements.py)
     pub <axle>/roll_centre  geometry_msgs/PointStamped  a vehicle axle's roll centre (m,
                                                         frame_id); only for a vehicle file with
                                                         axles (ros/roll_centres.py)
@@ -52,7 +52,7 @@ Topics (names relative to the node's namespace, /diagnostics absolute):
                                                         loaded pose at the last one
     pub pickup/<name>       geometry_msgs/WrenchStamped with statics on, per answer: the force
                                                         (N) on the body at each pickup, in the
-                                                        pickup's frame (ros/pickups.py)
+                                                        pickup's frame (answer/pickups.py)
     pub robot_description   std_msgs/String             the URDF of the scene or vehicle
     sub /clock              rosgraph_msgs/Clock         only with use_sim_time: the node clock,
                                                         each message taken in turn, in order
@@ -95,7 +95,7 @@ from .qos import clock_qos, latched_qos, offered, publisher, QOS, QOS_DEPTH, sub
 from .runtime import RuntimeParameters
 from .sinks import check_outputs, open_sinks, recording_metadata, Sinks
 from .solve_service import serve_corners
-from ..cdr import CdrError, from_cdr, to_cdr, type_name
+from ..answer.cdr import CdrError, from_cdr, to_cdr, type_name
 from ..core.base import LinkageError
 from ..core.model import load_scene
 

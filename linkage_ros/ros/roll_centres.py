@@ -33,7 +33,7 @@ from geometry_msgs.msg import PointStamped
 import numpy as np
 
 from .qos import publisher
-from ..cdr import point_stamped_cdr
+from ..answer.cdr import point_stamped_cdr
 from ..core.axle import roll_centre_of_poses
 from ..core.base import M_PER_MM
 

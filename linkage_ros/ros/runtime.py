@@ -45,9 +45,9 @@ from rclpy.exceptions import ParameterException
 from rclpy.parameter import Parameter
 
 from .parameters import checked, FIXED, PARAMETERS, unknown_parameter
-from ..cdr import to_cdr
+from ..answer.cdr import to_cdr
+from ..answer.protocol import statics_problem
 from ..core.base import LinkageError
-from ..protocol import statics_problem
 
 if TYPE_CHECKING:
     from rclpy.node import Node

@@ -37,9 +37,9 @@ from __future__ import annotations
 import math
 from typing import TYPE_CHECKING
 
-from ..cdr import float64_of, pose_of, SOLVE_REQUEST, to_cdr
+from ..answer.cdr import float64_of, pose_of, SOLVE_REQUEST, to_cdr
+from ..answer.protocol import wrench_problem
 from ..core.base import M_PER_MM, MM_PER_M
-from ..protocol import wrench_problem
 
 if TYPE_CHECKING:
     from rclpy.node import Node

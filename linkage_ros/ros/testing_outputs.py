@@ -30,7 +30,7 @@ def live_tf_topics():
     Without tf2_msgs (it has no wheel; `linkage-tf2-msgs` builds it where a compiler is) the
     node records its frames but publishes neither (ros/tf.tf2_msgs_missing).
     """
-    from .tf import tf2_msgs_missing
+    from ..answer.frames import tf2_msgs_missing
     return set() if tf2_msgs_missing() else {'/tf', '/tf_static'}
 
 
@@ -42,7 +42,7 @@ def node_warnings(err):
     not what the test did.
     """
     from .solve_service import MISSING, solve_type
-    from .tf import tf2_msgs_missing
+    from ..answer.frames import tf2_msgs_missing
     missing = [text for text in (tf2_msgs_missing(), solve_type() is None and MISSING) if text]
     return [line for line in err.splitlines()
             if '[WARN]' in line and not any(line.endswith(text) for text in missing)]

@@ -25,10 +25,10 @@ from typing import TYPE_CHECKING
 from std_msgs.msg import String
 
 from .qos import latched_qos, publisher, topic_qos
-from .tf import CornerFrames, static_cdr, tf2_msgs_missing, tf_message_class, \
+from ..answer.cdr import string_cdr
+from ..answer.frames import CornerFrames, static_cdr, tf2_msgs_missing, tf_message_class, \
     TF_STATIC_TOPIC, TF_TOPIC, TF_TYPE
-from ..cdr import string_cdr
-from ..robot_description import robot_description
+from ..answer.robot_description import robot_description
 
 if TYPE_CHECKING:
     from rclpy.node import Node
@@ -64,7 +64,7 @@ class TfOutputs:
         """Give every corner the frames of its present scene."""
         for corner in self.corners.values():
             # the pickups' frames only where /tf_static is published: the pickup wrenches
-            # name them then, else the vehicle frame (ros/pickups.py)
+            # name them then, else the vehicle frame (answer/pickups.py)
             pickups = corner.statics.frame_points() \
                 if corner.statics is not None and not self.missing else None
             corner.frames = CornerFrames(corner.scene, self.frame_id, corner.prefix, pickups)

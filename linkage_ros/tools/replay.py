@@ -18,7 +18,7 @@ received; solve also applies the node's run-time parameter changes recorded on
 applied them, and a scene change that cannot be replayed (its scene does not load here) ends
 the replay there, with status 1 (joint_states commands are not replayed: named, status 1).
 Outputs are what suspension_node publishes, answered by the node's
-own protocol (linkage_ros.protocol), in the command topic's namespace: wheel_carrier_pose
+own protocol (linkage_ros.answer.protocol), in the command topic's namespace: wheel_carrier_pose
 (geometry_msgs/PoseStamped, m), camber and toe (std_msgs/Float64, rad), /tf
 (tf2_msgs/TFMessage: the frames of the carrier, links and arms) and, for a scene with
 elements, elements (sensor_msgs/JointState: each spring's, damper's and length's length in m

@@ -113,7 +113,7 @@ class Commands:
         """Return the lines (without the program's name) that say what was not used."""
         lines = []
         path = self.bag.path
-        from ..cdr import SOLVE_REQUEST
+        from ..answer.cdr import SOLVE_REQUEST
         needs = {self.wrench_topic: f'contact wrenches are {WRENCH_TYPE}',
                  beside(self.topic, SOLVE_TOPIC): f'solve requests are {SOLVE_REQUEST}'}
         for (topic, type_name), count in self.skipped.items():
@@ -168,7 +168,7 @@ def read_commands(path, topic=DEFAULT_TOPIC):
     bag that does not hold the topic among what could be read, no commands: the damage is
     the caller's warning.
     """
-    from ..cdr import CdrError, float64_of, SOLVE_REQUEST, solve_request_of, wrench_of
+    from ..answer.cdr import CdrError, float64_of, SOLVE_REQUEST, solve_request_of, wrench_of
     from ..record.interfaces import qualified
     from ..record.mcap_reader import read_bag
     bag = read_bag(path)
@@ -227,7 +227,7 @@ def parameter_changes(bag):
     """
     from rclpy.parameter import parameter_value_to_python
 
-    from ..cdr import CdrError, from_cdr
+    from ..answer.cdr import CdrError, from_cdr
     from ..ros.node import NODE_NAME
     changes, nodes = [], set()
     for m in bag.messages:

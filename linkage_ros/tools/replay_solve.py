@@ -7,15 +7,15 @@ Solve a stream of wheel-travel commands as suspension_node answers them, into si
     solve_commands(commands, scene, method, sinks, topic)   the answers and /diagnostics
     benchmark(commands, scene, method)                     us per command, with each sink
 
-The answering is the node's own (linkage_ros.protocol.Responder, with the node's parameter
-defaults); time is the recording's: each command at its receive time, a diagnostics report
-every period of it. As the node with TF on (its default), the recording also carries
-/tf_static and /robot_description once, at the first command's time, and /tf per solved
-command (linkage_ros.ros.tf, built without tf2_msgs); a scene with elements, their JointState
-per solved command (ros/element_outputs.py), as the node publishes it. Rack commands and the
-node's run-time parameter changes (a new scene, new solver settings) are replayed in their
-recorded order, as the node took them. What a solved command publishes is the Responder's
-list, as on the node (protocol.OUTPUTS).
+The answering is the node's own (linkage_ros.answer.protocol.Responder, with the node's
+parameter defaults); time is the recording's: each command at its receive time, a diagnostics
+report every period of it. As the node with TF on (its default), the recording also carries
+/tf_static and /robot_description once, at the first command's time, and /tf per solved command
+(linkage_ros.answer.frames, built without tf2_msgs); a scene with elements, their JointState
+per solved command (answer/elements.py), as the node publishes it. Rack commands and the node's
+run-time parameter changes (a new scene, new solver settings) are replayed in their recorded
+order, as the node took them. What a solved command publishes is the Responder's list, as on
+the node (protocol.OUTPUTS).
 """
 
 import math
@@ -24,8 +24,8 @@ import sys
 import time
 
 from .replay_commands import DEFAULT_TOPIC, FLOAT64, stamp_of
+from ..answer.protocol import Responder
 from ..core.base import LinkageError, MM_PER_M
-from ..protocol import Responder
 
 DIAGNOSTIC_ARRAY = 'diagnostic_msgs/msg/DiagnosticArray'
 DIAGNOSTICS_TOPIC = '/diagnostics'
@@ -34,8 +34,8 @@ DESCRIPTION_TOPIC = '/robot_description'
 
 def latched_topics():
     """Return {topic: QoS in rosbag2's form} of the latched topics a replay writes."""
+    from ..answer.frames import TF_STATIC_TOPIC
     from ..record.interfaces import DEFAULT_QOS
-    from ..ros.tf import TF_STATIC_TOPIC
     latched = {**DEFAULT_QOS, 'depth': 1, 'durability': 'transient_local'}
     return {TF_STATIC_TOPIC: latched, DESCRIPTION_TOPIC: dict(latched)}
 
@@ -69,7 +69,7 @@ class _Corner:
         self._build(scene)
 
     def _build(self, scene):
-        from ..ros.tf import CornerFrames, tf2_msgs_missing
+        from ..answer.frames import CornerFrames, tf2_msgs_missing
         old, s = self.responder, self.settings
         self.scene = scene
         self.responder = Responder(scene, method=s['method'], max_step_mm=s['max_step_mm'],
@@ -96,11 +96,11 @@ class _Corner:
         Returns '' if taken, else why it is refused (not finite, another frame, no statics):
         the caller counts the refusal into the health and reports at once, as the node does.
         """
-        from ..cdr import wrench_of
+        from ..answer.cdr import wrench_of
         return self._take(*wrench_of(data))
 
     def _take(self, frame_id, force, torque):
-        from ..protocol import wrench_problem
+        from ..answer.protocol import wrench_problem
         problem = wrench_problem(frame_id, force, torque, self.settings['frame_id'])
         if self.responder.statics is None:
             problem = (f'scene {self.scene.name} has no bushings and parameter statics is '
@@ -116,7 +116,7 @@ class _Corner:
         As ros/solve_service.SolveAnswers.solve takes it: the node records only the requests
         it takes (a wrench it refuses is not recorded), so the wrench is set as it is.
         """
-        from ..cdr import solve_request_of
+        from ..answer.cdr import solve_request_of
         _, travel, rack, force, torque, use_wrench = solve_request_of(data)
         if use_wrench:
             self._take(self.settings['frame_id'], force, torque)
@@ -176,12 +176,12 @@ def solve_commands(commands, scene, method, sinks, topic=DEFAULT_TOPIC, progress
     """
     from .replay_commands import beside, PARAMETER_EVENT, PARAMETER_EVENTS, RACK, rack_topic, \
         SOLVE, SOLVE_TOPIC, WRENCH, WRENCH_TYPE, wrench_topic
-    from ..cdr import SOLVE_REQUEST
-    from ..cdr import float64_cdr, string_cdr, to_cdr
+    from ..answer.cdr import SOLVE_REQUEST
+    from ..answer.cdr import float64_cdr, string_cdr, to_cdr
+    from ..answer.frames import static_cdr, TF_STATIC_TOPIC, TF_TYPE
+    from ..answer.robot_description import robot_description
     from ..record.interfaces import qualified
-    from ..robot_description import robot_description
     from ..ros import messages
-    from ..ros.tf import static_cdr, TF_STATIC_TOPIC, TF_TYPE
     defaults = node_defaults()
     topic = qualified(topic)
     rack, wrench, solve = rack_topic(topic), wrench_topic(topic), beside(topic, SOLVE_TOPIC)

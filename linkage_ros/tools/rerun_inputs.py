@@ -90,7 +90,7 @@ def joint_commands(bag: Bag, joints: dict[str, tuple[str, str]]) -> list[BagMess
     a message on /<corner>/wheel_travel (or steering_rack) at its log time, in CDR. One
     that does not decode is left out (Bag.decode counts it).
     """
-    from ..cdr import CdrError, float64_cdr, from_cdr
+    from ..answer.cdr import CdrError, float64_cdr, from_cdr
     made = []
     for m in bag.messages:
         if m.topic.rstrip('/').rsplit('/', 1)[-1] != 'joint_states' or not m.carries(

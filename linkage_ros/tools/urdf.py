@@ -4,10 +4,11 @@
 """
 linkage-urdf: write the robot description (URDF) of a scene or a vehicle.
 
-The same text suspension_node publishes on robot_description (linkage_ros.robot_description):
-a link per body (carrier, wheel, each link, arm and strut of every corner) named as its TF
-frame, every one hung from the root frame by a floating joint (the wheel fixed to its
-carrier), so that RViz, Foxglove or Rerun place each body by the node's /tf.
+The same text suspension_node publishes on robot_description
+(linkage_ros.answer.robot_description): a link per body (carrier, wheel, each link, arm and
+strut of every corner) named as its TF frame, every one hung from the root frame by a floating
+joint (the wheel fixed to its carrier), so that RViz, Foxglove or Rerun place each body by the
+node's /tf.
 """
 
 import sys
@@ -48,7 +49,7 @@ def _main(argv):
         target = load_frames(args.target)
         cli.warn(PROG, target.warnings)
         check_text_output(args.output, target)
-        from ..robot_description import robot_description
+        from ..answer.robot_description import robot_description
         text = robot_description(target.scenes, args.frame_id, target.name)
         write_text(args.output, text)
     except (cli.Mistake, LinkageError) as exc:

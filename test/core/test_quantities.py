@@ -12,10 +12,10 @@ import json
 from pathlib import Path
 import re
 
+from linkage_ros.answer.protocol import ANSWER_TYPES
 from linkage_ros.core.measure import alignment, quantities as registry
 from linkage_ros.core.model import load_scene
 from linkage_ros.core.solve import Continuation
-from linkage_ros.protocol import ANSWER_TYPES
 from linkage_ros.record import rerun_draw
 from linkage_ros.ros import corner, messages
 from linkage_ros.ros.parameters import PARAMETERS

@@ -11,7 +11,7 @@ mcap's reader and by rosbags' AnyReader.
 
 import struct
 
-from linkage_ros import cdr
+from linkage_ros.answer import cdr
 from linkage_ros.record.mcap_reader import read_bag
 from linkage_ros.record.mcap_writer import McapRecorder
 from linkage_ros.tools import replay

@@ -14,7 +14,7 @@ import signal
 import subprocess
 import sys
 
-from linkage_ros.cdr import float64_of
+from linkage_ros.answer.cdr import float64_of
 from linkage_ros.record.mcap_writer import McapRecorder, RecordingError
 from linkage_ros.ros.testing import connect, Probe, spin_until
 from mcap.stream_reader import StreamReader

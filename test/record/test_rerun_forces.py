@@ -11,7 +11,7 @@ pose), each pickup's force at its pickup (the scene's body point). Read back fro
 
 import math
 
-from linkage_ros.cdr import float64_cdr, pose_stamped_cdr, wrench_stamped_cdr
+from linkage_ros.answer.cdr import float64_cdr, pose_stamped_cdr, wrench_stamped_cdr
 from linkage_ros.core.model import load_scene
 from linkage_ros.record.rerun_draw import FORCE_SCALE
 from linkage_ros.record.rerun_view import RerunRecorder, topic_role

@@ -8,12 +8,12 @@ import math
 from builtin_interfaces.msg import Time
 from diagnostic_msgs.msg import DiagnosticStatus
 from geometry_msgs.msg import PoseStamped
-from linkage_ros import cdr
-from linkage_ros.cdr import CdrError, float64_of, from_cdr, pose_of, to_cdr
+from linkage_ros.answer import cdr
+from linkage_ros.answer.cdr import CdrError, float64_of, from_cdr, pose_of, to_cdr
+from linkage_ros.answer.health import Health
+from linkage_ros.answer.protocol import answer_outputs
 from linkage_ros.core.model import load_scene
 from linkage_ros.core.solve import Continuation
-from linkage_ros.health import Health
-from linkage_ros.protocol import answer_outputs
 from linkage_ros.ros import messages
 import numpy as np
 import pytest

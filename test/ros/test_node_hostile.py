@@ -6,9 +6,9 @@ suspension_node against samples that do not decode, over real DDS (raw bytes pub
 
 Any participant on the domain can publish any bytes on a topic: a Float64 of 6 bytes (the CDR
 header and 2 bytes), an empty sample, a JointState cut short. The node answers each with an
-ERROR status that names the topic and the byte count (linkage_ros.cdr.CdrError), publishes no
-pose, and goes on answering (issue 23, item 1: struct.error ended the process, and a vehicle
-node lost all four corners with it).
+ERROR status that names the topic and the byte count (linkage_ros.answer.cdr.CdrError),
+publishes no pose, and goes on answering (issue 23, item 1: struct.error ended the process,
+and a vehicle node lost all four corners with it).
 """
 
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus

@@ -14,7 +14,7 @@ import subprocess
 import sys
 
 from geometry_msgs.msg import PointStamped
-from linkage_ros.cdr import point_stamped_cdr
+from linkage_ros.answer.cdr import point_stamped_cdr
 from linkage_ros.core.axle import axle_of, axle_quantities, roll_centre_of_poses, solve_axle
 from linkage_ros.core.model import load_vehicle
 from linkage_ros.core.solve import Continuation, linearize

@@ -18,12 +18,12 @@ import math
 from pathlib import Path
 
 from geometry_msgs.msg import WrenchStamped
+from linkage_ros.answer.pickups import pickup_points
 from linkage_ros.core.base import M_PER_MM, quaternion_from_matrix
 from linkage_ros.core.measure import contact_patch
 from linkage_ros.core.solve import Continuation
 from linkage_ros.core.statics import Load, solve_loaded
 from linkage_ros.ros.node import QOS
-from linkage_ros.ros.pickups import pickup_points
 from linkage_ros.ros.testing import spin_until
 import numpy as np
 import pytest

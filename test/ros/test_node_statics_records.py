@@ -12,15 +12,15 @@ without parameter statics imports none of the statics code.
 import subprocess
 import sys
 
+from linkage_ros.answer.pickups import pickup_points
 from linkage_ros.ros.node import QOS
-from linkage_ros.ros.pickups import pickup_points
 from linkage_ros.ros.testing import read_mcap_ros2, spin_until
 import numpy as np
 import pytest
 from rerun.chunk import RrdReader
 from test_node_statics import bushing_scene, FORCE, MOMENT, Wrenches
 
-STATICS_MODULES = ('linkage_ros.core.statics', 'linkage_ros.ros.pickups',
+STATICS_MODULES = ('linkage_ros.core.statics', 'linkage_ros.answer.pickups',
                    'linkage_ros.core.model.bushing')
 
 

@@ -9,13 +9,13 @@ The Responder builds every output a scene and the switches turn on, in the table
 back by mcap + mcap_ros2), and linkage-replay writes the same list.
 """
 
-from linkage_ros.cdr import float64_of, from_cdr
+from linkage_ros.answer.cdr import float64_of, from_cdr
+from linkage_ros.answer.frames import CornerFrames
+from linkage_ros.answer.protocol import OUTPUTS, outputs_of, Responder
 from linkage_ros.core.measure import alignment, element_values
 from linkage_ros.core.model import load_scene
-from linkage_ros.protocol import OUTPUTS, outputs_of, Responder
 from linkage_ros.ros import messages
 from linkage_ros.ros.testing import spin_until
-from linkage_ros.ros.tf import CornerFrames
 from linkage_ros.tools.replay_commands import Command
 from linkage_ros.tools.replay_solve import solve_commands
 from mcap.reader import make_reader
@@ -28,7 +28,8 @@ EVERY = ['wheel_carrier_pose', 'camber', 'toe', 'alignment', 'markers', 'element
 
 def responder(scene):
     return Responder(scene, method='fast', max_step_mm=5.0, condition_warn=1e4,
-                     frame_id='base_link', status_name='s', period_ns=10**9)
+                     frame_id='base_link', status_name='s', period_ns=10**9,
+                     builders=messages.BUILDERS)
 
 
 def test_the_outputs_of_a_scene_and_its_switches_come_from_one_table_in_its_order():
@@ -120,9 +121,9 @@ def test_the_node_publishes_the_responders_list_in_its_order(suspension_node, ex
 
 
 def test_with_statics_the_pickups_follow_the_extras_each_in_its_static_frame():
-    from linkage_ros.cdr import transforms_of, wrench_of
-    from linkage_ros.ros.pickups import pickup_points
-    from linkage_ros.ros.tf import static_cdr
+    from linkage_ros.answer.cdr import transforms_of, wrench_of
+    from linkage_ros.answer.frames import static_cdr
+    from linkage_ros.answer.pickups import pickup_points
     scene = load_scene('double_wishbone')
     corner = Responder(scene, method='fast', max_step_mm=5.0, condition_warn=1e4,
                        frame_id='base_link', status_name='s', period_ns=10**9, statics=True,

@@ -16,10 +16,10 @@ import subprocess
 import sys
 import xml.etree.ElementTree as ElementTree
 
+from linkage_ros.answer.frames import tf2_msgs_missing
+from linkage_ros.answer.robot_description import robot_description
 from linkage_ros.core.model import load_scene
-from linkage_ros.robot_description import robot_description
 from linkage_ros.ros.testing import connect, Probe, spin_until
-from linkage_ros.ros.tf import tf2_msgs_missing
 from linkage_ros.tools.tf2_msgs_build import missing_tools
 import pytest
 from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy

@@ -131,8 +131,9 @@ node = SuspensionNode(context=context, parameter_overrides=[
 corner = node.corners['']
 corner.answer(20.0, None, (1, 0), lambda: 'x')
 node.destroy_node()
-loaded = [m for m in sys.modules if m.startswith(('linkage_ros.ros.tf', 'linkage_ros.core.bod',
-                                                  'linkage_ros.robot_description', 'tf2_msgs'))]
+loaded = [m for m in sys.modules if m.startswith(
+    ('linkage_ros.answer.frames', 'linkage_ros.core.bod', 'linkage_ros.answer.robot_description',
+     'tf2_msgs'))]
 print(loaded)
 """
     done = subprocess.run([sys.executable, '-c', code], capture_output=True, text=True,

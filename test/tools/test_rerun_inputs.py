@@ -14,7 +14,7 @@ import math
 from pathlib import Path
 import struct
 
-from linkage_ros import cdr
+from linkage_ros.answer import cdr
 from linkage_ros.cli import safe_name
 from linkage_ros.core.model import load_scene, load_vehicle
 from linkage_ros.record import label_layout

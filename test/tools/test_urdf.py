@@ -14,11 +14,11 @@ import subprocess
 import sys
 import xml.etree.ElementTree as ElementTree
 
-from linkage_ros.cdr import transforms_of
+from linkage_ros.answer.cdr import transforms_of
+from linkage_ros.answer.frames import CornerFrames, static_cdr
+from linkage_ros.answer.robot_description import robot_description, rotation_of_rpy, rpy
 from linkage_ros.core.model import load_scene, load_vehicle
 from linkage_ros.core.solve import Continuation
-from linkage_ros.robot_description import robot_description, rotation_of_rpy, rpy
-from linkage_ros.ros.tf import CornerFrames, static_cdr
 import numpy as np
 import pytest
 

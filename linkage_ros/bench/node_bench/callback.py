@@ -21,7 +21,7 @@ import rclpy
 
 from .driver import sine
 from .tables import progress, table, us
-from ...cdr import float64_cdr, wrench_stamped_cdr
+from ...answer.cdr import float64_cdr, wrench_stamped_cdr
 from ...core.base import LinkageError
 from ...core.model import config_dir, load_scene
 from ...ros.isolation import init_context

@@ -13,7 +13,7 @@ from sensor_msgs.msg import JointState
 from std_msgs.msg import Float64
 
 from .tables import progress
-from ...cdr import float64_cdr, joint_state_cdr
+from ...answer.cdr import float64_cdr, joint_state_cdr
 from ...ros.node import QOS
 
 

@@ -25,7 +25,7 @@ bit. A pickup's wrench is the force on the body
 at that pickup (N, vehicle frame orientation), its torque the bushing's couple there (N m,
 Loaded.body_moments_nm; zero at a ball joint, a rigid pivot or a spring end). Its
 header names the pickup's frame (static TF at the design pickup point, orientation of the
-vehicle frame; ros/tf.py publishes it on /tf_static), so that RViz's and Foxglove's wrench
+vehicle frame; answer/frames.py publishes it on /tf_static), so that RViz's and Foxglove's wrench
 displays draw the arrow at the pickup; where those frames are not published (tf off, or
 tf2_msgs missing) it names the vehicle frame, and the pickup point is that of
 pickup_points (doc/node.md).
@@ -42,7 +42,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..cdr import wrench_stamped_cdr
+from .cdr import wrench_stamped_cdr
 from ..core.base import LinkageError, quaternion_from_matrix, Status
 
 if TYPE_CHECKING:

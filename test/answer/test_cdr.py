@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: Apache-2.0
 
 """
-CDR layouts built in place (linkage_ros.cdr): byte for byte what rclpy serializes.
+CDR layouts built in place (linkage_ros.answer.cdr): byte for byte what rclpy serializes.
 
 Two independent codecs are the reference: rosbags' serialize_cdr (pure Python) gives the
 bytes, for any frame_id or joint-name lengths (alignment padding changes with each), and
@@ -14,7 +14,7 @@ uninitialised.)
 import array
 
 from geometry_msgs.msg import PoseStamped
-from linkage_ros import cdr
+from linkage_ros.answer import cdr
 import numpy as np
 import pytest
 from rclpy.serialization import deserialize_message

@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: Apache-2.0
 
 """
-The TF frames of a solved corner (linkage_ros.core.measure.bodies, linkage_ros.ros.tf).
+The TF frames of a solved corner (linkage_ros.core.measure.bodies, linkage_ros.answer.frames).
 
 Each frame is checked against what it must carry, computed independently of the frame code:
 the solved carrier joints (Continuation.joints), the scene's hardpoints and the rack.
@@ -11,12 +11,12 @@ the solved carrier joints (Continuation.joints), the scene's hardpoints and the 
 import math
 from pathlib import Path
 
-from linkage_ros.cdr import pose_of, tf_message_cdr, transforms_of
+from linkage_ros.answer.cdr import pose_of, tf_message_cdr, transforms_of
+from linkage_ros.answer.frames import CornerFrames, static_cdr, tf2_msgs_missing
+from linkage_ros.answer.protocol import answer_outputs
 from linkage_ros.core.measure import body_poses, corner_bodies
 from linkage_ros.core.model import load_scene, parse_scene
 from linkage_ros.core.solve import Continuation
-from linkage_ros.protocol import answer_outputs
-from linkage_ros.ros.tf import CornerFrames, static_cdr, tf2_msgs_missing
 import numpy as np
 import pytest
 import yaml

@@ -13,11 +13,11 @@ Frames (linkage_ros.core.measure.bodies): per corner the carrier '<prefix>wheel_
 wheel_carrier_pose the node answers: its transform from frame_id is that pose, bit for bit),
 one frame per link, arm and strut '<prefix><constraint name>', all children of frame_id, and
 the wheel '<prefix>wheel', fixed to the carrier, on /tf_static, with a corner's body pickups
-'<prefix>pickup/<name>' where statics is on (ros/pickups.py: its pickup wrenches name them).
+'<prefix>pickup/<name>' where statics is on (answer/pickups.py: its pickup wrenches name them).
 prefix: '' for a node of one scene, 'front_left/' for a vehicle's corner.
 
-The messages are built by linkage_ros.cdr without tf2_msgs (which has no wheel on the package
-index), so that every recording carries /tf; live publishing needs tf2_msgs installed (any
+The messages are built by linkage_ros.answer.cdr without tf2_msgs (which has no wheel on the
+package index), so that every recording carries /tf; live publishing needs tf2_msgs installed (any
 full ROS 2 install, or linkage-tf2-msgs). ROS-free: the node and linkage-replay share it; it
 is imported only when TF is on.
 """
@@ -29,7 +29,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..cdr import tf_message_cdr
+from .cdr import tf_message_cdr
 from ..core.base import M_PER_MM, quaternion_from_matrix
 from ..core.measure import body_poses, corner_bodies
 
@@ -50,7 +50,7 @@ class CornerFrames:
         Name the frames of scene's bodies under prefix, children of frame_id.
 
         pickups: {frame name: point (3,) mm} of the body pickups (statics on:
-        ros/pickups.CornerStatics.frame_points), static frames of frame_id's orientation.
+        answer/pickups.CornerStatics.frame_points), static frames of frame_id's orientation.
         """
         self.frame_id = frame_id
         self.bodies = corner_bodies(scene, prefix, taken=(frame_id,))

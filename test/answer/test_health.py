@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: Apache-2.0
 
 """
-linkage_ros.health: what /diagnostics says about a corner, without ROS.
+linkage_ros.answer.health: what /diagnostics says about a corner, without ROS.
 
 Expected behaviour is the diagnostic_updater convention the node follows: a report every
 period summarising it, and a report at once for a failed command or a change of level.
@@ -10,9 +10,9 @@ period summarising it, and a report at once for a failed command or a change of 
 
 import math
 
+from linkage_ros.answer.health import ERROR, Health, OK, WARN
 from linkage_ros.core.model import load_scene
 from linkage_ros.core.solve import Continuation
-from linkage_ros.health import ERROR, Health, OK, WARN
 import pytest
 
 

@@ -28,11 +28,11 @@ import xml.etree.ElementTree as ElementTree
 
 import numpy as np
 
-from .core.base import M_PER_MM
-from .core.measure import Bodies, corner_bodies, frame_along
+from ..core.base import M_PER_MM
+from ..core.measure import Bodies, corner_bodies, frame_along
 
 if TYPE_CHECKING:
-    from .core.model import Scene
+    from ..core.model import Scene
 
 LINK_RADIUS = 0.018     # of the corner's reach: links, arms and the carrier's arms
 JOINT_RADIUS = 0.035    # of the reach: the spheres at the joints

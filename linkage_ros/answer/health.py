@@ -20,7 +20,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
-    from .core.solve import Solution
+    from ..core.solve import Solution
 
 OK, WARN, ERROR = 0, 1, 2
 

@@ -17,10 +17,10 @@ import subprocess
 import sys
 
 from builtin_interfaces.msg import Time
-from linkage_ros.cdr import float64_of, from_cdr
+from linkage_ros.answer.cdr import float64_of, from_cdr
+from linkage_ros.answer.protocol import Responder
 from linkage_ros.core.base import Status
 from linkage_ros.core.model import load_scene
-from linkage_ros.protocol import Responder
 from linkage_ros.record.mcap_writer import McapRecorder
 from linkage_ros.ros import messages
 from linkage_ros.ros.testing import spin_until, stamp_ns
@@ -218,7 +218,7 @@ def loaded_by(imports, wanted):
 
 
 def test_importing_the_protocol_loads_neither_rclpy_nor_a_message_package():
-    assert loaded_by('linkage_ros.protocol', 'm.split(".")[0] in {"rclpy", "std_msgs", '
+    assert loaded_by('linkage_ros.answer.protocol', 'm.split(".")[0] in {"rclpy", "std_msgs", '
                      '"geometry_msgs", "diagnostic_msgs", "builtin_interfaces", '
                      '"rosidl_parser", "mcap"} and "." not in m') == '[]\n'
 
@@ -226,7 +226,7 @@ def test_importing_the_protocol_loads_neither_rclpy_nor_a_message_package():
 def test_the_protocol_and_health_import_nothing_of_the_ros_adapter():
     # health.py was in ros/ while ROS-free, and the protocol imported it from there: the
     # layers import downwards only (ros uses the protocol, never the other way).
-    assert loaded_by('linkage_ros.protocol, linkage_ros.health', 'm.startswith(('
+    assert loaded_by('linkage_ros.answer.protocol, linkage_ros.answer.health', 'm.startswith(('
                      '"linkage_ros.ros", "linkage_ros.record", "linkage_ros.tools"))'
                      ) == '[]\n'
 

@@ -21,7 +21,7 @@ the table's order: wheel_carrier_pose (geometry_msgs/PoseStamped: wheel centre i
 rotation relative to design), camber and toe (std_msgs/Float64, rad), then the extras:
 alignment, markers, the scene's elements, the corner's TF frames, all stamped with stamp. A
 command that cannot be solved (NaN, infinite, out of reach) gets no answer and keeps the last
-good pose. Every command is counted into the corner's Health (linkage_ros.health), whose
+good pose. Every command is counted into the corner's Health (linkage_ros.answer.health), whose
 status goes to /diagnostics at once for a failure or a change of level, and every diagnostic
 period (period_ns) of the clock the caller gives: the node's timer, or a recording's timeline.
 The roll centre of a vehicle's axle is not a corner's output: it needs both corners' poses
@@ -29,7 +29,7 @@ The roll centre of a vehicle's axle is not a corner's output: it needs both corn
 
 With statics on (statics_on: a scene with bushings, or statics=True), a solved command is
 answered with the loaded pose at the last contact wrench (responder.statics.set_wrench;
-ros/pickups.CornerStatics, which alone imports the statics core) in place of the kinematic
+answer/pickups.CornerStatics, which alone imports the statics core) in place of the kinematic
 one, then with every body pickup's force (pickup/<name>, after the extras); a load the
 linkage cannot carry is a failed command (Status.NOT_CARRIED), with no answer.
 wrench_problem says why a contact wrench is refused, statics_problem why a scene cannot
@@ -37,10 +37,10 @@ have statics.
 
 ROS-free: this module imports the core, cdr (the answer's CDR bytes) and the Health logic,
 never rclpy or a message package. The elements' JointState and the TF frames are CDR bytes
-(ros/element_outputs.py, ros/tf.py, themselves ROS-free); the alignment and markers outputs
-are rclpy messages, so their builders (ros/messages.py, ros/markers.py) are imported only
-once they are turned on, which only the node does. A DiagnosticStatus is built from
-responder.health by linkage_ros.ros.messages.health_status.
+(answer/elements.py, answer/frames.py, themselves ROS-free); the alignment and markers outputs
+are rclpy messages, so their makers come from the caller (builders=: the node hands
+ros/messages.BUILDERS, which import ros/messages.py and ros/markers.py once turned on).
+A DiagnosticStatus is built from responder.health by linkage_ros.ros.messages.health_status.
 """
 
 from __future__ import annotations
@@ -49,13 +49,13 @@ import math
 from typing import Any, Callable, NamedTuple, TYPE_CHECKING
 
 from .cdr import float64_cdr, pose_stamped_cdr
-from .core.base import LinkageError, M_PER_MM, Status
-from .core.solve import Continuation, Solution
 from .health import Health
+from ..core.base import LinkageError, M_PER_MM, Status
+from ..core.solve import Continuation, Solution
 
 if TYPE_CHECKING:
-    from .core.model import Scene
-    from .ros.tf import CornerFrames
+    from .frames import CornerFrames
+    from ..core.model import Scene
 
 SOLVED = 'solved'       # Output.when of the outputs of every solved command
 
@@ -82,12 +82,12 @@ OUTPUTS = (
     Output('markers', 'visualization_msgs/msg/MarkerArray', 'markers',
            'links and joints (ros/markers.py)'),
     Output('elements', 'sensor_msgs/msg/JointState', 'elements',
-           "the scene's elements: lengths (m) and motion ratios (ros/element_outputs.py)"),
+           "the scene's elements: lengths (m) and motion ratios (answer/elements.py)"),
     Output('/tf', 'tf2_msgs/msg/TFMessage', 'tf',
-           "the frames of the corner's bodies (ros/tf.py)"),
+           "the frames of the corner's bodies (answer/frames.py)"),
     Output('pickup', 'geometry_msgs/msg/WrenchStamped', 'statics',
            "each body pickup's force on the body, N, one topic pickup/<name> each "
-           '(ros/pickups.py)'),
+           '(answer/pickups.py)'),
 )
 # The input of a corner with statics on: the tyre's wrench at the contact patch.
 CONTACT_WRENCH = 'contact_wrench'
@@ -158,23 +158,24 @@ def extra_builder(name: str, responder: Responder) -> Callable[[Solution, tuple]
     """
     Return build(solution, stamp) of the extra output name for responder's corner.
 
-    Each is imported only here, once it is turned on: the alignment and markers builders need
-    the ROS message packages, the elements and TF ones only cdr.
+    The elements and TF outputs are built here (CDR bytes, answer/elements.py and frames.py);
+    alignment and markers are rclpy messages, so the caller hands their makers to the
+    Responder (builders: the node's ros/messages.BUILDERS), and nothing here imports ROS.
     """
-    scene, frame_id, solver = responder.scene, responder.frame_id, responder.solver
-    if name == 'alignment':
-        from .ros.messages import alignment_builder
-        return alignment_builder(scene, solver.mech, frame_id)
-    if name == 'markers':
-        from .ros.markers import markers_builder
-        return markers_builder(scene, frame_id)
+    if name in responder.builders:
+        return responder.builders[name](responder)
     if name == 'elements':
-        from .ros.element_outputs import elements_builder
-        return elements_builder(scene, solver.mech, frame_id, lambda: solver.jacobian)
+        from .elements import elements_builder
+        solver = responder.solver
+        return elements_builder(responder.scene, solver.mech, responder.frame_id,
+                                lambda: solver.jacobian)
     if name == '/tf':
         return responder.frames.tf_cdr
     if name == 'pickup':
-        return None    # built with the loaded pose (Responder.answer, ros/pickups.py)
+        return None    # built with the loaded pose (Responder.answer, answer/pickups.py)
+    if name in ('alignment', 'markers'):
+        raise ValueError(f'output {name!r} is an rclpy message: its maker comes from the '
+                         'caller (Responder builders=, the node gives ros/messages.BUILDERS)')
     raise ValueError(f'no output {name!r} (outputs: {", ".join(o.name for o in OUTPUTS)})')
 
 
@@ -205,18 +206,21 @@ class Responder:
     def __init__(self, scene: Scene, *, method: str, max_step_mm: float,
                  condition_warn: float, frame_id: str, status_name: str,
                  period_ns: int, start_ns: int | None = None, statics: bool = False,
-                 prefix: str = '') -> None:
+                 prefix: str = '', builders: dict | None = None) -> None:
         """
         Make the corner's solver and Health.
 
         status_name: the DiagnosticStatus name ('suspension_kinematics: five_link').
         period_ns: the diagnostic period; start_ns: when its first period starts (the node:
         its clock at start), or None for the time of the first call of due(). statics: answer
-        the loaded pose at the last contact wrench (statics_on; ros/pickups.CornerStatics,
+        the loaded pose at the last contact wrench (statics_on; answer/pickups.CornerStatics,
         whose set_wrench takes it), with the pickups' forces; prefix: the corner's TF
-        prefix ('' or 'front_left/'), which names its pickups' frames.
+        prefix ('' or 'front_left/'), which names its pickups' frames. builders: {output name:
+        make(responder) -> build(solution, stamp)} of the outputs whose messages are rclpy's
+        (alignment, markers: the node's ros/messages.BUILDERS), called once one is turned on.
         """
         self.scene, self.method, self.frame_id = scene, method, frame_id
+        self.builders = dict(builders or {})
         self.status_name, self.condition_warn = status_name, condition_warn
         self.solver = Continuation(scene, method=method, max_step=max_step_mm)
         self.health = Health(condition_warn)
@@ -230,7 +234,7 @@ class Responder:
         if statics_on(scene, statics):   # the statics core is imported only here
             if statics_problem(scene, statics):
                 raise LinkageError('statics', statics_problem(scene, statics))
-            from .ros.pickups import CornerStatics
+            from .pickups import CornerStatics
             self.statics = CornerStatics(scene, frame_id, prefix)
         self.outputs: list[Output] = []
         self._extras: list[tuple[str, str, Callable]] = []

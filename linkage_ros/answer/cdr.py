@@ -32,7 +32,7 @@ import importlib
 import struct
 from typing import Any, TYPE_CHECKING
 
-from .core.base import LinkageError
+from ..core.base import LinkageError
 
 if TYPE_CHECKING:
     from collections.abc import Sequence

@@ -23,7 +23,7 @@ from __future__ import annotations
 
 from typing import Callable, TYPE_CHECKING
 
-from ..cdr import joint_state_cdr
+from .cdr import joint_state_cdr
 from ..core.base import M_PER_MM
 from ..core.measure import prepare, values_at
 
