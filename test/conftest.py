@@ -68,7 +68,7 @@ SLOW = {
         'test_at_small_sigma_the_monte_carlo_spread_is_the_first_order_one'],
     'test_elements_input.py': [
         'test_an_element_with_one_field_broken_loads_or_is_one_scene_error_naming_it'],
-    'test_study_sensitivity.py': [
+    'test_vary_sensitivity.py': [
         'test_the_compiled_closed_forms_equal_the_jets_for_the_sweep_columns'],
     'test_map.py': ['test_every_stored_value_is_the_direct_solve_at_its_grid_point'],
     'test_statics_energy.py': [

@@ -11,7 +11,7 @@ linkage-bench: every benchmark of linkage_ros, one subcommand each.
     linkage-bench axle [VEHICLE] [...] an axle position against corner positions
     linkage-bench map SCENE [...]      map answers with and without the elements
     linkage-bench vehicle VEHICLE [...] the setup sheet at 1x, 10x, 100x its tables (sheet.py)
-    linkage-bench study [...]          tolerance, sensitivity and fit (study/bench.py)
+    linkage-bench study [...]          tolerance, sensitivity and fit (study.py)
     linkage-bench replay [BAG] [...]   solving recorded commands with and without recording
     linkage-bench kc SCENE [...]       compliance rates and a loaded solve against a
                                        kinematic solve (linkage-kc; kc_bench.py)
@@ -58,7 +58,7 @@ def _soak(argv, prog=f'{PROG} soak'):
 
 
 def _study(argv):
-    from ..study.bench import main
+    from .study import main
     return main(argv)
 
 

@@ -4,12 +4,13 @@
 """
 Design studies of a suspension corner, loaded only when asked for (linkage-study).
 
-    sensitivity.py   exact d(quantity)/d(hardpoint) by the implicit function theorem
+    cli.py, commands.py  the program: its options, and each study run with its progress
     tolerance.py     hardpoint tolerance stack-up: first order and Monte Carlo
     fit.py           hardpoints fitted to target curves by bounded least squares
+    targets.py       the fit's targets file; fitted_scene.py the fitted design as a scene
     executor.py      batches on the local cores or on a Dask cluster, results in order
+    tables.py, plots.py  what a study writes
 
-The numerical pieces: jets.py (forward-mode derivatives), hardpoints.py (points by name,
-moved designs), equations.py and quantities.py (the mechanism and its quantities as
-functions of the hardpoints), variant_kernel.py (a compiled solve batched over variants).
+The numerics they stand on are the core's (linkage_ros.core.vary): exact sensitivities,
+the hardpoints by name and moved designs, variants of a design solved in batches.
 """

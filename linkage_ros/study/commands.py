@@ -16,12 +16,11 @@ import sys
 import numpy as np
 
 from .executor import executor, Progress
-from .hardpoints import load_design
-from .quantities import SWEEP_COLUMNS
 from .tables import SENSITIVITY_COLUMNS, TOLERANCE_COLUMNS, write_table
 from ..cli import check_outputs, counted
 from ..core.base import LinkageError
 from ..core.model import read_yaml
+from ..core.vary import load_design, SWEEP_COLUMNS
 
 PROG = 'linkage-study'
 POOL_FROM = 16   # batches (of 4096 variants, about 0.3 s each) that repay starting processes
@@ -34,7 +33,7 @@ SECONDS_PER_SOLVE = 15e-6
 
 def run_sensitivity(args, say) -> int:
     """linkage-study sensitivity: the long table travel_mm, quantity, point, axis, derivative."""
-    from .sensitivity import rows, sensitivities
+    from ..core.vary import rows, sensitivities
     design = load_design(args.scene)
     scene = design.scene
     say('', scene.warnings)

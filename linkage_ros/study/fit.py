@@ -28,10 +28,9 @@ import numpy as np
 from scipy.optimize import least_squares
 
 from .executor import in_process
-from .hardpoints import scene_with
-from .sensitivity import sensitivities
 from .targets import Targets
 from ..core.base import LinkageError
+from ..core.vary import scene_with, sensitivities
 
 PENALTY = 1e6   # each residual of a design that does not assemble over the travels
 

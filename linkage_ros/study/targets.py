@@ -26,10 +26,9 @@ from typing import NamedTuple
 
 import numpy as np
 
-from .hardpoints import AXES, Design, load_design
-from .sensitivity import available, did_you_mean
 from ..core.model import bundled_scenes, FREE_KEYS, read_yaml, SceneError
 from ..core.solve import travel_count, travel_range
+from ..core.vary import available, AXES, Design, did_you_mean, load_design
 
 KEYS = ('scene', 'free', 'targets')
 MOST_TRAVELS = 10_000   # per target: each is a solve and a row of the Jacobian

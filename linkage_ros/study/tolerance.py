@@ -13,11 +13,11 @@ and the design re-assembles: it is solved at design travel (0) from the nominal 
 gives the static camber and toe spread (travel 0's rows). Two answers per travel and
 quantity (SWEEP_COLUMNS):
   first order: rss_std = sqrt(sum over coordinates and lengths of (dq/dp sigma_p)^2), from
-               the exact sensitivities (sensitivity.sweep_column_rates, compiled; a
+               the exact sensitivities (core/vary's sweep_column_rates, compiled; a
                length's is its body point's along the link, length_rates());
   Monte Carlo: samples variants, each solved at every travel from the design's pose there
                by the design's batched sweep kernel, batched over variants
-               (variant_kernel.py); mean, std, 1st and 99th percentiles of the variants
+               (core/vary/variants.py); mean, std, 1st and 99th percentiles of the variants
                solved, and how many were out of reach (a point variant is solved again by
                Continuation, arclength included, to be sure).
 
@@ -32,15 +32,12 @@ from typing import NamedTuple, TYPE_CHECKING
 
 import numpy as np
 
-from . import variant_kernel
 from .executor import in_process, Items
-from .hardpoints import AXES, Design
-from .quantities import SWEEP_COLUMNS
-from .sensitivity import length_rates, sweep_column_rates
 from ..core.base import camber_toe, LENGTH_LIMIT_MM, LinkageError
 from ..core.model import with_points
-from ..core.solve import (compile_scene, Continuation, equation_table, geometry_of, lengthened,
-                          linearize, state, sweep)
+from ..core.solve import compile_scene, Continuation
+from ..core.vary import (AXES, controls_of, Design, design_starts, length_rates, poses,
+                         solve_variants, sweep_column_rates, SWEEP_COLUMNS)
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
@@ -59,7 +56,7 @@ class Problem(NamedTuple):
     travels: np.ndarray     # (T,) mm
     seed: int
     samples: int
-    controls: tuple         # variant_kernel.Controls
+    controls: tuple         # core/vary's variant kernel's Controls (controls_of)
     starts: np.ndarray      # (T, STATE_SIZE) the design's solved states at the travels
     lengths: np.ndarray     # (c,) mm: standard deviation of each constraint's length
 
@@ -146,22 +143,10 @@ def problem(design: Design, sigma: np.ndarray, samples: int, travels: ArrayLike,
     """
     travels = np.asarray(travels, dtype=float).ravel()
     scene = design.scene
-    cfg = Continuation(scene).settings
-    # a variant whose pose is within one continuation substep of the design's is on its
-    # branch: another branch is a link's length away
-    controls = variant_kernel.Controls(scene.side_sign, cfg.tol, cfg.max_iter, cfg.max_step,
-                                       cfg.min_step, cfg.max_substeps, cfg.max_step)
-    nominal = sweep(scene, travels)
-    if not nominal.success or len(nominal.travel) != len(travels):
-        raise LinkageError('--travel', f'the design does not reach every travel: '
-                           f'{nominal.message}')
-    jac = linearize(compile_scene(scene), nominal.wheel_center, nominal.rotation)[1]
-    starts = np.array([state.pack(t, 0.0, c, r, j) for t, c, r, j in
-                       zip(travels, nominal.wheel_center, nominal.rotation, jac)])
+    starts, _ = design_starts(scene, travels)
     lengths = np.zeros(len(scene.constraints)) if lengths is None else lengths
     return Problem(design, np.asarray(sigma, dtype=float), travels, int(seed), int(samples),
-                   tuple(controls), starts.reshape(len(travels), -1),
-                   np.asarray(lengths, dtype=float))
+                   controls_of(scene), starts, np.asarray(lengths, dtype=float))
 
 
 def batches(prob: Problem) -> Items:
@@ -188,27 +173,15 @@ def solve_batch(item: tuple[Problem, int]) -> np.ndarray:
     """Return the quantities (n, T, Q) of a batch's variants, NaN where out of reach."""
     prob, index = item
     points, deltas = perturbed(prob, index)
-    layout = prob.design.scene.layout
-    with np.errstate(invalid='ignore', divide='ignore'):   # a degenerate variant: NaN rows
-        geom = geometry_of(layout, points)
-        equations = equation_table(layout, geom)
-        if deltas is not None:
-            equations = lengthened(layout, equations, geom.center0, deltas)
-    variants = variant_kernel.Variants(np.ascontiguousarray(equations),
-                                       np.ascontiguousarray(geom.spin_axis),
-                                       np.ascontiguousarray(geom.center0))
-    n, count = len(points), len(prob.travels)
-    values = np.empty((n, count, variant_kernel.OUTPUTS))
-    status = np.empty((n, count), dtype=np.int64)
-    variant_kernel.solve_variants(tuple(variants), prob.starts, prob.travels, prob.controls,
-                                  values, status)
-    for v in np.flatnonzero((status != variant_kernel.SOLVED).any(axis=1)):
+    values, solved = solve_variants(prob.design.scene.layout, points, deltas, prob.starts,
+                                    prob.travels, prob.controls)
+    for v in np.flatnonzero(~solved.all(axis=1)):
         if deltas is None:   # a Continuation solves a scene: a moved design has one
-            values[v] = _by_continuation(prob, points[v], status[v], values[v])
+            values[v] = _by_continuation(prob, points[v], solved[v], values[v])
     return values * SCALES
 
 
-def _by_continuation(prob, points, status, values):
+def _by_continuation(prob, points, solved, values):
     """Solve a variant's failed travels one by one by Continuation (arclength included)."""
     values = values.copy()
     with np.errstate(invalid='ignore', divide='ignore'):
@@ -217,7 +190,7 @@ def _by_continuation(prob, points, status, values):
         except LinkageError:   # the variant is not a mechanism (a zero-length link, say)
             values[:] = np.nan
             return values
-    for t in np.flatnonzero(status != variant_kernel.SOLVED):
+    for t in np.flatnonzero(~solved):
         cont.reset()
         solution = cont.solve(float(prob.travels[t]))
         if solution.success:
@@ -232,7 +205,7 @@ def tolerance(prob: Problem, run=None, progress=None) -> Tolerance:
     run: an executor (executor.py; None: this process).
     """
     scene = prob.design.scene
-    center, rotation = state.centers(prob.starts), state.rotations(prob.starts)
+    center, rotation = poses(prob.starts)
     rates = sweep_column_rates(scene, center, rotation)
     spread = np.sum((rates * prob.sigma) ** 2, axis=(2, 3))
     if prob.lengths.any():

@@ -19,7 +19,7 @@ from linkage_ros.core.model import bundled_scenes, load_scene
 from linkage_ros.core.solve import (body_kernel, Continuation, element_kernel, jacobian_kernel,
                                     kernel, state, sweep)
 from linkage_ros.core.solve.mechanism import carrier_points, length_errors, linearize
-from linkage_ros.study import pose_kernel, variant_kernel
+from linkage_ros.core.vary import pose_kernel, variant_kernel
 import numpy as np
 import pytest
 

@@ -16,11 +16,10 @@ from linkage_ros.answer.protocol import ANSWER_TYPES
 from linkage_ros.core.measure import alignment, quantities as registry
 from linkage_ros.core.model import load_scene
 from linkage_ros.core.solve import Continuation
+from linkage_ros.core.vary import available, outputs as study_quantities, variant_kernel
 from linkage_ros.record import rerun_draw
 from linkage_ros.ros import corner, messages
 from linkage_ros.ros.parameters import PARAMETERS
-from linkage_ros.study import quantities as study_quantities, variant_kernel
-from linkage_ros.study.sensitivity import available
 from linkage_ros.study.tolerance import Tolerance
 from linkage_ros.tools import axle as axle_tool, kinematic_map, sweep as sweep_tool
 import numpy as np

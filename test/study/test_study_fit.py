@@ -174,7 +174,7 @@ def test_travels_and_bounds_of_targets_are_mm_in_a_metre_scene(tmp_path):
 
 def test_the_bundled_targets_keep_the_camber_gain_of_the_design():
     # Its comment says the fit keeps the camber gain: the value asked is the design's.
-    from linkage_ros.study.sensitivity import sensitivities
+    from linkage_ros.core.vary import sensitivities
     targets = load_targets(Path(__file__).parents[2] / 'config' / 'study'
                            / 'bump_steer_targets.yaml')
     gain = targets.targets[1]

@@ -14,8 +14,8 @@ import sys
 
 from linkage_ros.core.base import camber_toe, LinkageError
 from linkage_ros.core.solve import compile_scene, Continuation, kernel, lengthened, radii, sweep
+from linkage_ros.core.vary import load_design, scene_with
 from linkage_ros.study.executor import executor
-from linkage_ros.study.hardpoints import load_design, scene_with
 from linkage_ros.study.tables import TOLERANCE_COLUMNS
 from linkage_ros.study.tolerance import (BATCH, length_sigmas, perturbed, problem, sigmas,
                                          solve_batch, tolerance)

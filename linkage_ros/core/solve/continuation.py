@@ -29,9 +29,10 @@ from typing import Any, NamedTuple, TYPE_CHECKING
 
 import numpy as np
 
-from . import arclength, jacobian_kernel, kernel, paper_method, pose_newton, state
+from . import arclength, jacobian_kernel, kernel, pose_newton, state
 from .mechanism import (carrier_points, compile_scene, linearize, scaled_condition,
                         SINGULAR_CONDITION)
+from .paper_method import build as build_paper_model, correct as paper_correct
 from ..base.errors import LinkageError
 from ..base.finite import is_finite_number
 from ..base.status import Status
@@ -155,7 +156,7 @@ class Continuation:
         # how closely a travel limit is located (mm): only a command farther beyond a limit
         # found is refused from it, so that no reachable travel ever is
         self._located = LOCATED * self.scale
-        self._paper = paper_method.build(scene, mech) if cfg.method == 'paper' else None
+        self._paper = build_paper_model(scene, mech) if cfg.method == 'paper' else None
         self.setup = kernel.Setup(mech.equations, mech.spin_axis, float(scene.side_sign),
                                   float(mech.design_center[2]), cfg.tol, cfg.max_iter,
                                   10 * cfg.tol, cfg.max_step, cfg.min_step, cfg.max_substeps)
@@ -343,7 +344,7 @@ class Continuation:
                                     self.rack)
         if guess is None:
             return None, 0, False
-        center, rotation, iterations, ok, _ = paper_method.correct(
+        center, rotation, iterations, ok, _ = paper_correct(
             self._paper, travel, self.center, self.rotation, cfg.tol, cfg.max_iter, rack)
         if not ok:
             return None, iterations, False

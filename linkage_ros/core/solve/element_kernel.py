@@ -32,7 +32,7 @@ from ..base.so3 import rotate
 # sha256 of so3.py (test_kernel checks it, as kernel.SO3_DIGEST)
 SO3_DIGEST = '862efb847a68465a5f68ec100893bccc4658d8a7278ad25575f0da1dc9d158aa'
 # sha256 of jacobian_kernel.py (its LU, factor and solve, compiled in here; as kernel.py)
-JACOBIAN_KERNEL_DIGEST = 'ccd7f559764c998ede918fda448df86be47670feaf50368b44a7896fbfb2097d'
+JACOBIAN_KERNEL_DIGEST = '563eec1a2ebb6ae189139c3464e9086a786d870eb859cc5585d018f7478f199b'
 # sha256 of base/force_table.py (a spring's force table, compiled in here by spring_at)
 FORCE_TABLE_DIGEST = '346feb4092ce978e6e4a4404d799b759c6b543b914b5a7b17b6adb98596648da'
 CARRIER, ARM, LINK, ALONG = 0, 1, 2, 3      # MountTable.kind

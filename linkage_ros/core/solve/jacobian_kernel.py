@@ -4,7 +4,7 @@
 """
 Compiled linear algebra on the Jacobian's free columns: solve, determinant, condition, LU.
 
-numba-compiled (njit, cache=True). kernel.py, element_kernel.py and study/pose_kernel.py
+numba-compiled (njit, cache=True). kernel.py, element_kernel.py and core/vary/pose_kernel.py
 compile these in, and each names this file's digest (JACOBIAN_KERNEL_DIGEST): numba's disk
 cache follows each file alone, and would keep running old code after an edit of this file
 (test_kernel says the value to set). solve_free solves once and gives the determinant;

@@ -40,7 +40,7 @@ from ..base.so3 import camber_toe, quaternion, rotate, turn
 # sha256 of so3.py (test_kernel checks it and says the value to set after an edit there)
 SO3_DIGEST = '862efb847a68465a5f68ec100893bccc4658d8a7278ad25575f0da1dc9d158aa'
 # sha256 of jacobian_kernel.py (the linear algebra compiled in here; test_kernel checks it)
-JACOBIAN_KERNEL_DIGEST = 'ccd7f559764c998ede918fda448df86be47670feaf50368b44a7896fbfb2097d'
+JACOBIAN_KERNEL_DIGEST = '563eec1a2ebb6ae189139c3464e9086a786d870eb859cc5585d018f7478f199b'
 SPHERE, LINE = 0.0, 1.0   # equation table columns (see above)
 KIND, POINT, BASE, LENGTH, STEER, NORMAL = 0, 1, 4, 7, 8, 9
 COLUMNS = 12

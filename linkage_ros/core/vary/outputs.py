@@ -21,12 +21,13 @@ import numpy as np
 
 from .equations import jacobian, rack_column
 from .hardpoints import link_fractions
-from ..core.base import jets as jt
-from ..core.measure import columns, columns_of_element, kingpin_points
-from ..core.solve import geometry_of
+from ..base import jets as jt
+from ..measure.kingpin import kingpin_points
+from ..measure.quantities import columns, columns_of_element
+from ..solve.mechanism import geometry_of
 
 if TYPE_CHECKING:
-    from ..core.model import Scene
+    from ..model.scene import Scene
 
 # Names from the registry (core/measure/quantities.py), as linkage-sweep's columns
 SWEEP_COLUMNS = tuple(columns('wheel'))

@@ -28,15 +28,18 @@ from typing import NamedTuple, TYPE_CHECKING
 import numpy as np
 
 from .equations import free, residuals
-from .quantities import ALIGNMENT_COLUMNS, element_names, quantities, SWEEP_COLUMNS
-from ..core.base import jets as jt
-from ..core.base import LinkageError, Status
-from ..core.solve import compile_scene, geometry_of, is_singular, kernel, linearize, radii, sweep
+from .outputs import ALIGNMENT_COLUMNS, element_names, quantities, SWEEP_COLUMNS
+from ..base import jets as jt
+from ..base.errors import LinkageError
+from ..base.status import Status
+from ..solve import kernel
+from ..solve.kinematics import sweep
+from ..solve.mechanism import compile_scene, geometry_of, is_singular, linearize, radii
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
 
-    from ..core.model import Scene
+    from ..model.scene import Scene
 
 
 class Sensitivity(NamedTuple):

@@ -24,11 +24,11 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..core.base import jets as jt
-from ..core.solve import kernel
+from ..base import jets as jt
+from ..solve import kernel
 
 if TYPE_CHECKING:
-    from ..core.solve.mechanism import Geometry, Layout
+    from ..solve.mechanism import Geometry, Layout
 
 E_Y = np.array([0.0, 1.0, 0.0])
 FREE = list(kernel.FREE)

@@ -25,12 +25,12 @@ from typing import NamedTuple
 from numba import njit
 import numpy as np
 
-from ..core.base.so3 import camber_toe, rotate
-from ..core.measure import columns
-from ..core.solve import kernel
+from ..base.so3 import camber_toe, rotate
+from ..measure.quantities import columns
+from ..solve import kernel
 
 # sha256 of the files compiled in (test_kernel checks them)
-KERNEL_DIGEST = 'c0a029c4e5e1c091f63da6488d3ba82bb2cf3db8526578c301bd167c62db1392'
+KERNEL_DIGEST = 'a19d4546838125d4412eed5bd03216bce4d1bd16ce93168d220b9b65f27a5ab5'
 SO3_DIGEST = '862efb847a68465a5f68ec100893bccc4658d8a7278ad25575f0da1dc9d158aa'
 # What out holds per (variant, travel), in order: the registry's 'wheel' quantities (camber,
 # toe, wheel centre x, y, z; camber and toe in rad here, deg in tables)

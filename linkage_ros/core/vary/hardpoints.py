@@ -24,12 +24,13 @@ from typing import Any, TYPE_CHECKING
 
 import numpy as np
 
-from ..core.base import LinkageError
-from ..core.model import (link_fraction, parse_scene, read_yaml, resolve_scene_path, UNITS_TO_MM,
-                          with_points)
+from ..base.errors import LinkageError
+from ..model.scene import parse_scene, resolve_scene_path, UNITS_TO_MM
+from ..model.scene_moves import link_fraction, with_points
+from ..model.yaml_file import read_yaml
 
 if TYPE_CHECKING:
-    from ..core.model import Scene
+    from ..model.scene import Scene
 
 AXES = ('x', 'y', 'z')
 

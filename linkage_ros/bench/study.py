@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: Apache-2.0
 
 """
-Benchmark of the studies: python -m linkage_ros.study.bench [--sizes N ...] [--repeats R].
+Benchmark of the studies: python -m linkage_ros.bench.study [--sizes N ...] [--repeats R].
 
 Prints, in CPU seconds of this process (time.process_time: the machine may be busy; every
 figure is the minimum of --repeats runs, one core, no pool):
@@ -20,15 +20,13 @@ import time
 
 import numpy as np
 
-from . import pose_kernel
-from .fit import fit
-from .hardpoints import load_design
-from .quantities import SWEEP_COLUMNS
-from .sensitivity import pose_derivative, sensitivities, sweep_column_rates
-from .targets import load_targets
-from .tolerance import batches, problem, sigmas, solve_batch
 from ..core.model import scene_dir
 from ..core.solve import Continuation, sweep
+from ..core.vary import (load_design, pose_derivative, sensitivities, sweep_column_rates,
+                         SWEEP_COLUMNS)
+from ..study.fit import fit
+from ..study.targets import load_targets
+from ..study.tolerance import batches, problem, sigmas, solve_batch
 
 TRAVELS = np.linspace(-50.0, 50.0, 11)
 BUMP_STEER = """scene: double_wishbone
@@ -86,29 +84,14 @@ def bench_sensitivity(repeats):
     sweep_only = cpu(lambda: sensitivities(scene, [25.0], wanted=SWEEP_COLUMNS), 10 * repeats)
     compiled = cpu(lambda: [sweep_column_rates(scene, table.wheel_center, table.rotation)
                             for _ in range(100)], repeats) / 100
-    kernel_only = _kernel_only(scene, table, repeats)
     everything = cpu(lambda: sensitivities(scene, [25.0]), 10 * repeats)
     print(f'one solve of five_link, a walk of 25 mm (Continuation.solve): '
           f'{solve * 1e6:.1f} us')
-    for name, seconds in (('5 sweep columns, compiled closed forms (kernel call)', kernel_only),
-                          ('5 sweep columns, compiled (with its Python wrapper)', compiled),
+    for name, seconds in (('5 sweep columns, compiled (sweep_column_rates)', compiled),
                           ('pose derivative by jets, 36 coordinates', pose),
                           ('sensitivities of the 5 sweep columns (solve included)', sweep_only),
                           ('sensitivities of all 35 quantities (solve included)', everything)):
         print(f'{name:<58}{seconds * 1e6:>9.1f} us{seconds / solve:>10.2f} x one solve')
-
-
-def _kernel_only(scene, table, repeats):
-    """Return the CPU time of pose_kernel.sweep_rates_many at one pose, inputs prepared."""
-    from ..core.solve import compile_scene, linearize
-    mech, layout = compile_scene(scene), scene.layout
-    center, rotation = table.wheel_center, table.rotation
-    jac = np.ascontiguousarray(linearize(mech, center, rotation)[1])
-    out = np.empty((1, 5, 36))
-    args = (mech.equations, layout.carrier, layout.base, np.array([layout.center, layout.spin]),
-            mech.design_center, mech.spin_axis, 100.0, 1.0, center, rotation, jac, 0.0, out)
-    return cpu(lambda: [pose_kernel.sweep_rates_many(*args) for _ in range(1000)],
-               repeats) / 1000
 
 
 def bench_fit(tmp):
@@ -130,7 +113,7 @@ def bench_fit(tmp):
 def main(argv=None) -> int:
     """Run the benchmark sections and print their tables."""
     import tempfile
-    parser = argparse.ArgumentParser(prog='python -m linkage_ros.study.bench',
+    parser = argparse.ArgumentParser(prog='python -m linkage_ros.bench.study',
                                      description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument('--sizes', type=int, nargs='+', default=[10_000, 100_000, 1_000_000])

@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: Apache-2.0
 
 """
-Exact hardpoint sensitivities (linkage_ros.study.sensitivity) against an independent path.
+Exact hardpoint sensitivities (linkage_ros.core.vary.sensitivity) against an independent path.
 
 The independent path is central differences of linkage-sweep's own table (sweep + table of
 tools/sweep.py) for scenes whose hardpoints are moved in the scene file's data and loaded
@@ -13,9 +13,9 @@ Nothing of the study's equations or jets is on that path.
 from linkage_ros.core.base import jets
 from linkage_ros.core.model import bundled_scenes, load_scene, parse_scene, with_points
 from linkage_ros.core.solve import compile_scene, Continuation, kernel, sweep
-from linkage_ros.study.hardpoints import load_design, scene_data_with
-from linkage_ros.study.quantities import quantities, SWEEP_COLUMNS
-from linkage_ros.study.sensitivity import sensitivities, sweep_column_rates
+from linkage_ros.core.vary import load_design, scene_data_with, sensitivities, \
+    sweep_column_rates, SWEEP_COLUMNS
+from linkage_ros.core.vary.outputs import quantities
 from linkage_ros.tools.sweep import header, table as sweep_table
 import numpy as np
 import pytest
