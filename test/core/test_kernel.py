@@ -12,14 +12,15 @@ stress scene, float64 round-off alone is 1.7e-9 mm, so the bound scales with the
 """
 
 import hashlib
+import importlib
+import inspect
 from pathlib import Path
+import pkgutil
 
-from linkage_ros.core.base import camber_toe, force_table, matrix_from_quaternion, so3
+from linkage_ros.core.base import camber_toe, compiled, matrix_from_quaternion
 from linkage_ros.core.model import bundled_scenes, load_scene
-from linkage_ros.core.solve import (body_kernel, Continuation, element_kernel, jacobian_kernel,
-                                    kernel, state, sweep)
+from linkage_ros.core.solve import Continuation, kernel, state, sweep
 from linkage_ros.core.solve.mechanism import carrier_points, length_errors, linearize
-from linkage_ros.core.vary import pose_kernel, variant_kernel
 import numpy as np
 import pytest
 
@@ -73,27 +74,49 @@ def test_one_command_at_a_time_equals_the_batched_sweep_and_the_paper_method(nam
     assert max(s.residual for s in one) <= settings['tol'] * 10
 
 
-@pytest.mark.parametrize('module, compiled_in, attribute', [
-    (kernel, 'so3.py', 'SO3_DIGEST'), (element_kernel, 'so3.py', 'SO3_DIGEST'),
-    (kernel, 'jacobian_kernel.py', 'JACOBIAN_KERNEL_DIGEST'),
-    (element_kernel, 'jacobian_kernel.py', 'JACOBIAN_KERNEL_DIGEST'),
-    (element_kernel, 'force_table.py', 'FORCE_TABLE_DIGEST'),
-    (pose_kernel, 'so3.py', 'SO3_DIGEST'),
-    (pose_kernel, 'jacobian_kernel.py', 'JACOBIAN_KERNEL_DIGEST'),
-    (body_kernel, 'so3.py', 'SO3_DIGEST'),
-    (variant_kernel, 'so3.py', 'SO3_DIGEST'), (variant_kernel, 'kernel.py', 'KERNEL_DIGEST')],
-    ids=lambda v: getattr(v, '__name__', v))
-def test_a_kernel_module_names_the_digest_of_each_file_it_compiles_in(module, compiled_in,
-                                                                      attribute):
-    # numba's cache follows each file alone: a module that compiles another file's functions
-    # in (so3.py's rotations, jacobian_kernel.py's linear algebra) must change when it does.
-    source = {'so3.py': so3, 'jacobian_kernel.py': jacobian_kernel, 'kernel.py': kernel,
-              'force_table.py': force_table}[compiled_in]
-    digest = hashlib.sha256(Path(source.__file__).read_bytes()).hexdigest()
-    name = Path(module.__file__).name
-    assert getattr(module, attribute) == digest, (
-        f"{compiled_in} changed: set {attribute} = '{digest}' in {name}, so that numba "
-        'recompiles the kernels that call it')
+def _dispatchers():
+    """Return every numba Dispatcher defined in the core, found by importing every module."""
+    from numba.core.dispatcher import Dispatcher
+    import linkage_ros.core as core
+    found = []
+    for info in pkgutil.walk_packages(core.__path__, core.__name__ + '.'):
+        module = importlib.import_module(info.name)
+        found += [v for v in vars(module).values()
+                  if isinstance(v, Dispatcher) and v.__module__ == module.__name__]
+    return found
+
+
+def test_every_kernel_is_cached_under_the_one_key_of_every_kernel_source():
+    # numba keys a function's cache on its own file alone, yet kernels compile in other
+    # files' functions (so3.py's rotations): the one key must cover every file that holds a
+    # compiled function, found here by what imports define, not by compiled.py's own scan
+    dispatchers = _dispatchers()
+    files = {Path(inspect.getfile(d.py_func)).resolve() for d in dispatchers}
+    assert files | {Path(compiled.__file__).resolve()} == set(compiled.kernel_sources())
+    expected = hashlib.sha256()
+    for path in sorted(files | {Path(compiled.__file__).resolve()}):
+        expected.update(str(path.relative_to(compiled.CORE)).encode() + b'\0')
+        expected.update(path.read_bytes() + b'\0')
+    for dispatcher in dispatchers:
+        locator = dispatcher._cache._impl.locator
+        assert isinstance(locator, compiled.LOCATORS), dispatcher.__qualname__
+        assert locator.get_source_stamp() == expected.hexdigest()
+
+
+def test_an_edit_of_any_kernel_source_changes_the_key_and_of_another_file_not(tmp_path):
+    core = tmp_path / 'core'
+    for path in compiled.kernel_sources():
+        target = core / path.relative_to(compiled.CORE)
+        target.parent.mkdir(parents=True, exist_ok=True)
+        target.write_bytes(path.read_bytes())
+    (core / 'model').mkdir(exist_ok=True)
+    (core / 'model' / 'scene.py').write_text('"""No compiled function here."""\n')
+    before = compiled.digest_of(compiled.kernel_sources(core), core)
+    (core / 'model' / 'scene.py').write_text('"""Still none, edited."""\n')
+    assert compiled.digest_of(compiled.kernel_sources(core), core) == before
+    so3_copy = core / 'base' / 'so3.py'
+    so3_copy.write_text(so3_copy.read_text() + '# an edit\n')
+    assert compiled.digest_of(compiled.kernel_sources(core), core) != before
 
 
 def test_the_state_accessors_read_what_the_kernels_write():

@@ -4,14 +4,12 @@
 """
 A spring's force table, interpolated: the one formula of the kernels and of Python (numba).
 
-element_kernel.py compiles table_force into its kernels (and names this file's digest,
-FORCE_TABLE_DIGEST: numba's on-disk cache follows each function's own file only);
-model/elements.py's Element.spring_at calls the same compiled function from Python.
+element_kernel.py compiles table_force into its kernels (base/compiled.py's one cache key
+recompiles them after an edit here); model/elements.py's Element.spring_at calls the same
+compiled function from Python.
 """
 
-from numba import njit
-
-jit = njit(cache=True, nogil=True, error_model='numpy')
+from .compiled import jit
 
 
 @jit

@@ -9,16 +9,15 @@ as its length and its axis as its direction; a quaternion is (x, y, z, w) with w
 Camber and toe follow the package's conventions (+ = top outboard, + = toe-in). geometry.py
 gives these to Python code on arrays of any shape.
 
-kernel.py calls these, and numba's on-disk cache follows each function's own file only: an
-edit here must reach kernel.py too (its SO3_DIGEST; test_kernel says the value to set).
+Every kernel compiles these in; base/compiled.py's one cache key makes an edit here
+recompile them all.
 """
 
 import math
 
-from numba import njit
 import numpy as np
 
-jit = njit(cache=True, nogil=True, error_model='numpy')
+from .compiled import jit
 
 
 @jit

@@ -4,9 +4,8 @@
 """
 Compiled kernel of the bodies' frames at a pose (bodies.py: what each frame is).
 
-numba-compiled (njit, cache=True) like kernel.py, and like it calling so3.py (quaternion),
-whose digest (SO3_DIGEST) is written here: numba's on-disk cache is per source file
-(test_kernel says the value to set after an edit of so3.py). The bodies come as one table, a
+Compiled (base/compiled.py's jit) like kernel.py, and like it calling so3.py (quaternion).
+The bodies come as one table, a
 row per body with named columns (bodies.Bodies.table), as kernel.py takes its equation table:
 numba types each array argument on every call, and on the node's one-command path that
 typing, not the arithmetic, is the cost. mm, vehicle frame.
@@ -14,20 +13,16 @@ typing, not the arithmetic, is the cost. mm, vehicle frame.
 
 import math
 
-from numba import njit
 import numpy as np
 
+from ..base.compiled import jit
 from ..base.so3 import quaternion as so3_quaternion
 
-# sha256 of so3.py (test_kernel checks it, as kernel.SO3_DIGEST)
-SO3_DIGEST = '862efb847a68465a5f68ec100893bccc4658d8a7278ad25575f0da1dc9d158aa'
 CARRIER, LINK, ARM, STRUT = 0, 1, 2, 3      # KIND
 # table columns: the body's kind, its carrier joint (index into the carrier offsets), 1 for a
 # link whose body end moves with the rack, its design origin (3) and frame (3 x 3, row-major:
 # its columns are the frame's x, y, z axes)
 KIND, JOINT, STEER, ORIGIN, AXES, COLUMNS = 0, 1, 2, 3, 6, 15
-
-jit = njit(cache=True, nogil=True, error_model='numpy')
 
 
 @jit

@@ -4,11 +4,8 @@
 """
 Compiled kernels of the elements: the carrier's motion to second order, mount points, lengths.
 
-numba-compiled (njit, cache=True) like kernel.py, and like it calling so3.py's rotate and
-jacobian_kernel.py's LU (factor, solve), whose digests (SO3_DIGEST, JACOBIAN_KERNEL_DIGEST)
-are written here: numba's disk cache follows each file alone, and would keep running old
-code after an edit of either (test_kernel says the value to set). The
-formulas are those of motion.py (the
+Compiled (base/compiled.py's jit) like kernel.py, and like it calling so3.py's rotate and
+jacobian_kernel.py's LU (factor, solve). The formulas are those of motion.py (the
 carrier's velocity and acceleration per travel by the implicit function theorem), mounts.py
 (points on the carrier, an arm, a link, a strut) and elements.py (length, ratio, ratio rate,
 force, wheel rate). mm, rad, N; vehicle frame.
@@ -22,19 +19,13 @@ every call, and on the one-command path that typing, not the arithmetic, is the 
 import math
 from typing import NamedTuple
 
-from numba import njit
 import numpy as np
 
 from .jacobian_kernel import factor, solve
+from ..base.compiled import jit
 from ..base.force_table import table_force
 from ..base.so3 import rotate
 
-# sha256 of so3.py (test_kernel checks it, as kernel.SO3_DIGEST)
-SO3_DIGEST = '862efb847a68465a5f68ec100893bccc4658d8a7278ad25575f0da1dc9d158aa'
-# sha256 of jacobian_kernel.py (its LU, factor and solve, compiled in here; as kernel.py)
-JACOBIAN_KERNEL_DIGEST = '563eec1a2ebb6ae189139c3464e9086a786d870eb859cc5585d018f7478f199b'
-# sha256 of base/force_table.py (a spring's force table, compiled in here by spring_at)
-FORCE_TABLE_DIGEST = '346feb4092ce978e6e4a4404d799b759c6b543b914b5a7b17b6adb98596648da'
 CARRIER, ARM, LINK, ALONG = 0, 1, 2, 3      # MountTable.kind
 # pack_rows columns: one row per guidance equation
 R_LINE, R_OFFSET, R_BASE, R_STEER, R_LENGTH, R_NORMAL, ROW_COLUMNS = 0, 1, 4, 7, 8, 9, 12
@@ -55,8 +46,6 @@ MIN_LENGTH = 1e-6
 # side and solution, then ([:3]) 7-10 the carrier's motion, 11-13 a mount's point and rates.
 # Allocated once per call of an entry point, not per pose.
 WORK_ROWS = 14
-
-jit = njit(cache=True, nogil=True, error_model='numpy')
 
 
 class Rows(NamedTuple):

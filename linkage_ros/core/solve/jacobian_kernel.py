@@ -4,10 +4,8 @@
 """
 Compiled linear algebra on the Jacobian's free columns: solve, determinant, condition, LU.
 
-numba-compiled (njit, cache=True). kernel.py, element_kernel.py and core/vary/pose_kernel.py
-compile these in, and each names this file's digest (JACOBIAN_KERNEL_DIGEST): numba's disk
-cache follows each file alone, and would keep running old code after an edit of this file
-(test_kernel says the value to set). solve_free solves once and gives the determinant;
+Compiled (base/compiled.py's jit); kernel.py, element_kernel.py and core/vary/pose_kernel.py
+compile these in. solve_free solves once and gives the determinant;
 factor and solve share one LU among many right-hand sides. A
 Jacobian is (5, 6), d(guidance equations)/d(M, omega) as kernel.py writes it; FREE are the
 columns of the unknowns (x, y of the wheel centre M and the small rotation omega), column 2
@@ -16,12 +14,11 @@ columns of the unknowns (x, y of the wheel centre M and the small rotation omega
 
 import math
 
-from numba import njit
 import numpy as np
 
-FREE = (0, 1, 3, 4, 5)   # Jacobian columns of the unknowns: x, y of M and omega
+from ..base.compiled import jit
 
-jit = njit(cache=True, nogil=True, error_model='numpy')
+FREE = (0, 1, 3, 4, 5)   # Jacobian columns of the unknowns: x, y of M and omega
 
 
 @jit

@@ -4,13 +4,11 @@
 """
 Compiled kernels of the fast method: guidance equations, Newton, tangent, branch check, walk.
 
-Every function here is numba-compiled (njit, cache=True) and works on plain float64 arrays
+Every function here is compiled (base/compiled.py's jit) and works on plain float64 arrays
 and scalars, one pose at a time, without a numpy call per operation: a single command is a
 handful of these calls, and the batched sweep is the same calls in a compiled loop. They
 call so3.py's rotations and jacobian_kernel.py's linear algebra on the unknowns (solve,
-determinant, condition number; FREE, read here as kernel.FREE), whose digests (SO3_DIGEST,
-JACOBIAN_KERNEL_DIGEST) are written here: numba's disk cache follows each file alone, and
-would keep running old code after an edit of either.
+determinant, condition number; FREE, read here as kernel.FREE), compiled in.
 
 The mechanism is a table of its 5 guidance equations, one row each (mechanism.compile_scene
 builds it; lengths in mm, vehicle frame, design position):
@@ -31,16 +29,12 @@ The Jacobian (5, 6) is d/d(M, omega), omega a small rotation applied in the vehi
 import math
 from typing import NamedTuple
 
-from numba import njit
 import numpy as np
 
 from .jacobian_kernel import condition, determinant, FREE, solve_free  # noqa: F401 FREE
+from ..base.compiled import jit
 from ..base.so3 import camber_toe, quaternion, rotate, turn
 
-# sha256 of so3.py (test_kernel checks it and says the value to set after an edit there)
-SO3_DIGEST = '862efb847a68465a5f68ec100893bccc4658d8a7278ad25575f0da1dc9d158aa'
-# sha256 of jacobian_kernel.py (the linear algebra compiled in here; test_kernel checks it)
-JACOBIAN_KERNEL_DIGEST = '563eec1a2ebb6ae189139c3464e9086a786d870eb859cc5585d018f7478f199b'
 SPHERE, LINE = 0.0, 1.0   # equation table columns (see above)
 KIND, POINT, BASE, LENGTH, STEER, NORMAL = 0, 1, 4, 7, 8, 9
 COLUMNS = 12
@@ -85,9 +79,6 @@ class Walked(NamedTuple):
     outcome: int        # REACHED, STALLED (a substep failed below min_step), SUBSTEP_LIMIT
     low: float          # the travel range (mm) given, extended by every travel reached
     high: float
-
-
-jit = njit(cache=True, nogil=True, error_model='numpy')
 
 
 # --- the guidance equations ----------------------------------------------------------------

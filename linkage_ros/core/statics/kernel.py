@@ -10,28 +10,24 @@ model and the signs.
 
 A term is a constraint row or an energy, on up to 3 weighted items grouped into up to 2
 points (x_p = sum of w x_item): kinds LINK, BALL, LINE, TRAVEL (the constraints, in
-System.constraints order, first), SPRING, BUSH, LOAD. numba's disk cache follows each file
-alone: an edit of so3.py or rotation.py must reach here too (SO3_DIGEST, ROTATION_DIGEST;
-test_kernel says the values to set).
+System.constraints order, first), SPRING, BUSH, LOAD. Compiled with base/compiled.py's
+jit, whose one cache key covers so3.py and rotation.py, compiled in here.
 """
 
 import math
 from typing import NamedTuple
 
-from numba import njit
 import numpy as np
 
 from .rotation import energy_terms, log_so3
+from ..base.compiled import jit
 from ..base.so3 import turn
 
-SO3_DIGEST = '862efb847a68465a5f68ec100893bccc4658d8a7278ad25575f0da1dc9d158aa'
-ROTATION_DIGEST = 'f322a3f0d12e66096812e993ee192608911b206f74f9cce6e370fd44fb4e37ea'
 # a Newton step predicted (quadratic convergence) below this fraction of the tolerance is not
 # taken (converged()): it would move the pose by round-off
 PREDICTED = 1e-3
 CARRIER, ARM, HINGE, BASE = 0, 1, 2, 3
 LINK, BALL, LINE, TRAVEL, SPRING, BUSH, LOAD = 0, 1, 2, 3, 4, 5, 6
-jit = njit(cache=True, nogil=True, error_model='numpy')
 
 
 class Model(NamedTuple):

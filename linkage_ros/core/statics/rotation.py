@@ -19,10 +19,10 @@ that the statics kernel (kernel.py) calls them too; Python calls them alike.
 
 import math
 
-from numba import njit
 import numpy as np
 
-jit = njit(cache=True, nogil=True, error_model='numpy')
+from ..base.compiled import jit
+
 
 # Below this angle (rad) c and c'/theta come from their Taylor series (sympy, to theta^10):
 # the closed forms lose digits to cancellation there (c' as eps / theta^3).

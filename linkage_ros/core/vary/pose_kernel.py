@@ -20,19 +20,12 @@ that helps choose them drops out). Then camber and toe follow the spin axis a = 
 a0 = (M0 - N0) / |M0 - N0|: da = omega x a + R da0. Columns SWEEP_COLUMNS, per mm.
 """
 
-from numba import njit
 import numpy as np
 
+from ..base.compiled import jit
 from ..base.so3 import rotate
 from ..solve import kernel
 from ..solve.jacobian_kernel import factor, solve
-
-# sha256 of so3.py and of jacobian_kernel.py, whose rotate and LU (factor, solve) are
-# compiled in here: numba's cache follows each file alone (test_kernel checks them)
-SO3_DIGEST = '862efb847a68465a5f68ec100893bccc4658d8a7278ad25575f0da1dc9d158aa'
-JACOBIAN_KERNEL_DIGEST = '563eec1a2ebb6ae189139c3464e9086a786d870eb859cc5585d018f7478f199b'
-
-jit = njit(cache=True, nogil=True, error_model='numpy')
 
 
 @jit

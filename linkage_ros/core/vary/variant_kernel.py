@@ -4,10 +4,8 @@
 """
 A compiled solve batched over mechanism variants: each variant at n travels, from the design's.
 
-numba-compiled (njit, cache=True) like core/solve/kernel.py, whose step_many and walk it calls, and
-so3.py's rotations: numba's disk cache follows each file alone, and would keep running an old
-step after an edit of kernel.py, so the digests of both files are written here (KERNEL_DIGEST,
-SO3_DIGEST; test_kernel says the values to set). One call solves V variants, each its own
+Compiled (base/compiled.py's jit, one cache key for every kernel source) like
+core/solve/kernel.py, whose step_many and walk it calls. One call solves V variants, each its own
 equation table (mechanism.equation_table of mechanism.geometry_of, the one compile, batched),
 with the kernel that solves the design's batched sweep (kernel.step_many): variant v at
 travel t is one continuation step of length 0 from the design's solved state at t (Newton
@@ -22,23 +20,18 @@ Quantities per (variant, travel), OUTPUTS: camber, toe (rad), wheel centre x, y,
 
 from typing import NamedTuple
 
-from numba import njit
 import numpy as np
 
+from ..base.compiled import jit
 from ..base.so3 import camber_toe, rotate
 from ..measure.quantities import columns
 from ..solve import kernel
 
-# sha256 of the files compiled in (test_kernel checks them)
-KERNEL_DIGEST = 'a19d4546838125d4412eed5bd03216bce4d1bd16ce93168d220b9b65f27a5ab5'
-SO3_DIGEST = '862efb847a68465a5f68ec100893bccc4658d8a7278ad25575f0da1dc9d158aa'
 # What out holds per (variant, travel), in order: the registry's 'wheel' quantities (camber,
 # toe, wheel centre x, y, z; camber and toe in rad here, deg in tables)
 QUANTITIES = tuple(columns('wheel'))
 OUTPUTS = len(QUANTITIES)
 SOLVED, FAILED = 0, 1  # status per (variant, travel)
-
-jit = njit(cache=True, nogil=True, error_model='numpy')
 
 
 class Variants(NamedTuple):
