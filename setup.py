@@ -83,7 +83,7 @@ setup(
             'linkage-urdf = linkage_ros.tools.urdf:main',
             'linkage-foxglove = linkage_ros.tools.foxglove_layout:main',
             'linkage-study = linkage_ros.study.cli:main',
-            'linkage-chrono = linkage_ros.tools.chrono_cli:main',
+            'linkage-chrono = linkage_ros.tools.chrono:main',
         ],
     },
 )

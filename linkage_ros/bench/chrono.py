@@ -5,7 +5,7 @@
 linkage-bench chrono: import a Chrono suspension file, solve its sweep and write the scene.
 
 Each file: read (comments allowed), map its template, load the scene and solve it at design
-travel (chrono_files.import_file), sweep its travel range (161 positions) and write the
+travel (linkage_ros.chrono.import_file), sweep its travel range (161 positions) and write the
 scene. Timed per file after one untimed import (numba's first compile), at 1x, 10x and 100x
 the bundled Chrono files (config/chrono, importable ones cycled). ms per file: median and
 largest.
@@ -33,8 +33,7 @@ def main(argv=None, prog=PROG):
     args = parser.parse_args(argv)
     from ..core import sweep
     from ..core.model import config_dir, parse_scene
-    from ..tools.chrono_files import import_file
-    from ..tools.chrono_json import ChronoError
+    from ..chrono import ChronoError, import_file
     import numpy as np
     import yaml
     files = [Path(f) for f in args.files] or sorted(

@@ -6,7 +6,7 @@ A scene -> Chrono::Vehicle suspension JSON: the template of its topology, its po
 
 Two arms and a link go out as DoubleWishbone, an arm, a link and a strut as MacPhersonStrut,
 an arm and three links (one of them steered) as MultiLink; any other topology (the five-link
-5S among them) as GenericWheeledSuspension (chrono_generic.py). The fields that are not
+5S among them) as GenericWheeledSuspension (generic.py). The fields that are not
 kinematic (masses, inertias, radii, curves) come from --like ORIGINAL.json, kept as they are,
 or else from the bundled generic file of the template (config/chrono/generic/suspension).
 Points in m, left side (a right scene is mirrored), camber and toe from the design spin axis.
@@ -19,9 +19,9 @@ import math
 
 import numpy as np
 
-from .chrono_json import ChronoError, read_chrono
-from .chrono_parts import bushing_data, length_stops
-from .chrono_templates import GENERIC, TEMPLATES
+from .parts import bushing_data, length_stops
+from .reader import ChronoError, read_chrono
+from .templates import GENERIC, TEMPLATES
 from ..core.base import camber_toe, M_PER_MM, MM_PER_M, unit
 
 
@@ -145,7 +145,7 @@ def _spring_fields(e) -> dict:
 
 
 def _generic(scene, original, damping, notes):
-    from .chrono_generic import generic_of
+    from .generic import generic_of
     mounted = {scene.constraints[e.mount.constraint].name for e in scene.elements
                if e.mount.kind == 'link'}
     data = {'Name': scene.name, 'Type': 'Suspension', 'Template': GENERIC}
@@ -178,7 +178,7 @@ KINEMATIC = {'Bodies': (), 'Joints': ('Type', 'Body1', 'Body2', 'Position', 'Rot
 
 def _merged(ours: list, theirs, keys: tuple) -> list:
     """Return ours, each object on its namesake in theirs with only keys taken from ours."""
-    from .chrono_generic import same_axis
+    from .generic import same_axis
     by_name = {o.get('Name'): o for o in theirs or [] if isinstance(o, dict)}
     out = []
     for item in ours:

@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: Apache-2.0
 
 """
-Writers of chrono_import's results: a scene YAML file and a Chrono JSON file.
+Writers of importer.py's results: a scene YAML file and a Chrono JSON file.
 
 The scene is written as the bundled scenes are (one flow mapping per constraint and element,
 floats as Python's repr, so that reading the file back gives the very same numbers), headed

@@ -18,9 +18,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from .chrono_json import ChronoError, Fields
-from .chrono_parts import bushing_data, bushing_into, mount_of, tsda_elements
-from .chrono_templates import DESIGN_AXIS_M
+from .parts import bushing_data, bushing_into, mount_of, tsda_elements
+from .reader import ChronoError, Fields
+from .templates import DESIGN_AXIS_M
 
 FIXED = ('Chassis', 'Steering')
 BODY_DEFAULTS = {'Mass': 1.0, 'Moments of Inertia': [0.01, 0.01, 0.01],

@@ -14,12 +14,12 @@ from pathlib import Path
 import subprocess
 import sys
 
+from linkage_ros.chrono.exporter import export_scene
+from linkage_ros.chrono.files import export_file, import_file
+from linkage_ros.chrono.reader import read_chrono
 from linkage_ros.core import load_scene
 from linkage_ros.core.model.bundled import bundled_scenes, config_dir
 from linkage_ros.core.model.scene import parse_scene
-from linkage_ros.tools.chrono_export import export_scene
-from linkage_ros.tools.chrono_files import export_file, import_file
-from linkage_ros.tools.chrono_json import read_chrono
 import numpy as np
 import pytest
 import yaml

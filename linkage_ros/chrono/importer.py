@@ -4,8 +4,8 @@
 """
 Chrono::Vehicle suspension JSON -> a scene mapping (units m, left side), with notes.
 
-The named templates map by chrono_templates.TEMPLATES; GenericWheeledSuspension by
-chrono_generic.py. Springs and shocks become elements (a "Spring Coefficient" a rate, a
+The named templates map by templates.TEMPLATES; GenericWheeledSuspension by
+generic.py. Springs and shocks become elements (a "Spring Coefficient" a rate, a
 "Spring Curve Data" a force_table, Chrono's length stops bump and rebound stops, damping kept
 as x_damping), "Bushing Data" a constraint's bushing. What has no place in a scene (masses,
 inertias, a spring on a link body off the link's line) is named in the notes.
@@ -16,10 +16,10 @@ from __future__ import annotations
 import math
 from typing import NamedTuple
 
-from .chrono_json import ChronoError, Fields
-from .chrono_parts import bushing_into, mount_of, tsda_elements
-from .chrono_templates import (DESIGN_AXIS_M, GENERIC, KINGPIN, REFUSED, supported, TEMPLATES,
-                               TRAVEL_M, WHEEL_RADIUS_M)
+from .parts import bushing_into, mount_of, tsda_elements
+from .reader import ChronoError, Fields
+from .templates import (DESIGN_AXIS_M, GENERIC, KINGPIN, REFUSED, supported, TEMPLATES,
+                        TRAVEL_M, WHEEL_RADIUS_M)
 from ..core.base import spin_axis_of
 
 
@@ -48,7 +48,7 @@ def import_suspension(data: dict, where: str, wheel_radius: float = WHEEL_RADIUS
         raise ChronoError(where, f'template {template} is not imported: {REFUSED[template]}')
     notes = []
     if template == GENERIC:
-        from .chrono_generic import import_generic
+        from .generic import import_generic
         constraints, elements = import_generic(top, notes)
     elif template in TEMPLATES:
         constraints, elements = _named(top, TEMPLATES[template], notes)

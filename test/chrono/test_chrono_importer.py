@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: Apache-2.0
 
 """
-Chrono::Vehicle suspension files imported as scenes (linkage_ros.tools.chrono_*).
+Chrono::Vehicle suspension files imported as scenes (linkage_ros.chrono).
 
 The expected values are today's bundled chrono_* scenes, typed by hand from the same Chrono
 files (config/chrono): the same points (1e-12 m: the file's decimals, read twice) and the
@@ -12,10 +12,10 @@ same sweep (1e-9 deg: the same scene solved by the same code).
 import math
 from pathlib import Path
 
+from linkage_ros.chrono.files import import_file
 from linkage_ros.core import load_scene, sweep
 from linkage_ros.core.model.bundled import config_dir
 from linkage_ros.core.model.scene import parse_scene
-from linkage_ros.tools.chrono_files import import_file
 import numpy as np
 import pytest
 import yaml
@@ -150,7 +150,7 @@ def test_vehicle_file_gives_left_and_mirrored_right_corners(tmp_path):
 
 
 def json_of(path):
-    from linkage_ros.tools.chrono_json import read_chrono
+    from linkage_ros.chrono.reader import read_chrono
     return read_chrono(path)
 
 
@@ -187,7 +187,7 @@ def test_scene_header_names_its_source_file_and_template(tmp_path):
 
 def test_force_table_survives_export_and_import(tmp_path):
     # the export drops the template file's "Spring Coefficient": Chrono takes a curve first
-    from linkage_ros.tools.chrono_files import export_file
+    from linkage_ros.chrono.files import export_file
     source, out = CHRONO / 'generic/suspension/DoubleWishboneCurve.json', tmp_path / 'c.yaml'
     out.write_text(import_file(str(source), str(out))[0][str(out)])
     (tmp_path / 'c.json').write_text(export_file(str(out))[0])
@@ -197,7 +197,7 @@ def test_force_table_survives_export_and_import(tmp_path):
 
 
 def test_wheel_radius_must_be_positive(tmp_path):
-    from linkage_ros.tools.chrono_json import ChronoError
+    from linkage_ros.chrono.reader import ChronoError
     with pytest.raises(ChronoError, match='--wheel-radius'):
         import_file(str(CHRONO / 'generic/suspension/DoubleWishbone.json'),
                     str(tmp_path / 'x.yaml'), wheel_radius=-0.3)

@@ -14,10 +14,10 @@ from pathlib import Path
 
 import yaml
 
-from .chrono_import import import_suspension
-from .chrono_json import ChronoError, Fields, read_chrono
-from .chrono_templates import WHEEL_RADIUS_M
-from .chrono_write import json_text, scene_text
+from .importer import import_suspension
+from .reader import ChronoError, Fields, read_chrono
+from .templates import WHEEL_RADIUS_M
+from .writer import json_text, scene_text
 
 LICENCE = ('Chrono::Vehicle data: Project Chrono (BSD-3-Clause, projectchrono/chrono); '
            'keep its attribution')
@@ -106,7 +106,7 @@ def _data_file(vehicle: str, relative: str) -> Path:
 
 def export_file(scene_ref: str, like: str | None = None):
     """Return (Chrono JSON text, summary) of a scene, keeping an original's other fields."""
-    from .chrono_export import export_scene
+    from .exporter import export_scene
     from ..core import load_scene
     from ..core.model import resolve_scene_path
     scene = load_scene(scene_ref)

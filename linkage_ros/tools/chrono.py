@@ -61,7 +61,7 @@ def _main(argv):
 
 
 def _import(args):
-    from .chrono_files import import_file
+    from ..chrono import import_file
     inputs = (args.source,)
     cli.check_output(args.output, '-o', inputs=inputs)
     texts, summary = import_file(args.source, args.output, args.wheel_radius)
@@ -75,7 +75,7 @@ def _import(args):
 
 
 def _export(args):
-    from .chrono_files import export_file
+    from ..chrono import export_file
     inputs = tuple(p for p in (args.like,) if p)
     cli.check_output(args.output, '-o', inputs=inputs)
     text, summary = export_file(args.scene, args.like)

@@ -4,7 +4,7 @@
 """
 Chrono::Vehicle's named suspension templates as data: their parts, point keys and scene names.
 
-One table serves the import (chrono_import.py) and the export (chrono_export.py), so a
+One table serves the import (importer.py) and the export (exporter.py), so a
 point's key is written once. Keys and frames are those of Chrono's readers
 (src/chrono_vehicle/wheeled_vehicle/suspension/<Template>.cpp): SI points in the
 suspension's frame, ISO axes (x forward, y left, z up), left side; Chrono mirrors the right.

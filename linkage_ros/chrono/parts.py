@@ -17,7 +17,7 @@ import math
 
 import numpy as np
 
-from .chrono_json import Fields
+from .reader import Fields
 from ..core.base import MM_PER_M
 from ..core.model import LINE_TOLERANCE
 

@@ -8,8 +8,8 @@ from pathlib import Path
 import subprocess
 import sys
 
+from linkage_ros.chrono.reader import ChronoError, MAX_DEPTH, parse_chrono
 from linkage_ros.core.model.bundled import config_dir
-from linkage_ros.tools.chrono_json import ChronoError, MAX_DEPTH, parse_chrono
 import pytest
 
 CHRONO = config_dir() / 'chrono'
