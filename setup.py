@@ -14,6 +14,7 @@ setup(
     name=package_name,
     version='0.1.0',
     packages=find_packages(exclude=['test']),
+    py_modules=['linkage_ros_pytest'],   # the pytest plugin, outside the package (it says why)
     data_files=[
         ('share/ament_index/resource_index/packages', ['resource/' + package_name]),
         ('share/' + package_name, ['package.xml']),
@@ -64,7 +65,7 @@ setup(
     description='Spatial multi-link suspension kinematics (Alexandru 2018) as a ROS 2 node',
     license='Apache-2.0',
     entry_points={
-        'pytest11': ['linkage_ros = linkage_ros.ros.testing'],
+        'pytest11': ['linkage_ros = linkage_ros_pytest'],
         'console_scripts': [
             'linkage-sweep = linkage_ros.tools.sweep:main',
             'linkage-axle = linkage_ros.tools.axle:main',

@@ -38,7 +38,7 @@ import subprocess
 import sys
 
 REPO = Path(__file__).resolve().parent.parent
-ROOTS = ('linkage_ros', 'test', '.ci', 'launch', 'setup.py')
+ROOTS = ('linkage_ros', 'linkage_ros_pytest.py', 'test', '.ci', 'launch', 'setup.py')
 COPYRIGHT = '# SPDX-FileCopyrightText: 2026 linkage_ros authors'
 LICENSE = '# SPDX-License-Identifier: Apache-2.0'
 # The tags as REUSE and scancode find them, in any comment form.

@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: Apache-2.0
 
 """
-The project's tests use the fixtures of its pytest plugin, linkage_ros.ros.testing.
+The project's tests use the fixtures of its pytest plugin, linkage_ros_pytest.
 
 The run enters a private network first where it can (root on Linux): a network namespace
 with only lo and a /dev/shm of its own, so that what the cross-process tests publish reaches
@@ -34,9 +34,10 @@ import textwrap
 
 from linkage_ros.ros.isolation import enter_private_network, environment_domain_id, \
     PrivateNetwork
-from linkage_ros.ros.testing import (  # noqa: F401 (fixtures and helpers for the test modules)
-    connect, domain_id, executor, localhost_context, localhost_executor, node_process, Probe,
-    probe, ros_context, ros_environment, send_travel, spin_until, stamp_ns, suspension_node)
+from linkage_ros.ros.testing import connect, Probe, spin_until, stamp_ns  # noqa: F401 (helpers)
+from linkage_ros_pytest import (  # noqa: F401 (the plugin's fixtures, for the test modules)
+    domain_id, executor, localhost_context, localhost_executor, node_process, probe, ros_context,
+    ros_environment, send_travel, suspension_node)
 import pytest
 
 NETWORK = pytest.StashKey[PrivateNetwork]()

@@ -28,7 +28,8 @@ from ament_flake8.main import main_with_errors
 import pytest
 
 PACKAGE = Path(__file__).resolve().parent.parent
-PATHS = [str(PACKAGE / 'linkage_ros'), str(PACKAGE / 'test'), str(PACKAGE / 'setup.py')]
+PATHS = [str(PACKAGE / name) for name in ('linkage_ros', 'linkage_ros_pytest.py', 'test',
+                                          'setup.py')]
 
 
 @pytest.mark.flake8

@@ -28,7 +28,8 @@ from ament_pep257.main import main
 import pytest
 
 PACKAGE = Path(__file__).resolve().parent.parent
-PATHS = [str(PACKAGE / 'linkage_ros'), str(PACKAGE / 'test'), str(PACKAGE / 'setup.py')]
+PATHS = [str(PACKAGE / name) for name in ('linkage_ros', 'linkage_ros_pytest.py', 'test',
+                                          'setup.py')]
 
 
 @pytest.mark.linter

@@ -2,38 +2,25 @@
 # SPDX-License-Identifier: Apache-2.0
 
 """
-pytest plugin for launch-free tests of suspension_node: real rclpy and DDS, no launch.
+Helpers for launch-free tests of suspension_node: real rclpy and DDS, no launch, no pytest.
 
-Registered as the pytest11 entry point `linkage_ros`, so an environment with linkage_ros
-installed has these fixtures in every pytest run; they cost nothing unless a test asks for
-one (no autouse fixtures, no hooks). Without pytest the module still imports: the helpers
-(Probe, spin_until, connect, NodeProcess, ...) are plain functions and classes, the fixtures
-only wrap them.
+The fixtures of the pytest plugin (linkage_ros_pytest, the pytest11 entry point `linkage_ros`)
+wrap these; a test without pytest uses them directly:
 
-Fixtures:
-    ros_context          private rclpy Context on domain_id, automatic discovery OFF (nodes
-                         of this Context talk; nothing outside the process sees or reaches
-                         them, whatever else runs on that domain)
-    executor             EventsExecutor of ros_context; its nodes are destroyed at teardown
-    suspension_node      factory: suspension_node(scene='five_link', sinks=(), **params)
-                         starts a SuspensionNode in ros_context and executor
-    probe                Probe node in ros_context: publishes wheel_travel, keeps every output
-    send_travel          send_travel(travel_m, timeout=5.0) -> Answer(pose, camber, toe,
-                         diagnostics): one command and what came back (pose, camber and toe,
-                         or the ERROR status of a bad command), waited with a deadline
-    localhost_context, localhost_executor, node_process
-                         the same across processes: a Context that discovers this machine
-                         (ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST) and the console script
-                         started on domain_id: they share it with the machine's other ROS
-                         processes unless the run is in a private network
-                         (isolation.enter_private_network, as the project's conftest does)
-    domain_id            the user's ROS domain id: ROS_DOMAIN_ID, or 0 (ROS's default)
-    ros_environment      session: rcl log files in a temporary folder, discovery range
-                         LOCALHOST unless set; every fixture above that starts ROS uses it
+    Probe(context, executor)            a node that publishes wheel_travel, keeps every output
+    spin_until(executor, predicate)     spin until predicate() or a deadline
+    connect(executor, probe)            wait until the probe and the node see each other
+    start_suspension_node(context, executor, scene, sinks, **params) -> SuspensionNode
+    executor_of(context)                an EventsExecutor (a generator: its nodes destroyed
+                                        and it shut down when closed)
+    NodeProcess(ros_args, domain_id, script, file_size)
+                                        suspension_node (or another console script) in a
+                                        subprocess on domain_id
+    ParameterClient, read_mcap_ros2, live_tf_topics, node_warnings, urdf_differences
 
 Waits are deadline loops around executor.spin_once, never fixed sleeps. rclpy, the messages
-and the node are imported when a fixture or helper first needs them, so that the plugin costs
-a pytest run that does not use it no import time.
+and the node are imported when a helper first needs them, so that importing this module (as
+the plugin does in every pytest run of an environment with linkage_ros) costs no import time.
 """
 
 import math
@@ -45,23 +32,11 @@ import sys
 import time
 from typing import Any, NamedTuple
 
-from .isolation import environment_domain_id, init_context  # noqa: F401 (init_context: API)
+from .isolation import environment_domain_id, init_context  # noqa: F401 (the helpers' API)
 from .testing_outputs import (live_tf_topics, node_warnings,  # noqa: F401 (the plugin's API)
                               read_mcap_ros2, urdf_differences)
 
-try:
-    import pytest
-except ImportError:   # the helpers work without pytest; only the fixtures need it
-    pytest = None
-
 WAIT = 10.0       # s: same-Context matching is immediate; cross-process discovery ~0.04 or ~3 s
-
-
-def _fixture(*args, **kwargs):
-    """Return pytest.fixture, or without pytest a decorator that leaves the function alone."""
-    if pytest is not None:
-        return pytest.fixture(*args, **kwargs)
-    return args[0] if args and callable(args[0]) else (lambda function: function)
 
 
 def rclpy_try_shutdown(context):
@@ -316,7 +291,8 @@ def start_suspension_node(context, executor, scene='five_link', sinks=(), **para
     return node
 
 
-def _executor(context):
+def executor_of(context):
+    """Yield an EventsExecutor of context; at the end destroy its nodes and shut it down."""
     from rclpy.experimental import EventsExecutor
     executor = EventsExecutor(context=context)
     yield executor
@@ -324,110 +300,3 @@ def _executor(context):
         executor.remove_node(node)
         node.destroy_node()
     executor.shutdown()
-
-
-# --- fixtures ------------------------------------------------------------------------------
-
-@_fixture(scope='session')
-def ros_environment(tmp_path_factory):
-    """Send rcl log files into a temporary folder and keep discovery to this machine."""
-    saved = {k: os.environ.get(k) for k in ('ROS_LOG_DIR', 'ROS_AUTOMATIC_DISCOVERY_RANGE')}
-    os.environ['ROS_LOG_DIR'] = str(tmp_path_factory.mktemp('ros_log'))
-    os.environ.setdefault('ROS_AUTOMATIC_DISCOVERY_RANGE', 'LOCALHOST')
-    yield
-    for key, value in saved.items():
-        if value is None:
-            os.environ.pop(key, None)
-        else:
-            os.environ[key] = value
-
-
-@_fixture
-def domain_id():
-    """
-    Give the ROS domain id of the run: the user's ROS_DOMAIN_ID, or 0 (ROS's default) if unset.
-
-    Never one picked by pid or at random, which can be someone else's. In-process contexts
-    (ros_context) use it with discovery OFF, so they stay private on any domain; the
-    cross-process fixtures meet the machine's other ROS processes on it, unless the run is
-    in a private network (linkage_ros.ros.isolation.enter_private_network).
-    """
-    return environment_domain_id()
-
-
-@_fixture
-def ros_context(ros_environment, domain_id):
-    """Give a private Context with discovery OFF: only nodes of this Context see each other."""
-    context = init_context(domain_id, 'OFF')
-    yield context
-    rclpy_try_shutdown(context)
-
-
-@_fixture
-def localhost_context(ros_environment, domain_id):
-    """Give a private Context that discovers the other processes of this machine on domain_id."""
-    context = init_context(domain_id, 'LOCALHOST')
-    yield context
-    rclpy_try_shutdown(context)
-
-
-@_fixture
-def executor(ros_context):
-    """Give the EventsExecutor of ros_context; nodes added to it are destroyed at teardown."""
-    yield from _executor(ros_context)
-
-
-@_fixture
-def localhost_executor(localhost_context):
-    """Give the EventsExecutor of localhost_context; its nodes are destroyed at teardown."""
-    yield from _executor(localhost_context)
-
-
-@_fixture
-def probe(ros_context, executor):
-    """Give a Probe node in ros_context: it publishes wheel_travel and keeps every output."""
-    return Probe(ros_context, executor)
-
-
-@_fixture
-def suspension_node(ros_context, executor):
-    """
-    Give a factory of SuspensionNodes running in the test's Context and executor.
-
-    suspension_node(scene='five_link', sinks=(), **params) -> SuspensionNode; the nodes are
-    destroyed at teardown.
-    """
-    def start(scene='five_link', sinks=(), **params):
-        return start_suspension_node(ros_context, executor, scene, sinks, **params)
-    return start
-
-
-@_fixture
-def send_travel(probe):
-    """
-    Give a function that sends one travel to the suspension_node of this test.
-
-    send_travel(travel_m, timeout=5.0) -> Answer(pose, camber, toe, diagnostics);
-    TimeoutError if no answer comes within timeout s.
-    """
-    return probe.ask
-
-
-@_fixture
-def node_process(ros_environment, domain_id):
-    """
-    Give a factory that starts suspension_node in a subprocess on the test's domain id.
-
-    Call it with the node's ROS arguments (*ros_args) and optionally script= and file_size=
-    (a limit in bytes on the files it writes, as ulimit -f sets); processes still running at
-    teardown are ended.
-    """
-    started = []
-
-    def start(*ros_args, script='suspension_node', file_size=None):
-        started.append(NodeProcess(ros_args, domain_id, script, file_size))
-        return started[-1]
-
-    yield start
-    for process in started:
-        process.close()
