@@ -22,6 +22,9 @@ need not say it and a new test is marked as soon as it uses the fixture or the c
     process  it starts a process: the node_process fixture, or subprocess in the test, in a
              fixture it uses, or in a function of its module that it calls
     slow     one of the longest of the rest (SLOW below, measured with --durations)
+    optional its module touches what linkage-tf2-msgs builds (OPTIONAL: live /tf, the solve
+             service) or what the node says when they are missing: the tests CI runs again
+             in an environment without them
 The inner loop is `pytest -m "not ros and not process and not slow"`.
 """
 
@@ -52,6 +55,10 @@ PROCESS_NAMES = {'subprocess', 'node_process', 'NodeProcess', 'Popen', 'multipro
 # main that a test calls, such as linkage-soak's).
 ROS_NAMES = {'init_context', 'rclpy', 'SuspensionNode', 'start_suspension_node'}
 STARTS_ROS = ('rclpy.init', 'init_context', 'EventsExecutor', 'create_node')
+# What a test module names when its tests may go otherwise without tf2_msgs and
+# linkage_ros_interfaces (the optional parts that linkage-tf2-msgs builds where it can).
+OPTIONAL = ('tf2_msgs', 'linkage_ros_interfaces', 'live_tf_topics', 'node_warnings',
+            'solve_service', 'tf_static', "'/tf'", 'robot_description', 'Solve')
 # The longest tests of the inner loop (pytest --durations), by file (its basename: basenames
 # are unique across test/'s folders) and name without parameters: each more than 9 s on a
 # machine shared by several runs (2 s and more alone); together half its time. A name that no
@@ -141,6 +148,16 @@ def _starts_ros(module_name):
     return any(text in source for text in STARTS_ROS)
 
 
+@functools.lru_cache(maxsize=None)
+def _optional(module_name):
+    """Tell whether a test module's source names one of OPTIONAL."""
+    try:
+        source = inspect.getsource(sys.modules[module_name])
+    except (KeyError, OSError, TypeError):
+        return False
+    return any(text in source for text in OPTIONAL)
+
+
 class _Uses:
     """What the functions of one test module use, their module's own functions followed."""
 
@@ -164,7 +181,7 @@ class _Uses:
 
 @pytest.hookimpl(tryfirst=True)     # before -m reads the marks
 def pytest_collection_modifyitems(config, items):
-    """Mark each test ros, process and slow by what it uses (see the module docstring)."""
+    """Mark each test ros, process, slow and optional by what it uses (the module docstring)."""
     uses, found = {}, {}
     for item in items:
         module = getattr(item, 'module', None)
@@ -185,6 +202,8 @@ def pytest_collection_modifyitems(config, items):
             item.add_marker(pytest.mark.ros)
         if 'node_process' in fixtures or names & PROCESS_NAMES:
             item.add_marker(pytest.mark.process)
+        if _optional(module.__name__):
+            item.add_marker(pytest.mark.optional)
         file = item.path.name
         found[file] = module
         if (item.originalname or item.name) in SLOW.get(file, ()):
