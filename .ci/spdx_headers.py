@@ -18,12 +18,6 @@ copyright tag: a file taken from elsewhere keeps its own notice too). A line tha
 first (a shebang, then a PEP 263 encoding line) stays first; the header follows it, then a
 blank line. Only the missing tag is added, so a second run changes nothing.
 
-A file's sha256 may be written in another file (a kernel module names the digest of each file
-numba compiles into it, test/core/test_kernel.py checks them): where a file changes here,
-every quoted copy of its old digest in the source files becomes the new one, and so on for the
-files that change by that. A file merged in from a branch that had no headers may quote the
-digest a file had without its header: such a copy is made the file's digest too.
-
 Source files: the Python files and shell scripts (a .sh, or a file starting with #!) that git
 knows or would add (tracked, or untracked and not ignored) under ROOTS. Data (YAML scenes, the
 test resources) carries no header: the package's licence covers it (package.xml).
@@ -31,7 +25,6 @@ test resources) carries no header: the package's licence covers it (package.xml)
 
 from __future__ import annotations
 
-import hashlib
 from pathlib import Path
 import re
 import subprocess
@@ -98,63 +91,6 @@ def with_header(text: str) -> str:
     return '\n'.join(body[:keep] + lines + gap + rest)
 
 
-def digest(data: bytes) -> str:
-    """Return the sha256 of data in hex, as the kernel modules write it."""
-    return hashlib.sha256(data).hexdigest()
-
-
-def write_keeping_digests(changes: dict[Path, str], files: list[Path]) -> list[Path]:
-    """
-    Write changes {path: new text}; carry each changed file's digest into files that quote it.
-
-    Return every path written, the ones changed for a digest after those given.
-    """
-    written = []
-    pending = dict(changes)
-    while pending:
-        path, text = pending.popitem()
-        old, new = digest(path.read_bytes()), digest(text.encode('utf-8'))
-        path.write_text(text, encoding='utf-8')
-        written.append(path)
-        for other in files:
-            content = pending.get(other) or other.read_text(encoding='utf-8')
-            if f"'{old}'" in content and old != new:
-                pending[other] = content.replace(f"'{old}'", f"'{new}'")
-    return list(dict.fromkeys(written))
-
-
-def without_header(text: str) -> str:
-    """Return text as it was before with_header gave it the header (text if it has none)."""
-    lines = text.split('\n')
-    for keep in range(3):
-        if lines[keep:keep + 2] == [COPYRIGHT, LICENSE]:
-            gap = 1 if len(lines) > keep + 2 and not lines[keep + 2].strip() else 0
-            return '\n'.join(lines[:keep] + lines[keep + 2 + gap:])
-    return text
-
-
-def headerless_digests(files: list[Path]) -> dict[Path, str]:
-    """
-    Return {path: text} of the files that quote a digest of another file without its header.
-
-    Each such copy replaced by that file's digest (the files as they are on disk).
-    """
-    stale = {}
-    for path in files:
-        text = path.read_text(encoding='utf-8')
-        if without_header(text) != text:
-            stale[digest(without_header(text).encode('utf-8'))] = digest(text.encode('utf-8'))
-    changes = {}
-    for path in files:
-        text = path.read_text(encoding='utf-8')
-        fixed = text
-        for old, new in stale.items():
-            fixed = fixed.replace(f"'{old}'", f"'{new}'")
-        if fixed != text:
-            changes[path] = fixed
-    return changes
-
-
 def main(argv: list[str] | None = None) -> int:
     """Add the header where missing (or with --check only list those files); see the module."""
     argv = sys.argv[1:] if argv is None else argv
@@ -171,10 +107,8 @@ def main(argv: list[str] | None = None) -> int:
             print(f'{len(lacking)} file(s) without the SPDX header: python3 '
                   '.ci/spdx_headers.py adds it', file=sys.stderr)
         return 1 if lacking else 0
-    changes = {path: with_header(path.read_text(encoding='utf-8')) for path in lacking}
-    written = write_keeping_digests(changes, files)
-    written += write_keeping_digests(headerless_digests(files), files)
-    for path in dict.fromkeys(written):
+    for path in lacking:
+        path.write_text(with_header(path.read_text(encoding='utf-8')), encoding='utf-8')
         print(path.relative_to(REPO))
     return 0
 

@@ -71,28 +71,3 @@ def test_a_copyright_tag_of_another_holder_counts_as_the_copyright_line():
 def test_a_header_below_the_first_lines_does_not_count():
     text = '\n' * spdx.HEAD_LINES + '\n'.join(HEADER) + '\n'
     assert spdx.missing(text) == HEADER
-
-
-def test_a_digest_of_a_file_given_its_header_is_carried_into_the_files_that_quote_it(tmp_path):
-    compiled_in, kernel, user = (tmp_path / name for name in ('so3.py', 'kernel.py', 'user.py'))
-    compiled_in.write_text('"""Rotations."""\n')
-    kernel.write_text(f"DIGEST = '{spdx.digest(compiled_in.read_bytes())}'\n")
-    user.write_text(f"KERNEL = '{spdx.digest(kernel.read_bytes())}'\n")
-    files = [compiled_in, kernel, user]
-    changes = {path: spdx.with_header(path.read_text()) for path in files}
-    written = spdx.write_keeping_digests(changes, files)
-    assert sorted(written) == sorted(files)
-    assert spdx.missing(compiled_in.read_text()) == []
-    assert f"'{spdx.digest(compiled_in.read_bytes())}'" in kernel.read_text()
-    assert f"'{spdx.digest(kernel.read_bytes())}'" in user.read_text()
-
-
-def test_a_digest_of_a_file_before_its_header_becomes_its_digest_with_it(tmp_path):
-    # A branch merged in without headers quotes the digest so3.py had without its own.
-    compiled_in, kernel = tmp_path / 'so3.py', tmp_path / 'kernel.py'
-    bare = '"""Rotations."""\n'
-    compiled_in.write_text(spdx.with_header(bare))
-    kernel.write_text(f"DIGEST = '{spdx.digest(bare.encode())}'\n")
-    changes = spdx.headerless_digests([compiled_in, kernel])
-    assert changes == {kernel: f"DIGEST = '{spdx.digest(compiled_in.read_bytes())}'\n"}
-    assert spdx.without_header(compiled_in.read_text()) == bare

@@ -3,12 +3,11 @@
 
 """The compiled statics (core/statics/kernel.py) against its numpy twin (system.py, newton.py)."""
 
-import hashlib
 from pathlib import Path
 
-from linkage_ros.core.base import so3, Status
+from linkage_ros.core.base import Status
 from linkage_ros.core.model import load_scene
-from linkage_ros.core.statics import compliance, kernel, Load, rotation, solve_loaded
+from linkage_ros.core.statics import compliance, Load, rotation, solve_loaded
 import numpy as np
 import pytest
 
@@ -40,16 +39,6 @@ def test_the_compiled_rates_equal_the_numpy_ones():
     for key, value in slow.rates.items():
         assert fast.rates[key] == pytest.approx(value, rel=1e-9, abs=1e-12), key
     assert np.abs(fast.matrix_si - slow.matrix_si).max() <= 1e-9 * np.abs(slow.matrix_si).max()
-
-
-@pytest.mark.parametrize('source, attribute', [(so3, 'SO3_DIGEST'),
-                                               (rotation, 'ROTATION_DIGEST')],
-                         ids=['so3', 'rotation'])
-def test_the_statics_kernel_names_the_digest_of_each_file_it_compiles_in(source, attribute):
-    digest = hashlib.sha256(Path(source.__file__).read_bytes()).hexdigest()
-    assert getattr(kernel, attribute) == digest, (
-        f'{Path(source.__file__).name} changed: set {attribute} = {digest!r} in '
-        'core/statics/kernel.py, so that numba compiles the statics kernel again')
 
 
 def test_the_rotational_energy_has_exact_derivatives_in_the_left_increment():
