@@ -10,11 +10,13 @@ Every text is made and checked whole before anything is written: the scene must 
 
 from __future__ import annotations
 
+import os
 from pathlib import Path
 
 import yaml
 
 from .importer import import_suspension
+from .needs import check_chrono
 from .reader import ChronoError, Fields, read_chrono
 from .templates import WHEEL_RADIUS_M
 from .writer import json_text, scene_text
@@ -70,7 +72,7 @@ def import_vehicle(data: dict, source: str, output: str, wheel_radius: float | N
     texts, corners, xs = {}, {}, []
     names = ('front', 'rear') if len(top.objects('Axles')) == 2 else None
     for i, axle in enumerate(top.objects('Axles')):
-        sub = _data_file(source, axle.text('Suspension Input File'))
+        sub = data_file(source, axle.text('Suspension Input File'))
         where = axle.vector('Suspension Location')
         name = names[i] if names else f'axle{i}'
         path = out.with_name(f'{out.stem}_{name}.yaml')
@@ -94,14 +96,39 @@ def import_vehicle(data: dict, source: str, output: str, wheel_radius: float | N
     return texts, f'vehicle {source}: {len(corners)} corners -> {output}'
 
 
-def _data_file(vehicle: str, relative: str) -> Path:
-    """Find a file a vehicle names relative to Chrono's data folder, walking up from it."""
-    for folder in Path(vehicle).resolve().parents:
-        candidate = folder / relative
-        if candidate.is_file():
+def data_file(vehicle: str, name: str) -> Path:
+    """
+    Find a file a vehicle names as Chrono does: under its data folder (vehicle::GetDataFile).
+
+    Chrono reads "hmmwv/suspension/X.json" as <data>/vehicle/hmmwv/suspension/X.json; here
+    <data>/vehicle is the nearest of the DATA_LEVELS folders above the vehicle file that holds
+    the name (Chrono's layout <data>/vehicle/hmmwv/vehicle/V.json: the third). A name
+    that is empty, absolute, has a NUL, or climbs out of that folder ("../../etc/passwd", or
+    a symbolic link that leads out) is refused, never opened.
+    """
+    what = f'"Suspension Input File" {name[:80]!r}'
+    if not name or '\0' in name or name.startswith(('/', '\\')) or Path(name).is_absolute():
+        raise ChronoError(vehicle, f"{what}: expected a name relative to Chrono's data folder "
+                          '(vehicle::GetDataFile), e.g. "hmmwv/suspension/X.json"')
+    if os.path.normpath(name).split(os.sep)[0] == '..':
+        raise ChronoError(vehicle, f"{what}: leaves Chrono's data folder: refused")
+    for folder in Path(vehicle).resolve().parents[:DATA_LEVELS]:
+        candidate = folder / name
+        try:
+            found = candidate.is_file()
+            inside = candidate.resolve().is_relative_to(folder)
+        except (OSError, RuntimeError):   # a name too long, a loop of links
+            continue
+        if found and not inside:
+            raise ChronoError(vehicle, f"{what}: leads out of Chrono's data folder {folder} "
+                              '(a symbolic link): refused')
+        if found:
             return candidate
-    raise ChronoError(vehicle, f'"Suspension Input File": {relative!r} not found in any folder '
-                      'above the vehicle file (Chrono reads it from its data/vehicle folder)')
+    raise ChronoError(vehicle, f'{what}: not found in the {DATA_LEVELS} folders above the '
+                      'vehicle file (Chrono reads it from its data/vehicle folder)')
+
+
+DATA_LEVELS = 4   # folders above a vehicle file where its data folder may be
 
 
 def export_file(scene_ref: str, like: str | None = None):
@@ -114,5 +141,8 @@ def export_file(scene_ref: str, like: str | None = None):
     damping = {item.get('name'): item.get('x_damping') for item in raw.get('elements') or []
                if isinstance(item, dict) and isinstance(item.get('x_damping'), (int, float))}
     original = read_chrono(like) if like else None
+    if original is not None:
+        check_chrono(original, like)   # a suspension file Chrono reads, else refused
     data, template, notes = export_scene(scene, original, like or '', damping)
+    check_chrono(data, like or scene_ref)   # what is written is a file Chrono reads
     return json_text(data), f'{scene.name}: {template}' + ''.join(f'; {n}' for n in notes)
