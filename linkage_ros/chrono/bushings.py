@@ -33,7 +33,7 @@ import re
 import numpy as np
 
 from .reader import Fields
-from ..core.base import MM_PER_M
+from ..core.base import MM_PER_M, unit
 
 SPRING_M = 0.1   # a bushing spring's length (m): its direction is what counts
 SPRING_NAME = re.compile(r'^(?P<body>.+)_bushing_(?P<place>centre|axis0|axis1|base)_'
@@ -83,7 +83,7 @@ def places(c) -> list:
 def bushing_springs(c, fixed: str) -> list:
     """Return the TSDAs (m, N/m) that give c's bushing its axial or radial excess."""
     b = c.bushing
-    axis = _unit(c.base[1] - c.base[0] if c.type == 'circle' else c.carrier - c.base[0])
+    axis = unit(c.base[1] - c.base[0] if c.type == 'circle' else c.carrier - c.base[0])
     excess = (b.axial - b.radial) * MM_PER_M   # N/m
     if excess == 0.0:
         return []
@@ -103,7 +103,7 @@ def bushing_springs(c, fixed: str) -> list:
 def across(axis) -> tuple:
     """Return two unit vectors at right angles to axis and to each other."""
     helper = np.array([0.0, 0.0, 1.0]) if abs(axis[2]) < 0.9 else np.array([1.0, 0.0, 0.0])
-    first = _unit(np.cross(axis, helper))
+    first = unit(np.cross(axis, helper))
     return first, np.cross(axis, first)
 
 
@@ -155,7 +155,7 @@ def fold_springs(tsdas: list, bushed: dict, notes: list) -> set:
     for body, rows in groups.items():
         item, fixed, at = bushed[body]
         ends = item['axis'] if item['type'] == 'circle' else (item['base'], item['carrier'])
-        axis = _unit(np.subtract(ends[1], ends[0]))
+        axis = unit(np.subtract(ends[1], ends[0]))
         rate = _excess(rows, axis, fixed, at, body)
         if rate is None:
             notes.append(f"{body}: springs named as its bushing's parts but not of their shape:"
@@ -177,7 +177,7 @@ def _excess(rows, axis, fixed, at, body):
     for _, place, way, tsda in rows:
         data = tsda.data
         if set(data) - SPRING_KEYS or not {'Free Length', 'Spring Coefficient'} <= set(data) \
-                or _ident(data.get('Body1')) != fixed or _ident(data.get('Body2')) != body:
+                or data.get('Body1') != fixed or data.get('Body2') != body:
             return None
         start, end = tsda.vector('Point1'), tsda.vector('Point2')
         length = float(np.linalg.norm(start - end))
@@ -194,15 +194,3 @@ def _excess(rows, axis, fixed, at, body):
             abs(directions[p, 'radial1'] @ directions[p, 'radial2']) > ACROSS for p in at)):
         return None
     return rates.pop()
-
-
-def _ident(value) -> str:
-    """Return the body name of a Chrono body identifier ("Name" or ["Name", "Left"])."""
-    if isinstance(value, list) and value and isinstance(value[0], str):
-        return value[0]
-    return value if isinstance(value, str) else ''
-
-
-def _unit(v) -> np.ndarray:
-    v = np.asarray(v, dtype=float)
-    return v / np.linalg.norm(v)

@@ -20,6 +20,7 @@ import math
 import numpy as np
 
 from .bushings import bushing_data, named_misfit, SPRING_NAME
+from .names import body_name
 from .parts import length_stops
 from .reader import ChronoError, read_chrono
 from .templates import GENERIC, TEMPLATES
@@ -27,11 +28,13 @@ from ..core.base import camber_toe, M_PER_MM, MM_PER_M, unit
 
 
 def export_scene(scene, original: dict | None = None, like: str = '',
-                 damping: dict | None = None) -> tuple[dict, str, list]:
+                 damping: dict | None = None, names: dict | None = None
+                 ) -> tuple[dict, str, list]:
     """
     Return (Chrono JSON object, template, notes) of a scene; original: the --like file's object.
 
-    damping: {element name: N s/m}, the elements' x_damping (the scene keeps no free keys).
+    damping: {element name: N s/m}, the elements' x_damping; names: {'constraints': {name:
+    Chrono's name}, 'elements': {...}}, their x_chrono_name (the scene keeps no free keys).
     Notes (one line each) say what was kept from the template's default file.
     """
     from ..core.model import mirror
@@ -42,7 +45,7 @@ def export_scene(scene, original: dict | None = None, like: str = '',
     if template != GENERIC:
         template = _bushings_fit(scene, template, parts, like, notes)
     if template == GENERIC:
-        data = _generic(scene, original, damping or {}, notes)
+        data = _generic(scene, original, damping or {}, notes, names or {})
     else:
         data = copy.deepcopy(original) if original else _default(template)
         _named(scene, data, template, parts, original is None, notes)
@@ -239,7 +242,7 @@ def _spring_fields(e) -> dict:
     return {'Free Length': e.free_length * M_PER_MM, 'Spring Coefficient': e.rate / M_PER_MM}
 
 
-def _generic(scene, original, damping, notes):
+def _generic(scene, original, damping, notes, names):
     from .generic import generic_of
     mounted = {scene.constraints[e.mount.constraint].name for e in scene.elements
                if e.mount.kind == 'link'}
@@ -254,13 +257,36 @@ def _generic(scene, original, damping, notes):
     tsdas = [{**t, **limits.get(e.name, {})} for e, t in
              ((e, tsda_of(scene, e, damping.get(e.name), upright)) for e in scene.elements
               if e.name not in folded) if t is not None]
-    fresh = generic_of(scene, mounted, tsdas, notes, upright)
+    fresh = _chrono_names(generic_of(scene, mounted, tsdas, notes, upright), names)
     if like:   # each of ours on its namesake: the original's fields, our kinematic ones
         fresh = {key: _merged(value, like.get(key), KINEMATIC.get(key, ()), notes)
                  if isinstance(value, list) else like.get(key, value)
                  for key, value in fresh.items()}
     data.update(fresh)
     data.setdefault('Axle', {'Inertia': 0.4})
+    return data
+
+
+def _chrono_names(data: dict, names: dict) -> dict:
+    """Give the bodies, links and springs of data back the Chrono names they were imported by."""
+    bodies, springs = names.get('constraints', {}), names.get('elements', {})
+
+    def body(name):
+        return bodies.get(name, name) if isinstance(name, str) else name
+
+    for key in ('Bodies', 'Joints', 'Distance Constraints', 'TSDAs'):
+        for item in data.get(key, []):
+            for end in ('Body1', 'Body2'):
+                if end in item:
+                    item[end] = body(item[end])
+            match = SPRING_NAME.match(item['Name'])
+            if key == 'TSDAs' and match:   # a bushing's spring: its body's name
+                item['Name'] = f'{body(match["body"])}{item["Name"][len(match["body"]):]}'
+            elif key == 'TSDAs':
+                item['Name'] = springs.get(item['Name'], item['Name'])
+            elif key != 'Joints':
+                item['Name'] = body(item['Name'])
+    data['Antiroll Body'] = body(data.get('Antiroll Body'))
     return data
 
 
@@ -278,10 +304,13 @@ def _merged(ours: list, theirs, keys: tuple, notes: list) -> list:
     A joint's "Bushing Data" is the scene's (bushing_merged); a bushing's spring is ours.
     """
     from .generic import same_axis
-    by_name = {o.get('Name'): o for o in theirs or [] if isinstance(o, dict)}
+    theirs = [o for o in theirs or [] if isinstance(o, dict)]
+    by_name = {o.get('Name'): o for o in theirs}
     out = []
     for item in ours:
         old = by_name.get(item['Name'])
+        if old is None and 'Type' in keys:   # a joint: the original's between the same bodies
+            old = _joint_between(item, theirs, out)
         if old is None or SPRING_NAME.match(item['Name']):
             out.append(item)
             continue
@@ -295,6 +324,20 @@ def _merged(ours: list, theirs, keys: tuple, notes: list) -> list:
             _bushing_merged(merged, item.get('Bushing Data'), item['Name'], notes)
         out.append(merged)
     return out
+
+
+def _joint_between(ours: dict, theirs: list, done: list) -> dict | None:
+    """Return the first of theirs of our joint's type between its two bodies, not yet used."""
+    used = {id(o) for o in done} | {o.get('Name') for o in done}
+    ends = {ours['Body1'], ours['Body2']}
+    for old in theirs:
+        try:
+            same = {body_name(old.get('Body1')), body_name(old.get('Body2'))} == ends
+        except ChronoError:
+            continue
+        if same and old.get('Type') == ours['Type'] and old.get('Name') not in used:
+            return old
+    return None
 
 
 def _put(obj: dict, key: str, value, scale: float = 1.0 / MM_PER_M) -> None:

@@ -16,6 +16,7 @@ from pathlib import Path
 import yaml
 
 from .importer import import_suspension
+from .names import KEEP
 from .needs import check_chrono
 from .reader import ChronoError, Fields, read_chrono
 from .templates import WHEEL_RADIUS_M
@@ -140,9 +141,12 @@ def export_file(scene_ref: str, like: str | None = None):
     raw = yaml.safe_load(resolve_scene_path(scene_ref).read_text(encoding='utf-8'))
     damping = {item.get('name'): item.get('x_damping') for item in raw.get('elements') or []
                if isinstance(item, dict) and isinstance(item.get('x_damping'), (int, float))}
+    names = {key: {item.get('name'): item[KEEP] for item in raw.get(key) or []
+                   if isinstance(item, dict) and isinstance(item.get(KEEP), str)}
+             for key in ('constraints', 'elements')}   # Chrono's names of an imported scene
     original = read_chrono(like) if like else None
     if original is not None:
         check_chrono(original, like)   # a suspension file Chrono reads, else refused
-    data, template, notes = export_scene(scene, original, like or '', damping)
+    data, template, notes = export_scene(scene, original, like or '', damping, names)
     check_chrono(data, like or scene_ref)   # what is written is a file Chrono reads
     return json_text(data), f'{scene.name}: {template}' + ''.join(f'; {n}' for n in notes)

@@ -19,6 +19,7 @@ from __future__ import annotations
 import numpy as np
 
 from .bushings import bushing_data, bushing_into, bushing_springs, fold_springs, places
+from .names import body_name, KEEP, named, Tokens
 from .parts import mount_of, tsda_elements
 from .reader import ChronoError, Fields
 from .templates import DESIGN_AXIS_M
@@ -31,36 +32,36 @@ BODY_DEFAULTS = {'Mass': 1.0, 'Moments of Inertia': [0.01, 0.01, 0.01],
 
 def import_generic(top: Fields, notes: list) -> tuple[list, list]:
     """Return (constraints, elements) of a GenericWheeledSuspension's object (m)."""
-    upright = _ident(top.sub('Spindle').raw('Attachment Body'))
+    upright = body_name(top.sub('Spindle').raw('Attachment Body'))
     joints = top.objects('Joints')
     constraints, carried, bushed = [], {}, {}
+    tokens, element_tokens = Tokens(), Tokens()
     for body in top.objects('Bodies'):
         name = body.text('Name')
         if name == upright:
             continue
         item, fixed, at = _body_item(top, name, joints, upright, notes)
-        constraints.append(item)
+        constraints.append(named(item, name, tokens))
         carried[name] = item
         if 'bushing' in item:
             bushed[name] = (item, fixed, at)
     for dist in top.objects('Distance Constraints'):
-        pair = [_ident(dist.raw('Body1')), _ident(dist.raw('Body2'))]
+        pair = [body_name(dist.raw('Body1')), body_name(dist.raw('Body2'))]
         if upright not in pair or not set(pair) - {upright} <= set(FIXED):
             raise ChronoError(top.where, f'"Distance Constraints" {dist.text("Name")!r}: '
                               f'between {pair}: only chassis (or steering) to upright is '
                               'imported')
         ends = (dist.vector('Point1'), dist.vector('Point2'))
         base, joint = ends if pair[1] == upright else ends[::-1]
-        item = {'name': dist.text('Name'), 'type': 'sphere', 'base': _list(base),
-                'carrier': _list(joint)}
+        item = {'name': '', 'type': 'sphere', 'base': _list(base), 'carrier': _list(joint)}
         if 'Steering' in pair:
             item['steer'] = 'rack'
-        constraints.append(item)
+        constraints.append(named(item, dist.text('Name'), tokens))
     elements = []
     tsdas = top.objects('TSDAs')
     folded = fold_springs(tsdas, bushed, notes)
     for tsda in (t for i, t in enumerate(tsdas) if i not in folded):
-        pair = [_ident(tsda.raw('Body1')), _ident(tsda.raw('Body2'))]
+        pair = [body_name(tsda.raw('Body1')), body_name(tsda.raw('Body2'))]
         points = (tsda.vector('Point1'), tsda.vector('Point2'))
         if pair[1] in FIXED:
             pair, points = pair[::-1], points[::-1]
@@ -70,9 +71,15 @@ def import_generic(top: Fields, notes: list) -> tuple[list, list]:
         on = '' if pair[1] == upright else pair[1]
         if on and on not in carried:
             raise ChronoError(top.where, f'"TSDAs" {tsda.text("Name")!r}: no body {on!r}')
-        mount = mount_of(carried.get(on), on, points[0], points[1], notes, tsda.text('Name'))
+        name = tsda.text('Name')
+        mount = mount_of(carried.get(on), carried[on]['name'] if on else '', points[0],
+                         points[1], notes, name)
         if mount is not None:
-            elements += tsda_elements(tsda, tsda.text('Name'), points[0], mount, notes)
+            ours = element_tokens(name)
+            made = tsda_elements(tsda, ours, points[0], mount, notes)
+            if made and made[0]['name'] == ours != name:
+                made[0][KEEP] = name   # the spring (or damper) itself, not its stops
+            elements += made
     return constraints, elements
 
 
@@ -86,7 +93,7 @@ def _body_item(top, name, joints, upright, notes):
     """
     fixed, upper, stray = [], [], []
     for joint in joints:
-        pair = [_ident(joint.raw('Body1')), _ident(joint.raw('Body2'))]
+        pair = [body_name(joint.raw('Body1')), body_name(joint.raw('Body2'))]
         if name not in pair:
             continue
         other = pair[1] if pair[0] == name else pair[0]
@@ -96,7 +103,7 @@ def _body_item(top, name, joints, upright, notes):
     if stray or len(upper) != 1 or upper[0].text('Type') != 'Spherical' \
             or not (len(fixed) == 1 or pivots):
         every = fixed + upper + stray
-        joined = sorted({_ident(j.raw(k)) for j in every for k in ('Body1', 'Body2')} - {name})
+        joined = sorted({body_name(j.raw(k)) for j in every for k in ('Body1', 'Body2')} - {name})
         types = ', '.join(j.text('Type') for j in every) or 'no joint'
         raise ChronoError(top.where, f'"Bodies" {name!r}: joined by {joined or "nothing"} '
                           f'({types}): a topology scenes do not have (a body held by one '
@@ -107,7 +114,7 @@ def _body_item(top, name, joints, upright, notes):
                      " a scene's ball joint at the wheel carrier is rigid")
     carrier = _list(upper[0].vector('Position'))
     joint = fixed[0]
-    steer = 'Steering' in {_ident(joint.raw('Body1')), _ident(joint.raw('Body2'))}
+    steer = 'Steering' in {body_name(joint.raw('Body1')), body_name(joint.raw('Body2'))}
     at = joint.vector('Position')
     if pivots:
         ends = [fixed[0].vector('Position'), fixed[1].vector('Position')]
@@ -140,8 +147,8 @@ def _pivot_pair(joints) -> bool:
     first, second = joints
     if not (first.has('Bushing Data') and second.has('Bushing Data')) \
             or first.raw('Bushing Data') != second.raw('Bushing Data') \
-            or _ident(first.raw('Body1')) != _ident(second.raw('Body1')) \
-            or _ident(first.raw('Body2')) != _ident(second.raw('Body2')):
+            or body_name(first.raw('Body1')) != body_name(second.raw('Body1')) \
+            or body_name(first.raw('Body2')) != body_name(second.raw('Body2')):
         return False
     line = second.vector('Position') - first.vector('Position')
     if not np.linalg.norm(line) > 0:
@@ -216,15 +223,6 @@ def same_axis(old, new) -> bool:
         return abs(float(rotation(old)[:, 2] @ rotation(new)[:, 2])) > 1.0 - 1e-9
     except (TypeError, ValueError):
         return False
-
-
-def _ident(value) -> str:
-    """Return the body name of a Chrono body identifier ("Name" or ["Name", "Left"])."""
-    if isinstance(value, list) and value and isinstance(value[0], str):
-        return value[0]
-    if isinstance(value, str):
-        return value
-    raise ChronoError('body identifier', f'expected a name or [name, side], got {value!r}')
 
 
 def _list(v) -> list:

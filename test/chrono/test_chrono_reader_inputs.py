@@ -15,12 +15,14 @@ import json
 import math
 import os
 from pathlib import Path
+import re
 import shutil
 import subprocess
 import sys
 
 from hypothesis import given, HealthCheck, settings, strategies as st
 from linkage_ros.chrono.files import data_file, export_file, import_file
+from linkage_ros.chrono.names import token
 from linkage_ros.chrono.reader import ChronoError, MAX_DEPTH, parse_chrono
 from linkage_ros.core.base import LinkageError
 from linkage_ros.core.model.bundled import config_dir
@@ -30,6 +32,7 @@ import yaml
 CHRONO = config_dir() / 'chrono'
 PROGRAM = Path(sys.executable).parent / 'linkage-chrono'
 GOOD = CHRONO / 'generic/suspension/DoubleWishbone.json'
+TOKEN = re.compile(r'^[A-Za-z][A-Za-z0-9_]*$')   # a ROS name token (rcl's rule), no '__'
 FUZZ = settings(deadline=None, database=None, max_examples=200,
                 suppress_health_check=[HealthCheck.too_slow])
 
@@ -192,7 +195,7 @@ def test_any_name_in_a_file_reads_back_whole_from_the_scene(name, body, tmp_path
     upright = data['Spindle']['Attachment Body']
     arm = next(b['Name'] for b in data['Bodies'] if b['Name'] != upright)
     if body not in {b['Name'] for b in data['Bodies']} | {'Chassis', 'Steering', 'Subchassis'}:
-        data = _renamed(data, arm, body)
+        data, arm = _renamed(data, arm, body), body
     folder = tmp_path_factory.mktemp('names')
     source, out = folder / 'n.json', folder / 'n.yaml'
     source.write_text(json.dumps(data), encoding='utf-8')
@@ -203,6 +206,32 @@ def test_any_name_in_a_file_reads_back_whole_from_the_scene(name, body, tmp_path
         return
     scene = yaml.safe_load(texts[str(out)])
     assert scene['description'] == f'Chrono::Vehicle GenericWheeledSuspension: {name}'
+    for item in scene['constraints'] + scene.get('elements', []):   # ROS name tokens
+        assert TOKEN.match(item['name']) and '__' not in item['name'], item['name']
+    ours = [c for c in scene['constraints'] if c.get('x_chrono_name', c['name']) == arm]
+    assert [c['name'] for c in ours] == [token(arm)]   # the Chrono name kept beside its token
+
+
+@pytest.mark.parametrize('chrono, ours', [
+    ('lower-arm', 'lower_arm'), ('unterer_Querlenker_ü', 'unterer_Querlenker'),
+    ('9arm', 'x_9arm'), ('a__b', 'a_b'), ('ü', 'x'), ('Upper Arm', 'Upper_Arm'),
+    ('x' * 100, 'x' * 64)])
+def test_chrono_names_become_ros_name_tokens_and_go_back_out(chrono, ours, tmp_path):
+    from linkage_ros.chrono.reader import read_chrono
+    replica = CHRONO / 'hmmwv/suspension/HMMWV_DoubleWishboneFront_replica.json'
+    data = read_chrono(replica)
+    upright = data['Spindle']['Attachment Body']
+    arm = next(b['Name'] for b in data['Bodies'] if b['Name'] != upright)
+    data = _renamed(data, arm, chrono)
+    source, out = tmp_path / 'n.json', tmp_path / 'n.yaml'
+    source.write_text(json.dumps(data))
+    texts, _ = import_file(str(source), str(out))
+    out.write_text(texts[str(out)])
+    scene = yaml.safe_load(texts[str(out)])
+    item = next(c for c in scene['constraints'] if c.get('x_chrono_name') == chrono)
+    assert item['name'] == ours
+    again = json.loads(export_file(str(out), str(source))[0])
+    assert again == data   # --like finds every body by its Chrono name: the file comes back
 
 
 @pytest.mark.parametrize('depth', [MAX_DEPTH, MAX_DEPTH + 1, 10000, 10 ** 6])
