@@ -47,11 +47,24 @@ def _flow(value) -> str:
     if isinstance(value, bool) or value is None:
         return yaml.safe_dump(value).split('\n')[0]
     if isinstance(value, (int, float)):
-        return repr(float(value))
+        return _number(float(value))
     text = str(value)
     if PLAIN.match(text) and yaml.safe_load(text) == text:   # not true, null, ...
         return text
     return _quoted(text)
+
+
+def _number(value: float) -> str:
+    """
+    Return a finite float as YAML reads it back, the very same number: Python's repr.
+
+    YAML 1.1 (PyYAML) reads 1e+20 as a string: its floats need a point, so 1.0e+20.
+    """
+    text = repr(value)
+    if 'e' in text and '.' not in text:
+        mantissa, exponent = text.split('e')
+        text = f'{mantissa}.0e{exponent}'
+    return text
 
 
 def _quoted(text: str) -> str:

@@ -357,3 +357,16 @@ def test_every_export_of_a_bundled_scene_is_a_file_chrono_reads():
     from linkage_ros.core.model.bundled import bundled_scenes
     for name in sorted(bundled_scenes()):
         check_chrono(json.loads(export_file(name)[0]), name)
+
+
+@FUZZ
+@given(st.floats(allow_nan=False, allow_infinity=False)
+       | st.sampled_from([1e20, -1e308, 5e-324, 1e16, 1.7976931348623157e308, -0.0]))
+def test_every_finite_number_the_import_writes_reads_back_the_same(value):
+    from linkage_ros.chrono.writer import scene_text
+    text = scene_text({'name': 'x', 'wheel_radius': value, 'carrier': {'wheel_center': [value]}},
+                      [])
+    back = yaml.safe_load(text)   # before: 1e+20 came back as the string '1e+20'
+    assert back['wheel_radius'] == value and isinstance(back['wheel_radius'], float)
+    assert back['carrier']['wheel_center'] == [value]
+    assert math.copysign(1.0, back['wheel_radius']) == math.copysign(1.0, value)
