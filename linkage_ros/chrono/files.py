@@ -37,6 +37,16 @@ def import_file(source: str, output: str, wheel_radius: float | None = None):
                             f' -> {output}' + ''.join(f'; {n}' for n in imported.notes))
 
 
+def inputs_of(source: str) -> list[str]:
+    """Return the files an import of source reads: it and, for a vehicle, its suspensions."""
+    data = read_chrono(source)
+    if data.get('Type') != 'Vehicle':
+        return [source]
+    top = Fields(source, data)
+    return [source] + [str(data_file(source, axle.text('Suspension Input File')))
+                       for axle in top.objects('Axles')]
+
+
 def scene_of(data: dict, source: str, output: str, wheel_radius: float | None = None,
              name: str = '', steered: bool = True):
     """Return (scene text, Imported) of a suspension file's object, loaded and solved."""
