@@ -90,7 +90,9 @@ def parse_chrono(text: str, where: str = '<json>') -> dict:
         return value
 
     def integer(token):   # RapidJSON keeps 64 bits, else a double (and never int(4301 digits))
-        return int(token) if len(token.lstrip('-')) <= 19 else number(token, float(token))
+        if len(token.lstrip('-')) <= 20 and -2 ** 63 <= int(token) <= 2 ** 64 - 1:
+            return int(token)
+        return number(token, float(token))
 
     try:
         data = json.loads(plain, parse_constant=refuse, parse_int=integer,

@@ -132,13 +132,14 @@ def test_a_number_of_any_magnitude_and_length_is_read_as_rapidjson_or_refused(to
     ('1e308', False), ('1e309', True), ('0e999', True), ('0.000e309', False),
     ('1.7976931348623157e308', False), ('1.8e308', True), ('-' + '9' * 400, True),
     ('1e-400', False), ('18446744073709551615', False), ('0.01e309', False),
+    ('18446744073709551616', False), ('-9223372036854775809', False),
 ])
 def test_numbers_at_rapidjsons_edges(token, refused):
     if refused:
         with pytest.raises(ChronoError, match='beyond the range of a double'):
             parse_chrono(f'{{"a": {token}}}')
-    else:
-        assert parse_chrono(f'{{"a": {token}}}')['a'] == float(token)
+    else:   # Chrono reads every number with GetDouble
+        assert float(parse_chrono(f'{{"a": {token}}}')['a']) == float(token)
 
 
 # --- keys ----------------------------------------------------------------------------------
@@ -370,3 +371,34 @@ def test_every_finite_number_the_import_writes_reads_back_the_same(value):
     assert back['wheel_radius'] == value and isinstance(back['wheel_radius'], float)
     assert back['carrier']['wheel_center'] == [value]
     assert math.copysign(1.0, back['wheel_radius']) == math.copysign(1.0, value)
+
+
+json_values = st.recursive(
+    st.none() | st.booleans() | st.integers(-2 ** 63, 2 ** 64 - 1) | st.just(2 ** 64 - 1)
+    | st.floats(allow_nan=False, allow_infinity=False) | st.text(max_size=8),
+    lambda inner: (st.lists(inner, max_size=3)
+                   | st.dictionaries(st.text(max_size=4), inner, max_size=3)),
+    max_leaves=60)
+
+
+def _depth(value) -> int:
+    if isinstance(value, dict):
+        return 1 + max((_depth(v) for v in value.values()), default=0)
+    if isinstance(value, list):
+        return 1 + max((_depth(v) for v in value), default=0)
+    return 0
+
+
+@FUZZ
+@given(json_values, st.integers(0, 40))
+def test_any_nesting_reads_back_the_same_or_is_refused_past_the_limit(value, wrap):
+    for _ in range(wrap):
+        value = [value]
+    text = '{"a": ' + json.dumps(value) + '} // a comment\n'
+    depth = 1 + _depth(value)
+    try:
+        data = parse_chrono(text)
+    except ChronoError as exc:
+        assert depth > MAX_DEPTH and 'nested deeper' in str(exc)
+        return
+    assert depth <= MAX_DEPTH and data == {'a': value}
