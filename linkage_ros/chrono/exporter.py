@@ -137,14 +137,14 @@ def _named(scene, data, template, parts, fresh, notes):
             continue
         if e is None:   # Chrono needs one: a spring or damper that holds nothing
             _idle(data[tsda.key], tsda, parts, scene,
-                  strut=any(part.key == tsda.key for part in spec.parts))
+                  keep_points=any(part.key == tsda.key for part in spec.parts))
             notes.append(f'"{tsda.key}": the scene has none: one that holds nothing is written '
                          '(Chrono needs it; it imports as an element that holds nothing)')
             continue
         _put(data[tsda.key], 'Location Chassis', e.body)
         _put(data[tsda.key], tsda.point, e.mount.point)
         if fresh and e.type == 'spring' and not e.has_rate:   # a length only: no force
-            _idle(data[tsda.key], tsda, parts, scene, strut=True)
+            _idle(data[tsda.key], tsda, parts, scene, keep_points=True)
         elif fresh and e.type == 'spring':
             for key in ('Spring Coefficient', 'Spring Curve Data', 'Minimum Length',
                         'Maximum Length'):   # the template file's, of another spring
@@ -154,7 +154,7 @@ def _named(scene, data, template, parts, fresh, notes):
 
 
 def _arm_bushing(obj: dict, c, notes: list) -> None:
-    """Write an arm's bushing into its named template object (see bushing_merged)."""
+    """Write an arm's bushing into its named template object (see _bushing_merged)."""
     _bushing_merged(obj, bushing_data(c) if c.bushing is not None else None, c.name, notes)
 
 
@@ -192,16 +192,17 @@ def _kept(old, new: float) -> float:
     return old if same else new
 
 
-def _idle(obj: dict, tsda, parts, scene, strut: bool) -> None:
+def _idle(obj: dict, tsda, parts, scene, keep_points: bool) -> None:
     """
     Make a template's spring or shock one that holds nothing: rate or damping 0, no preload.
 
-    Its points are the scene's: a strut's own (MacPhersonStrut's "Spring"), else its moving
-    point on its part (or the wheel centre) and IDLE_M straight above it on the chassis.
+    keep_points: its points are written already (a strut's own, MacPhersonStrut's "Spring",
+    or an element's); else its moving point on its part (or the wheel centre) and IDLE_M
+    straight above it on the chassis.
     """
     for key in FORCE_KEYS:
         obj.pop(key, None)
-    if not strut:
+    if not keep_points:
         end = parts[tsda.on].carrier if tsda.on else scene.wheel_center
         point = [float(v) / MM_PER_M for v in end]
         obj.update({'Location Chassis': point[:2] + [point[2] + IDLE_M], tsda.point: point})
