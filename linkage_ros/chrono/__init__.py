@@ -10,10 +10,10 @@ object; writer: the texts; files: whole files in and out, checked (linkage-chron
 """
 
 from .exporter import export_scene
-from .files import export_file, import_file
+from .files import export_file, import_file, inputs_of
 from .importer import import_suspension, Imported
 from .reader import ChronoError, parse_chrono, read_chrono
 from .writer import json_text, scene_text
 
 __all__ = ['ChronoError', 'export_file', 'export_scene', 'import_file', 'import_suspension',
-           'Imported', 'json_text', 'parse_chrono', 'read_chrono', 'scene_text']
+           'Imported', 'inputs_of', 'json_text', 'parse_chrono', 'read_chrono', 'scene_text']

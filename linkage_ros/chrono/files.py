@@ -10,11 +10,14 @@ Every text is made and checked whole before anything is written: the scene must 
 
 from __future__ import annotations
 
+import os
 from pathlib import Path
 
 import yaml
 
 from .importer import import_suspension
+from .names import KEEP
+from .needs import check_chrono
 from .reader import ChronoError, Fields, read_chrono
 from .templates import WHEEL_RADIUS_M
 from .writer import json_text, scene_text
@@ -32,6 +35,16 @@ def import_file(source: str, output: str, wheel_radius: float | None = None):
     return {output: text}, (f'{imported.template} {source}: {len(imported.scene["constraints"])}'
                             f' constraints, {len(imported.scene.get("elements", []))} elements'
                             f' -> {output}' + ''.join(f'; {n}' for n in imported.notes))
+
+
+def inputs_of(source: str) -> list[str]:
+    """Return the files an import of source reads: it and, for a vehicle, its suspensions."""
+    data = read_chrono(source)
+    if data.get('Type') != 'Vehicle':
+        return [source]
+    top = Fields(source, data)
+    return [source] + [str(data_file(source, axle.text('Suspension Input File')))
+                       for axle in top.objects('Axles')]
 
 
 def scene_of(data: dict, source: str, output: str, wheel_radius: float | None = None,
@@ -70,7 +83,7 @@ def import_vehicle(data: dict, source: str, output: str, wheel_radius: float | N
     texts, corners, xs = {}, {}, []
     names = ('front', 'rear') if len(top.objects('Axles')) == 2 else None
     for i, axle in enumerate(top.objects('Axles')):
-        sub = _data_file(source, axle.text('Suspension Input File'))
+        sub = data_file(source, axle.text('Suspension Input File'))
         where = axle.vector('Suspension Location')
         name = names[i] if names else f'axle{i}'
         path = out.with_name(f'{out.stem}_{name}.yaml')
@@ -94,14 +107,39 @@ def import_vehicle(data: dict, source: str, output: str, wheel_radius: float | N
     return texts, f'vehicle {source}: {len(corners)} corners -> {output}'
 
 
-def _data_file(vehicle: str, relative: str) -> Path:
-    """Find a file a vehicle names relative to Chrono's data folder, walking up from it."""
-    for folder in Path(vehicle).resolve().parents:
-        candidate = folder / relative
-        if candidate.is_file():
+def data_file(vehicle: str, name: str) -> Path:
+    """
+    Find a file a vehicle names as Chrono does: under its data folder (vehicle::GetDataFile).
+
+    Chrono reads "hmmwv/suspension/X.json" as <data>/vehicle/hmmwv/suspension/X.json; here
+    <data>/vehicle is the nearest of the DATA_LEVELS folders above the vehicle file that holds
+    the name (Chrono's layout <data>/vehicle/hmmwv/vehicle/V.json: the third). A name
+    that is empty, absolute, has a NUL, or climbs out of that folder ("../../etc/passwd", or
+    a symbolic link that leads out) is refused, never opened.
+    """
+    what = f'"Suspension Input File" {name[:80]!r}'
+    if not name or '\0' in name or name.startswith(('/', '\\')) or Path(name).is_absolute():
+        raise ChronoError(vehicle, f"{what}: expected a name relative to Chrono's data folder "
+                          '(vehicle::GetDataFile), e.g. "hmmwv/suspension/X.json"')
+    if os.path.normpath(name).split(os.sep)[0] == '..':
+        raise ChronoError(vehicle, f"{what}: leaves Chrono's data folder: refused")
+    for folder in Path(vehicle).resolve().parents[:DATA_LEVELS]:
+        candidate = folder / name
+        try:
+            found = candidate.is_file()
+            inside = candidate.resolve().is_relative_to(folder)
+        except (OSError, RuntimeError):   # a name too long, a loop of links
+            continue
+        if found and not inside:
+            raise ChronoError(vehicle, f"{what}: leads out of Chrono's data folder {folder} "
+                              '(a symbolic link): refused')
+        if found:
             return candidate
-    raise ChronoError(vehicle, f'"Suspension Input File": {relative!r} not found in any folder '
-                      'above the vehicle file (Chrono reads it from its data/vehicle folder)')
+    raise ChronoError(vehicle, f'{what}: not found in the {DATA_LEVELS} folders above the '
+                      'vehicle file (Chrono reads it from its data/vehicle folder)')
+
+
+DATA_LEVELS = 4   # folders above a vehicle file where its data folder may be
 
 
 def export_file(scene_ref: str, like: str | None = None):
@@ -113,6 +151,12 @@ def export_file(scene_ref: str, like: str | None = None):
     raw = yaml.safe_load(resolve_scene_path(scene_ref).read_text(encoding='utf-8'))
     damping = {item.get('name'): item.get('x_damping') for item in raw.get('elements') or []
                if isinstance(item, dict) and isinstance(item.get('x_damping'), (int, float))}
+    names = {key: {item.get('name'): item[KEEP] for item in raw.get(key) or []
+                   if isinstance(item, dict) and isinstance(item.get(KEEP), str)}
+             for key in ('constraints', 'elements')}   # Chrono's names of an imported scene
     original = read_chrono(like) if like else None
-    data, template, notes = export_scene(scene, original, like or '', damping)
+    if original is not None:
+        check_chrono(original, like)   # a suspension file Chrono reads, else refused
+    data, template, notes = export_scene(scene, original, like or '', damping, names)
+    check_chrono(data, like or scene_ref)   # what is written is a file Chrono reads
     return json_text(data), f'{scene.name}: {template}' + ''.join(f'; {n}' for n in notes)

@@ -18,9 +18,12 @@ from __future__ import annotations
 
 import numpy as np
 
-from .parts import bushing_data, bushing_into, mount_of, tsda_elements
+from .bushings import bushing_data, bushing_into, bushing_springs, fold_springs, places
+from .names import body_name, KEEP, named, Tokens
+from .parts import mount_of, tsda_elements
 from .reader import ChronoError, Fields
 from .templates import DESIGN_AXIS_M
+from ..core.base import MM_PER_M
 
 FIXED = ('Chassis', 'Steering')
 BODY_DEFAULTS = {'Mass': 1.0, 'Moments of Inertia': [0.01, 0.01, 0.01],
@@ -29,58 +32,36 @@ BODY_DEFAULTS = {'Mass': 1.0, 'Moments of Inertia': [0.01, 0.01, 0.01],
 
 def import_generic(top: Fields, notes: list) -> tuple[list, list]:
     """Return (constraints, elements) of a GenericWheeledSuspension's object (m)."""
-    upright = _ident(top.sub('Spindle').raw('Attachment Body'))
+    upright = body_name(top.sub('Spindle').raw('Attachment Body'))
     joints = top.objects('Joints')
-    constraints, carried = [], {}
+    constraints, carried, bushed = [], {}, {}
+    tokens, element_tokens = Tokens(), Tokens()
     for body in top.objects('Bodies'):
         name = body.text('Name')
         if name == upright:
             continue
-        ends = {}
-        for joint in joints:
-            pair = {_ident(joint.raw('Body1')), _ident(joint.raw('Body2'))}
-            if name in pair:
-                other = (pair - {name}).pop() if len(pair) == 2 else name
-                ends['chassis' if other in FIXED else other] = joint
-        to_chassis, to_upright = ends.get('chassis'), ends.get(upright)
-        if to_chassis is None or to_upright is None or len(ends) != 2 \
-                or to_upright.text('Type') != 'Spherical':
-            raise ChronoError(top.where, f'"Bodies" {name!r}: joined by '
-                              f'{sorted(ends) or "nothing"}: a topology scenes do not have '
-                              '(a body between the chassis and the upright is needed)')
-        kind = to_chassis.text('Type')
-        carrier = _list(to_upright.vector('Position'))
-        at = to_chassis.vector('Position')
-        if kind == 'Revolute':
-            axis = rotation(to_chassis.vector('Rotation', 4))[:, 2]
-            item = {'name': name, 'type': 'circle',
-                    'axis': [_list(at + DESIGN_AXIS_M * axis), _list(at - DESIGN_AXIS_M * axis)],
-                    'carrier': carrier}
-        elif kind in ('Universal', 'Spherical'):
-            item = {'name': name, 'type': 'sphere', 'base': _list(at), 'carrier': carrier}
-        else:
-            raise ChronoError(top.where, f'"Joints" {to_chassis.text("Name")!r}: a {kind} '
-                              'joint to the chassis is not imported (Revolute, Universal or '
-                              'Spherical are)')
-        bushing_into(item, to_chassis, notes, name)
-        constraints.append(item)
+        item, fixed, at = _body_item(top, name, joints, upright, notes)
+        constraints.append(named(item, name, tokens))
         carried[name] = item
+        if 'bushing' in item:
+            bushed[name] = (item, fixed, at)
     for dist in top.objects('Distance Constraints'):
-        pair = [_ident(dist.raw('Body1')), _ident(dist.raw('Body2'))]
+        pair = [body_name(dist.raw('Body1')), body_name(dist.raw('Body2'))]
         if upright not in pair or not set(pair) - {upright} <= set(FIXED):
             raise ChronoError(top.where, f'"Distance Constraints" {dist.text("Name")!r}: '
                               f'between {pair}: only chassis (or steering) to upright is '
                               'imported')
         ends = (dist.vector('Point1'), dist.vector('Point2'))
         base, joint = ends if pair[1] == upright else ends[::-1]
-        item = {'name': dist.text('Name'), 'type': 'sphere', 'base': _list(base),
-                'carrier': _list(joint)}
+        item = {'name': '', 'type': 'sphere', 'base': _list(base), 'carrier': _list(joint)}
         if 'Steering' in pair:
             item['steer'] = 'rack'
-        constraints.append(item)
+        constraints.append(named(item, dist.text('Name'), tokens))
     elements = []
-    for tsda in top.objects('TSDAs'):
-        pair = [_ident(tsda.raw('Body1')), _ident(tsda.raw('Body2'))]
+    tsdas = top.objects('TSDAs')
+    folded = fold_springs(tsdas, bushed, notes)
+    for tsda in (t for i, t in enumerate(tsdas) if i not in folded):
+        pair = [body_name(tsda.raw('Body1')), body_name(tsda.raw('Body2'))]
         points = (tsda.vector('Point1'), tsda.vector('Point2'))
         if pair[1] in FIXED:
             pair, points = pair[::-1], points[::-1]
@@ -90,10 +71,90 @@ def import_generic(top: Fields, notes: list) -> tuple[list, list]:
         on = '' if pair[1] == upright else pair[1]
         if on and on not in carried:
             raise ChronoError(top.where, f'"TSDAs" {tsda.text("Name")!r}: no body {on!r}')
-        mount = mount_of(carried.get(on), on, points[0], points[1], notes, tsda.text('Name'))
+        name = tsda.text('Name')
+        mount = mount_of(carried.get(on), carried[on]['name'] if on else '', points[0],
+                         points[1], notes, name)
         if mount is not None:
-            elements += tsda_elements(tsda, tsda.text('Name'), points[0], mount, notes)
+            ours = element_tokens(name)
+            made = tsda_elements(tsda, ours, points[0], mount, notes)
+            if made and made[0]['name'] == ours != name:
+                made[0][KEEP] = name   # the spring (or damper) itself, not its stops
+            elements += made
     return constraints, elements
+
+
+def _body_item(top, name, joints, upright, notes):
+    """
+    Return (scene item, fixed body, {place: point m}) of a body between chassis and upright.
+
+    A link: a Universal or Spherical joint to the chassis (or "Steering": steer: rack) and a
+    Spherical one to the upright. An arm: a Revolute joint to the chassis, or two coaxial
+    Revolute joints with the same "Bushing Data" (a bushing at each pivot, at: pivots).
+    """
+    fixed, upper, stray = [], [], []
+    for joint in joints:
+        pair = [body_name(joint.raw('Body1')), body_name(joint.raw('Body2'))]
+        if name not in pair:
+            continue
+        other = pair[1] if pair[0] == name else pair[0]
+        (fixed if other in FIXED else upper if other == upright else stray).append(joint)
+    kinds = [j.text('Type') for j in fixed]
+    pivots = kinds == ['Revolute', 'Revolute'] and _pivot_pair(fixed)
+    if stray or len(upper) != 1 or upper[0].text('Type') != 'Spherical' \
+            or not (len(fixed) == 1 or pivots):
+        every = fixed + upper + stray
+        joined = sorted({body_name(j.raw(k)) for j in every for k in ('Body1', 'Body2')} - {name})
+        types = ', '.join(j.text('Type') for j in every) or 'no joint'
+        raise ChronoError(top.where, f'"Bodies" {name!r}: joined by {joined or "nothing"} '
+                          f'({types}): a topology scenes do not have (a body held by one '
+                          'joint to the chassis, or two coaxial bushed revolutes, and a '
+                          'spherical joint to the upright is needed)')
+    if upper[0].has('Bushing Data'):
+        notes.append(f'{name}: the "Bushing Data" of its joint to the upright is not imported:'
+                     " a scene's ball joint at the wheel carrier is rigid")
+    carrier = _list(upper[0].vector('Position'))
+    joint = fixed[0]
+    steer = 'Steering' in {body_name(joint.raw('Body1')), body_name(joint.raw('Body2'))}
+    at = joint.vector('Position')
+    if pivots:
+        ends = [fixed[0].vector('Position'), fixed[1].vector('Position')]
+        item = {'name': name, 'type': 'circle', 'axis': [_list(e) for e in ends],
+                'carrier': carrier}
+        places = {'axis0': ends[0], 'axis1': ends[1]}
+    elif kinds[0] == 'Revolute':
+        axis = rotation(joint.vector('Rotation', 4))[:, 2]
+        item = {'name': name, 'type': 'circle',
+                'axis': [_list(at + DESIGN_AXIS_M * axis), _list(at - DESIGN_AXIS_M * axis)],
+                'carrier': carrier}
+        places = {'centre': at}
+    elif kinds[0] in ('Universal', 'Spherical'):
+        item = {'name': name, 'type': 'sphere', 'base': _list(at), 'carrier': carrier}
+        places = {'base': at}
+    else:
+        raise ChronoError(top.where, f'"Joints" {joint.text("Name")!r}: a {kinds[0]} '
+                          'joint to the chassis is not imported (Revolute, Universal or '
+                          'Spherical are)')
+    if steer and item['type'] == 'sphere':
+        item['steer'] = 'rack'
+    bushing_into(item, joint, notes, name)
+    if pivots and 'bushing' in item:
+        item['bushing']['at'] = 'pivots'
+    return item, 'Steering' if steer else 'Chassis', places
+
+
+def _pivot_pair(joints) -> bool:
+    """Whether two revolute joints are one arm's two bushed pivots (the same data, coaxial)."""
+    first, second = joints
+    if not (first.has('Bushing Data') and second.has('Bushing Data')) \
+            or first.raw('Bushing Data') != second.raw('Bushing Data') \
+            or body_name(first.raw('Body1')) != body_name(second.raw('Body1')) \
+            or body_name(first.raw('Body2')) != body_name(second.raw('Body2')):
+        return False
+    line = second.vector('Position') - first.vector('Position')
+    if not np.linalg.norm(line) > 0:
+        return False
+    line = line / np.linalg.norm(line)
+    return all(abs(rotation(j.vector('Rotation', 4))[:, 2] @ line) > 1.0 - 1e-9 for j in joints)
 
 
 def rotation(q) -> np.ndarray:
@@ -119,34 +180,40 @@ def generic_of(scene, mounted: set, elements: list, notes: list,
     m = 1e-3
     bodies = [{'Name': upright, 'Mirrored': True, 'Position': _list(scene.wheel_center * m),
                'Rotation': [1.0, 0.0, 0.0, 0.0], **BODY_DEFAULTS}]
-    joints, dists = [], []
+    joints, dists, springs = [], [], []
     for c in scene.constraints:
         base, joint = c.base * m, c.carrier * m
         if c.type == 'line':
             raise ChronoError(scene.source, f'{c.name}: a strut (line) goes out only in the '
                               'MacPhersonStrut template, with one arm and one tie rod')
         fixed = 'Steering' if c.steer == 'rack' else 'Chassis'
-        if c.type == 'sphere' and c.name not in mounted:
+        if c.type == 'sphere' and c.name not in mounted and c.bushing is None:
             dists.append({'Name': c.name, 'Mirrored': True, 'Body1': fixed, 'Body2': upright,
                           'Point1': _list(base[0]), 'Point2': _list(joint)})
             continue
         if c.type == 'circle':
-            at, axis, kind = (base[0] + base[1]) / 2, base[1] - base[0], 'Revolute'
-        else:
-            at, axis, kind = base[0], joint - base[0], 'Universal'
-        bodies.append({'Name': c.name, 'Mirrored': True, 'Position': _list((at + joint) / 2),
+            axis, kind = base[1] - base[0], 'Revolute'
+        else:   # a body: an element is mounted on it, or it has a bushing
+            axis, kind = joint - base[0], 'Universal'
+        at = places(c)
+        middle = sum(p for _, p in at) / len(at) * m
+        bodies.append({'Name': c.name, 'Mirrored': True, 'Position': _list((middle + joint) / 2),
                        'Rotation': [1.0, 0.0, 0.0, 0.0], **BODY_DEFAULTS})
-        joints.append({'Name': f'{kind}{c.name}', 'Type': kind, 'Mirrored': True,
-                       'Body1': fixed, 'Body2': c.name, 'Position': _list(at),
-                       'Rotation': quaternion_z(axis)})
-        if c.bushing is not None and c.type == 'circle':
-            joints[-1]['Bushing Data'] = bushing_data(c.bushing, notes, c.name)
+        for place, point in at:
+            joints.append({'Name': f'{kind}{c.name}' + (f'_{place}' if len(at) > 1 else ''),
+                           'Type': kind, 'Mirrored': True, 'Body1': fixed, 'Body2': c.name,
+                           'Position': [float(v) / MM_PER_M for v in point],
+                           'Rotation': quaternion_z(axis)})
+            if c.bushing is not None:
+                joints[-1]['Bushing Data'] = bushing_data(c)
+        if c.bushing is not None:
+            springs += bushing_springs(c, fixed)
         joints.append({'Name': f'Spherical{c.name}', 'Type': 'Spherical', 'Mirrored': True,
                        'Body1': c.name, 'Body2': upright, 'Position': _list(joint),
                        'Rotation': [1.0, 0.0, 0.0, 0.0]})
     arms = [b['Name'] for b in bodies[1:]]
     return {'Independent': True, 'Steerable': scene.steered, 'Bodies': bodies,
-            'Joints': joints, 'Distance Constraints': dists, 'TSDAs': elements,
+            'Joints': joints, 'Distance Constraints': dists, 'TSDAs': elements + springs,
             'Antiroll Body': arms[0] if arms else upright}
 
 
@@ -156,15 +223,6 @@ def same_axis(old, new) -> bool:
         return abs(float(rotation(old)[:, 2] @ rotation(new)[:, 2])) > 1.0 - 1e-9
     except (TypeError, ValueError):
         return False
-
-
-def _ident(value) -> str:
-    """Return the body name of a Chrono body identifier ("Name" or ["Name", "Left"])."""
-    if isinstance(value, list) and value and isinstance(value[0], str):
-        return value[0]
-    if isinstance(value, str):
-        return value
-    raise ChronoError('body identifier', f'expected a name or [name, side], got {value!r}')
 
 
 def _list(v) -> list:

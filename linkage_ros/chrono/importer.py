@@ -16,7 +16,8 @@ from __future__ import annotations
 import math
 from typing import NamedTuple
 
-from .parts import bushing_into, mount_of, tsda_elements
+from .bushings import bushing_into
+from .parts import mount_of, tsda_elements
 from .reader import ChronoError, Fields
 from .templates import (DESIGN_AXIS_M, GENERIC, KINGPIN, REFUSED, supported, TEMPLATES,
                         TRAVEL_M, WHEEL_RADIUS_M)
@@ -99,7 +100,13 @@ def _named(top, template, notes):
                     'carrier': _list(obj.vector('Location Upright'))}
             if part.steer:
                 item['steer'] = 'rack'
-        bushing_into(item, obj, notes, part.name)
+        if part.kind == 'arm':
+            bushing_into(item, obj, notes, part.name)
+        elif obj.has('Bushing Data'):
+            notes.append(f'{part.name}: its "Bushing Data" is not imported: ' + (
+                "Chrono bushes the link body at both ends, a scene's link has one bushing at "
+                'its base; the link is rigid here' if obj.has('Mass') else
+                'Chrono uses it only for a link body with a "Mass" (here a distance)'))
         constraints.append(item)
         carried[part.name] = item
     elements = []

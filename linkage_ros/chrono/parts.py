@@ -7,13 +7,11 @@ The parts of a Chrono file that every template shares: springs, shocks, bushings
 A TSDA (spring, shock or both) becomes scene elements: a "Spring Coefficient" a rate, a
 "Spring Curve Data" a force_table (Chrono's sign turned: deflection L0 - L, force +
 compressed), Chrono's length stops ("Minimum Length", "Maximum Length") bump and rebound
-stops, a damping coefficient or curve kept as x_damping or x_damping_curve. "Bushing Data"
-becomes a constraint's bushing (STATICS_SPEC: at: centre). m, N, N/m, N s/m.
+stops, a damping coefficient or curve kept as x_damping or x_damping_curve (bushings.py
+has "Bushing Data"). m, N, N/m, N s/m.
 """
 
 from __future__ import annotations
-
-import math
 
 import numpy as np
 
@@ -66,7 +64,10 @@ def tsda_elements(obj: Fields, name: str, body, mount: dict, notes: list) -> lis
         free = obj.number('Free Length')
         preload = obj.number('Preload', 0.0)
         item = {'name': f'{name}Spring' if damper else name, 'type': 'spring', **ends}
-        if not obj.has('Spring Curve Data'):   # Chrono: a curve wins over a coefficient
+        if _idle(obj):   # a length only (the export writes a spring without a rate so)
+            notes.append(f'{name}: "Spring Coefficient" 0 and no preload: a spring without a '
+                         'rate (its length only)')
+        elif not obj.has('Spring Curve Data'):   # Chrono: a curve wins over a coefficient
             rate = obj.number('Spring Coefficient')
             # Chrono's force P + k (L0 - L), compression +: the free length L0 + P / k
             item.update(rate=rate, free_length=free + (preload / rate if rate else 0.0))
@@ -98,51 +99,10 @@ def tsda_elements(obj: Fields, name: str, body, mount: dict, notes: list) -> lis
     return out
 
 
-def bushing_into(item: dict, obj: Fields, notes: list, name: str) -> None:
-    """
-    Give item a bushing from its object's "Bushing Data" (the statics issue's mapping).
-
-    K_lin (N/m) -> axial and radial; K_rot and K_rot_dof (N m/rad) -> conical and torsion,
-    N m/deg; at: centre (Chrono puts one bushing at the arm's mid-axis). A link takes axial
-    and radial only (model/bushing.py). No linear stiffness: the joint stays rigid (a note).
-    """
-    if not obj.has('Bushing Data'):
-        return
-    data = obj.sub('Bushing Data')
-    linear = data.number('Stiffness Linear')
-    rotational = data.number('Stiffness Rotational')
-    dof = obj.sub('Bushing Data').sub('DOF').number('Stiffness Rotational') \
-        if data.has('DOF') else 0.0
-    if not linear > 0:
-        notes.append(f'{name}: "Bushing Data" with "Stiffness Linear" {linear:g}: a rigid '
-                     'joint is used')
-        return
-    bushing = {'axial': linear, 'radial': linear}
-    if item['type'] == 'circle':
-        bushing.update(torsion=math.radians(dof) if dof > 0 else 0.0,
-                       conical=math.radians(rotational) if rotational > 0 else 0.0, at='centre')
-    item['bushing'] = bushing
-
-
-def bushing_data(bushing, notes: list, name: str) -> dict:
-    """
-    Return Chrono's "Bushing Data" of an arm's bushing (bushing_into's inverse): N/m, N m/rad.
-
-    Chrono has one bushing per arm, at the middle of its axis, with one linear stiffness:
-    the radial rate goes out, and a note says what does not fit (axial unlike radial, at:
-    pivots).
-    """
-    if bushing.axial != bushing.radial:
-        notes.append(f'{name}: bushing axial {bushing.axial:g} and radial {bushing.radial:g} '
-                     'N/mm differ: Chrono has one linear stiffness, the radial goes out')
-    if bushing.at != 'centre':
-        notes.append(f'{name}: bushing at: pivots goes out as one bushing at the middle of '
-                     'the axis (as Chrono has it), with the rates of one')
-    zero = {'Stiffness Linear': 0.0, 'Damping Linear': 0.0, 'Stiffness Rotational': 0.0,
-            'Damping Rotational': 0.0}
-    return {**zero, 'Stiffness Linear': bushing.radial * MM_PER_M,
-            'Stiffness Rotational': math.degrees(bushing.conical),
-            'DOF': {**zero, 'Stiffness Rotational': math.degrees(bushing.torsion)}}
+def _idle(obj: Fields) -> bool:
+    """Whether obj's spring is "Spring Coefficient" 0 with no curve and no preload."""
+    return obj.has('Spring Coefficient') and obj.number('Spring Coefficient') == 0.0 \
+        and not obj.has('Spring Curve Data') and obj.number('Preload', 0.0) == 0.0
 
 
 def length_stops(elements) -> tuple[dict, set]:

@@ -15,7 +15,9 @@ from __future__ import annotations
 
 import json
 import math
+import os
 from pathlib import Path
+import stat
 from typing import Any
 
 import numpy as np
@@ -32,13 +34,28 @@ class ChronoError(LinkageError):
 
 
 def read_chrono(path: str | Path) -> dict:
-    """Read a Chrono JSON file (comments allowed) and return its top-level object."""
+    """
+    Read a Chrono JSON file (comments allowed) and return its top-level object.
+
+    Only a regular file is read: a FIFO, a device or a folder is refused before a byte is
+    read (opened without blocking, then looked at), so that nothing waits on a writer.
+    """
     path = Path(path)
     try:
-        with open(path, 'rb') as stream:
+        fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK)
+    except (OSError, ValueError) as exc:   # ValueError: a NUL in the name
+        raise ChronoError(path, f'cannot read ({getattr(exc, "strerror", None) or exc})') \
+            from None
+    try:
+        if not stat.S_ISREG(os.fstat(fd).st_mode):
+            raise ChronoError(path, 'not a regular file (a FIFO, device or folder): a Chrono '
+                              'file is read from a regular file only')
+        with os.fdopen(fd, 'rb', closefd=False) as stream:
             raw = stream.read(MAX_BYTES + 1)
     except OSError as exc:
         raise ChronoError(path, f'cannot read ({exc.strerror})') from None
+    finally:
+        os.close(fd)
     if len(raw) > MAX_BYTES:
         raise ChronoError(path, f'larger than {MAX_BYTES // (1024 * 1024)} MB: not a Chrono '
                           'suspension or vehicle file (those are a few kB)')
@@ -50,20 +67,92 @@ def read_chrono(path: str | Path) -> dict:
 
 
 def parse_chrono(text: str, where: str = '<json>') -> dict:
-    """Parse Chrono JSON text (RapidJSON with comments) into its top-level object."""
+    """
+    Parse Chrono JSON text (RapidJSON with comments) into its top-level object.
+
+    As RapidJSON (chrono_thirdparty/rapidjson reader.h, document.h) does: a number beyond
+    the range of a double is an error (kParseErrorNumberTooBig), and so is one whose positive
+    exponent exceeds 308 plus its fraction digits; an integer beyond 64 bits is a double; of
+    a key given twice in one object the first counts (GenericValue::FindMember walks the
+    members in order). A string with a lone UTF-16 surrogate is refused (RapidJSON's
+    kParseErrorStringUnicodeSurrogateInvalid).
+    """
     plain = strip_comments(text, where)
 
     def refuse(name):
         raise ChronoError(where, f'{name} is not a JSON number (RapidJSON refuses it)')
 
+    def number(token, value):
+        if not math.isfinite(value) or _exponent_too_big(token):
+            raise ChronoError(where, f'the number {token[:20]}{"..." if len(token) > 20 else ""}'
+                              f' ({len(token)} characters) is beyond the range of a double '
+                              '(RapidJSON: "Number too big to be stored in double")')
+        return value
+
+    def integer(token):   # RapidJSON keeps 64 bits, else a double (and never int(4301 digits))
+        if len(token.lstrip('-')) <= 20 and -2 ** 63 <= int(token) <= 2 ** 64 - 1:
+            return int(token)
+        return number(token, float(token))
+
     try:
-        data = json.loads(plain, parse_constant=refuse)
+        data = json.loads(plain, parse_constant=refuse, parse_int=integer,
+                          parse_float=lambda token: number(token, float(token)),
+                          object_pairs_hook=_first)
     except json.JSONDecodeError as exc:
         raise ChronoError(where, f'not JSON: {exc.msg} at line {exc.lineno} column '
                           f'{exc.colno}') from None
+    except RecursionError:
+        raise ChronoError(where, 'nested too deeply: not a Chrono file') from None
     if not isinstance(data, dict):
         raise ChronoError(where, 'expected a JSON object {...} at the top')
+    _no_surrogates(data, where)
     return data
+
+
+def _first(pairs: list) -> dict:
+    """Return an object's members, the first of each key kept (as RapidJSON finds them)."""
+    out = {}
+    for key, value in pairs:
+        out.setdefault(key, value)
+    return out
+
+
+def _exponent_too_big(token: str) -> bool:
+    """
+    Whether RapidJSON refuses token for its exponent (reader.h ParseNumber, 64-bit build).
+
+    It refuses a positive exponent beyond 308 + expFrac, the fraction digits it took into
+    the significand, even where the value is in range (0e999): digits while the significand
+    is at most 2^53 - 1, then while it has fewer than 17 significant digits (the first one
+    of the integer part not counted); none after an integer part beyond 64 bits.
+    """
+    mantissa, _, exponent = token.lower().partition('e')
+    if not exponent or exponent.startswith('-'):
+        return False
+    whole, _, fraction = mantissa.lstrip('-').partition('.')
+    limit = 2 ** 63 if token.startswith('-') else 2 ** 64 - 1
+    taken = 0
+    if len(whole) <= 20 and int(whole) <= limit:
+        significand = int(whole)
+        digits = len(whole) - 1 if significand else 0
+        rest = iter(fraction)
+        for d in rest:   # the 64-bit significand's fast path
+            if significand > 2 ** 53 - 1:
+                rest = iter(fraction[taken:])
+                break
+            significand = significand * 10 + int(d)
+            taken += 1
+            digits += 1 if significand else 0
+        else:
+            rest = iter(())
+        positive = significand > 0
+        for d in rest:   # the double's, up to 17 significant digits
+            if digits >= 17:
+                break
+            positive = positive or d != '0'
+            taken += 1
+            digits += 1 if positive else 0
+    return int(exponent.lstrip('+') or '0') > 308 + taken
 
 
 def strip_comments(text: str, where: str) -> str:
@@ -100,6 +189,24 @@ def strip_comments(text: str, where: str) -> str:
         out.append(c)
         i += 1
     return ''.join(out)
+
+
+def _no_surrogates(value: Any, where: str) -> None:
+    """Refuse a string (key or value) with a lone UTF-16 surrogate, as RapidJSON does."""
+    stack = [value]
+    while stack:
+        item = stack.pop()
+        texts = list(item) if isinstance(item, dict) else [item] if isinstance(item, str) else []
+        for text in texts:
+            try:
+                text.encode('utf-8')
+            except UnicodeEncodeError:
+                raise ChronoError(where, f'the string {text[:40]!r} has a lone UTF-16 '
+                                  'surrogate (RapidJSON refuses it)') from None
+        if isinstance(item, dict):
+            stack.extend(item.values())
+        elif isinstance(item, list):
+            stack.extend(item)
 
 
 class Fields:

@@ -21,7 +21,7 @@ PLAIN = re.compile(r'^[A-Za-z_][A-Za-z0-9_]*$')
 
 def scene_text(scene: dict, header: list) -> str:
     """Return the YAML text of a scene mapping, headed by comment lines."""
-    lines = [f'# {line}' if line else '#' for line in header]
+    lines = [f'# {_comment(line)}' if line else '#' for line in header]
     for key, value in scene.items():
         if key in ('constraints', 'elements'):
             lines.append(f'{key}:')
@@ -34,6 +34,11 @@ def scene_text(scene: dict, header: list) -> str:
     return '\n'.join(lines) + '\n'
 
 
+def _comment(line: str) -> str:
+    """Return line fit for a comment: a line break or other unprintable character escaped."""
+    return ''.join(c if c.isprintable() else json.dumps(c)[1:-1] for c in str(line))
+
+
 def _flow(value) -> str:
     if isinstance(value, dict):
         return '{' + ', '.join(f'{k}: {_flow(v)}' for k, v in value.items()) + '}'
@@ -42,11 +47,44 @@ def _flow(value) -> str:
     if isinstance(value, bool) or value is None:
         return yaml.safe_dump(value).split('\n')[0]
     if isinstance(value, (int, float)):
-        return repr(float(value))
+        return _number(float(value))
     text = str(value)
     if PLAIN.match(text) and yaml.safe_load(text) == text:   # not true, null, ...
         return text
-    return json.dumps(text)   # a YAML double-quoted scalar
+    return _quoted(text)
+
+
+def _number(value: float) -> str:
+    """
+    Return a finite float as YAML reads it back, the very same number: Python's repr.
+
+    YAML 1.1 (PyYAML) reads 1e+20 as a string: its floats need a point, so 1.0e+20.
+    """
+    text = repr(value)
+    if 'e' in text and '.' not in text:
+        mantissa, exponent = text.split('e')
+        text = f'{mantissa}.0e{exponent}'
+    return text
+
+
+def _quoted(text: str) -> str:
+    """
+    Return text as a YAML double-quoted scalar, every character kept.
+
+    JSON's escapes are YAML's, except that JSON writes a character beyond U+FFFF as two
+    UTF-16 escapes, which YAML reads as two lone surrogates: those pairs become YAML's
+    eight-digit escapes (backslash U).
+    """
+    def pair(match):
+        if match.group(1) is None:
+            return match.group(0)   # another escape, taken whole (an escaped backslash too)
+        high, low = int(match.group(1), 16), int(match.group(2), 16)
+        return f'\\U{0x10000 + ((high - 0xD800) << 10) + (low - 0xDC00):08x}'
+
+    return SURROGATES.sub(pair, json.dumps(text))
+
+
+SURROGATES = re.compile(r'\\u(d[89ab][0-9a-f]{2})\\u(d[c-f][0-9a-f]{2})|\\.')
 
 
 def json_text(data: dict) -> str:

@@ -11,17 +11,23 @@ template of the scene's topology (GenericWheeledSuspension where no named templa
 --like ORIGINAL.json keeps every other field of an original file. doc/chrono.md.
 """
 
+import math
 import sys
 
 from .. import cli
-from ..core.base import LinkageError
+from ..core.base import LENGTH_LIMIT_MM, LinkageError, MM_PER_M
 
 PROG = 'linkage-chrono'
-EPILOG = """example:
-  linkage-chrono import config/chrono/generic/DoubleWishbone.json -o dw.yaml
-  linkage-chrono export five_link -o five_link.json
-  linkage-chrono export dw.yaml -o dw.json --like config/chrono/generic/DoubleWishbone.json
-
+MAX_RADIUS_M = LENGTH_LIMIT_MM / MM_PER_M   # the length limit of every scene
+# Every example runs as written from a checkout (test/chrono/test_chrono_program.py).
+EXAMPLES = (
+    'import config/chrono/generic/suspension/DoubleWishbone.json -o dw.yaml',
+    'export dw.yaml -o dw.json --like config/chrono/generic/suspension/DoubleWishbone.json',
+    'export five_link -o five_link.json',
+    'import config/chrono/hmmwv/vehicle/HMMWV_Vehicle.json -o hmmwv.yaml',
+)
+EPILOG = 'examples (from a checkout, in this order):\n' + ''.join(
+    f'  {PROG} {e}\n' for e in EXAMPLES) + """
 exit status:
   0  written
 """ + '  ' + cli.EXIT_STATUS + """
@@ -33,24 +39,49 @@ def main(argv=None):
     return _main(argv)
 
 
+def radius(text: str) -> float:
+    """Return a tyre radius, m, from an option's text: a number in (0, MAX_RADIUS_M]."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise cli.Mistake(f'--wheel-radius: expected a number of metres, got {text!r}') from None
+    if not (math.isfinite(value) and 0.0 < value <= MAX_RADIUS_M):
+        raise cli.Mistake(f'--wheel-radius: must be in (0, {MAX_RADIUS_M:g}] m, got {text}')
+    return value
+
+
 @cli.program(PROG)
 def _main(argv):
     parser = cli.Parser(PROG, cli.summary(__doc__), EPILOG)
     sub = parser.add_subparsers(dest='command', metavar='{import,export}', required=True,
                                 parser_class=cli.Parser)
     one = sub.add_parser('import', help='a Chrono suspension or vehicle JSON file -> a scene '
-                         'or vehicle YAML file', prog=f'{PROG} import', description='',
-                         epilog=EPILOG)
-    one.add_argument('source', metavar='CHRONO.json')
-    one.add_argument('-o', '--output', metavar='FILE.yaml', required=True)
-    one.add_argument('--wheel-radius', type=float, default=None, metavar='M',
-                     help='tyre radius, m (a suspension file has none; default 0.33)')
+                         'or vehicle YAML file', prog=f'{PROG} import',
+                         description='Read a Chrono::Vehicle suspension file (a scene out) or '
+                         'vehicle file (a vehicle and one scene per axle out).', epilog=EPILOG)
+    one.add_argument('source', metavar='CHRONO.json',
+                     help='a Chrono::Vehicle suspension or vehicle JSON file (a regular file '
+                     "of at most 10 MB; a vehicle's suspension files are found under its "
+                     'data folder, as Chrono finds them)')
+    one.add_argument('-o', '--output', metavar='FILE.yaml', required=True,
+                     help='the scene (or vehicle) file to write, whole or not at all; a '
+                     "vehicle's axle scenes go beside it as FILE_front.yaml, FILE_rear.yaml "
+                     '(or FILE_axle0.yaml, ...). Required')
+    one.add_argument('--wheel-radius', type=str, default=None, metavar='M',
+                     help=f'tyre radius, m, in (0, {MAX_RADIUS_M:g}] (a suspension file has '
+                     "none, it is the tyre's); default 0.33")
     two = sub.add_parser('export', help='a scene -> a Chrono suspension JSON file',
-                         prog=f'{PROG} export', description='', epilog=EPILOG)
-    two.add_argument('scene', metavar='SCENE', help='bundled scene name or scene file')
-    two.add_argument('-o', '--output', metavar='FILE.json', required=True)
+                         prog=f'{PROG} export', description='Write a scene as a '
+                         'Chrono::Vehicle suspension file of the template its topology has.',
+                         epilog=EPILOG)
+    two.add_argument('scene', metavar='SCENE',
+                     help='a bundled scene name (five_link, ...) or a scene YAML file')
+    two.add_argument('-o', '--output', metavar='FILE.json', required=True,
+                     help='the Chrono JSON file to write, whole or not at all. Required')
     two.add_argument('--like', metavar='ORIGINAL.json', default=None,
-                     help='keep every non-kinematic field of this Chrono file')
+                     help='a Chrono suspension file of the same template whose every other '
+                     'field (masses, inertias, radii, curves) is kept; default: the bundled '
+                     'generic file of the template')
     args = parser.parse_args(argv)
     try:
         if args.command == 'import':
@@ -61,12 +92,12 @@ def _main(argv):
 
 
 def _import(args):
-    from ..chrono import import_file
-    inputs = (args.source,)
-    cli.check_output(args.output, '-o', inputs=inputs)
-    texts, summary = import_file(args.source, args.output, args.wheel_radius)
-    for path, text in texts.items():
-        cli.check_output(path, '-o', inputs=inputs)
+    from ..chrono import import_file, inputs_of
+    wheel_radius = radius(args.wheel_radius) if args.wheel_radius is not None else None
+    inputs = inputs_of(args.source)   # the file and, for a vehicle, its suspension files
+    cli.check_outputs([('-o', args.output)], inputs)
+    texts, summary = import_file(args.source, args.output, wheel_radius)
+    cli.check_outputs([('-o', path) for path in texts], inputs)
     for path, text in texts.items():
         with cli.whole_file(path, encoding='utf-8') as out:
             out.write(text)
@@ -76,8 +107,9 @@ def _import(args):
 
 def _export(args):
     from ..chrono import export_file
-    inputs = tuple(p for p in (args.like,) if p)
-    cli.check_output(args.output, '-o', inputs=inputs)
+    from ..core.model import resolve_scene_path
+    inputs = [str(resolve_scene_path(args.scene))] + [p for p in (args.like,) if p]
+    cli.check_outputs([('-o', args.output)], inputs)
     text, summary = export_file(args.scene, args.like)
     with cli.whole_file(args.output, encoding='utf-8') as out:
         out.write(text)

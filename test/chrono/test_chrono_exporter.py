@@ -152,3 +152,22 @@ def test_length_stops_fold_back_into_the_springs_minimum_and_maximum_length(tmp_
     np.testing.assert_allclose(spring['Spring Curve Data'], before['Spring Curve Data'],
                                rtol=1e-12, atol=1e-12)
     assert 'Spring Coefficient' not in spring
+
+
+def test_a_spring_or_shock_the_scene_lacks_goes_out_holding_nothing_and_stays_so(tmp_path):
+    # The template's own file has a spring of 369149 N/m on another car's points: written
+    # into a scene without springs it added a preloaded spring (and changed the compliance).
+    first = json.loads(export_file('chrono_sedan_doublewishbone_bushings')[0])
+    assert first['Spring']['Spring Coefficient'] == 0.0
+    assert first['Shock']['Damping Coefficient'] == 0.0
+    length = np.linalg.norm(np.subtract(first['Spring']['Location Chassis'],
+                                        first['Spring']['Location Arm']))
+    assert first['Spring']['Free Length'] == pytest.approx(length, rel=1e-15)
+    source, out = tmp_path / 'one.json', tmp_path / 'one.yaml'
+    source.write_text(json.dumps(first))
+    texts, summary = import_file(str(source), str(out))
+    out.write_text(texts[str(out)])
+    spring = next(e for e in yaml.safe_load(texts[str(out)])['elements'] if e['name'] == 'Spring')
+    assert 'rate' not in spring and 'force_table' not in spring   # a length only
+    again = json.loads(export_file(str(out))[0])
+    assert again['Spring']['Spring Coefficient'] == 0.0   # not the template file's rate
