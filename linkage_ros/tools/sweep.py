@@ -16,6 +16,7 @@ import numpy as np
 from ..cli import (counted, EXIT_STATUS, fail, millimetres, Parser, program, SPAN, span, warn,
                    writable_file)
 from ..core.base import check_position_count, LinkageError, positions_needed
+from ..core.base.ranges import said as ranges_said
 from ..core.measure import columns
 from ..core.model import load_scene, SceneError
 from ..core.solve import Continuation, METHODS, sweep, travel_range
@@ -109,6 +110,11 @@ examples:
 Travels and racks are plain numbers of mm (--travel -80:80:1, not -80mm); one value is one
 position, FROM:TO:STEP a range (TO included). A request is refused before it runs when it
 would solve more than 1,000,000 positions (travels x racks). Timing: linkage-bench sweep.
+
+ranges (doc/scenes.md#ranges; outside them a scene is refused in one line, status 2):
+""" + \
+    ranges_said('coordinate', 'spring_rate', 'force_table_force', 'force_table_slope') + """
+
 Old spellings kept for one release, each with a note: --from/--to/--step, --grid, --csv,
 --benchmark.
 

@@ -20,6 +20,7 @@ import sys
 from ..cli import (EXIT_STATUS, fail, output_folder, Parser, plot_problem, program, warn,
                    writable_file)
 from ..core.base import LinkageError
+from ..core.base.ranges import said as ranges_said
 from ..core.model import load_vehicle, SceneError
 from ..core.warmup import compile_if_cold
 
@@ -36,6 +37,11 @@ roll_stiffness_bar_Nm_per_deg, roll_stiffness_Nm_per_deg, roll_stiffness_textboo
 roll_centre_height_mm, the anti quantities, load_transfer_*_N (at 1 g), steering_ratio_*;
 roll_axis_height_at_cg_mm, roll_moment_arm_mm, roll_gradient_deg_per_g, lltd_front_pct,
 pitch_gradient_*_deg_per_g, pitch_centre_*_mm. Timing: linkage-bench vehicle.
+
+ranges (doc/scenes.md#ranges; outside them the file is refused in one line, status 2):
+""" + \
+    ranges_said('sprung_mass', 'unsprung_mass', 'front_share', 'height', 'tyre_rate',
+                'bar_rate') + """
 
 exit status: 0 the sheet written; 1 a table stopped at a corner's travel limits or out of
 reach (the message names where; the sheet is of what was solved); """ + EXIT_STATUS

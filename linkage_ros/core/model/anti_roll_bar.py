@@ -18,6 +18,7 @@ vehicle frame, at design position:
       arm_right, drop_right            the same on the right; leave both out for the left
                                        mirrored in y (y -> -y)
       rate: 40.0                       optional: N m per degree of twist, whatever the units
+                                       (its stated range: base/ranges.py, bar_rate)
 
 What the bar does at solved axle positions (twist, ratios, roll stiffness) is
 core/axle/anti_roll_bar.py's. mm, vehicle frame.
@@ -111,12 +112,7 @@ def parse_bar(source: str, where: str, spec: object, corners: tuple[Scene, Scene
         item = spec if not (mirrored and side == 'right') else _mirrored(spec)
         sides.append(_side(check, where, item, side, corners[k], ends[0], u, scale,
                            mirrored and side == 'right'))
-    rate = math.nan
-    if spec.get('rate') is not None:
-        rate = check.number(spec, 'rate', f'{where}.rate', length=False)
-        if not rate > 0:
-            check.fail(f'{where}.rate', f'must be positive (N m per degree of twist), got '
-                       f'{spec["rate"]!r}')
+    rate = check.ranged(spec, 'rate', f'{where}.rate', 'bar_rate', math.nan)   # N m/deg
     return AntiRollBar(ends[0], u, *sides, rate=rate, mirrored=mirrored)
 
 

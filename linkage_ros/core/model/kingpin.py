@@ -17,6 +17,8 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 from .yaml_file import SceneError
+from ..base.errors import listed
+from ..base.ranges import shown
 
 if TYPE_CHECKING:
     from .constraint import Constraint
@@ -69,7 +71,7 @@ def _point(source, where, entry, names, constraints):
 
 def _index(source, where, name, names):
     if not isinstance(name, str) or name not in names:
-        known = ', '.join(names)
-        raise SceneError(source, where, f'{name!r} is not a constraint of the scene '
+        known = listed(names)
+        raise SceneError(source, where, f'{shown(name)} is not a constraint of the scene '
                          f'(constraints: {known})')
     return names[name]
