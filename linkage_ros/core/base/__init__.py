@@ -10,7 +10,7 @@ force table (force_table.py, compiled). Imports nothing of the core above it.
 """
 
 from .errors import LinkageError, listed
-from .finite import all_finite, is_finite_number
+from .finite import all_finite, is_finite_number, lost_cells, say_lost
 from .force_table import table_force
 from .geometry import (camber_toe, carrier_points, cross, exp_so3, M_PER_MM,
                        matrix_from_quaternion, MM_PER_M, N_MM_PER_NM_DEG, perpendicular,
@@ -23,9 +23,9 @@ from .status import Status
 
 __all__ = ['all_finite', 'camber_toe', 'carrier_points', 'check_position_count', 'cross',
            'exp_so3', 'is_finite_number', 'LENGTH_LIMIT_MM', 'LinkageError', 'listed',
-           'M_PER_MM',
+           'lost_cells', 'M_PER_MM',
            'matrix_from_quaternion', 'MAX_POSITIONS', 'MM_PER_M', 'N_MM_PER_NM_DEG',
            'perpendicular', 'point_velocity', 'positions_needed', 'quaternion_from_matrix',
-           'Range', 'RANGE', 'RANGES',
+           'Range', 'RANGE', 'RANGES', 'say_lost',
            'spin_axis_of', 'Status', 'table_force', 'trilaterate', 'unit',
            'within_length_limit']

@@ -15,8 +15,8 @@ take (bushing rates x1e7: 5e10 N/mm); beyond them a number is a typo, a unit sli
 file. They keep the arithmetic finite: the largest products the statics and the sheet form
 (a rate times a squared lever of 1e12 mm, a mass times g times a height over a track) stay
 below 1e60, and a solve whose rates span the whole range still gives finite rates or a status
-(test/core/test_ranges.py). Units are the core's (mm, N, kg, deg); a file in m gives a rate
-per m and a length in m, converted on load.
+(test/core/test_ranges_arithmetic.py). Units are the core's (mm, N, kg, deg); a file in m
+gives a rate per m and a length in m, converted on load.
 """
 
 from __future__ import annotations
