@@ -16,8 +16,7 @@ import numpy as np
 from ..cli import (counted, EXIT_STATUS, fail, millimetres, Parser, program, SPAN, span, warn,
                    writable_file)
 from ..core.base import (check_position_count, LinkageError, lost_cells, positions_needed,
-                         say_lost)
-from ..core.base.ranges import said as ranges_said
+                         say_lost, say_ranges)
 from ..core.measure import columns
 from ..core.model import load_scene, SceneError
 from ..core.solve import Continuation, METHODS, sweep, travel_range
@@ -137,7 +136,7 @@ would solve more than 1,000,000 positions (travels x racks). Timing: linkage-ben
 
 ranges (doc/scenes.md#ranges; outside them a scene is refused in one line, status 2):
 """ + \
-    ranges_said('coordinate', 'spring_rate', 'force_table_force', 'force_table_slope') + """
+    say_ranges('coordinate', 'spring_rate', 'force_table_force', 'force_table_slope') + """
 
 Old spellings kept for one release, each with a note: --from/--to/--step, --grid, --csv,
 --benchmark.

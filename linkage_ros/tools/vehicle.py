@@ -19,8 +19,7 @@ import sys
 
 from ..cli import (EXIT_STATUS, fail, output_folder, Parser, plot_problem, program, warn,
                    writable_file)
-from ..core.base import LinkageError, lost_cells, say_lost
-from ..core.base.ranges import said as ranges_said
+from ..core.base import LinkageError, lost_cells, say_lost, say_ranges
 from ..core.model import load_vehicle, SceneError
 from ..core.warmup import compile_if_cold
 
@@ -41,8 +40,8 @@ pitch_gradient_*_deg_per_g, pitch_centre_*_mm. Timing: linkage-bench vehicle.
 
 ranges (doc/scenes.md#ranges; outside them the file is refused in one line, status 2):
 """ + \
-    ranges_said('sprung_mass', 'unsprung_mass', 'front_share', 'height', 'tyre_rate',
-                'bar_rate') + """
+    say_ranges('sprung_mass', 'unsprung_mass', 'front_share', 'height', 'tyre_rate',
+               'bar_rate') + """
 
 exit status: 0 the sheet written; 1 a table stopped at a corner's travel limits or out of
 reach (the message names where; the sheet is of what was solved), or a value is not finite

@@ -17,7 +17,7 @@ from pathlib import Path
 import tempfile
 
 from hypothesis import example, given, HealthCheck, settings, strategies as st
-from linkage_ros.core.base.ranges import markdown_table, RANGE, said
+from linkage_ros.core.base.ranges import markdown_table, RANGE, say_ranges
 from linkage_ros.core.model import load_scene, load_vehicle, parse_scene, SceneError
 import pytest
 import yaml
@@ -355,7 +355,7 @@ def test_the_programs_help_says_the_ranges_of_what_they_read(capsys):
             module.main(['--help'])
         out = ' '.join(capsys.readouterr().out.split())
         for key in keys:
-            assert ' '.join(said(key).split()) in out, (module.PROG, key)
+            assert ' '.join(say_ranges(key).split()) in out, (module.PROG, key)
 
 
 def test_the_stiff_limit_of_the_statics_tests_lies_within_the_range_of_a_bushing():

@@ -18,7 +18,7 @@ from .geometry import (camber_toe, carrier_points, cross, exp_so3, M_PER_MM,
                        spin_axis_of, trilaterate, unit)
 from .limits import (check_position_count, LENGTH_LIMIT_MM, MAX_POSITIONS, positions_needed,
                      within_length_limit)
-from .ranges import RANGE, Range, RANGES
+from .ranges import RANGE, Range, RANGES, say_ranges
 from .status import Status
 
 __all__ = ['all_finite', 'camber_toe', 'carrier_points', 'check_position_count', 'cross',
@@ -26,6 +26,6 @@ __all__ = ['all_finite', 'camber_toe', 'carrier_points', 'check_position_count',
            'lost_cells', 'M_PER_MM',
            'matrix_from_quaternion', 'MAX_POSITIONS', 'MM_PER_M', 'N_MM_PER_NM_DEG',
            'perpendicular', 'point_velocity', 'positions_needed', 'quaternion_from_matrix',
-           'Range', 'RANGE', 'RANGES', 'say_lost',
+           'Range', 'RANGE', 'RANGES', 'say_lost', 'say_ranges',
            'spin_axis_of', 'Status', 'table_force', 'trilaterate', 'unit',
            'within_length_limit']

@@ -6,7 +6,7 @@ The stated range of every number a scene or vehicle file gives the statics and t
 
 RANGES is the one table: the loader checks each field against its row (core/model), the
 manual prints it (doc/scenes.md#ranges is markdown_table(); a test checks), and the programs'
---help say the rows they read (said()). A value outside is refused in one line that names the
+--help say the rows they read (say_ranges()). A value outside is refused in one line that names the
 file, the field, the value as given with its unit, and the range in the file's units.
 
 The ranges cover every real vehicle, from a model car or a bicycle to a mining truck (810 t,
@@ -156,7 +156,7 @@ def markdown_table() -> str:
     return '\n'.join(lines) + '\n'
 
 
-def said(*keys: str) -> str:
+def say_ranges(*keys: str) -> str:
     """Say the ranges of keys for a --help: a line each, '  bushing axial, radial: 0.001 ...'."""
     lines = [f'{RANGE[k].fields.replace("`", "")}: {RANGE[k].said()}' for k in keys]
     return '\n'.join(textwrap.fill(line, 92, initial_indent='  ', subsequent_indent='    ')

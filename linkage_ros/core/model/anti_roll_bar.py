@@ -34,6 +34,7 @@ import numpy as np
 
 from .fields import Fields
 from .mounts import Mount, parse_mount
+from ..base.ranges import shown
 
 if TYPE_CHECKING:
     from .scene import Scene
@@ -93,7 +94,7 @@ def parse_bar(source: str, where: str, spec: object, corners: tuple[Scene, Scene
     axis = spec.get('axis')
     if not isinstance(axis, list) or len(axis) != 2:
         check.fail(f'{where}.axis', f'expected two points [[x, y, z], [x, y, z]] of the '
-                   f"bar's axis, got {axis!r}")
+                   f"bar's axis, got {shown(axis)}")
     ends = [check.vector(p, f'{where}.axis[{i}]') * scale for i, p in enumerate(axis)]
     direction = ends[1] - ends[0]
     size = float(np.linalg.norm(direction))
@@ -143,7 +144,7 @@ def _side(check, where, item, side, scene, axis_point, u, scale, mirrored):
     if not isinstance(drop, dict):
         check.fail(field, f'expected a mapping {{carrier: [x, y, z]}}, {{arm: NAME, point: '
                    f'[x, y, z]}} or {{link: NAME, point: [x, y, z]}} on the {side} corner '
-                   f'({scene.name}), got {drop!r}')
+                   f'({scene.name}), got {shown(drop)}')
     if 'along' in drop:
         check.fail(f'{field}.along', 'a drop link ends on the carrier, an arm or a link: '
                    'along: is for a strut element')

@@ -136,7 +136,7 @@ def _parse_element(check, item, index, constraints):
     name = item.get('name')
     if not isinstance(name, str) or not NAME.match(name):
         check.fail(f'{where}.name', f'expected a name of letters, digits and _ starting with a '
-                   f'letter (it starts the table columns), got {name!r}')
+                   f'letter (it starts the table columns), got {shown(name)}')
     where = f'elements[{index}] ({name})'
     check.keys(item, KEYS, where)   # free keys (description, notes, x_...) pass
     kind = check.choice(item, 'type', TYPES, f'{where}.type')

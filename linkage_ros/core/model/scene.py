@@ -35,6 +35,7 @@ from .yaml_file import read_yaml, SceneError  # noqa: F401 (SceneError: kept her
 from ..base.errors import LinkageError, listed
 from ..base.geometry import perpendicular, spin_axis_of, unit
 from ..base.limits import LENGTH_LIMIT_MM, positions_needed, within_length_limit  # noqa: F401
+from ..base.ranges import shown
 
 if TYPE_CHECKING:
     from collections.abc import Sequence
@@ -354,7 +355,7 @@ def _parse_constraint(check, item, index, scale):
     carrier = check.point(item, 'carrier', f'{where}.carrier')
     steer = item.get('steer', '')
     if steer not in ('', None, 'rack'):
-        check.fail(f'{where}.steer', f"unknown value {steer!r} (expected 'rack')")
+        check.fail(f'{where}.steer', f"unknown value {shown(steer)} (expected 'rack')")
     bushing = None
     if 'bushing' in item:   # bushing.py is read only by a scene that has one (null refused)
         from .bushing import parse_bushing

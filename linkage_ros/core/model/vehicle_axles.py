@@ -34,7 +34,7 @@ import numpy as np
 from .fields import Fields
 from .scene import SceneError
 from ..base.errors import listed
-from ..base.ranges import DOC as RANGES_DOC, RANGE
+from ..base.ranges import DOC as RANGES_DOC, RANGE, shown
 
 if TYPE_CHECKING:
     from .anti_roll_bar import AntiRollBar
@@ -122,7 +122,7 @@ def _axle(path, name, spec, corners, scale):
     for side in ('left', 'right'):
         corner = spec.get(side)
         if not isinstance(corner, str) or corner not in corners:
-            raise SceneError(path, f'{where}.{side}', f'{corner!r} is not a corner of the '
+            raise SceneError(path, f'{where}.{side}', f'{shown(corner)} is not a corner of the '
                              f'vehicle (corners: {listed(list(corners))})')
         expected = 1.0 if side == 'left' else -1.0
         if corners[corner].side_sign != expected:
@@ -134,7 +134,7 @@ def _axle(path, name, spec, corners, scale):
               for key in ('brake_share', 'drive_share')]
     brakes = spec.get('brakes', 'outboard')
     if brakes not in BRAKES:
-        raise SceneError(path, f'{where}.brakes', f'unknown value {brakes!r} (expected one '
+        raise SceneError(path, f'{where}.brakes', f'unknown value {shown(brakes)} (expected one '
                          f'of: {", ".join(BRAKES)})')
     bar = None
     if spec.get('anti_roll_bar') is not None:
@@ -174,7 +174,7 @@ def _check_pair(path, where, names, centres):
 def _share(path, where, value):
     if isinstance(value, bool) or not isinstance(value, (int, float)) \
             or not 0.0 <= value <= 1.0:
-        raise SceneError(path, where, f'expected a share from 0 to 1, got {value!r}')
+        raise SceneError(path, where, f'expected a share from 0 to 1, got {shown(value)}')
     return float(value)
 
 

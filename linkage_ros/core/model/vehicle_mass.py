@@ -29,7 +29,7 @@ import math
 from typing import TYPE_CHECKING
 
 from .fields import Fields
-from ..base.ranges import DOC as RANGES_DOC, RANGE
+from ..base.ranges import DOC as RANGES_DOC, RANGE, shown
 
 if TYPE_CHECKING:
     from .vehicle_axles import VehicleAxles
@@ -70,7 +70,7 @@ def parse_mass(path: object, data: dict, axles: VehicleAxles | None, axle_x: dic
         check.fail('mass', 'missing: tyre_rate is given without the masses it needs; expected '
                    '{sprung, cg_x or front_share, cg_height, unsprung}'
                    if block is None else f'expected a mapping {{sprung, cg_x, cg_height, '
-                   f'unsprung}}, got {block!r}')
+                   f'unsprung}}, got {shown(block)}')
     check.keys(block, MASS_KEYS, 'mass')
     if axles is None or set(AXLES) - set(axles.axles):
         check.fail('axles', 'missing: the setup sheet (mass:) needs a front and a rear axle')
@@ -106,7 +106,7 @@ def parse_mass(path: object, data: dict, axles: VehicleAxles | None, axle_x: dic
         check.fail('tyre_rate', 'missing: ride rate and ride frequency need the vertical rate '
                    "of each axle's tyres, {front: N/unit, rear: N/unit}"
                    if data.get('tyre_rate') is None else
-                   f'expected a mapping {{front, rear}}, got {data["tyre_rate"]!r}')
+                   f'expected a mapping {{front, rear}}, got {shown(data["tyre_rate"])}')
     rates = _per_axle(check, data, 'tyre_rate', 'tyre_rate', _ranged('tyre_rate'))
     return MassData(sprung, cg_x, cg_height, unsprung, heights, rates)
 
@@ -131,7 +131,7 @@ def _per_axle(check, block, key, where, read):
     values = block.get(key)
     if not isinstance(values, dict):
         check.fail(where, 'missing (required): {front: ..., rear: ...}' if values is None
-                   else f'expected a mapping {{front, rear}}, got {values!r}')
+                   else f'expected a mapping {{front, rear}}, got {shown(values)}')
     check.keys(values, AXLES, where)
     return {a: read(check, values, a, f'{where}.{a}') for a in AXLES}
 
