@@ -40,10 +40,10 @@ def bad_files(tmp_path):
 def program(name):
     """Return the main(argv) of a program by its command name."""
     from linkage_ros.study import cli as study
-    from linkage_ros.tools import (axle, chrono_cli, foxglove_layout, kc, kinematic_map, sweep,
+    from linkage_ros.tools import (axle, chrono, foxglove_layout, kc, kinematic_map, sweep,
                                    urdf, vehicle)
     return {'linkage-kc': kc.main, 'linkage-sweep': sweep.main, 'linkage-map': kinematic_map.main,
-            'linkage-study': study.main, 'linkage-chrono': chrono_cli.main,
+            'linkage-study': study.main, 'linkage-chrono': chrono.main,
             'linkage-urdf': urdf.main, 'linkage-foxglove': foxglove_layout.main,
             'linkage-vehicle': vehicle.main, 'linkage-axle': axle.main}[name]
 
