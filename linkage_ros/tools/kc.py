@@ -19,7 +19,7 @@ import numpy as np
 
 from ..cli import (check_outputs, counted, EXIT_STATUS, fail, Parser, plot_problem, program,
                    SPAN, span, warn, whole_file, write_csv)
-from ..core.base import check_position_count, LinkageError, positions_needed
+from ..core.base import check_position_count, LinkageError, positions_needed, say_ranges
 from ..core.model import load_scene, SceneError
 from ..core.solve import travel_range
 
@@ -51,6 +51,10 @@ examples:
 Travels and racks are plain numbers of mm; one value is one position, FROM:TO:STEP a range
 (TO included). --matrix and the picture of a loaded solve are of one position. Timing:
 linkage-bench kc.
+
+ranges (doc/scenes.md#ranges; outside them a scene is refused in one line, status 2):
+""" + \
+    say_ranges('bushing_rate', 'bushing_angular_rate', 'spring_rate') + """
 
 exit status: 0 every position solved; 1 a position is out of reach, or a load the linkage
 cannot carry (a bushing beyond the model's validity, or no equilibrium: the line names the

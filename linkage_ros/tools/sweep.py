@@ -15,7 +15,8 @@ import numpy as np
 
 from ..cli import (counted, EXIT_STATUS, fail, millimetres, Parser, program, SPAN, span, warn,
                    writable_file)
-from ..core.base import check_position_count, LinkageError, positions_needed
+from ..core.base import (check_position_count, LinkageError, lost_cells, positions_needed,
+                         say_lost, say_ranges)
 from ..core.measure import columns
 from ..core.model import load_scene, SceneError
 from ..core.solve import Continuation, METHODS, sweep, travel_range
@@ -82,16 +83,39 @@ def header(scene=None, with_rack=False, elements=None):
 
 def write_csv(results, stream, scene=None, with_rack=False, elements=None):
     """
-    Write Sweeps (one or several, e.g. a rack grid) as one CSV table.
+    Write Sweeps (one or several, e.g. a rack grid) as one CSV table; return the cells lost.
 
-    Values are written to 10 significant digits.
+    Values are written to 10 significant digits. The writers' rule (base.lost_cells): a value
+    that is not finite is written as nan, and returned, {column: mask over all the rows},
+    unless the quantity is undefined there by its definition (an alignment quantity, NaN
+    where the scene has no steer axis; an element's quantities where its ends crossed).
     """
     columns = header(scene, with_rack, elements)
     row_format = ','.join(['%.10g'] * len(columns)) + '\n'
     stream.write(','.join(columns) + '\n')
+    parts = []   # (rows, lost cells) of each result
     for result in results:
         rows = table(result, scene, with_rack, elements) + 0.0   # + 0.0: no '-0' in the table
+        cells = lost_cells(dict(zip(columns, rows.T)), undefined(columns, rows, scene, elements))
+        for name, mask in cells.items():
+            rows[mask, columns.index(name)] = np.nan
+        parts.append((len(rows), cells))
         stream.writelines(row_format % tuple(row) for row in rows.tolist())
+    names = dict.fromkeys(name for _, cells in parts for name in cells)
+    return {name: np.concatenate([cells.get(name, np.zeros(n, bool)) for n, cells in parts])
+            for name in names}
+
+
+def undefined(columns, rows, scene=None, elements=None):
+    """Return where the sweep's quantities are NaN by definition: {column: mask or True}."""
+    allowed = dict.fromkeys(ALIGNMENT_COLUMNS, True) if scene is not None else {}
+    if elements is not None:
+        from ..core.measure import columns_of_element
+        for e in elements.elements:
+            own = columns_of_element(e.name, e.has_rate)
+            crossed = np.isnan(rows[:, columns.index(own[0])])   # its length: NaN once crossed
+            allowed.update(dict.fromkeys(own, crossed))
+    return allowed
 
 
 EPILOG = """columns: travel_mm, camber_deg (+ = top outboard), toe_deg (+ = toe-in), wheel centre
@@ -109,11 +133,17 @@ examples:
 Travels and racks are plain numbers of mm (--travel -80:80:1, not -80mm); one value is one
 position, FROM:TO:STEP a range (TO included). A request is refused before it runs when it
 would solve more than 1,000,000 positions (travels x racks). Timing: linkage-bench sweep.
+
+ranges (doc/scenes.md#ranges; outside them a scene is refused in one line, status 2):
+""" + \
+    say_ranges('coordinate', 'spring_rate', 'force_table_force', 'force_table_slope') + """
+
 Old spellings kept for one release, each with a note: --from/--to/--step, --grid, --csv,
 --benchmark.
 
 exit status: 0 every travel solved; 1 a travel is out of reach (the rows solved before it
-are written, the message names the limit); """ + EXIT_STATUS
+are written, the message names the limit), or a value is not finite where its quantity is
+defined (written as nan, the message names the columns); """ + EXIT_STATUS
 
 
 def parse_args(argv, rounds=0):
@@ -244,9 +274,9 @@ def main(argv: list[str] | None = None, rounds: int = 0) -> int:
     try:
         if args.output:
             with open(args.output, 'w') as stream:
-                write_csv(results, stream, **table)
+                lost = write_csv(results, stream, **table)
         else:
-            write_csv(results, sys.stdout, **table)
+            lost = write_csv(results, sys.stdout, **table)
             sys.stdout.flush()
     except BrokenPipeError:
         raise                      # stdout's reader went away: program() ends quietly
@@ -264,6 +294,9 @@ def main(argv: list[str] | None = None, rounds: int = 0) -> int:
     if failed:
         written = counted(sum(len(r.travel) for r in results), 'position')
         print(f'linkage-sweep: {failed[0].message} ({written} written)', file=sys.stderr)
+    if lost:
+        print(f'linkage-sweep: {say_lost(lost, "position")}', file=sys.stderr)
+    if failed or lost:
         return 1
     worst = max(r.residual.max() for r in results if len(r.travel))
     print(f'linkage-sweep: done, largest residual {worst:.2g} mm', file=sys.stderr)

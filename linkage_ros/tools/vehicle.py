@@ -19,11 +19,12 @@ import sys
 
 from ..cli import (EXIT_STATUS, fail, output_folder, Parser, plot_problem, program, warn,
                    writable_file)
-from ..core.base import LinkageError
+from ..core.base import LinkageError, lost_cells, say_lost, say_ranges
 from ..core.model import load_vehicle, SceneError
 from ..core.warmup import compile_if_cold
 
 PROG = 'linkage-vehicle'
+TABLE_INPUTS = ('heave_mm', 'roll_deg', 'rack_mm')   # the columns a table is solved over
 
 EPILOG = """examples:
   linkage-vehicle demo_vehicle
@@ -37,8 +38,15 @@ roll_centre_height_mm, the anti quantities, load_transfer_*_N (at 1 g), steering
 roll_axis_height_at_cg_mm, roll_moment_arm_mm, roll_gradient_deg_per_g, lltd_front_pct,
 pitch_gradient_*_deg_per_g, pitch_centre_*_mm. Timing: linkage-bench vehicle.
 
+ranges (doc/scenes.md#ranges; outside them the file is refused in one line, status 2):
+""" + \
+    say_ranges('sprung_mass', 'unsprung_mass', 'front_share', 'height', 'tyre_rate',
+               'bar_rate') + """
+
 exit status: 0 the sheet written; 1 a table stopped at a corner's travel limits or out of
-reach (the message names where; the sheet is of what was solved); """ + EXIT_STATUS
+reach (the message names where; the sheet is of what was solved), or a value is not finite
+(left empty, the message names the cells: a body its roll stiffness cannot hold has no roll
+gradient); """ + EXIT_STATUS
 
 
 def parse_args(argv):
@@ -62,12 +70,37 @@ def sheet_table(sheet):
 
 
 def write_csv(header, rows, stream):
-    """Write the sheet as CSV: numbers to 10 significant digits, '' where a row has none."""
+    """
+    Write the sheet as CSV: numbers to 10 significant digits, '' where a row has none.
+
+    A value that is not finite is never written as a number (base.lost_cells): it is left
+    empty too, and lost() says which.
+    """
     writer = csv.writer(stream, lineterminator='\n')
     writer.writerow(header)
     for row in rows:
-        writer.writerow([v if isinstance(v, str) else '' if v is None or math.isnan(v)
+        writer.writerow([v if isinstance(v, str) else '' if v is None or not math.isfinite(v)
                          else f'{v + 0.0:.10g}' for v in row])
+
+
+def lost(header, rows, inputs=()):
+    """
+    Return the cells of a table that are not finite where a number belongs (base.lost_cells).
+
+    rows: lists under header, the first entry of a sheet's row its axle (text). A sheet's row
+    has a number in each of its own columns ('' only where the column is not the row's); a
+    table over heave, roll or rack (inputs: its input columns) may hold NaN where its quantity
+    is undefined by definition (Ackermann near straight ahead, an element whose ends
+    crossed), never an infinity.
+    """
+    columns = {name: [math.nan if v is None else v for v in values]
+               for name, values in zip(header, zip(*rows)) if name != 'axle'}
+    if 'axle' in header:   # a sheet: NaN only where the column is not the row's
+        undefined = {name: [v is None for v in values]
+                     for name, values in zip(header, zip(*rows)) if name != 'axle'}
+    else:
+        undefined = {name: name not in inputs for name in columns}
+    return lost_cells(columns, undefined)
 
 
 def problem_of(vehicle):
@@ -122,18 +155,23 @@ def main(argv=None, rounds=0):
     else:
         write_csv(header, rows, sys.stdout)
         sys.stdout.flush()
+    said = [say_lost(lost(header, rows), 'row')]
     if folder:
         for name, sheet_axle in sheet.axles.items():
             for table, columns in sheet_axle.tables.items():
+                cells = [list(r) for r in zip(*columns.values())]
                 with open(folder / f'{name}_{table}.csv', 'w', newline='') as stream:
-                    write_csv(list(columns), [list(r) for r in zip(*columns.values())], stream)
+                    write_csv(list(columns), cells, stream)
+                problem = say_lost(lost(list(columns), cells, TABLE_INPUTS), 'position')
+                said.append(problem and f'{name}_{table}.csv: {problem}')
     if args.plot:
         from .vehicle_plot import plot_sheet
         plot_sheet(sheet, args.plot)
         print(f'{PROG}: wrote {args.plot}', file=sys.stderr)
-    for message in sheet.messages:
+    messages = list(sheet.messages) + [line for line in said if line]
+    for message in messages:
         print(f'{PROG}: {message}', file=sys.stderr)
-    if sheet.messages:
+    if messages:
         return 1
     print(f'{PROG}: done', file=sys.stderr)
     return 0

@@ -42,7 +42,7 @@ BAD = [
      'turns freely about its line'),
     ({**DAMPER, 'type': 'spring', 'arm': 'lower_arm', 'point': [0.0, 580.0, 170.0],
       'rate': -35.0, 'free_length': 320.0},
-     'elements[0] (damper).rate: must be positive (N/mm, a stiffness), got -35.0'),
+     'elements[0] (damper).rate: -35.0 N/mm is outside 0.001 to 1e+11 N/mm'),
     ({**DAMPER, 'type': 'spring', 'carrier': [0.0, 700.0, 200.0], 'rate': 35.0},
      'elements[0] (damper).free_length: missing: rate and free_length go together'),
     ({**DAMPER, 'carrier': [0.0, 700.0, 200.0], 'rate': 35.0, 'free_length': 300.0},

@@ -145,6 +145,8 @@ def test_a_bad_command_is_said_on_the_console_once_per_kind_with_its_unit(
     assert '/wheel_travel 0.5 m: travel 500 mm is out of reach' in said[1]
     # /diagnostics reports every one, with the value as it was sent:
     errors = [s.message for s in probe.statuses if s.level == b'\x02']
-    # 1e308 m is finite but beyond the float range in mm, the core's unit: both are said
-    assert errors[3] == '/wheel_travel 1e+308 m: travel inf mm is not a finite number'
+    # 1e308 m is finite but beyond the float range in mm, the core's unit: the value as sent,
+    # with its unit, and the range of a length it is outside (issue 36, item 12)
+    assert errors[3] == ('/wheel_travel 1e+308 m: travel outside -1e+09 to 1e+09 m (-1e+12 to '
+                         '1e+12 mm), the range of a length: not a finite number of mm')
     assert errors[5].startswith('/wheel_travel inf m: ')

@@ -18,6 +18,7 @@ import tracemalloc
 
 from hypothesis import given, HealthCheck, settings, strategies as st
 from linkage_ros.core.base import LinkageError, MAX_POSITIONS, positions_needed
+from linkage_ros.core.base.errors import bounded, PROBLEM_LIMIT, WHERE_LIMIT
 from linkage_ros.core.model import load_scene, load_vehicle, safe_stem, SceneError
 from linkage_ros.core.solve import travel_range
 from linkage_ros.record.mcap_reader import Bag, read_bag, RecordingError
@@ -94,8 +95,11 @@ def assert_refused_well(exc, path):
     field not empty.
     """
     assert isinstance(exc, LinkageError), f'{type(exc).__name__}: {exc}'
+    # one line of bounded length: a where or problem too long is cut in the middle (issue 36)
+    assert len(str(exc)) <= WHERE_LIMIT + PROBLEM_LIMIT + 2 and '\n' not in str(exc)
     if isinstance(exc, SceneError):
-        assert exc.field and str(exc) == f'{exc.source}: {exc.field}: {exc.problem}'
+        assert exc.field and str(exc) == (f'{bounded(f"{exc.source}: {exc.field}", WHERE_LIMIT)}'
+                                          f': {bounded(exc.problem, PROBLEM_LIMIT)}')
         assert exc.source == str(path) or Path(exc.source).suffix in ('.yaml', '.yml'), exc
     else:
         assert str(path) in str(exc)

@@ -163,7 +163,7 @@ def test_a_travel_out_of_reach_ends_the_table_there_with_status_1():
 
 
 @pytest.mark.parametrize('argv, says', [
-    (['SCENE', '--travel', '0'], 'bushing.axial: must be positive'),
+    (['SCENE', '--travel', '0'], 'bushing.axial: -1 N/mm is outside 0.001 to 1e+11 N/mm'),
     (['LINE', '--travel', '0'], 'a line takes no bushing'),
     (['NO_RADIUS', '--travel', '0', '--load', '0,1000,0', '--at', 'cp'],
      '--at cp: double_wishbone_bushings has no wheel_radius'),

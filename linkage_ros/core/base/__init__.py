@@ -4,13 +4,13 @@
 """
 base: what every layer of the core stands on.
 
-Errors, the Status code, finiteness and size limits, geometry of points and rotations (numpy;
-so3.py the compiled forms), a spring's force table (force_table.py, compiled). Imports
-nothing of the core above it.
+Errors, the Status code, finiteness and size limits, the stated ranges of input numbers
+(ranges.py), geometry of points and rotations (numpy; so3.py the compiled forms), a spring's
+force table (force_table.py, compiled). Imports nothing of the core above it.
 """
 
-from .errors import LinkageError
-from .finite import all_finite, is_finite_number
+from .errors import LinkageError, listed
+from .finite import all_finite, is_finite_number, lost_cells, say_lost
 from .force_table import table_force
 from .geometry import (camber_toe, carrier_points, cross, exp_so3, M_PER_MM,
                        matrix_from_quaternion, MM_PER_M, N_MM_PER_NM_DEG, perpendicular,
@@ -18,11 +18,14 @@ from .geometry import (camber_toe, carrier_points, cross, exp_so3, M_PER_MM,
                        spin_axis_of, trilaterate, unit)
 from .limits import (check_position_count, LENGTH_LIMIT_MM, MAX_POSITIONS, positions_needed,
                      within_length_limit)
+from .ranges import RANGE, Range, RANGES, say_ranges
 from .status import Status
 
 __all__ = ['all_finite', 'camber_toe', 'carrier_points', 'check_position_count', 'cross',
-           'exp_so3', 'is_finite_number', 'LENGTH_LIMIT_MM', 'LinkageError', 'M_PER_MM',
+           'exp_so3', 'is_finite_number', 'LENGTH_LIMIT_MM', 'LinkageError', 'listed',
+           'lost_cells', 'M_PER_MM',
            'matrix_from_quaternion', 'MAX_POSITIONS', 'MM_PER_M', 'N_MM_PER_NM_DEG',
            'perpendicular', 'point_velocity', 'positions_needed', 'quaternion_from_matrix',
+           'Range', 'RANGE', 'RANGES', 'say_lost', 'say_ranges',
            'spin_axis_of', 'Status', 'table_force', 'trilaterate', 'unit',
            'within_length_limit']

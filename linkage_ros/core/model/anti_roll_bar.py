@@ -18,6 +18,7 @@ vehicle frame, at design position:
       arm_right, drop_right            the same on the right; leave both out for the left
                                        mirrored in y (y -> -y)
       rate: 40.0                       optional: N m per degree of twist, whatever the units
+                                       (its stated range: base/ranges.py, bar_rate)
 
 What the bar does at solved axle positions (twist, ratios, roll stiffness) is
 core/axle/anti_roll_bar.py's. mm, vehicle frame.
@@ -33,6 +34,7 @@ import numpy as np
 
 from .fields import Fields
 from .mounts import Mount, parse_mount
+from ..base.ranges import shown
 
 if TYPE_CHECKING:
     from .scene import Scene
@@ -92,7 +94,7 @@ def parse_bar(source: str, where: str, spec: object, corners: tuple[Scene, Scene
     axis = spec.get('axis')
     if not isinstance(axis, list) or len(axis) != 2:
         check.fail(f'{where}.axis', f'expected two points [[x, y, z], [x, y, z]] of the '
-                   f"bar's axis, got {axis!r}")
+                   f"bar's axis, got {shown(axis)}")
     ends = [check.vector(p, f'{where}.axis[{i}]') * scale for i, p in enumerate(axis)]
     direction = ends[1] - ends[0]
     size = float(np.linalg.norm(direction))
@@ -111,12 +113,7 @@ def parse_bar(source: str, where: str, spec: object, corners: tuple[Scene, Scene
         item = spec if not (mirrored and side == 'right') else _mirrored(spec)
         sides.append(_side(check, where, item, side, corners[k], ends[0], u, scale,
                            mirrored and side == 'right'))
-    rate = math.nan
-    if spec.get('rate') is not None:
-        rate = check.number(spec, 'rate', f'{where}.rate', length=False)
-        if not rate > 0:
-            check.fail(f'{where}.rate', f'must be positive (N m per degree of twist), got '
-                       f'{spec["rate"]!r}')
+    rate = check.ranged(spec, 'rate', f'{where}.rate', 'bar_rate', math.nan)   # N m/deg
     return AntiRollBar(ends[0], u, *sides, rate=rate, mirrored=mirrored)
 
 
@@ -147,7 +144,7 @@ def _side(check, where, item, side, scene, axis_point, u, scale, mirrored):
     if not isinstance(drop, dict):
         check.fail(field, f'expected a mapping {{carrier: [x, y, z]}}, {{arm: NAME, point: '
                    f'[x, y, z]}} or {{link: NAME, point: [x, y, z]}} on the {side} corner '
-                   f'({scene.name}), got {drop!r}')
+                   f'({scene.name}), got {shown(drop)}')
     if 'along' in drop:
         check.fail(f'{field}.along', 'a drop link ends on the carrier, an arm or a link: '
                    'along: is for a strut element')

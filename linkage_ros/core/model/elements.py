@@ -37,6 +37,7 @@ import numpy as np
 
 from .mounts import KINDS, Mount, parse_mount
 from ..base.force_table import table_force
+from ..base.ranges import DOC as RANGES_DOC, RANGE, shown
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
@@ -135,7 +136,7 @@ def _parse_element(check, item, index, constraints):
     name = item.get('name')
     if not isinstance(name, str) or not NAME.match(name):
         check.fail(f'{where}.name', f'expected a name of letters, digits and _ starting with a '
-                   f'letter (it starts the table columns), got {name!r}')
+                   f'letter (it starts the table columns), got {shown(name)}')
     where = f'elements[{index}] ({name})'
     check.keys(item, KEYS, where)   # free keys (description, notes, x_...) pass
     kind = check.choice(item, 'type', TYPES, f'{where}.type')
@@ -154,7 +155,12 @@ def _parse_element(check, item, index, constraints):
 
 
 def _force_table(check, item, where, kind):
-    """Return a spring's force table (n, 2) in mm and N, or None if not given."""
+    """
+    Return a spring's force table (n, 2) in mm and N, or None if not given.
+
+    Deflections are coordinates, forces and the slope of each segment within their stated
+    ranges (base/ranges.py: coordinate, force_table_force, force_table_slope).
+    """
     rows = item.get('force_table')
     if rows is None:
         return None
@@ -167,9 +173,11 @@ def _force_table(check, item, where, kind):
         check.fail(field_name, 'expected at least two rows [deflection, force]')
     for i, row in enumerate(rows):
         if not isinstance(row, (list, tuple)) or len(row) != 2:
-            check.fail(f'{field_name}[{i}]', f'expected a row [deflection, force], got {row!r}')
-        for j, key in enumerate(('deflection', 'force')):
-            check.number({key: row[j]}, key, f'{field_name}[{i}]', length=False)
+            check.fail(f'{field_name}[{i}]', f'expected a row [deflection, force], got '
+                       f'{shown(row)}')
+        for j, (key, kind_of) in enumerate((('deflection', 'coordinate'),
+                                            ('force', 'force_table_force'))):
+            check.ranged({key: row[j]}, key, f'{field_name}[{i}][{j}] ({key})', kind_of)
     table = np.array(rows, dtype=float)
     steps = np.diff(table[:, 0])
     if not np.all(steps > 0):
@@ -177,7 +185,21 @@ def _force_table(check, item, where, kind):
         check.fail(f'{field_name}[{i}]', f'deflection {table[i, 0]:g} does not rise above '
                    f'the row before ({table[i - 1, 0]:g}): the rows must be sorted by '
                    'deflection, each once')
+    slope = RANGE['force_table_slope']
+    for i, rise, run in zip(range(1, len(table)), np.diff(table[:, 1]), steps):
+        value = float(rise) / float(run)   # N per file unit; inf past the float range
+        if slope.problem(value, check.scale):
+            said = (f'{value:g} {slope.unit_of(check.scale)}' if math.isfinite(value)
+                    else 'beyond the float range')
+            check.fail(f'{field_name}[{i}]', f'the segment from the row before rises '
+                       f'{rise:g} N over {run:g} {_unit(check)}: a slope of {said}, outside '
+                       f'{slope.said(check.scale)} ({RANGES_DOC})')
     return table * np.array([check.scale, 1.0])
+
+
+def _unit(check):
+    """Return the scene's unit of length ('mm' or 'm')."""
+    return 'mm' if check.scale == 1.0 else 'm'
 
 
 def _spring(check, item, where, kind, tabled=False):
@@ -187,10 +209,7 @@ def _spring(check, item, where, kind, tabled=False):
         if 'free_length' not in given:
             check.fail(f'{where}.free_length', 'missing: a force table needs the free length '
                        'its deflections are measured from')
-        value = check.number(item, 'free_length', f'{where}.free_length')
-        if not value > 0:
-            check.fail(f'{where}.free_length', f'must be positive, got {value!r}')
-        return math.nan, value * check.scale
+        return math.nan, check.ranged(item, 'free_length', f'{where}.free_length', 'height')
     if not given:
         return math.nan, math.nan
     if kind != 'spring':
@@ -200,12 +219,5 @@ def _spring(check, item, where, kind, tabled=False):
         missing = ({'rate', 'free_length'} - set(given)).pop()
         check.fail(f'{where}.{missing}', 'missing: rate and free_length go together (the '
                    'force needs both)')
-    unit = 'mm' if check.scale == 1.0 else 'm'
-    values = []
-    for key in given:
-        value = check.number(item, key, f'{where}.{key}')
-        if not value > 0:
-            what = f'N/{unit}, a stiffness' if key == 'rate' else f'{unit}, a length'
-            check.fail(f'{where}.{key}', f'must be positive ({what}), got {value!r}')
-        values.append(value)
-    return values[0] / check.scale, values[1] * check.scale
+    return (check.ranged(item, 'rate', f'{where}.rate', 'spring_rate'),
+            check.ranged(item, 'free_length', f'{where}.free_length', 'height'))

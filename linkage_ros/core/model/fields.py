@@ -22,6 +22,7 @@ import numpy as np
 from .yaml_file import SceneError
 from ..base.finite import is_finite_number
 from ..base.limits import LENGTH_LIMIT_MM, within_length_limit
+from ..base.ranges import DOC as RANGES_DOC, RANGE, shown
 
 if TYPE_CHECKING:
     from collections.abc import Collection
@@ -55,8 +56,8 @@ class Fields:
             if key in known or key in free or (isinstance(key, str)
                                                and key.startswith(OWN_KEY_PREFIX)):
                 continue
-            shown = key if isinstance(key, str) and PLAIN_KEY.match(key) else repr(key)
-            name = f'{where}.{shown}' if where else shown
+            said = key if isinstance(key, str) and PLAIN_KEY.match(key) else shown(key)
+            name = f'{where}.{said}' if where else said
             close = difflib.get_close_matches(str(key), [str(k) for k in known], n=1)
             hint = (f'did you mean {close[0]}?' if close else
                     f'known: {", ".join(known)}; also allowed: {", ".join(free)}, '
@@ -66,8 +67,9 @@ class Fields:
     def length(self, value: float, where: str, what: str) -> None:
         """Refuse a finite number whose length in mm is beyond LENGTH_LIMIT_MM."""
         if not within_length_limit(value, self.scale):
-            self.fail(where, f'{what} {value!r} is beyond {LENGTH_LIMIT_MM:g} mm in magnitude '
-                      '(a typo? lengths this large leave no precision for millimetres)')
+            self.fail(where, f'{what} {shown(value)} is beyond {LENGTH_LIMIT_MM:g} mm in '
+                      'magnitude (a typo? lengths this large leave no precision for '
+                      'millimetres)')
 
     def _get(self, data, key, where):
         if key not in data or data[key] is None:
@@ -94,7 +96,8 @@ class Fields:
         where = where or key
         value = self._get(data, key, where)
         if not isinstance(value, (str, int, float)) or value not in options:
-            self.fail(where, f'unknown value {value!r} (expected one of: {", ".join(options)})')
+            self.fail(where, f'unknown value {shown(value)} (expected one of: '
+                      f'{", ".join(options)})')
         return value
 
     def text(self, data: dict, key: str, default: str = '', where: str | None = None) -> str:
@@ -128,14 +131,36 @@ class Fields:
             return default
         value = data[key]
         if isinstance(value, bool) or not isinstance(value, (int, float)):
-            self.fail(where, f'expected a number, got {value!r}')
+            self.fail(where, f'expected a number, got {shown(value)}')
         if not is_finite_number(value):
-            self.fail(where, f'must be finite, got {value!r}')
+            self.fail(where, f'must be finite, got {shown(value)}')
         if minimum is not None and value < minimum:
-            self.fail(where, f'must be at least {minimum:g}, got {value!r}')
+            self.fail(where, f'must be at least {minimum:g}, got {shown(value)}')
         if length:
             self.length(value, where, 'value')
         return float(value)
+
+    def ranged(self, data: dict, key: str, where: str, kind: str,
+               default: float | None = None) -> float:
+        """
+        Return data[key], a finite number within its stated range, in the core's units.
+
+        kind: the row of base.ranges.RANGE (its unit scales with the file's units: a rate per
+        mm or per m, a length in mm or m); default if absent or null (None: required). Out of
+        range: SceneError saying the value as given, its unit and the range in the file's.
+        """
+        if data.get(key) is None and default is not None:
+            return default
+        stated, raw = RANGE[kind], data.get(key)
+        if isinstance(raw, int) and not isinstance(raw, bool):   # beyond the floats: outside
+            problem = stated.problem(raw, self.scale)
+            if problem:
+                self.fail(where, f'{problem} ({RANGES_DOC})')
+        value = self.number(data, key, where, length=False)
+        problem = stated.problem(raw, self.scale)
+        if problem:
+            self.fail(where, f'{problem} ({RANGES_DOC})')
+        return value * self.scale ** stated.length_power
 
     def point(self, data: dict, key: str, where: str) -> np.ndarray:
         """Return data[key], a point [x, y, z] in the file's units, (3,)."""
@@ -144,14 +169,14 @@ class Fields:
     def vector(self, value: Any, where: str) -> np.ndarray:
         """Return value, a point [x, y, z] in the file's units, (3,)."""
         if not isinstance(value, (list, tuple)):
-            self.fail(where, f'expected a point [x, y, z], got {value!r}')
+            self.fail(where, f'expected a point [x, y, z], got {shown(value)}')
         if len(value) != 3:
             self.fail(where, f'expected 3 coordinates [x, y, z], got {len(value)}')
         for v in value:
             if isinstance(v, bool) or not isinstance(v, (int, float)):
-                self.fail(where, f'coordinate {v!r} is not a number')
+                self.fail(where, f'coordinate {shown(v)} is not a number')
             if not is_finite_number(v):
-                self.fail(where, f'coordinate {v!r} is not finite')
+                self.fail(where, f'coordinate {shown(v)} is not finite')
             self.length(v, where, 'coordinate')
         return np.array(value, dtype=float)
 

@@ -17,6 +17,8 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 from .yaml_file import SceneError
+from ..base.errors import listed
+from ..base.ranges import shown
 
 if TYPE_CHECKING:
     from .constraint import Constraint
@@ -43,7 +45,7 @@ def check_kingpin(source: str, spec: object,
     names = {c.name: i for i, c in enumerate(constraints)}
     if not isinstance(spec, list) or len(spec) != 2:
         raise SceneError(source, KEY, 'expected [UPPER, LOWER]: two joint names, or pairs '
-                         f'of link names for virtual ball joints, got {spec!r}')
+                         f'of link names for virtual ball joints, got {shown(spec)}')
     points = tuple(_point(source, f'{KEY}[{k}]', entry, names, constraints)
                    for k, entry in enumerate(spec))
     if points[0] == points[1]:
@@ -57,7 +59,7 @@ def _point(source, where, entry, names, constraints):
         return KingpinPoint('base' if constraints[index].type == 'line' else 'carrier', (index,))
     if not isinstance(entry, list) or len(entry) != 2 or entry[0] == entry[1]:
         raise SceneError(source, where, 'expected a joint name or a pair of two link names '
-                         f'[a, b], got {entry!r}')
+                         f'[a, b], got {shown(entry)}')
     pair = tuple(_index(source, f'{where}[{k}]', name, names) for k, name in enumerate(entry))
     for k, index in enumerate(pair):
         if constraints[index].type != 'sphere':
@@ -69,7 +71,7 @@ def _point(source, where, entry, names, constraints):
 
 def _index(source, where, name, names):
     if not isinstance(name, str) or name not in names:
-        known = ', '.join(names)
-        raise SceneError(source, where, f'{name!r} is not a constraint of the scene '
+        known = listed(names)
+        raise SceneError(source, where, f'{shown(name)} is not a constraint of the scene '
                          f'(constraints: {known})')
     return names[name]

@@ -25,6 +25,9 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from ..base.errors import listed
+from ..base.ranges import shown
+
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
 
@@ -99,8 +102,8 @@ def _constraint_index(constraints, name, wanted, where, fail):
                 fail(where, f'{name} is {what[c.type]}, not {what[wanted]}: use '
                      f'{key}: {name}')
             return i
-    fail(where, f'no {what[wanted][2:].lstrip()} named {name!r} in the scene (its '
-         f'{plural[wanted]}: {", ".join(fitting) or "none"})')
+    fail(where, f'no {what[wanted][2:].lstrip()} named {shown(name)} in the scene (its '
+         f'{plural[wanted]}: {listed(fitting) or "none"})')
 
 
 def _on_link(c, point, where, scale, fail):

@@ -32,9 +32,10 @@ from .kingpin import check_kingpin, KEY as KINGPIN_KEY
 from .layout import Layout, layout_of
 # LENGTH_LIMIT_MM, SceneError and within_length_limit are also read from here, where they were.
 from .yaml_file import read_yaml, SceneError  # noqa: F401 (SceneError: kept here)
-from ..base.errors import LinkageError
+from ..base.errors import LinkageError, listed
 from ..base.geometry import perpendicular, spin_axis_of, unit
 from ..base.limits import LENGTH_LIMIT_MM, positions_needed, within_length_limit  # noqa: F401
+from ..base.ranges import shown
 
 if TYPE_CHECKING:
     from collections.abc import Sequence
@@ -220,7 +221,7 @@ def parse_scene(data: Any, source: str = '<scene>') -> Scene:
     if carrier.get('third_point') is not None:
         given_p = check.point(carrier, 'third_point', 'carrier.third_point') * scale
     travel = _parse_travel(check, data.get('travel'), scale)
-    radius = check.number(data, 'wheel_radius', 'wheel_radius', default=0.0, minimum=0.0) * scale
+    radius = check.ranged(data, 'wheel_radius', 'wheel_radius', 'wheel_radius', 0.0)   # mm
     scene_size = _size([wheel_center, spin_point] + [c.carrier for c in constraints]
                        + [b for c in constraints for b in c.base])
     _check_geometry(check, wheel_center, spin_point, constraints, scene_size)
@@ -354,9 +355,9 @@ def _parse_constraint(check, item, index, scale):
     carrier = check.point(item, 'carrier', f'{where}.carrier')
     steer = item.get('steer', '')
     if steer not in ('', None, 'rack'):
-        check.fail(f'{where}.steer', f"unknown value {steer!r} (expected 'rack')")
+        check.fail(f'{where}.steer', f"unknown value {shown(steer)} (expected 'rack')")
     bushing = None
-    if item.get('bushing') is not None:   # bushing.py is read only by a scene that has one
+    if 'bushing' in item:   # bushing.py is read only by a scene that has one (null refused)
         from .bushing import parse_bushing
         bushing = parse_bushing(check, item['bushing'], where, kind)
     return Constraint(name=name or f'{kind}_{index}', type=kind, base=base * scale,
@@ -390,8 +391,9 @@ def _check_geometry(check, wheel_center, spin_point, constraints, size):
                    'axis needs two distinct points')
     total = sum(c.equations for c in constraints)
     if total != 5:
-        counts = ', '.join(f'{c.name} ({c.type}) {c.equations}' for c in constraints) or 'none'
-        check.fail('constraints', f'give {total} equations ({counts}); the carrier has 5 '
+        counts = listed([f'{c.name} ({c.type}) {c.equations}' for c in constraints]) or 'none'
+        check.fail('constraints', f'give {total} equations from {len(constraints)} '
+                   f'constraints ({counts}); the carrier has 5 '
                    'degrees of freedom once the travel is imposed, so exactly 5 are needed '
                    '(sphere = 1, circle = 2, line = 2)')
     for i, c in enumerate(constraints):

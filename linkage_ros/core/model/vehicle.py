@@ -35,6 +35,7 @@ from .scene_moves import mirror, translate
 from .yaml_file import read_yaml
 from ..base.finite import is_finite_number
 from ..base.limits import LENGTH_LIMIT_MM, within_length_limit
+from ..base.ranges import shown
 
 if TYPE_CHECKING:
     from os import PathLike
@@ -87,7 +88,7 @@ def load_vehicle(name_or_path: str | PathLike) -> Vehicle:
     check.keys(data, FILE_KEYS)
     units = data.get('units', 'mm')
     if not isinstance(units, str) or units not in UNITS_TO_MM:
-        check.fail('units', f'unknown value {units!r} (expected one of: mm, m)')
+        check.fail('units', f'unknown value {shown(units)} (expected one of: mm, m)')
     corners, joints = {}, {}
     for corner, spec in data['corners'].items():
         corners[corner] = _corner(path, corner, spec, UNITS_TO_MM[units])
@@ -120,7 +121,7 @@ def _joints(path, corner, spec, scene):
         value = spec.get(key, '')
         if not isinstance(value, str):
             raise SceneError(path, f'corners.{corner}.{key}',
-                             f'expected a joint name (text), got {value!r}')
+                             f'expected a joint name (text), got {shown(value)}')
         names.append(value)
     if names[1] and not scene.steered:
         raise SceneError(path, f'corners.{corner}.rack_joint',
@@ -142,13 +143,13 @@ def _corner(path, corner, spec, scale):
         scene = mirror(scene)
     elif spec.get('mirror', False) is not False:
         raise SceneError(path, f'{where}.mirror',
-                         f"expected true or false, got {spec['mirror']!r}")
+                         f"expected true or false, got {shown(spec['mirror'])}")
     offset = spec.get('offset', [0.0, 0.0, 0.0])
     if (not isinstance(offset, list) or len(offset) != 3
             or not all(is_finite_number(v) and within_length_limit(v, scale)
                        for v in offset)):
         raise SceneError(path, f'{where}.offset', 'expected [x, y, z], numbers within '
-                         f'{LENGTH_LIMIT_MM:g} mm, got {offset!r}')
+                         f'{LENGTH_LIMIT_MM:g} mm, got {shown(offset)}')
     return replace(translate(scene, [v * scale for v in offset]), name=corner)
 
 
@@ -165,8 +166,8 @@ def _scene_file(path, where, scene_ref):
     try:
         found = resolve_scene_path(scene_ref)
     except SceneError as exc:
-        raise SceneError(path, f'{where}.scene', f'{scene_ref!r}: {exc.problem}') from None
+        raise SceneError(path, f'{where}.scene', f'{shown(scene_ref)}: {exc.problem}') from None
     if not found.is_file():   # a .yaml name is taken as a path without looking
-        raise SceneError(path, f'{where}.scene', f'{scene_ref!r}: no such scene file (a '
+        raise SceneError(path, f'{where}.scene', f'{shown(scene_ref)}: no such scene file (a '
                          f'relative path is read from {path.parent}) and not a bundled scene')
     return found

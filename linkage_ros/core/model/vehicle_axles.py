@@ -31,7 +31,10 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .scene import LENGTH_LIMIT_MM, SceneError, within_length_limit
+from .fields import Fields
+from .scene import SceneError
+from ..base.errors import listed
+from ..base.ranges import DOC as RANGES_DOC, RANGE, shown
 
 if TYPE_CHECKING:
     from .anti_roll_bar import AntiRollBar
@@ -119,8 +122,8 @@ def _axle(path, name, spec, corners, scale):
     for side in ('left', 'right'):
         corner = spec.get(side)
         if not isinstance(corner, str) or corner not in corners:
-            raise SceneError(path, f'{where}.{side}', f'{corner!r} is not a corner of the '
-                             f'vehicle (corners: {", ".join(corners)})')
+            raise SceneError(path, f'{where}.{side}', f'{shown(corner)} is not a corner of the '
+                             f'vehicle (corners: {listed(list(corners))})')
         expected = 1.0 if side == 'left' else -1.0
         if corners[corner].side_sign != expected:
             raise SceneError(path, f'{where}.{side}', f'corner {corner} is a '
@@ -131,7 +134,7 @@ def _axle(path, name, spec, corners, scale):
               for key in ('brake_share', 'drive_share')]
     brakes = spec.get('brakes', 'outboard')
     if brakes not in BRAKES:
-        raise SceneError(path, f'{where}.brakes', f'unknown value {brakes!r} (expected one '
+        raise SceneError(path, f'{where}.brakes', f'unknown value {shown(brakes)} (expected one '
                          f'of: {", ".join(BRAKES)})')
     bar = None
     if spec.get('anti_roll_bar') is not None:
@@ -154,6 +157,10 @@ def _check_pair(path, where, names, centres):
             raise SceneError(path, f'{where}.{side}', f'corner {name} is a {side} wheel with '
                              f'its centre at y = {centre[1]:.6g} mm: a {side} wheel is at '
                              f'{"+" if sign > 0 else "-"}y (y to the left); check its offset')
+    problem = RANGE['height'].problem(track)
+    if problem:
+        raise SceneError(path, where, f'the track of {names[0]} and {names[1]} (y of the left '
+                         f'wheel centre - y of the right) of {problem} ({RANGES_DOC})')
     skew = {'x': abs(left[0] - right[0]), 'z': abs(left[2] - right[2]),
             'y (middle off the centre plane)': abs(left[1] + right[1])}
     for axis, apart in skew.items():
@@ -167,16 +174,14 @@ def _check_pair(path, where, names, centres):
 def _share(path, where, value):
     if isinstance(value, bool) or not isinstance(value, (int, float)) \
             or not 0.0 <= value <= 1.0:
-        raise SceneError(path, where, f'expected a share from 0 to 1, got {value!r}')
+        raise SceneError(path, where, f'expected a share from 0 to 1, got {shown(value)}')
     return float(value)
 
 
 def _length(path, data, key, scale):
-    value = data.get(key)
-    if value is None:
+    """Return data[key] in mm, a length within the stated range of a height; NaN if absent."""
+    if data.get(key) is None:
         return math.nan
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not value > 0 \
-            or not within_length_limit(value, scale):
-        raise SceneError(path, key, f'expected a positive length within {LENGTH_LIMIT_MM:g} '
-                         f'mm, got {value!r}')
-    return float(value) * scale
+    check = Fields(str(path))
+    check.scale = scale
+    return check.ranged(data, key, key, 'height')

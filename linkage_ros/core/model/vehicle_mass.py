@@ -14,9 +14,10 @@ The masses of a vehicle file and its tyres' vertical rates: what a setup sheet n
     tyre_rate: {front: 250, rear: 260}          # N per file unit of length, per tyre, vertical
 
 A vehicle without `mass` has no setup sheet (core/vehicle). With it, every key a quantity of the
-sheet needs is required, and refused if bad: a mass < 0 or not finite, a centre of gravity
-outside the wheelbase (not strictly between the rear and the front axle), a tyre rate <= 0,
-a front and a rear axle missing. Errors raise SceneError naming the file and the key.
+sheet needs is required, and refused if bad: a number outside its stated range (base/ranges.py:
+sprung_mass, unsprung_mass, tyre_rate, height; front_share, also the share cg_x gives, for a
+centre of gravity inside the wheelbase and off both axles), a front and a rear axle missing.
+Errors raise SceneError naming the file and the key, the value as given and the range.
 vehicle.py imports this module only for a file that has a mass or tyre_rate key.
 Units once loaded: kg, mm, N/mm.
 """
@@ -28,6 +29,7 @@ import math
 from typing import TYPE_CHECKING
 
 from .fields import Fields
+from ..base.ranges import DOC as RANGES_DOC, RANGE, shown
 
 if TYPE_CHECKING:
     from .vehicle_axles import VehicleAxles
@@ -68,38 +70,44 @@ def parse_mass(path: object, data: dict, axles: VehicleAxles | None, axle_x: dic
         check.fail('mass', 'missing: tyre_rate is given without the masses it needs; expected '
                    '{sprung, cg_x or front_share, cg_height, unsprung}'
                    if block is None else f'expected a mapping {{sprung, cg_x, cg_height, '
-                   f'unsprung}}, got {block!r}')
+                   f'unsprung}}, got {shown(block)}')
     check.keys(block, MASS_KEYS, 'mass')
     if axles is None or set(AXLES) - set(axles.axles):
         check.fail('axles', 'missing: the setup sheet (mass:) needs a front and a rear axle')
-    sprung = _positive(check, block, 'sprung', 'mass.sprung')
+    if block.get('sprung') is None:
+        check.fail('mass.sprung', 'missing (required, kg)')
+    sprung = check.ranged(block, 'sprung', 'mass.sprung', 'sprung_mass')
     front, rear = axle_x['front'], axle_x['rear']
+    problem = RANGE['height'].problem(front - rear)   # mm, from the corners' wheel centres
+    if front > rear and problem:
+        check.fail('axles', f'the wheelbase (front axle x - rear axle x) of {problem}')
     if 'cg_x' in block and 'front_share' in block:
         check.fail('mass.front_share', 'give cg_x or front_share, not both')
     if 'front_share' in block:
-        share = check.number(block, 'front_share', 'mass.front_share', length=False)
-        if not 0.0 < share < 1.0:
-            check.fail('mass.front_share', 'the centre of gravity is outside the wheelbase: '
-                       f'expected a share strictly between 0 and 1, got {share!r}')
+        share = check.ranged(block, 'front_share', 'mass.front_share', 'front_share')
         cg_x = rear + share * (front - rear)
     else:
         cg_x = check.number(block, 'cg_x', 'mass.cg_x (or mass.front_share)') * scale
         if not rear < cg_x < front:
             check.fail('mass.cg_x', f'the centre of gravity at x = {cg_x:g} mm is outside the '
                        f'wheelbase (rear axle x = {rear:g} mm, front axle x = {front:g} mm)')
+        problem = RANGE['front_share'].problem((cg_x - rear) / (front - rear))
+        if problem:
+            check.fail('mass.cg_x', f'the centre of gravity at x = {cg_x:g} mm puts a share '
+                       f'of the sprung mass on the front axle of {problem} (rear axle x = '
+                       f'{rear:g} mm, front axle x = {front:g} mm; {RANGES_DOC})')
     cg_height = _cg_height(check, data, block, scale, axles)
-    unsprung = _per_axle(check, block, 'unsprung', 'mass.unsprung', _mass)
+    unsprung = _per_axle(check, block, 'unsprung', 'mass.unsprung', _ranged('unsprung_mass'))
     heights = {a: math.nan for a in AXLES}
     if block.get('unsprung_cg_height') is not None:
         heights = _per_axle(check, block, 'unsprung_cg_height', 'mass.unsprung_cg_height',
-                            lambda c, b, k, w: _positive(c, b, k, w) * scale)
+                            _ranged('height'))
     if not isinstance(data.get('tyre_rate'), dict):
         check.fail('tyre_rate', 'missing: ride rate and ride frequency need the vertical rate '
                    "of each axle's tyres, {front: N/unit, rear: N/unit}"
                    if data.get('tyre_rate') is None else
-                   f'expected a mapping {{front, rear}}, got {data["tyre_rate"]!r}')
-    rates = _per_axle(check, data, 'tyre_rate', 'tyre_rate',
-                      lambda c, b, k, w: _positive(c, b, k, w) / scale)
+                   f'expected a mapping {{front, rear}}, got {shown(data["tyre_rate"])}')
+    rates = _per_axle(check, data, 'tyre_rate', 'tyre_rate', _ranged('tyre_rate'))
     return MassData(sprung, cg_x, cg_height, unsprung, heights, rates)
 
 
@@ -111,7 +119,7 @@ def _cg_height(check, data, block, scale, axles):
             check.fail('mass.cg_height', 'missing: the roll moment arm, the roll gradient and '
                        'the load transfer need the height of the centre of gravity')
         return given
-    height = _positive(check, block, 'cg_height', 'mass.cg_height') * scale
+    height = check.ranged(block, 'cg_height', 'mass.cg_height', 'height')
     if not math.isnan(given) and abs(height - given) > 1e-9 * max(1.0, height):
         check.fail('mass.cg_height', f'{height:g} mm differs from cg_height {given:g} mm: give '
                    'one of them')
@@ -123,22 +131,15 @@ def _per_axle(check, block, key, where, read):
     values = block.get(key)
     if not isinstance(values, dict):
         check.fail(where, 'missing (required): {front: ..., rear: ...}' if values is None
-                   else f'expected a mapping {{front, rear}}, got {values!r}')
+                   else f'expected a mapping {{front, rear}}, got {shown(values)}')
     check.keys(values, AXLES, where)
     return {a: read(check, values, a, f'{where}.{a}') for a in AXLES}
 
 
-def _mass(check, block, key, where):
-    """Return block[key], a mass (kg) >= 0 and finite."""
-    value = check.number(block, key, where, length=False)
-    if value < 0:
-        check.fail(where, f'a mass must not be negative, got {value!r}')
-    return value
-
-
-def _positive(check, block, key, where):
-    """Return block[key], a finite number > 0."""
-    value = check.number(block, key, where, length=False)
-    if not value > 0:
-        check.fail(where, f'must be positive, got {value!r}')
-    return value
+def _ranged(kind):
+    """Return a reader of a value of block[key] within the stated range kind (core units)."""
+    def read(check, block, key, where):
+        if block.get(key) is None:
+            check.fail(where, 'missing (required)')
+        return check.ranged(block, key, where, kind)
+    return read

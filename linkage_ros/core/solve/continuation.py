@@ -35,6 +35,7 @@ from .mechanism import (carrier_points, compile_scene, linearize, scaled_conditi
 from .paper_method import build as build_paper_model, correct as paper_correct
 from ..base.errors import LinkageError
 from ..base.finite import is_finite_number
+from ..base.ranges import RANGE, shown
 from ..base.status import Status
 
 if TYPE_CHECKING:
@@ -135,6 +136,20 @@ def resolved(settings: Settings, scale: float, floor: float) -> Settings:
     return replace(out, max_iter=int(out.max_iter), max_substeps=int(out.max_substeps))
 
 
+def not_finite(name: str, value: object) -> str:
+    """
+    Say why a command (travel or rack, mm) is not solved: NaN, or an infinity.
+
+    An infinity in mm is mostly a finite value in m beyond 1.8e305 (the node's 1e308 m): it is
+    said as out of the range of a length, in m and mm, the value as given being the caller's
+    to say (the node's message starts with it: '/wheel_travel 1e+308 m: ...').
+    """
+    if isinstance(value, float) and math.isinf(value):
+        return (f'{name} outside {RANGE["coordinate"].said(1000.0)}, the range of a length: '
+                'not a finite number of mm')
+    return f'{name} {shown(value)} mm is not a finite number'
+
+
 class Continuation:
     """
     Solves wheel travels one after another, each from the last good pose.
@@ -220,8 +235,7 @@ class Continuation:
         rack = self.rack if rack is None else rack
         if not (is_finite_number(travel) and is_finite_number(rack)):
             name, value = ('rack', rack) if is_finite_number(travel) else ('travel', travel)
-            return self._failure(travel, Status.NOT_FINITE,
-                                 f'{name} {value!r} mm is not a finite number', 0)
+            return self._failure(travel, Status.NOT_FINITE, not_finite(name, value), 0)
         travel, rack = float(travel), float(rack)
         if rack == self._asked_rack[0]:
             rack = self._asked_rack[1]
@@ -279,9 +293,10 @@ class Continuation:
         cfg = self.settings
         length = max(abs(target - start), abs(rack - start_rack))
         if length > cfg.max_step * cfg.max_substeps:   # as kernel.walk tells
-            needed = math.ceil(length / cfg.max_step)
+            needed = length / cfg.max_step
+            needed = f'{math.ceil(needed):d}' if needed < 1e9 else f'{needed:.3g}'   # not 300
             return (f'travel {target:g} mm{at_rack}: the walk of {length:g} mm from travel '
-                    f'{start:g} mm needs {needed:d} substeps of max_step {cfg.max_step:g} mm, '
+                    f'{start:g} mm needs {needed} substeps of max_step {cfg.max_step:g} mm, '
                     f'more than max_substeps {cfg.max_substeps}: raise max_step')
         return (f'travel {target:g} mm{at_rack} is not reached within max_substeps '
                 f'{cfg.max_substeps} substeps (halved where they failed): continuation stops '

@@ -90,6 +90,7 @@ def setup_sheet(vehicle: Vehicle, scale: int = 1) -> SetupSheet:
         notes += s.design.notes
     rows = {name: s.row for name, s in sheets.items()}
     rows['vehicle'] = vehicle_row(vehicle, sheets, x, sprung)
+    notes += falls_over(vehicle, rows['vehicle'])
     failed = [r for s in sheets.values() for r in (s.design, s.heave, s.roll, s.rack)
               if r is not None and not r.success]
     return SetupSheet(vehicle.name, rows, sheets,
@@ -233,6 +234,21 @@ def vehicle_row(vehicle: Vehicle, sheets: dict, x: dict, sprung: dict) -> dict[s
            / (transfer['front'].total + transfer['rear'].total)}
     row.update(pitch(vehicle, sheets, x))
     return row
+
+
+def falls_over(vehicle: Vehicle, row: dict) -> list[str]:
+    """
+    Say why a vehicle's row has no roll gradient, if it has none ([] if it has one).
+
+    Its roll stiffness K does not hold the sprung mass's overturning moment m_s g d
+    (balance.roll_gradient: NaN where K <= m_s g d).
+    """
+    if not math.isnan(row['roll_gradient_deg_per_g']):
+        return []
+    moment = vehicle.mass.sprung * balance.G * row['roll_moment_arm_mm'] / 1000.0 * math.pi / 180.0
+    return [f'the roll stiffness, {row["roll_stiffness_Nm_per_deg"]:.6g} N m/deg, does not hold '
+            f'the body against its overturning moment m_s g d = {moment:.6g} N m/deg (it falls '
+            'over in roll): no roll gradient, elastic load transfer or LLTD']
 
 
 def pitch(vehicle: Vehicle, sheets: dict, x: dict) -> dict[str, float]:
