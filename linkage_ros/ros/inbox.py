@@ -22,7 +22,11 @@ a loss. rclpy gives a callback that takes two arguments the message info with ea
 passes the pair as one argument instead (a two-argument function then raises SystemError in
 the executor), its Python executors as two: an Inbox declares two arguments and takes either.
 rclpy 7.1 gives no publisher gid, so the numbers of several publishers on one topic are told
-apart by continuity (SequenceGaps): exact for one publisher, the usual case.
+apart by continuity (SequenceGaps): exact for one publisher per topic (a simulator's command
+stream); with several, a publisher matched late, or one restarted beside one that is gone,
+can have its numbers counted against another's. What a publisher sent before the first of its
+messages that the node takes is not counted: a publisher that ran before the node matched it
+numbered messages that were never sent to it.
 """
 
 from __future__ import annotations
