@@ -98,6 +98,7 @@ class SolveAnswers:
         self.topic = node.resolve_service_name(corner.prefix + 'solve')
         # the names a request may give: the corner's, or '' and the scene's for one scene
         self.names = {name} if name else {'', corner.scene.name}
+        self._said = None      # the refusal the corner has said on the console already
         self.queue = RequestQueue(node, kind, corner.prefix + 'solve', self.solve,
                                   self.refuse, node.qos.depth)
         self.service = self.queue.service
@@ -106,7 +107,7 @@ class SolveAnswers:
         """Answer one request (never raises: a bad one is a status and its text)."""
         why = self._refusal(request)
         if why:
-            return self.refuse(request, response, why)
+            return self.refuse(request, response, why, said=why is self._said)
         # an input like the topics' commands: recorded at receipt, on the service's name, as
         # the request itself (linkage-replay solve answers it again); its time stamps the answer
         stamp = self.node.received(self.topic, SOLVE_REQUEST, to_cdr(request))
@@ -121,10 +122,15 @@ class SolveAnswers:
         reply = self.corner.answer(travel_mm, rack_mm, stamp, lambda: self._sent(request))
         return fill(response, reply)
 
-    def refuse(self, request, response, why: str):
-        """Answer REFUSED with why, no pose; count it in the corner's diagnostics."""
+    def refuse(self, request, response, why: str, said: bool = False):
+        """
+        Answer REFUSED with why, no pose; count it in the corner's diagnostics.
+
+        said: the console has said why already (a bad wrench, the corner's own ERROR).
+        """
         self.corner.health.refuse_request()
-        self.node.bad_command(self.topic, REFUSED, why)
+        if not said:
+            self.node.bad_command(self.topic, REFUSED, why)
         return refused(response, why)
 
     def _refusal(self, request) -> str:
@@ -143,6 +149,7 @@ class SolveAnswers:
             problem = wrench_problem(corner.frame_id, force, torque, corner.frame_id)
             if problem:     # an ERROR of the corner, as on its contact_wrench topic
                 corner.refuse(self.topic, problem, BAD_WRENCH)
+                self._said = problem
                 return problem
         return ''
 

@@ -114,3 +114,23 @@ def test_every_refused_name_is_one_line_naming_file_field_name_and_rule(tmp_path
     assert said.startswith(f'{path}: {field}: ')
     assert 'is not a ROS name token' in said and f'at most {NAME_TOKEN_MAX} characters' in said
     assert repr(name)[:60] in said
+
+
+def test_two_constraints_of_one_name_are_refused_naming_both(tmp_path):
+    path = scene_named(tmp_path, ['upper_arm', 'lower_arm', 'tie_rod'])
+    data = yaml.safe_load(path.read_text())
+    data['constraints'][2]['name'] = 'upper_arm'      # a sphere: pickup upper_arm_base
+    path.write_text(yaml.safe_dump(data))
+    try:
+        load_scene(path)
+    except SceneError as exc:
+        assert str(exc) == (f'{path}: constraints[2] (upper_arm).name: used twice '
+                            '(constraints[0] too): names make topics, frames and columns, so '
+                            'each constraint needs its own')
+    else:
+        raise AssertionError('two constraints named upper_arm were taken')
+
+
+def test_the_doc_s_example_line_is_what_the_loader_says():
+    said = f"my_corner.yaml: constraints[1].name: {token_problem('lower-arm')}"
+    assert f'linkage-sweep: {said}\n' in (ROOT / 'doc' / 'scenes.md').read_text()
