@@ -42,6 +42,8 @@ def test_a_publisher_that_restarts_numbering_is_a_new_one_not_a_loss():
 
 
 class Taken:
+    """What an Inbox handed over: data taken, losses counted, exceptions."""
+
     def __init__(self, fail_on=None):
         self.data, self.lost, self.failed, self.fail_on = [], [], [], fail_on
 

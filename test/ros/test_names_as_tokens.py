@@ -67,8 +67,8 @@ def assert_valid_topic(name):
 @given(names=st.lists(tokens, min_size=3, max_size=3, unique=True), element=tokens,
        corner=tokens)
 @example(names=['a', 'B', 'c1'], element='s', corner='x' * NAME_TOKEN_MAX)
-def test_every_accepted_name_makes_valid_topics_frames_and_a_urdf(tmp_path, names, element,
-                                                                   corner):
+def test_every_accepted_name_makes_valid_topics_frames_and_a_urdf(
+        tmp_path, names, element, corner):
     if element == 'damper':
         element = 'damper2'      # the scene's other element
     scene = load_scene(scene_named(tmp_path, names, element))

@@ -37,7 +37,7 @@ def bad_scene(tmp_path, name):
 
 
 def said_of(path, name):
-    return (f"{path}: constraints[1].name: {name!r} is not a ROS name token: a letter, then "
+    return (f'{path}: constraints[1].name: {name!r} is not a ROS name token: a letter, then '
             'letters, digits and _, without __ or a trailing _, at most 64 characters')
 
 
