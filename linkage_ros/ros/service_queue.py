@@ -153,9 +153,18 @@ class RequestQueue:
             self.undelivered += 1
 
     def close(self, why: str) -> None:
-        """Refuse every request still waiting (with why), and every one after (the node stops)."""
+        """
+        Refuse every request still waiting (with why), and every one after (the node stops).
+
+        Once: a second call (the node destroyed twice, its timer gone) does nothing.
+        """
+        if self.closed:
+            return
         self.closed = why
-        self.timer.cancel()
+        try:
+            self.timer.cancel()
+        except Exception:  # noqa: B902 (the timer is destroyed already: nothing to cancel)
+            pass
         self._drain()
         while self.waiting:
             request, response, header = self.waiting.popleft()
