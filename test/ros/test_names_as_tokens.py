@@ -43,19 +43,33 @@ hostile = (st.text(min_size=0, max_size=80) | st.sampled_from(
      'Arm\x00', '/arm', 'arm/1', 'ärm', '', 'x' * 5000])).filter(lambda n: bool(token_problem(n)))
 
 
+def quoted(name):
+    """Return name as a YAML double-quoted scalar, every character a \\U escape."""
+    return '"' + ''.join(f'\\U{ord(c):08x}' for c in name) + '"'
+
+
 def scene_named(tmp_path, names, element='spring'):
-    """Write double_wishbone_bushings with its constraints and spring renamed; return it."""
+    """
+    Write double_wishbone_bushings with its constraints and spring renamed; return it.
+
+    Each name goes in as a YAML double-quoted scalar with every character escaped (quoted):
+    the file's reader reads back exactly the name given, whatever it holds.
+    """
     data = copy.deepcopy(BASE)
     data.pop('reference')
-    rename = dict(zip(CONSTRAINTS, names))
+    given = {f'NAME{i}x': name for i, name in enumerate([*names, element])}
+    rename = dict(zip(CONSTRAINTS, given))
     for c in data['constraints']:
         c['name'] = rename[c['name']]
     for e in data['elements']:
         e['arm'] = rename[e['arm']]
         if e['name'] == 'spring':
-            e['name'] = element
+            e['name'] = f'NAME{len(names)}x'
+    text = yaml.safe_dump(data)
+    for placeholder, name in given.items():
+        text = text.replace(placeholder, quoted(name))
     path = tmp_path / 'scene.yaml'
-    path.write_text(yaml.safe_dump(data, allow_unicode=True), encoding='utf-8')
+    path.write_text(text, encoding='utf-8')
     return path
 
 
@@ -96,9 +110,8 @@ def test_every_accepted_name_makes_valid_topics_frames_and_a_urdf(
 @example(name='9arm', where='corner')
 def test_every_refused_name_is_one_line_naming_file_field_name_and_rule(tmp_path, name, where):
     if where == 'corner':
-        path = tmp_path / 'vehicle.yaml'
-        path.write_text(yaml.safe_dump({'corners': {name: {'scene': 'macpherson'}}},
-                                       allow_unicode=True), encoding='utf-8')
+        path = tmp_path / 'vehicle.yaml'     # an explicit key: any length, any character
+        path.write_text(f'corners:\n  ? {quoted(name)}\n  : {{scene: macpherson}}\n')
         field = f'corners.{name if PLAIN_KEY.match(name) else repr(name)}'
     else:
         names = [name, 'lower_arm', 'tie_rod'] if where == 'constraint' else CONSTRAINTS
