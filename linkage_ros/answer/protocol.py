@@ -31,8 +31,12 @@ With statics on (statics_on: a scene with bushings, or statics=True), a solved c
 answered with the loaded pose at the last contact wrench (responder.statics.set_wrench;
 answer/pickups.CornerStatics, which alone imports the statics core) in place of the kinematic
 one, then with every body pickup's force (pickup/<name>, after the extras); a load the
-linkage cannot carry is a failed command (Status.NOT_CARRIED), with no answer.
-wrench_problem says why a contact wrench is refused, statics_problem why a scene cannot
+linkage cannot carry is a failed command (Status.NOT_CARRIED), with no answer. No exception
+of a solve leaves answer(): the statics' is NOT_CARRIED, the kinematics' (or an output
+builder's) Status.SOLVER_ERROR, after which the corner restarts from its design position;
+either names the exception in one line.
+wrench_problem says why a contact wrench is refused (another frame, not finite, beyond the
+bound core.base.FORCE_LIMIT_N or MOMENT_LIMIT_NM), statics_problem why a scene cannot
 have statics.
 
 ROS-free: this module imports the core, cdr (the answer's CDR bytes) and the Health logic,

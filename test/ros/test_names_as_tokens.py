@@ -44,7 +44,7 @@ hostile = (st.text(min_size=0, max_size=80) | st.sampled_from(
 
 
 def quoted(name):
-    """Return name as a YAML double-quoted scalar, every character a \\U escape."""
+    """Return name as a YAML double-quoted scalar, every character escaped (U and 8 digits)."""
     return '"' + ''.join(f'\\U{ord(c):08x}' for c in name) + '"'
 
 
