@@ -5,7 +5,9 @@
 What /diagnostics says about one corner, kept the way diagnostic_updater keeps it.
 
 A Health counts the commands a corner answers and remembers the worst of the period
-(residual, condition number, Newton iterations, substeps); the node publishes its status
+(residual, condition number, Newton iterations, substeps), and counts what never became a
+command: inputs lost in a flood (a subscription's queue overflowed) and solve requests
+answered REFUSED. The node publishes its status
 every diagnostic period and resets the period, and publishes at once when a command fails or
 the level changes. ROS-free: messages.health_status turns it into a DiagnosticStatus.
 
@@ -38,6 +40,8 @@ class Health:
     refused: str = ''              # why the last command could not be read, if it could not
     commands_total: int = 0        # since start
     failures_total: int = 0
+    lost_total: int = 0            # inputs lost before the node took them (a queue overflowed)
+    refused_total: int = 0         # solve requests answered REFUSED
     # The period since the last report:
     commands: int = 0
     failures: int = 0
@@ -45,6 +49,8 @@ class Health:
     condition_max: float = 0.0
     iterations_max: int = 0
     substeps_max: int = 0
+    lost: int = 0
+    refused_requests: int = 0
 
     def add(self, solution: Solution, sent: str = '') -> bool:
         """
@@ -87,6 +93,21 @@ class Health:
         self.level, self.message = self._assess()
         return True
 
+    def lose(self, count: int) -> None:
+        """
+        Count inputs lost before the node took them (a subscription's queue overflowed).
+
+        Counted apart from the commands: they were never answered, and the level is not
+        changed (the commands that did come are answered as ever).
+        """
+        self.lost += count
+        self.lost_total += count
+
+    def refuse_request(self) -> None:
+        """Count a solve request answered REFUSED (the solver never saw it)."""
+        self.refused_requests += 1
+        self.refused_total += 1
+
     def set_fault(self, fault: str) -> bool:
         """Hold a fault (a non-empty text) or clear it (''); return True if the level changed."""
         level, self.fault = self.level, fault
@@ -96,6 +117,7 @@ class Health:
     def reset_period(self) -> None:
         """Start a new period: the counts and the worst values start again."""
         self.commands = self.failures = self.iterations_max = self.substeps_max = 0
+        self.lost = self.refused_requests = 0
         self.residual_max = self.condition_max = 0.0
 
     def _assess(self):

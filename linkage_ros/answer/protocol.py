@@ -31,8 +31,12 @@ With statics on (statics_on: a scene with bushings, or statics=True), a solved c
 answered with the loaded pose at the last contact wrench (responder.statics.set_wrench;
 answer/pickups.CornerStatics, which alone imports the statics core) in place of the kinematic
 one, then with every body pickup's force (pickup/<name>, after the extras); a load the
-linkage cannot carry is a failed command (Status.NOT_CARRIED), with no answer.
-wrench_problem says why a contact wrench is refused, statics_problem why a scene cannot
+linkage cannot carry is a failed command (Status.NOT_CARRIED), with no answer. No exception
+of a solve leaves answer(): the statics' is NOT_CARRIED, the kinematics' (or an output
+builder's) Status.SOLVER_ERROR, after which the corner restarts from its design position;
+either names the exception in one line.
+wrench_problem says why a contact wrench is refused (another frame, not finite, beyond the
+bound core.base.FORCE_LIMIT_N or MOMENT_LIMIT_NM), statics_problem why a scene cannot
 have statics.
 
 ROS-free: this module imports the core, cdr (the answer's CDR bytes) and the Health logic,
@@ -45,12 +49,12 @@ A DiagnosticStatus is built from responder.health by linkage_ros.ros.messages.he
 
 from __future__ import annotations
 
-import math
 from typing import Any, Callable, NamedTuple, TYPE_CHECKING
 
 from .cdr import float64_cdr, pose_stamped_cdr
 from .health import Health
 from ..core.base import LinkageError, M_PER_MM, Status
+from ..core.base import wrench_problem as bounded_wrench_problem
 from ..core.solve import Continuation, Solution
 
 if TYPE_CHECKING:
@@ -97,13 +101,19 @@ ANSWER_TYPES = {o.name: o.type_name for o in OUTPUTS if o.when == SOLVED}
 
 
 def wrench_problem(frame_id: str, force: tuple, torque: tuple, vehicle_frame: str) -> str:
-    """Say why a contact wrench cannot be taken ('' if it can): not finite, or another frame."""
+    """
+    Say why a contact wrench cannot be taken ('' if it can), on one line.
+
+    Another frame than the vehicle's, or a component not finite or beyond the stated bound
+    (core.base.wrench_problem: FORCE_LIMIT_N, MOMENT_LIMIT_NM). The last good wrench is kept.
+    """
     if frame_id != vehicle_frame:
         return (f'frame_id {frame_id!r} is not the vehicle frame {vehicle_frame!r} (the '
                 'contact wrench is taken in the vehicle frame only)')
-    if not all(math.isfinite(v) for v in (*force, *torque)):
-        return (f'force {list(force)} N, torque {list(torque)} N m: not finite (the last '
-                'finite wrench is kept)')
+    problem = bounded_wrench_problem(force, torque)
+    if problem:
+        return (f'force {list(force)} N, torque {list(torque)} N m: {problem} (the last good '
+                'wrench is kept)')
     return ''
 
 
@@ -274,18 +284,55 @@ class Responder:
         if rack_mm is not None and not self.scene.steered:
             return self._no_rack(sent() if callable(sent) else sent)
         travel = self.solver.travel if travel_mm is None else travel_mm
+        try:
+            solution, outputs = self._solve(travel, rack_mm, stamp)
+        except Exception as exc:  # noqa: B902 (no exception of a solve may leave an answer)
+            solution, outputs = self._raised(travel, rack_mm, exc, Status.SOLVER_ERROR), []
+        said = '' if solution.success else (sent() if callable(sent) else sent)
+        return Reply(solution, outputs, said, self.health.add(solution, said))
+
+    def _solve(self, travel: float, rack_mm: float | None,
+               stamp: tuple[int, int]) -> tuple[Solution, list]:
+        """Return (the Solution of a command, its outputs: [] unless solved)."""
         solution = self.solver.solve(travel, rack_mm)
         pickups = []
         if solution.success and self.statics is not None:   # the loaded pose in its place
-            solution, pickups = self.statics.load(solution, stamp, self.solver)
-        if solution.success:
-            outputs, said = answer_outputs(solution, stamp, self.frame_id), ''
-            for name, type_name, build in self._extras:
-                outputs.append((name, type_name, build(solution, stamp)))
-            outputs += pickups
+            try:
+                solution, pickups = self.statics.load(solution, stamp, self.solver)
+            except Exception as exc:  # noqa: B902 (a statics solve that raises: not carried)
+                return self._raised(travel, rack_mm, exc, Status.NOT_CARRIED), []
+        if not solution.success:
+            return solution, []
+        outputs = answer_outputs(solution, stamp, self.frame_id)
+        for name, type_name, build in self._extras:
+            outputs.append((name, type_name, build(solution, stamp)))
+        return solution, outputs + pickups
+
+    def _raised(self, travel: float, rack_mm: float | None, exc: Exception,
+                status: Status) -> Solution:
+        """
+        Return the failed Solution of a command whose solve raised exc: no pose.
+
+        A statics solve that raises is a load not carried (NOT_CARRIED): the kinematic pose
+        it started from stands. Any other is a defect (SOLVER_ERROR), after which the state
+        the walk left is not trusted: the corner goes back to its design position (on the
+        design branch, as every pose is), which the message says. The message names the
+        exception, on one line.
+        """
+        text = ' '.join(str(exc).split())[:300]
+        said = f'({type(exc).__name__}: {text}): no pose'
+        solver = self.solver
+        if status == Status.NOT_CARRIED:
+            message = f'the statics solve failed {said}'
         else:
-            outputs, said = [], sent() if callable(sent) else sent
-        return Reply(solution, outputs, said, self.health.add(solution, said))
+            message = f'the solver failed {said}; the corner restarts from its design position'
+            try:
+                solver.reset()
+            except Exception:  # noqa: B902 (the answer is said; the next command walks anew)
+                pass
+        return Solution(travel=travel, success=False, message=message,
+                        reachable=tuple(solver.reachable),
+                        rack=solver.rack if rack_mm is None else rack_mm, status=status)
 
     def _no_rack(self, said: str) -> Reply:
         """Refuse a rack command to a scene without a steer: rack link: ERROR, no pose."""

@@ -43,6 +43,7 @@ from std_msgs.msg import Float64, Float64MultiArray
 from visualization_msgs.msg import MarkerArray
 
 from . import messages
+from .inbox import Inbox
 from .qos import publisher, subscription, topic_qos
 from ..answer.cdr import CdrError, float64_of, from_cdr, wrench_of
 from ..answer.protocol import CONTACT_WRENCH, OUTPUTS, outputs_of, Reply, Responder, SOLVED, \
@@ -64,7 +65,9 @@ MESSAGES = {'geometry_msgs/msg/PoseStamped': PoseStamped, 'std_msgs/msg/Float64'
 TF = '/tf'
 PICKUP = 'pickup'             # the output of the pickups' forces: one topic pickup/<name> each
 UNDECODABLE = 'undecodable'   # the kind of a bad command whose bytes do not decode
-BAD_WRENCH = 'bad wrench'     # the kind of a contact wrench refused (not finite, other frame)
+BAD_WRENCH = 'bad wrench'     # the kind of a contact wrench refused (not finite, too big, ...)
+LOST = 'lost messages'        # inputs lost before the node took them (a queue overflowed)
+INTERNAL = 'internal error'   # an input whose handling raised: refused, the node goes on
 
 
 class Outlet(Protocol):
@@ -111,15 +114,12 @@ class Corner:
         self.publishers = {}    # output name -> its publisher, for the outputs on
         self.sends = {}         # output name -> function(message): publishes it
         self.listening = []     # what it takes, for the start-up line
-        travel = subscription(node, Float64, prefix + 'wheel_travel', self.on_travel, self.qos,
-                              raw=True)
-        self.travel_topic = travel.topic_name
+        self.travel_topic = self._subscribe(Float64, 'wheel_travel', self.on_travel)
         self.listening.append(f'{self.travel_topic} (m)')
         self.joint = params['travel_joint']
         if self.joint:   # off by default: no subscription, no discovery traffic
-            joints = subscription(node, JointState, prefix + 'joint_states',
-                                  self.on_joint_states, self.qos, raw=True)
-            self.joints_topic = joints.topic_name
+            self.joints_topic = self._subscribe(JointState, 'joint_states',
+                                                self.on_joint_states)
             self.listening.append(f'{self.joints_topic} (joint {self.joint}, m)')
         self.rack_topic = self.wrench_topic = None
         self._listen_to_rack()
@@ -162,19 +162,30 @@ class Corner:
     def _listen_to_rack(self) -> None:
         """Subscribe steering_rack if the scene steers and it is not subscribed yet."""
         if self.scene.steered and self.rack_topic is None:
-            rack = subscription(self.node, Float64, self.prefix + 'steering_rack', self.on_rack,
-                                self.qos, raw=True)
-            self.rack_topic = rack.topic_name
+            self.rack_topic = self._subscribe(Float64, 'steering_rack', self.on_rack)
             self.listening.append(f'{self.rack_topic} (m)')
 
     def _listen_to_wrench(self, params: dict) -> None:
         """Subscribe contact_wrench if statics is on and it is not subscribed yet."""
         if statics_on(self.scene, params['statics']) and self.wrench_topic is None:
-            wrench = subscription(self.node, WrenchStamped, self.prefix + CONTACT_WRENCH,
-                                  self.on_wrench, self.qos, raw=True)
-            self.wrench_topic = wrench.topic_name
+            self.wrench_topic = self._subscribe(WrenchStamped, CONTACT_WRENCH, self.on_wrench)
             self.listening.append(f'{self.wrench_topic} (N, N m at the contact patch, '
                                   f'{self.frame_id})')
+
+    def _subscribe(self, kind: type, name: str, take: Callable[[bytes], None]) -> str:
+        """
+        Subscribe the input name (under the corner's prefix) raw; return its resolved topic.
+
+        Through an Inbox (ros/inbox.py): the messages lost before each one are counted
+        (lose), and an exception of take is the refusal of that message (fail), never the
+        executor's.
+        """
+        where = {}
+        inbox = Inbox(take, lambda count: self.lose(where['topic'], count),
+                      lambda exc: self.fail(where['topic'], exc))
+        where['topic'] = subscription(self.node, kind, self.prefix + name, inbox, self.qos,
+                                      raw=True).topic_name
+        return where['topic']
 
     def configure(self, params: dict) -> None:
         """
@@ -316,6 +327,19 @@ class Corner:
         self.outlet.bad_command(topic, kind, str(error))
         self.health.refuse(f'{topic}: {error}')
         self.outlet.report([self])
+
+    def lose(self, topic: str, count: int) -> None:
+        """Count count inputs of topic lost before the node took them; say so on the console."""
+        self.health.lose(count)
+        self.outlet.bad_command(topic, LOST, f'{count} message{"s" * (count > 1)} lost before '
+                                f'this one: its queue (qos_depth {self.qos.depth}) overflowed '
+                                '(/diagnostics counts them: lost, lost_total)')
+
+    def fail(self, topic: str, exc: BaseException) -> None:
+        """Refuse an input of topic whose handling raised exc: ERROR, and the node goes on."""
+        text = ' '.join(str(exc).split())[:300]
+        self.refuse(topic, f'internal error ({type(exc).__name__}: {text}): the message is '
+                    'dropped, the corner keeps its last good pose', INTERNAL)
 
     def status(self):
         """Return the DiagnosticStatus of this corner."""

@@ -71,7 +71,8 @@ reliable, keep-last qos_depth):
   out  elements            sensor_msgs/JointState     the scene's elements: length (m), motion
                                                       ratio (scenes with elements)
   in   contact_wrench      geometry_msgs/WrenchStamped  the tyre's force (N) and moment (N m)
-                                                      at the contact patch, in frame_id (with
+                                                      at the contact patch, in frame_id, each
+                                                      component within 1e7 N and 1e6 N m (with
                                                       statics: a scene with bushings, or
                                                       -p statics:=true); answers are then the
                                                       loaded pose at the last one

@@ -117,6 +117,7 @@ class ManagedSuspensionNode(LifecycleNodeMixin, SuspensionNode):
     def _release(self) -> None:
         """Destroy every entity made since configure began; close the sinks."""
         self.taking_commands = False
+        self.close_services()
         self.sinks.close()
         if self.tf_outputs is not None:
             self.tf_outputs.close()

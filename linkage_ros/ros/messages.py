@@ -171,10 +171,12 @@ def health_status(health: Health, name: str, hardware_id: str,
     recording that stopped), WARN near a singular position, OK. Keys about the period since
     the last periodic report: commands, failures, residual_max_m (largest constraint
     violation), condition_max (Jacobian), iterations_max (Newton, last step of a command),
-    substeps_max (continuation steps for one command). Since start: commands_total,
-    failures_total. About the last command: travel_m (commanded), rack_m (+ = to the left;
-    0 without a steer: rack link), reachable_min_m, reachable_max_m (travel range explored
-    so far). And method.
+    substeps_max (continuation steps for one command), lost (inputs lost before the node took
+    them: a queue that overflowed in a flood, counted by the publishers' sequence numbers,
+    ros/inbox.py), refused (solve requests answered REFUSED). Since start: commands_total,
+    failures_total, lost_total, refused_total. About the last command: travel_m (commanded),
+    rack_m (+ = to the left; 0 without a steer: rack link), reachable_min_m, reachable_max_m
+    (travel range explored so far). And method.
     """
     last = health.last
     travel, rack, (low, high) = ((last.travel, last.rack, last.reachable) if last is not None
@@ -184,6 +186,10 @@ def health_status(health: Health, name: str, hardware_id: str,
         'failures': str(health.failures),
         'commands_total': str(health.commands_total),
         'failures_total': str(health.failures_total),
+        'lost': str(health.lost),
+        'lost_total': str(health.lost_total),
+        'refused': str(health.refused_requests),
+        'refused_total': str(health.refused_total),
         'residual_max_m': _number(health.residual_max * M_PER_MM),
         'condition_max': _number(health.condition_max),
         'iterations_max': str(health.iterations_max),

@@ -89,6 +89,7 @@ from sensor_msgs.msg import JointState
 
 from . import messages, parameters
 from .corner import Corner, corner_outputs, JOINT_STATE, joints_sent
+from .inbox import Inbox
 from .parameters import PARAMETERS
 from .qos import clock_qos, latched_qos, offered, publisher, QOS, QOS_DEPTH, subscription, \
     topic_qos, unknown_overrides
@@ -210,9 +211,10 @@ class SuspensionNode(Node):
         self.robot_name, self.tf_outputs = corners.name, None
         self.joint_corners = [c for c in self.corners.values()
                               if c.travel_joint or c.rack_joint]
-        if self.joint_corners:
-            joint_states = subscription(self, JointState, 'joint_states',
-                                        self.on_vehicle_joint_states, self.qos, raw=True)
+        if self.joint_corners:   # losses and failures are each named corner's (ros/inbox.py)
+            inbox = Inbox(self.on_vehicle_joint_states, self._joints_lost, self._joints_failed)
+            joint_states = subscription(self, JointState, 'joint_states', inbox, self.qos,
+                                        raw=True)
             self.joint_states_topic = joint_states.topic_name
         self._check_overrides(corners, params)
         self.set_tf(params['tf'])
@@ -383,13 +385,29 @@ class SuspensionNode(Node):
                 travel_mm = messages.joint_travel_mm(msg, corner.travel_joint)
                 rack_mm = messages.joint_travel_mm(msg, corner.rack_joint) \
                     if corner.rack_joint else None
-                if travel_mm is not None or rack_mm is not None:
+                if travel_mm is None and rack_mm is None:
+                    continue
+                try:     # one corner's failure is its own: the others are answered
                     corner.answer(travel_mm, rack_mm, stamp, lambda corner=corner: joints_sent(
                         topic, msg, [corner.travel_joint, corner.rack_joint]))
+                except Exception as exc:  # noqa: B902 (no exception may leave a callback)
+                    corner.fail(topic, exc)
+
+    def _joints_lost(self, count):
+        for corner in self.joint_corners:
+            corner.lose(self.joint_states_topic, count)
+
+    def _joints_failed(self, exc):
+        for corner in self.joint_corners:
+            corner.fail(self.joint_states_topic, exc)
 
     def on_diagnostic_period(self):
-        self.sinks.check()     # a recorder writing in the background may have failed
-        self.report(self.corners.values())
+        try:
+            self.sinks.check()     # a recorder writing in the background may have failed
+            self.report(self.corners.values())
+        except Exception as exc:  # noqa: B902 (no exception may leave a callback)
+            self.get_logger().error(f'the diagnostics report failed ({type(exc).__name__}: '
+                                    f'{exc}); the node goes on')
         for corner in self.corners.values():
             corner.health.reset_period()
 
@@ -422,8 +440,14 @@ class SuspensionNode(Node):
         """Close every sink once (files are finished here); later calls do nothing."""
         self.sinks.close()
 
+    def close_services(self):
+        """Answer REFUSED every solve request still waiting (the node stops: none unanswered)."""
+        for answers in getattr(self, 'solve_services', {}).values():
+            answers.close()
+
     def destroy_node(self):
         self.stop_taking_commands()
+        self.close_services()
         self.close_sinks()
         super().destroy_node()
 

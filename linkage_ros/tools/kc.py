@@ -19,7 +19,8 @@ import numpy as np
 
 from ..cli import (check_outputs, counted, EXIT_STATUS, fail, Parser, plot_problem, program,
                    SPAN, span, warn, whole_file, write_csv)
-from ..core.base import check_position_count, LinkageError, positions_needed, say_ranges
+from ..core.base import check_position_count, FORCE_LIMIT_N, LinkageError, MOMENT_LIMIT_NM, \
+    positions_needed, say_ranges, wrench_problem
 from ..core.model import load_scene, SceneError
 from ..core.solve import travel_range
 
@@ -29,6 +30,7 @@ PROG = 'linkage-kc'
 MATRIX_ROWS = ('dx_mm', 'dy_mm', 'dz_mm', 'rx_deg', 'ry_deg', 'rz_deg')
 MATRIX_COLUMNS = ('fx_kn', 'fy_kn', 'fz_kn', 'mx_knm', 'my_knm', 'mz_knm')
 MATRIX_CORNER = 'response_per_load'
+ZERO = (0.0, 0.0, 0.0)
 
 EPILOG = """columns, without a load: travel_mm (+ = bump), rack_mm with --rack, then the
   compliance rates (doc/kc.md): toe_ and camber_per_fy_cp_deg_per_kn, wc_dy_ and
@@ -84,12 +86,14 @@ def parse_args(argv, rounds=0):
                         help='steering rack travel, mm (+ = rack to the left); adds rack_mm; '
                         'a range solves a travel x rack grid')
     parser.add_argument('--load', type=vector, metavar='FX,FY,FZ',
-                        help='force on the wheel, N, vehicle frame (needs --at)')
+                        help='force on the wheel, N, vehicle frame (needs --at); each '
+                        f'component within +-{FORCE_LIMIT_N:g} N')
     parser.add_argument('--at', choices=('cp', 'wc'),
                         help="where the force acts: cp the contact patch (needs the scene's "
                         'wheel_radius), wc the wheel centre')
     parser.add_argument('--moment', type=vector, metavar='MX,MY,MZ',
-                        help='moment on the wheel, N m, vehicle frame')
+                        help='moment on the wheel, N m, vehicle frame; each component within '
+                        f'+-{MOMENT_LIMIT_NM:g} N m')
     parser.add_argument('--columns', metavar='NAME,...',
                         help='write only these columns (after travel_mm and rack_mm)')
     parser.add_argument('-o', '--output', '--csv', dest='output', metavar='FILE',
@@ -106,6 +110,11 @@ def parse_args(argv, rounds=0):
         parser.error('--load needs --at cp or --at wc (where the force acts)')
     if args.at is not None and args.load is None:
         parser.error('--at says where the force of --load acts: give --load FX,FY,FZ')
+    for option, given, force, moment in (('--load', args.load, args.load, ZERO),
+                                         ('--moment', args.moment, ZERO, args.moment)):
+        problem = given is not None and wrench_problem(force, moment)
+        if problem:   # the node's bound on a wheel's wrench (core.base.limits)
+            parser.error(f'{option}: {problem}')
     args.loaded = args.load is not None or args.moment is not None
     if args.loaded and args.matrix:
         parser.error('--matrix is the compliance at zero load: leave out --load and --moment')
@@ -217,11 +226,18 @@ def solve(scene, args, travels, racks):
     load = load_of(args) if args.loaded else None
     for rack in racks:
         for travel in travels:
-            if load is None:
-                result = compliance(scene, travel_mm=float(travel), rack_mm=float(rack))
-            else:
-                result = solve_loaded(scene, travel_mm=float(travel), load=load,
-                                      rack_mm=float(rack))
+            try:
+                if load is None:
+                    result = compliance(scene, travel_mm=float(travel), rack_mm=float(rack))
+                else:
+                    result = solve_loaded(scene, travel_mm=float(travel), load=load,
+                                          rack_mm=float(rack))
+            except (ArithmeticError, ValueError, np.linalg.LinAlgError) as exc:
+                # a statics solve that raises: not carried, said in one line, as the node says
+                text = ' '.join(str(exc).split())[:300]
+                failure = (f'ERROR {Status.NOT_CARRIED.name}: at travel {float(travel):g} mm: '
+                           f'the statics solve failed ({type(exc).__name__}: {text})')
+                return header or lead, rows, results, failure
             if result.status != Status.OK:   # the message names the travel (and the load)
                 failure = f'ERROR {result.status.name}: {result.message}'
                 return header or lead, rows, results, failure

@@ -111,19 +111,24 @@ class _Corner:
 
     def take_request(self, data, service):
         """
-        Return (travel_mm, rack_mm, sent) of a recorded solve request, its wrench taken.
+        Return (travel_mm, rack_mm, sent, problem) of a recorded solve request, its wrench taken.
 
-        As ros/solve_service.SolveAnswers.solve takes it: the node records only the requests
-        it takes (a wrench it refuses is not recorded), so the wrench is set as it is.
+        As ros/solve_service.SolveAnswers.solve takes it. The node records only the requests
+        it takes; a recording that holds one whose wrench the node refuses (not finite,
+        beyond the bound, no statics: a file not written by the node) gets the node's
+        refusal: problem says why ('' if taken), and the request is not answered.
         """
         from ..answer.cdr import solve_request_of
         _, travel, rack, force, torque, use_wrench = solve_request_of(data)
+        sent = f'{service} travel {travel!r} m, rack {rack!r} m'   # as the node says it
         if use_wrench:
-            self._take(self.settings['frame_id'], force, torque)
+            problem = self._take(self.settings['frame_id'], force, torque)
+            if problem:
+                return None, None, sent, problem
         travel_mm, rack_mm = travel * MM_PER_M, rack * MM_PER_M
         if not self.scene.steered and rack_mm == 0.0:
             rack_mm = None    # no rack link: the rack stays where it is (none)
-        return travel_mm, rack_mm, f'{service} travel {travel!r} m, rack {rack!r} m'  # the node's
+        return travel_mm, rack_mm, sent, ''
 
     def change(self, values, scenes, time_ns):
         """
@@ -240,8 +245,16 @@ def solve_commands(commands, scene, method, sinks, topic=DEFAULT_TOPIC, progress
                 progress.update(i + 1)
             continue
         if command.kind == SOLVE:      # a solve service request: travel and rack at once
+            travel_mm, rack_mm, sent, problem = corner.take_request(command.data,
+                                                                    prefix + SOLVE_TOPIC)
+            if problem:     # refused as the node refuses it: ERROR at once, not recorded
+                responder.health.refuse(f'{solve}: {problem}')
+                responder.health.refuse_request()
+                report(t)
+                if progress:
+                    progress.update(i + 1)
+                continue
             emit(solve, SOLVE_REQUEST, command.data, t, command.publish_time)
-            travel_mm, rack_mm, sent = corner.take_request(command.data, prefix + SOLVE_TOPIC)
         else:
             name = rack if command.kind == RACK else topic
             emit(name, FLOAT64, float64_cdr(command.travel), t, command.publish_time)

@@ -74,3 +74,19 @@ def test_a_fault_holds_error_until_cleared(five_link):
     assert health.add(five_link.solve(1.0)) is False    # still ERROR: the fault holds
     assert (health.level, health.message) == (ERROR, 'recording run.mcap stopped: disk full')
     assert health.set_fault('') is True and health.level == OK
+
+
+def test_lost_inputs_and_refused_requests_are_counted_apart_from_commands(five_link):
+    health = Health(condition_warn=1e4)
+    health.add(five_link.solve(10.0))
+    health.lose(7)
+    health.lose(2)
+    health.refuse_request()
+    # not commands, and no change of level: the commands that came are answered as ever
+    assert (health.commands, health.failures, health.level) == (1, 0, OK)
+    assert (health.lost, health.lost_total, health.refused_requests, health.refused_total) == (
+        9, 9, 1, 1)
+    health.reset_period()
+    health.lose(1)
+    assert (health.lost, health.lost_total, health.refused_requests, health.refused_total) == (
+        1, 10, 0, 1)

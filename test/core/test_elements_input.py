@@ -63,7 +63,7 @@ BAD = [
     ({**DAMPER, 'body': [10.0, 700.0, 160.0], 'arm': 'lower_arm', 'point': [10.0, 700.0, 160]},
      'elements[0] (damper): the body point and the moving point coincide at design'),
     ({**DAMPER, 'name': 'damper left', 'carrier': [0.0, 700.0, 200.0]},
-     'elements[0].name: expected a name of letters, digits and _ starting with a letter'),
+     "elements[0].name: 'damper left' is not a ROS name token"),
 ]
 
 

@@ -40,7 +40,8 @@ def test_vehicle_corner_with_bad_offset_names_the_field(tmp_path):
 def test_vehicle_corner_name_must_be_a_ros_name(tmp_path):
     path = tmp_path / 'car.yaml'
     path.write_text('corners:\n  Front-Left: {scene: five_link}\n')
-    with pytest.raises(SceneError, match='lower-case ROS names'):
+    with pytest.raises(SceneError, match="corners.Front-Left: corner name 'Front-Left' is not a "
+                       'ROS name token'):
         load_vehicle(path)
 
 

@@ -153,10 +153,12 @@ def test_status_of_good_solves_is_ok_with_the_period_in_si(solved):
     assert (status.name, status.hardware_id, status.message) == (
         'suspension_kinematics: five_link', 'five_link', 'ok')
     assert list(values) == ['commands', 'failures', 'commands_total', 'failures_total',
+                            'lost', 'lost_total', 'refused', 'refused_total',
                             'residual_max_m', 'condition_max', 'iterations_max',
                             'substeps_max', 'travel_m', 'rack_m', 'reachable_min_m',
                             'reachable_max_m', 'method']
     assert (values['commands'], values['failures']) == ('2', '0')
+    assert [values[k] for k in ('lost', 'lost_total', 'refused', 'refused_total')] == ['0'] * 4
     # The worst of the period: residual and iterations of the second, condition and
     # substeps (6: 30 mm from design in steps of max_step 5 mm) of the first.
     assert float(values['residual_max_m']) == pytest.approx(3 * solved.residual / 1000.0,

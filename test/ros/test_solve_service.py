@@ -209,3 +209,16 @@ def test_a_request_with_a_wrench_answers_the_loaded_pose_the_core_gives(
         assert [q.x, q.y, q.z, q.w] == pytest.approx(
             quaternion_from_matrix(loaded.rotation).tolist(), rel=0, abs=1e-12)
         assert answer.toe == pytest.approx(math.radians(loaded.toe_deg), rel=0, abs=1e-12)
+
+
+def test_the_srv_comment_names_every_status_the_service_answers():
+    # Solve.srv's comment is the interface's documentation: every Status value, by number
+    # and name (7 NOT_CARRIED was missing), and REFUSED's every reason
+    text = (Path(__file__).resolve().parents[2] / 'config' / 'interfaces' /
+            'linkage_ros_interfaces' / 'srv' / 'Solve.srv').read_text()
+    comment = ' '.join(line.lstrip('# ') for line in text.split('---')[1].splitlines()
+                       if line.startswith('#'))
+    for status in Status:
+        assert f'{status.value} {status.name}' in comment, status
+    for reason in ('corner', 'not active', 'wrench', 'overloaded'):
+        assert reason in comment.split('REFUSED', 1)[1], reason

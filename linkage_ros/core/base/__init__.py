@@ -16,16 +16,15 @@ from .geometry import (camber_toe, carrier_points, cross, exp_so3, M_PER_MM,
                        matrix_from_quaternion, MM_PER_M, N_MM_PER_NM_DEG, perpendicular,
                        point_velocity, quaternion_from_matrix,
                        spin_axis_of, trilaterate, unit)
-from .limits import (check_position_count, LENGTH_LIMIT_MM, MAX_POSITIONS, positions_needed,
-                     within_length_limit)
+from .limits import (check_position_count, FORCE_LIMIT_N, LENGTH_LIMIT_MM, MAX_POSITIONS,
+                     MOMENT_LIMIT_NM, positions_needed, within_length_limit, wrench_problem)
 from .ranges import RANGE, Range, RANGES, say_ranges
 from .status import Status
 
 __all__ = ['all_finite', 'camber_toe', 'carrier_points', 'check_position_count', 'cross',
-           'exp_so3', 'is_finite_number', 'LENGTH_LIMIT_MM', 'LinkageError', 'listed',
-           'lost_cells', 'M_PER_MM',
-           'matrix_from_quaternion', 'MAX_POSITIONS', 'MM_PER_M', 'N_MM_PER_NM_DEG',
-           'perpendicular', 'point_velocity', 'positions_needed', 'quaternion_from_matrix',
-           'Range', 'RANGE', 'RANGES', 'say_lost', 'say_ranges',
-           'spin_axis_of', 'Status', 'table_force', 'trilaterate', 'unit',
-           'within_length_limit']
+           'exp_so3', 'FORCE_LIMIT_N', 'is_finite_number', 'LENGTH_LIMIT_MM', 'LinkageError',
+           'listed', 'lost_cells', 'M_PER_MM', 'matrix_from_quaternion', 'MAX_POSITIONS',
+           'MM_PER_M', 'MOMENT_LIMIT_NM', 'N_MM_PER_NM_DEG', 'perpendicular', 'point_velocity',
+           'positions_needed', 'quaternion_from_matrix', 'Range', 'RANGE', 'RANGES', 'say_lost',
+           'say_ranges', 'spin_axis_of', 'Status', 'table_force', 'trilaterate', 'unit',
+           'within_length_limit', 'wrench_problem']

@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: Apache-2.0
 
 """
-Bounds on what an input may ask for: the size of a length, the number of sweep positions.
+Bounds on what an input may ask for: a length, the number of sweep positions, a wheel's wrench.
 
 Past a bound the input is a mistake (a typo, a unit slip, a hostile file), refused with a
 LinkageError that says what the request would need, before anything is allocated for it.
@@ -24,6 +24,39 @@ MAX_POSITIONS = 1_000_000
 # Memory one solved position takes on the way to a table: the kernel's state (52 floats),
 # the Sweep's arrays and the table's row (measured: about 700 B in sweep, 300 B in the table).
 BYTES_PER_POSITION = 1000
+
+
+# A wrench on a wheel (the tyre's force and moment at the contact patch, or a load of linkage-kc)
+# beyond these is no load a road vehicle's tyre carries: a unit slip (N for kN, N mm for N m) or
+# a hostile input, refused in one line wherever a wrench comes in (the node's contact_wrench,
+# its solve service, linkage-kc --load and --moment, linkage-replay solve). Each force component
+# at most 1e7 N: 100 times the largest static wheel load of a road vehicle (a 40 t truck's most
+# loaded wheel carries about 5e4 N) and 20 times a 10 g impact on it; each moment component at
+# most 1e6 N m: that force at a lever of 0.1 m, 100 times a truck tyre's aligning or overturning
+# moment (about 1e4 N m). Within them the statics' arithmetic (forces times levers of 1e3 mm,
+# squared in its residual norm: below 1e27) stays far from overflow; beyond about 1e150 N it
+# does not (NaN and infinities in the Newton system, issue 36).
+FORCE_LIMIT_N = 1e7
+MOMENT_LIMIT_NM = 1e6
+
+
+def wrench_problem(force_n, moment_nm) -> str:
+    """
+    Say why a wrench (force N, moment N m: 3 numbers each) cannot be taken; '' if it can.
+
+    Not finite, or a component beyond FORCE_LIMIT_N or MOMENT_LIMIT_NM: the message names
+    the first such component and the bound, on one line.
+    """
+    for what, values, limit, unit in (('force', force_n, FORCE_LIMIT_N, 'N'),
+                                      ('moment', moment_nm, MOMENT_LIMIT_NM, 'N m')):
+        for axis, value in zip('xyz', values):
+            if not is_finite_number(value):
+                return f'{what}.{axis} {value!r} {unit} is not finite'
+            if abs(value) > limit:
+                return (f'{what}.{axis} {float(value):g} {unit} is beyond the bound of '
+                        f'{limit:g} {unit} on each component (no tyre carries that: a unit '
+                        'slip, or not a load)')
+    return ''
 
 
 def within_length_limit(value: float, scale: float) -> bool:

@@ -22,6 +22,7 @@ class Status(IntEnum):
     SUBSTEP_LIMIT = 5  # the walk needs more substeps than max_substeps allows
     NO_RACK = 6        # a rack command to a scene without a steer: rack link
     NOT_CARRIED = 7    # statics: the load deflects a bushing beyond the model, or diverges
+    SOLVER_ERROR = 8   # the solver raised an exception (a defect): its type and text said
 
     @property
     def phrase(self) -> str:

@@ -15,7 +15,8 @@ singular-design check into scene.CHECKS).
 from .bundled import bundled_scenes, config_dir, scene_dir, vehicle_dir
 from .constraint import Constraint
 from .elements import Element, parse_elements
-from .fields import Fields, FREE_KEYS, name_problem
+from .fields import Fields, FREE_KEYS, name_problem, NAME_TOKEN_MAX, NAME_TOKEN_RULE, \
+    token_problem
 from .kingpin import check_kingpin, KingpinPoint
 from .mounts import LINE_TOLERANCE, Mount, parse_mount
 from .scene import (link_polylines, load_scene, parse_scene, resolve_scene_path, safe_stem,
@@ -27,10 +28,10 @@ from .yaml_file import FILE_LIMIT_BYTES, parse_yaml, read_yaml, SceneError, VALU
 __all__ = ['AxleSpec', 'bundled_scenes', 'check_kingpin', 'config_dir', 'Constraint', 'Element',
            'Fields', 'FILE_LIMIT_BYTES', 'FREE_KEYS', 'KingpinPoint', 'LINE_TOLERANCE',
            'link_fraction', 'link_polylines', 'load_scene', 'load_vehicle', 'mirror', 'Mount',
-           'name_problem', 'parse_elements', 'parse_mount', 'parse_scene', 'parse_yaml',
-           'read_yaml', 'resolve_scene_path', 'safe_stem', 'Scene', 'scene_dir', 'SceneError',
-           'translate', 'UNITS_TO_MM', 'VALUES_LIMIT', 'Vehicle', 'vehicle_dir', 'VehicleAxles',
-           'with_points']
+           'name_problem', 'NAME_TOKEN_MAX', 'NAME_TOKEN_RULE', 'parse_elements', 'parse_mount',
+           'parse_scene', 'parse_yaml', 'read_yaml', 'resolve_scene_path', 'safe_stem', 'Scene',
+           'scene_dir', 'SceneError', 'token_problem', 'translate', 'UNITS_TO_MM',
+           'VALUES_LIMIT', 'Vehicle', 'vehicle_dir', 'VehicleAxles', 'with_points']
 LAZY = ('AxleSpec', 'VehicleAxles')   # vehicle_axles.py: loaded by a vehicle file with axles
 
 

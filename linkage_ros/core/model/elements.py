@@ -30,7 +30,6 @@ from __future__ import annotations
 
 from dataclasses import dataclass, replace
 import math
-import re
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -46,7 +45,6 @@ if TYPE_CHECKING:
 
 TYPES = ('spring', 'damper', 'length')
 KEYS = ('name', 'type', 'body', 'point', 'rate', 'free_length', 'force_table') + tuple(KINDS)
-NAME = re.compile(r'^[A-Za-z][A-Za-z0-9_]*$')   # becomes the start of table column names
 
 
 @dataclass(frozen=True)
@@ -133,10 +131,8 @@ def _parse_element(check, item, index, constraints):
     if not isinstance(item, dict):
         check.fail(where, 'expected a mapping {name, type, body, and carrier, arm + point, '
                    'link + point or along}')
-    name = item.get('name')
-    if not isinstance(name, str) or not NAME.match(name):
-        check.fail(f'{where}.name', f'expected a name of letters, digits and _ starting with a '
-                   f'letter (it starts the table columns), got {shown(name)}')
+    # it starts the table columns, and a spring's pickup topic pickup/<name>_body
+    name = check.token(item, 'name', f'{where}.name')
     where = f'elements[{index}] ({name})'
     check.keys(item, KEYS, where)   # free keys (description, notes, x_...) pass
     kind = check.choice(item, 'type', TYPES, f'{where}.type')

@@ -32,6 +32,19 @@ if TYPE_CHECKING:
 FREE_KEYS = ('description', 'source', 'notes')
 OWN_KEY_PREFIX = 'x_'
 PLAIN_KEY = re.compile(r'^[A-Za-z_][A-Za-z0-9_-]*$')   # named as it is; others by repr
+# A name that becomes part of a topic, a TF frame, a URDF link or joint name or a Foxglove
+# path (a constraint's: pickup/<name>_base, <corner>/<name>; an element's: <name>_body; a
+# vehicle's corner's: the namespace <corner>/) is a ROS name token (the ROS 2 topic and
+# service names design; rclpy's validate_full_topic_name and validate_node_name accept what
+# it makes): a letter, then letters, digits and _, without __ (ROS reserves it) and not
+# ending in _ (the names made of it append _base, _axis0, ...: no __ in them either), at most
+# NAME_TOKEN_MAX characters: the longest topic of two such names, /<corner>/pickup/<name>_
+# centre, is 144 characters, within rmw's 247 for a fully qualified topic with 103 to spare
+# for the node's namespace. ASCII only: a topic holds no other letter.
+NAME_TOKEN = re.compile(r'^[A-Za-z][A-Za-z0-9_]*$')
+NAME_TOKEN_MAX = 64
+NAME_TOKEN_RULE = (f'a ROS name token: a letter, then letters, digits and _, without __ or a '
+                   f'trailing _, at most {NAME_TOKEN_MAX} characters')
 
 
 class Fields:
@@ -122,6 +135,22 @@ class Fields:
             self.fail(where or key, problem)
         return value
 
+    def token(self, data: dict, key: str, where: str) -> str:
+        """
+        Return data[key], a name that topics and frames are made of (token_problem); required.
+
+        A mistake names the file, the field, the name given and the rule, on one line.
+        """
+        value = data.get(key)
+        if value is None:
+            self.fail(where, f'missing (required): give a name, {NAME_TOKEN_RULE}')
+        if not isinstance(value, str):
+            self.fail(where, f'expected a name, {NAME_TOKEN_RULE}; got {value!r}')
+        problem = token_problem(value)
+        if problem:
+            self.fail(where, problem)
+        return value
+
     def number(self, data: dict, key: str, where: str, default: float | None = None,
                minimum: float | None = None, length: bool = True) -> float:
         """Return data[key], a finite number: a length within the limit unless not length."""
@@ -179,6 +208,28 @@ class Fields:
                 self.fail(where, f'coordinate {shown(v)} is not finite')
             self.length(v, where, 'coordinate')
         return np.array(value, dtype=float)
+
+
+def token_problem(name: object) -> str:
+    """
+    Say why name cannot be a name that topics and frames are made of ('' if it can).
+
+    The rule is NAME_TOKEN_RULE (see NAME_TOKEN). One line naming the name (its first 80
+    characters, by repr) and the rule.
+    """
+    if not isinstance(name, str):
+        return f'expected a name, {NAME_TOKEN_RULE}; got {type(name).__name__} {name!r:.80}'
+    said = repr(name) if len(name) <= 80 else f'{name[:80]!r}... ({len(name)} characters)'
+    other = sorted({c for c in name if not (c.isascii() and (c.isalnum() or c == '_'))})
+    why = ('empty' if not name else
+           f'it holds {", ".join(f"U+{ord(c):04X}" for c in other[:8])}' if other else
+           'it does not start with a letter' if not name[0].isalpha() else
+           'it holds __' if '__' in name else
+           'it ends in _' if name.endswith('_') else
+           f'{len(name)} characters' if len(name) > NAME_TOKEN_MAX else '')
+    if not why:
+        return ''
+    return f'{said} is not {NAME_TOKEN_RULE} ({why})'
 
 
 def name_problem(name: str) -> str:

@@ -216,6 +216,12 @@ def parse_scene(data: Any, source: str = '<scene>') -> Scene:
     wheel_center = check.point(carrier, 'wheel_center', 'carrier.wheel_center') * scale
     constraints = tuple(_parse_constraint(check, item, i, scale)
                         for i, item in enumerate(check.sequence(data, 'constraints')))
+    names = [c.name for c in constraints]
+    for i, name in enumerate(names):
+        if name in names[:i]:   # two of a name would share their pickups' topics and frames
+            check.fail(f'constraints[{i}] ({name}).name', f'used twice (constraints['
+                       f'{names.index(name)}] too): names make topics, frames and columns, '
+                       'so each constraint needs its own')
     spin_point = _spin_axis_point(check, carrier, wheel_center, side, constraints)
     given_p = None
     if carrier.get('third_point') is not None:
@@ -337,8 +343,8 @@ def _parse_constraint(check, item, index, scale):
     if not isinstance(item, dict):
         check.fail(where, 'expected a mapping with name, type, base or axis, carrier')
     check.keys(item, ALL_CONSTRAINT_KEYS, where)
-    name = check.name(item, 'name', where=f'{where}.name')
-    where = f'constraints[{index}] ({name})' if name else where
+    name = check.token(item, 'name', f'{where}.name')   # topics and frames are made of it
+    where = f'constraints[{index}] ({name})'
     kind = check.choice(item, 'type', tuple(EQUATIONS_PER_TYPE), f'{where}.type')
     other = 'base' if kind == 'circle' else 'axis'
     if other in item:

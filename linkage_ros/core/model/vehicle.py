@@ -25,11 +25,10 @@ Vehicle.extras with the free keys (description, source, notes, x_...).
 from __future__ import annotations
 
 from dataclasses import dataclass, field, replace
-import re
 from typing import TYPE_CHECKING
 
 from .bundled import is_bare_name, resolve, vehicle_dir  # noqa: F401 (vehicle_dir: kept here)
-from .fields import Fields
+from .fields import Fields, PLAIN_KEY, token_problem
 from .scene import load_scene, resolve_scene_path, SceneError, UNITS_TO_MM
 from .scene_moves import mirror, translate
 from .yaml_file import read_yaml
@@ -44,7 +43,6 @@ if TYPE_CHECKING:
     from .vehicle_axles import VehicleAxles
     from .vehicle_mass import MassData
 
-CORNER_NAME = re.compile(r'^[a-z][a-z0-9_]*$')   # becomes a ROS namespace
 
 # The keys of a vehicle file and of a corner; AXLE_KEYS are read by vehicle_axles.py.
 VEHICLE_KEYS = ('name', 'units', 'corners')
@@ -130,10 +128,11 @@ def _joints(path, corner, spec, scene):
 
 
 def _corner(path, corner, spec, scale):
-    where = f'corners.{corner}'
-    if not isinstance(corner, str) or not CORNER_NAME.match(corner):
-        raise SceneError(path, where, 'corner names are lower-case ROS names '
-                         '(letters, digits, underscores), e.g. front_left')
+    # a name that is not plain is shown by repr: a newline in it stays on the one line
+    where = f'corners.{corner if PLAIN_KEY.match(str(corner)) else repr(corner)}'
+    problem = token_problem(corner)     # it names the corner's topics and frames
+    if problem:
+        raise SceneError(path, where, f'corner name {problem}')
     if isinstance(spec, dict):
         Fields(str(path)).keys(spec, CORNER_KEYS, where)
     if not isinstance(spec, dict) or not isinstance(spec.get('scene'), str):
