@@ -21,6 +21,7 @@ from hypothesis import example, given, HealthCheck, settings, strategies as st
 from linkage_ros.answer.frames import CornerFrames
 from linkage_ros.answer.pickups import pickup_points
 from linkage_ros.answer.robot_description import robot_description
+from linkage_ros.core.base.errors import bounded, WHERE_LIMIT
 from linkage_ros.core.model import load_scene, load_vehicle, NAME_TOKEN_MAX, SceneError, \
     token_problem
 from linkage_ros.core.model.fields import PLAIN_KEY
@@ -124,7 +125,8 @@ def test_every_refused_name_is_one_line_naming_file_field_name_and_rule(tmp_path
     else:
         raise AssertionError(f'{name!r} was taken as a {where} name')
     assert '\n' not in said
-    assert said.startswith(f'{path}: {field}: ')
+    # a name of thousands of characters is cut in the middle, as every error line is
+    assert said.startswith(f"{bounded(f'{path}: {field}', WHERE_LIMIT)}: ")
     assert 'is not a ROS name token' in said and f'at most {NAME_TOKEN_MAX} characters' in said
     assert repr(name)[:60] in said
 
