@@ -12,55 +12,11 @@ input (JointState) with its header stamp, a Float64 with the node clock's time o
 (NaN, inf, out of reach, bytes that do not decode) publishes no pose, only an ERROR diagnostic
 saying why; the core keeps the last good state.
 
-Topics (names relative to the node's namespace, /diagnostics absolute):
-    sub wheel_travel        std_msgs/Float64            m, + = bump
-    sub joint_states        sensor_msgs/JointState      position of joint travel_joint (m, + =
-                                                        bump); only if travel_joint is set
-    pub wheel_carrier_pose  geometry_msgs/PoseStamped   wheel centre (m) in frame_id, carrier
-                                                        orientation relative to design
-    pub camber, toe         std_msgs/Float64            rad (+ = top outboard, + = toe-in)
-    sub steering_rack       std_msgs/Float64            m, + = rack to the left; solved at the
-                                                        last travel; only if the scene has a
-                                                        steer: rack link
-    pub /diagnostics        diagnostic_msgs/DiagnosticArray  one status per corner every
-                                                        diagnostic_period s (the diagnostic_updater
-                                                        convention), and at once for a bad
-                                                        command or a change of level; named
-                                                        '<node's full name>: <scene or corner>'
-    pub alignment           std_msgs/Float64MultiArray  messages.ALIGNMENT_FIELDS in SI, each
-                                                        named by its layout dim label; only if
-                                                        parameter alignment is true
-    pub markers             visualization_msgs/MarkerArray  links and joints (m, frame_id); only
-                                                        if parameter markers is true
-    pub elements            sensor_msgs/JointState      the scene's elements: position = length
-                                                        (m), velocity = motion ratio (m/m); only
-                                                        for a scene with elements
-                                                        (answer/elements.py)
-    pub <axle>/roll_centre  geometry_msgs/PointStamped  a vehicle axle's roll centre (m,
-                                                        frame_id); only for a vehicle file with
-                                                        axles (ros/roll_centres.py)
-    pub /tf                 tf2_msgs/TFMessage          per answer, the frames of the corner's
-                                                        carrier, links, arms and struts; with
-                                                        parameter tf (true by default)
-    pub /tf_static          tf2_msgs/TFMessage          every wheel frame (fixed to its carrier),
-                                                        and with statics every body pickup's
-                                                        frame '<prefix>pickup/<name>'
-    sub contact_wrench      geometry_msgs/WrenchStamped the tyre's force (N) and moment (N m)
-                                                        at the contact patch in frame_id; with
-                                                        statics on (parameter statics, or a
-                                                        scene with bushings) each answer is the
-                                                        loaded pose at the last one
-    pub pickup/<name>       geometry_msgs/WrenchStamped with statics on, per answer: the force
-                                                        (N) on the body at each pickup, in the
-                                                        pickup's frame (answer/pickups.py)
-    pub robot_description   std_msgs/String             the URDF of the scene or vehicle
-    sub /clock              rosgraph_msgs/Clock         only with use_sim_time: the node clock,
-                                                        each message taken in turn, in order
-                                                        with the commands (depth qos_depth)
-All of the node's own topics are reliable, keep-last qos_depth (ros/qos.py), /tf_static and
-robot_description transient local, depth 1; each takes qos_overrides.<topic>... parameters.
-TF (ros/tf_outputs.py) is imported only while parameter tf is true; /tf and /tf_static are
-published where tf2_msgs imports, and recorded everywhere.
+Its topics, their types and what they hold: linkage_ros.answer.topics (the table of
+doc/node.md#topics, generated from it). All reliable, keep-last qos_depth (ros/qos.py),
+/tf_static and robot_description transient local, depth 1; each takes
+qos_overrides.<topic>... parameters. TF (ros/tf_outputs.py) is imported only while parameter tf
+is true; /tf and /tf_static are published where tf2_msgs imports, and recorded everywhere.
 
 With parameter vehicle (a vehicle file, linkage_ros.core.model.vehicle) the node serves every
 corner: each Corner (ros/corner.py) has its own Continuation and the topics above under its name
