@@ -16,9 +16,9 @@ from __future__ import annotations
 import numpy as np
 import yaml
 
-from ..cli import whole_file
 from ..core.model import load_scene, UNITS_TO_MM
 from ..core.vary import scene_data_with
+from ..outputs import whole_file
 
 
 def _flow_lists(dumper, data):
