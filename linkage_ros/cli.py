@@ -297,10 +297,13 @@ def plot_problem(path: str, inputs=()) -> str:
     """
     Tell why a plot cannot be written to path, in a few words; '' if it can.
 
-    matplotlib is not installed (said as missing_package says it), its suffix is no format
-    matplotlib writes (rates.txt: no suffix is PNG), or the file cannot be an output
-    (outputs.output_problem, inputs the files the run reads). Checked before any work.
+    The file cannot be an output (outputs.output_problem, inputs the files the run reads),
+    matplotlib is not installed (said as missing_package says it), or the suffix is no
+    format matplotlib writes (rates.txt; no suffix is PNG). Checked before any work.
     """
+    problem = output_problem(path, inputs)
+    if problem:
+        return problem
     try:
         from matplotlib.backend_bases import FigureCanvasBase
     except ImportError as exc:
@@ -310,7 +313,7 @@ def plot_problem(path: str, inputs=()) -> str:
     if suffix and suffix not in formats:
         return (f'{path}: matplotlib writes no .{suffix} files (formats: '
                 f'{", ".join(sorted(formats))}; no suffix: png)')
-    return output_problem(path, inputs)
+    return ''
 
 
 def check_plot(path: str, option: str = '--plot', inputs=()) -> None:

@@ -257,11 +257,11 @@ def main(argv: list[str] | None = None, rounds: int = 0) -> int:
         scene = load_scene(args.scene)
         travels, racks = positions(args)
         check_request(scene, args)
+        check_outputs((('-o', args.output), ('--matrix', args.matrix), ('--plot', args.plot)),
+                      [scene.source])
         check_plot(args.plot)
         check_table(args.output)
         check_table(args.matrix, '--matrix')
-        check_outputs((('-o', args.output), ('--matrix', args.matrix), ('--plot', args.plot)),
-                      [scene.source])
     except (SceneError, LinkageError) as exc:
         return fail(PROG, exc)
     warn(PROG, scene.warnings)

@@ -131,9 +131,9 @@ def main(argv=None, rounds=0):
     if problem:
         return fail(PROG, problem)
     try:
+        check_outputs((('-o', args.output), ('--plot', args.plot)), target.files)
         check_plot(args.plot)
         check_table(args.output)
-        check_outputs((('-o', args.output), ('--plot', args.plot)), target.files)
         folder = args.tables and output_folder('--tables', args.tables, table_names(vehicle),
                                                target.files + tuple(p for p in (
                                                    args.output, args.plot) if p))
