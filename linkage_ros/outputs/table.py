@@ -22,7 +22,6 @@ hold an infinite value: an overflow, never a result (the program's status says s
 
 from __future__ import annotations
 
-import csv
 from pathlib import Path
 import re
 import sys
@@ -35,6 +34,7 @@ from .whole import whole_file
 PARQUET = '.parquet'
 ROWS_AT_ONCE = 4096   # rows formatted into one string before it is written
 TRAILING_ZERO = re.compile(r'\.0(?=[,\n])')   # 80.0 -> 80: only in rows of numbers
+QUOTED = re.compile(r'[,"\r\n]')             # a CSV cell with these is quoted
 INFINITE = ('inf', '-inf')
 
 
@@ -71,7 +71,7 @@ def write_table(output, header: Sequence[str], rows, stdout: IO[str] | None = No
 
 def write_csv(stream: IO[str], header: Sequence[str], rows) -> Written:
     """Write the header line and the rows to an open text stream as CSV (the module's rule)."""
-    csv.writer(stream, lineterminator='\n').writerow(header)
+    stream.write(_line(header))
     array = _numeric(rows, len(header))
     if array is None:
         return _write_mixed(stream, header, rows)
@@ -97,16 +97,29 @@ def cell(value) -> str:
 
 def _write_mixed(stream, header, rows) -> Written:
     """Write rows of numbers, text and None, one by one."""
-    writer = csv.writer(stream, lineterminator='\n')
     count, infinite = 0, set()
     for row in rows:
         cells = [cell(v) for v in row]
         if 'inf' in cells or '-inf' in cells:   # a number, not text that reads so
             infinite.update(i for i, (c, v) in enumerate(zip(cells, row))
                             if c in INFINITE and not isinstance(v, str))
-        writer.writerow(cells)
+        stream.write(_line(cells))
         count += 1
     return Written(count, tuple(header[i] for i in sorted(infinite) if i < len(header)))
+
+
+def _line(cells: Sequence[str]) -> str:
+    """
+    Return one CSV line of text cells, ended by a line feed.
+
+    A cell with a comma, a quote or a line break (a carriage return too, which Python's csv
+    writer leaves bare when lines end in a line feed) is quoted, its quotes doubled; a line
+    of one empty cell is written "" so that it is no blank line.
+    """
+    if len(cells) == 1 and cells[0] == '':
+        return '""\n'
+    return ','.join('"' + c.replace('"', '""') + '"' if QUOTED.search(c) else c
+                    for c in cells) + '\n'
 
 
 def _numeric(rows, width: int):
