@@ -13,7 +13,7 @@ text and None. The rule (doc/tables.md), which loses nothing:
 - NaN (a quantity not defined at that row, as each column's doc says) as nan, +-infinity as
   inf and -inf
 - None (no value: a column that is not the row's) as an empty cell
-- integers as integers; text as text, quoted where CSV needs it
+- integers as integers, booleans as True and False; text as text, quoted where CSV needs it
 A name ending in .parquet (any case) is written as Parquet (pyarrow): a column per name,
 float64 (NaN and infinity kept as such), int64, text, null for None. A file is written whole
 (whole.py); a device or FIFO in place. Written tells the rows written and the columns that
@@ -89,6 +89,8 @@ def cell(value) -> str:
         return ''
     if isinstance(value, str):
         return value
+    if isinstance(value, (bool, np.bool_)):
+        return str(bool(value))
     if isinstance(value, (int, np.integer)):
         return str(int(value))
     text = repr(float(value) + 0.0)
@@ -124,7 +126,7 @@ def _line(cells: Sequence[str]) -> str:
 
 def _numeric(rows, width: int):
     """Return rows as an (n, width) float array if they are a numeric array, else None."""
-    if isinstance(rows, np.ndarray) and rows.dtype.kind in 'fiub':
+    if isinstance(rows, np.ndarray) and rows.dtype.kind in 'fiu':
         return np.asarray(rows, float).reshape(-1, width)
     return None
 

@@ -47,26 +47,24 @@ def in_place(path) -> bool:
     return (resolved.st_dev, resolved.st_ino) != (named.st_dev, named.st_ino)
 
 
-def temporary_beside(path, suffix: str = '') -> tuple[int, str]:
+def temporary_beside(path) -> tuple[int, str]:
     """
     Make the new file that whole_file writes for path; return (fd, its path), or raise.
 
     It lies in the folder of the file path resolves to (the link's target), named after it.
     """
     target = Path(os.path.realpath(path))
-    return tempfile.mkstemp(prefix=f'.{target.name}.', suffix=f'.partial{suffix}',
-                            dir=target.parent)
+    return tempfile.mkstemp(prefix=f'.{target.name}.', suffix='.partial', dir=target.parent)
 
 
 @contextlib.contextmanager
-def whole_file(path, mode: str = 'w', suffix: str = '', **kwargs):
+def whole_file(path, mode: str = 'w', **kwargs):
     """
     Yield a stream onto path: a new file renamed onto it once the body is done, or in place.
 
     What is written to a file is whole or absent: an error on the way (or in the body)
     leaves path as it was, removes the new file and raises; an OSError is raised again
-    naming path. stream.name is the new file's path (suffix: its ending, for a reader that
-    goes by it), e.g. to check it before the rename. Devices and FIFOs: see the module.
+    naming path. Devices and FIFOs: see the module.
     """
     if in_place(path):
         regular = stat.S_ISREG(os.stat(path).st_mode)   # only through /proc: append
@@ -80,7 +78,7 @@ def whole_file(path, mode: str = 'w', suffix: str = '', **kwargs):
         return
     target = Path(os.path.realpath(path))
     try:
-        fd, temporary = temporary_beside(path, suffix)
+        fd, temporary = temporary_beside(path)
     except OSError as exc:
         raise OSError(exc.errno, exc.strerror, str(path)) from None
     try:

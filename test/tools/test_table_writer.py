@@ -90,9 +90,9 @@ def test_parquet_keeps_every_float64_and_the_names(values, tmp_path_factory):
 def test_the_columns_holding_infinity_are_told_and_the_status_says_so(capsys):
     stream = io.StringIO()
     written = write_table(None, ['a', 'b', 'c'], [[1.0, math.inf, 0.0], [math.nan, 2.0, -math.inf],
-                                                  ['inf', None, 3]], stream)
-    assert written.infinite == ('b', 'c') and written.rows == 3   # 'inf' as text is text
-    assert stream.getvalue() == 'a,b,c\n1,inf,0\nnan,2,-inf\ninf,,3\n'
+                                                  ['inf', None, 3], [True, np.False_, 0]], stream)
+    assert written.infinite == ('b', 'c') and written.rows == 4   # 'inf' as text is text
+    assert stream.getvalue() == 'a,b,c\n1,inf,0\nnan,2,-inf\ninf,,3\nTrue,False,0\n'
     assert cli.table_status('linkage-x', written, 'out.csv') == cli.DAMAGED
     assert capsys.readouterr().err == ('linkage-x: out.csv: b, c: infinite values (an overflow, '
                                        'not a result), written as inf\n')
