@@ -24,7 +24,7 @@ import sys
 import tempfile
 from typing import NamedTuple
 
-from .core.base import LinkageError
+from .core.base import LinkageError, say_lost
 from .outputs import is_parquet, output_problem, Written
 
 DONE, DAMAGED, MISTAKE = 0, 1, 2
@@ -338,15 +338,16 @@ def check_table(path: str, option: str = '-o', extra: str = 'map') -> None:
                                'checkout) or pip install pyarrow') from None
 
 
-def table_status(prog: str, written: Written, where: str | None) -> int:
+def table_status(prog: str, written: Written, rows: str = 'row', where: str = '') -> int:
     """
-    Return DAMAGED, saying so in one line, if a table holds an infinite number; else DONE.
+    Return DAMAGED, saying in one line what a table lost, if it lost a cell; else DONE.
 
-    An infinite number is an overflow, never a result: the table keeps it (written inf, as
-    every table does: doc/tables.md), and the status tells that something was lost.
+    The writers' rule (doc/tables.md): a result that is not finite is written nan, never as
+    a number, the rest of the table is whole, and the program ends 1 naming the columns
+    (base.say_lost; rows: what a row is, 'position'; where: the file, for a folder's tables).
     """
-    if not written.infinite:
+    if not written.lost:
         return DONE
-    print(f'{prog}: {where or "stdout"}: {", ".join(written.infinite)}: infinite values (an '
-          'overflow, not a result), written as inf', file=sys.stderr)
+    print(f'{prog}: {where + ": " if where else ""}{say_lost(written.lost, rows)}',
+          file=sys.stderr)
     return DAMAGED

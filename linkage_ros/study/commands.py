@@ -51,7 +51,7 @@ def run_sensitivity(args, say) -> int:
     many = len(result.quantities)
     say(f'{scene.name}: {many} quantit{"y" if many == 1 else "ies"} x {len(result.points)} '
         f'points x 3 axes at {counted(count, "travel")}')
-    return table_status(PROG, written, args.out)
+    return table_status(PROG, written)
 
 
 def run_tolerance(args, say) -> int:
@@ -76,7 +76,7 @@ def run_tolerance(args, say) -> int:
             f'batch{"es" if count != 1 else ""}{where}{hours}')
         result = tolerance(prob, run, Progress(PROG, count, 'batches'))
     status = table_status(PROG, write_table(args.out, TOLERANCE_COLUMNS, rows(result),
-                                            sys.stdout), args.out)
+                                            sys.stdout))
     if args.plot:
         from .plots import plot_tolerance
         plot_tolerance(result, args.plot, f'{design.scene.name}: {args.samples} variants, '

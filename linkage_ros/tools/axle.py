@@ -265,7 +265,7 @@ def main(argv: list[str] | None = None, rounds: int = 0) -> int:
     if result.bar is not None and np.isnan(result.bar.twist).any():
         return 1      # the note above said where
     print(f'{PROG}: done', file=sys.stderr)
-    return table_status(PROG, written, args.output)
+    return table_status(PROG, written, 'position')
 
 
 if __name__ == '__main__':

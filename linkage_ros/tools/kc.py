@@ -275,10 +275,10 @@ def main(argv: list[str] | None = None, rounds: int = 0) -> int:
         header, rows, results, failure = solve(scene, args, travels, racks)
     except LinkageError as exc:   # an unknown column
         return fail(PROG, exc)
-    status = table_status(PROG, write_table(args.output, header, rows), args.output)
+    status = table_status(PROG, write_table(args.output, header, rows), 'position')
     if args.matrix and results:
         status = max(status, table_status(PROG, write_matrix(results[0].matrix, args.matrix),
-                                          args.matrix))
+                                          'row', args.matrix))
     if args.plot and results:
         from .kc_plot import plot_loaded, plot_rates
         if args.loaded:

@@ -14,9 +14,9 @@ import time
 import numpy as np
 
 from ..cli import (check_table, counted, EXIT_STATUS, fail, millimetres, Parser, program, SPAN,
-                   span, warn)
+                   span, table_status, warn)
 from ..core.base import (check_position_count, LinkageError, lost_cells, positions_needed,
-                         say_lost, say_ranges)
+                         say_ranges)
 from ..core.measure import columns
 from ..core.model import load_scene, SceneError
 from ..core.solve import Continuation, METHODS, sweep, travel_range
@@ -87,18 +87,16 @@ def write_sweeps(results, output, scene=None, with_rack=False, elements=None):
     Write Sweeps (one or several, e.g. a rack grid) as one table to output (None: stdout).
 
     The table writer's format (outputs.write_table: CSV, or Parquet by the suffix); returns
-    (Written, the cells lost). The writers' rule (base.lost_cells): a value that is not
-    finite is written as nan, and returned, {column: mask over all the rows}, unless the
-    quantity is undefined there by its definition (an alignment quantity, NaN where the
-    scene has no steer axis; an element's quantities where its ends crossed).
+    what it wrote (Written). The writers' rule (base.lost_cells): a value that is not finite
+    is written as nan and told in Written.lost, unless the quantity is undefined there by its
+    definition (an alignment quantity, NaN where the scene has no steer axis; an element's
+    quantities where its ends crossed).
     """
     rows = [table(result, scene, with_rack, elements) for result in results]
     columns = header(scene, with_rack, elements)
     rows = np.concatenate(rows) if rows else np.empty((0, len(columns)))
-    lost = lost_cells(dict(zip(columns, rows.T)), undefined(columns, rows, scene, elements))
-    for name, mask in lost.items():
-        rows[mask, columns.index(name)] = np.nan
-    return write_table(output, columns, rows), lost
+    return write_table(output, columns, rows, lost=lost_cells(
+        dict(zip(columns, rows.T)), undefined(columns, rows, scene, elements)))
 
 
 def undefined(columns, rows, scene=None, elements=None):
@@ -269,7 +267,7 @@ def main(argv: list[str] | None = None, rounds: int = 0) -> int:
              'with_rack': args.rack is not None,
              'elements': scene if args.elements else None}
     try:
-        _, lost = write_sweeps(results, args.output, **table)
+        written = write_sweeps(results, args.output, **table)
     except BrokenPipeError:
         raise                      # stdout's reader went away: program() ends quietly
     except OSError as exc:         # a full disk; -o was writable when checked
@@ -284,10 +282,9 @@ def main(argv: list[str] | None = None, rounds: int = 0) -> int:
             print(f'{PROG}: {line}', file=sys.stderr)
     failed = [r for r in results if not r.success]
     if failed:
-        written = counted(sum(len(r.travel) for r in results), 'position')
-        print(f'linkage-sweep: {failed[0].message} ({written} written)', file=sys.stderr)
-    if lost:
-        print(f'linkage-sweep: {say_lost(lost, "position")}', file=sys.stderr)
+        print(f'linkage-sweep: {failed[0].message} ({counted(written.rows, "position")} '
+              'written)', file=sys.stderr)
+    lost = table_status(PROG, written, 'position')
     if failed or lost:
         return 1
     worst = max(r.residual.max() for r in results if len(r.travel))

@@ -16,8 +16,11 @@ heave, roll and rack (front_heave.csv, front_roll.csv, front_rack.csv, rear_heav
 import math
 import sys
 
-from ..cli import check_plot, check_table, EXIT_STATUS, fail, Parser, program, warn
-from ..core.base import LinkageError, lost_cells, say_lost, say_ranges
+import numpy as np
+
+from ..cli import (check_plot, check_table, EXIT_STATUS, fail, Parser, program, table_status,
+                   warn)
+from ..core.base import LinkageError, lost_cells, say_ranges
 from ..core.model import load_vehicle, SceneError, Target
 from ..core.warmup import compile_if_cold
 from ..outputs import check_outputs, output_folder, write_table
@@ -73,12 +76,6 @@ def table_names(vehicle):
     from ..core.axle import axle_of
     return [f'{name}_{table}.csv' for name in ('front', 'rear') for table in
             ('heave', 'roll') + (('rack',) if axle_of(vehicle, name).steered else ())]
-
-
-def blanked(header, rows, cells):
-    """Return rows with the cells lost (lost()) as None: written empty, as no number."""
-    return [[None if name in cells and cells[name][k] else v for name, v in zip(header, row)]
-            for k, row in enumerate(rows)]
 
 
 def lost(header, rows, inputs=()):
@@ -149,26 +146,23 @@ def main(argv=None, rounds=0):
     for note in sheet.notes:
         print(f'{PROG}: {note}', file=sys.stderr)
     header, rows = sheet_table(sheet)
-    sheet_lost = lost(header, rows)
-    write_table(args.output, header, blanked(header, rows, sheet_lost))
-    said = [say_lost(sheet_lost, 'row')]
+    status = table_status(PROG, write_table(args.output, header, rows,
+                                            lost=lost(header, rows)))
     if folder:
         for name, sheet_axle in sheet.axles.items():
             for table, columns in sheet_axle.tables.items():
-                cells = [list(r) for r in zip(*columns.values())]
-                table_lost = lost(list(columns), cells, TABLE_INPUTS)
-                write_table(folder / f'{name}_{table}.csv', list(columns),
-                            blanked(list(columns), cells, table_lost))
-                problem = say_lost(table_lost, 'position')
-                said.append(problem and f'{name}_{table}.csv: {problem}')
+                cells = np.column_stack([np.asarray(c, float) for c in columns.values()])
+                written = write_table(folder / f'{name}_{table}.csv', list(columns), cells,
+                                      lost=lost(list(columns), cells.tolist(), TABLE_INPUTS))
+                status = max(status, table_status(PROG, written, 'position',
+                                                  f'{name}_{table}.csv'))
     if args.plot:
         from .vehicle_plot import plot_sheet
         plot_sheet(sheet, args.plot)
         print(f'{PROG}: wrote {args.plot}', file=sys.stderr)
-    messages = list(sheet.messages) + [line for line in said if line]
-    for message in messages:
+    for message in sheet.messages:
         print(f'{PROG}: {message}', file=sys.stderr)
-    if messages:
+    if sheet.messages or status:
         return 1
     print(f'{PROG}: done', file=sys.stderr)
     return 0

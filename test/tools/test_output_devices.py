@@ -22,7 +22,7 @@ from linkage_ros.outputs import output_problem, whole_file
 from linkage_ros.record.errors import RecordingError
 from linkage_ros.record.output_file import claim
 from linkage_ros.study import cli as study_cli
-from linkage_ros.tools import (axle, chrono_cli, foxglove_layout, kc, plot, replay,
+from linkage_ros.tools import (axle, chrono, foxglove_layout, kc, plot, replay,
                                rerun_convert, sweep, urdf, vehicle)
 import pytest
 
@@ -142,10 +142,10 @@ PROGRAMS = [
     ('linkage-vehicle', vehicle.main, ['demo_vehicle', '--csv', 'DEV'], '-o'),
     ('linkage-urdf', urdf.main, ['demo_vehicle', '-o', 'DEV'], '-o'),
     ('linkage-foxglove', foxglove_layout.main, ['demo_vehicle', '-o', 'DEV'], '-o'),
-    ('linkage-chrono', chrono_cli.main, [
+    ('linkage-chrono', chrono.main, [
         'import', str(ROOT / 'config/chrono/generic/suspension/DoubleWishbone.json'), '-o',
         'DEV'], '-o'),
-    ('linkage-chrono', chrono_cli.main, ['export', 'five_link', '-o', 'DEV'], '-o'),
+    ('linkage-chrono', chrono.main, ['export', 'five_link', '-o', 'DEV'], '-o'),
     ('linkage-study', study_cli.main, ['sensitivity', 'five_link', '--travel', '0', '-o', 'DEV'],
      '-o'),
     ('linkage-study', study_cli.main, ['fit', str(ROOT / 'config/study/bump_steer_targets.yaml'),

@@ -18,7 +18,7 @@ import shutil
 from hypothesis import given, HealthCheck, settings, strategies as st
 from linkage_ros.core.model import scene_dir, vehicle_dir
 from linkage_ros.study import cli as study_cli
-from linkage_ros.tools import (axle, chrono_cli, foxglove_layout, kc, kinematic_map, plot,
+from linkage_ros.tools import (axle, chrono, foxglove_layout, kc, kinematic_map, plot,
                                replay, rerun_convert, sweep, urdf, vehicle)
 import pytest
 
@@ -65,8 +65,8 @@ CASES = [
     ('linkage-vehicle', vehicle.main, ['car.yaml', '--plot', 'OUT'], 'dw.yaml', '--plot'),
     ('linkage-urdf', urdf.main, ['car.yaml', '-o', 'OUT'], 'fl.yaml', '-o'),
     ('linkage-foxglove', foxglove_layout.main, ['car.yaml', '-o', 'OUT'], 'car.yaml', '-o'),
-    ('linkage-chrono', chrono_cli.main, ['import', VEHICLE_JSON, '-o', 'OUT'], FRONT, '-o'),
-    ('linkage-chrono', chrono_cli.main, ['export', 'dw.yaml', '-o', 'OUT'], 'dw.yaml', '-o'),
+    ('linkage-chrono', chrono.main, ['import', VEHICLE_JSON, '-o', 'OUT'], FRONT, '-o'),
+    ('linkage-chrono', chrono.main, ['export', 'dw.yaml', '-o', 'OUT'], 'dw.yaml', '-o'),
     ('linkage-study', study_cli.main, ['sensitivity', 'dw.yaml', '--travel', '0', '-o', 'OUT'],
      'dw.yaml', '-o'),
     ('linkage-study', study_cli.main, ['tolerance', 'dw.yaml', '--travel', '0', '--sigma', '0.1',
@@ -157,7 +157,7 @@ def test_a_chrono_export_onto_its_scene_is_refused(tmp_path, capsys, monkeypatch
     folder = workspace(tmp_path)
     monkeypatch.chdir(folder)
     before = (folder / 'dw.yaml').read_bytes()
-    status, err = refused(chrono_cli.main, ['export', 'dw.yaml', '-o', 'dw.yaml'], capsys)
+    status, err = refused(chrono.main, ['export', 'dw.yaml', '-o', 'dw.yaml'], capsys)
     assert (status, err) == (2, 'linkage-chrono: -o: dw.yaml is the input dw.yaml; give '
                                 'another file name\n')
     assert (folder / 'dw.yaml').read_bytes() == before
@@ -168,7 +168,7 @@ def test_a_chrono_vehicle_import_is_refused_onto_a_suspension_file_it_reads(
     folder = workspace(tmp_path)
     monkeypatch.chdir(folder)
     before = (folder / FRONT).read_bytes()
-    status, err = refused(chrono_cli.main, ['import', VEHICLE_JSON, '-o', FRONT], capsys)
+    status, err = refused(chrono.main, ['import', VEHICLE_JSON, '-o', FRONT], capsys)
     assert status == 2 and err == (f'linkage-chrono: -o: {FRONT} is the input '
                                    f'{folder / FRONT}; give another file name\n')
     assert (folder / FRONT).read_bytes() == before
@@ -212,7 +212,7 @@ def test_a_folder_that_cannot_hold_files_is_one_line(main, argv, prog, capsys):
     ('linkage-sweep', sweep.main, ['five_link', '-o', 'OUT']),
     ('linkage-kc', kc.main, ['five_link_bushings', '--travel', '0', '-o', 'OUT']),
     ('linkage-study', study_cli.main, ['sensitivity', 'five_link', '--travel', '0', '-o', 'OUT']),
-    ('linkage-chrono', chrono_cli.main, ['export', 'five_link', '-o', 'OUT']),
+    ('linkage-chrono', chrono.main, ['export', 'five_link', '-o', 'OUT']),
     ('linkage-urdf', urdf.main, ['demo_vehicle', '-o', 'OUT']),
     ('linkage-replay', replay.main, ['sweep', '--scene', 'five_link', '-o', 'OUT'])])
 def test_a_bundled_file_named_by_its_bare_name_is_refused_as_an_output(
