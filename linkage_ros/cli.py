@@ -14,7 +14,6 @@ import argparse
 import contextlib
 import errno
 import functools
-import io
 import math
 import os
 from pathlib import Path
@@ -25,9 +24,8 @@ import sys
 import tempfile
 from typing import NamedTuple
 
-import numpy as np
-
-from .core.base import LinkageError
+from .core.base import LinkageError, say_lost
+from .outputs import is_parquet, output_problem, Written
 
 DONE, DAMAGED, MISTAKE = 0, 1, 2
 READER_GONE = 128 + signal.SIGPIPE   # the status of cat when its reader stops (| head)
@@ -237,68 +235,6 @@ def millimetres(text: str) -> float:
             from None
 
 
-def save_figure(fig, path, dpi):
-    """
-    Write fig to path (its format by the suffix; PNG without one), or raise OSError.
-
-    matplotlib's savefig(path) says nothing when the disk is full; a file written by this
-    function is whole, or an error names it (a matplotlib Figure: the caller imports
-    matplotlib, this module does not).
-    """
-    buffer = io.BytesIO()
-    fig.savefig(buffer, format=Path(path).suffix[1:] or None, dpi=dpi)
-    try:
-        with open(path, 'wb') as stream:
-            stream.write(buffer.getvalue())
-    except OSError as exc:
-        raise OSError(exc.errno, exc.strerror, str(path)) from None
-
-
-@contextlib.contextmanager
-def whole_file(path, mode: str = 'w', suffix: str = '', **kwargs):
-    """
-    Yield a stream onto a new file beside path, renamed to path once the body is done.
-
-    What is written so is whole or absent: a full disk, a quota or a file-size limit met on
-    the way (or any error in the body) leaves path as it was, removes the new file and
-    raises; an OSError is raised again naming path. stream.name is the new file's path
-    (suffix: its ending, for a reader that goes by it), e.g. to check it before the rename.
-    """
-    target = Path(path)
-    try:
-        fd, temporary = tempfile.mkstemp(prefix=f'.{target.name}.', suffix=f'.partial{suffix}',
-                                         dir=target.parent or '.')
-    except OSError as exc:
-        raise OSError(exc.errno, exc.strerror, str(path)) from None
-    try:
-        os.fchmod(fd, 0o666 & ~_umask())   # as open() would have made it, not mkstemp's 0600
-        os.close(fd)
-        with open(temporary, mode, **kwargs) as stream:
-            yield stream
-        os.replace(temporary, target)
-    except BaseException as exc:
-        with contextlib.suppress(OSError):
-            os.unlink(temporary)
-        if isinstance(exc, OSError) and not isinstance(exc, BrokenPipeError):
-            raise OSError(exc.errno, exc.strerror, str(path)) from None
-        raise
-
-
-def _umask() -> int:
-    """Return the process's umask (read by setting it, and set back at once)."""
-    mask = os.umask(0o022)
-    os.umask(mask)
-    return mask
-
-
-def write_csv(header, rows, stream) -> None:
-    """Write a numeric table (rows: (n, len(header)), n may be 0) as CSV, 10 digits, no '-0'."""
-    row_format = ','.join(['%.10g'] * len(header)) + '\n'
-    stream.write(','.join(header) + '\n')
-    stream.writelines(row_format % tuple(row) for row in (np.asarray(rows, float).reshape(
-        -1, len(header)) + 0.0).tolist())
-
-
 def summary(doc: str) -> str:
     """Return a program module's one-line summary: its docstring's first line after 'prog: '."""
     return doc.strip().splitlines()[0].split(': ', 1)[1]
@@ -319,63 +255,6 @@ def fail(prog: str, message: object) -> int:
     """Print one line, 'prog: message', on stderr; return exit status 2."""
     print(f'{prog}: {message}', file=sys.stderr)
     return MISTAKE
-
-
-def writable_file(path: str, inputs: tuple = ()) -> str:
-    """
-    Check that path can be created or overwritten as a file, leaving it as it was.
-
-    Returns the problem in a few words, or '' if there is none: a folder where the file
-    should be, a missing folder, one of the inputs, no permission. A file that did not
-    exist is created and removed again: only opening it tells (root passes os.access).
-    """
-    target = Path(path)
-    if target.is_dir():
-        return f'{path} is a folder, not a file'
-    folder = target.parent
-    if not folder.exists():
-        return f'cannot write {path}: no folder {folder}'
-    if not folder.is_dir():
-        return f'cannot write {path}: {folder} is not a folder'
-    for other in inputs:
-        same = other is not None and same_file(path, other)
-        if same:
-            where = f'the input {other}' if same == other else f'{same}, in the input {other}'
-            return f'{path} is {where}; give another file name'
-    existed = target.exists()
-    try:
-        with open(target, 'ab'):
-            pass
-    except OSError as exc:
-        return f'cannot write {path}: {exc.strerror or exc}'
-    if not existed:
-        target.unlink()
-    return ''
-
-
-def same_file(output: str, source: str) -> str:
-    """
-    Return the file of source that writing output would overwrite, or ''.
-
-    Compared by resolved path (links and '..' followed) and, where both exist, as one file
-    (a hard link). A source that is a folder (a rosbag2 bag folder) stands for every file
-    in it: its .mcap is never overwritten.
-    """
-    target = Path(output).resolve()
-    origin = Path(source)
-    files = sorted(origin.iterdir()) if origin.is_dir() else [origin]
-    for file in files:
-        if file.resolve() == target or (target.exists() and file.exists()
-                                        and os.path.samefile(target, file)):
-            return str(file) if origin.is_dir() else source
-    return ''
-
-
-def check_output(path: str, option: str = '-o', inputs: tuple = ()) -> None:
-    """Raise Mistake, naming the option, if path cannot be written (see writable_file)."""
-    problem = writable_file(path, inputs)
-    if problem:
-        raise Mistake(f'{option}: {problem}')
 
 
 def check_input(path: str, option: str = 'BAG') -> None:
@@ -400,36 +279,6 @@ def safe_name(text: str, fallback: str = 'output') -> str:
     return re.sub(r'[^\w.-]+', '_', str(text)).lstrip('._-') or fallback
 
 
-def output_folder(text: str, option: str) -> Path:
-    """Make an output folder if missing; LinkageError naming option if it cannot be written."""
-    folder = Path(text)
-    try:
-        folder.mkdir(parents=True, exist_ok=True)
-    except OSError as exc:
-        raise LinkageError(option, f'cannot make the folder {text} '
-                           f'({exc.strerror or exc})') from None
-    if not os.access(folder, os.W_OK):
-        raise LinkageError(option, f'cannot write into the folder {text}')
-    return folder
-
-
-def plot_problem(path: str) -> str:
-    """
-    Tell why a plot cannot be written to path, in a few words; '' if it can.
-
-    The file cannot be written (writable_file), or matplotlib is not installed (said as
-    missing_package says it).
-    """
-    problem = writable_file(path)
-    if problem:
-        return problem
-    try:
-        import matplotlib  # noqa: F401 (imported to name it if it is missing)
-    except ImportError as exc:
-        return missing_package(exc, 'plotting')
-    return ''
-
-
 def missing_package(exc: ImportError, feature: str) -> str:
     """Say which optional package the feature needs and how to install it."""
     module = (getattr(exc, 'name', None) or '').split('.')[0]
@@ -444,18 +293,61 @@ def missing_package(exc: ImportError, feature: str) -> str:
     return f'{feature} needs the Python module {module or exc}, which cannot be imported'
 
 
-def check_outputs(outputs, inputs) -> None:
+def plot_problem(path: str, inputs=()) -> str:
     """
-    Refuse an output that cannot be written, is an input, or is another output.
+    Tell why a plot cannot be written to path, in a few words; '' if it can.
 
-    outputs: (option, path) pairs; inputs: the paths read. Raises LinkageError naming the
-    option (run_fit checks -o again once the targets file has named its scene).
+    The file cannot be an output (outputs.output_problem, inputs the files the run reads),
+    matplotlib is not installed (said as missing_package says it), or the suffix is no
+    format matplotlib writes (rates.txt; no suffix is PNG). Checked before any work.
     """
-    for k, (option, path) in enumerate(outputs):
-        problem = writable_file(path, inputs)
-        if problem:
-            raise LinkageError(option, problem)
-        for other, earlier in outputs[:k]:
-            if same_file(path, earlier):
-                raise LinkageError(option, f'{path} is also the output of {other}; give '
-                                   'another file name')
+    problem = output_problem(path, inputs)
+    if problem:
+        return problem
+    try:
+        from matplotlib.backend_bases import FigureCanvasBase
+    except ImportError as exc:
+        return missing_package(exc, 'plotting')
+    formats = FigureCanvasBase.get_supported_filetypes()
+    suffix = Path(path).suffix[1:].lower()
+    if suffix and suffix not in formats:
+        return (f'{path}: matplotlib writes no .{suffix} files (formats: '
+                f'{", ".join(sorted(formats))}; no suffix: png)')
+    return ''
+
+
+def check_plot(path: str, option: str = '--plot', inputs=()) -> None:
+    """Raise LinkageError naming option if a plot cannot be written to path (plot_problem)."""
+    problem = path and plot_problem(path, inputs)
+    if problem:
+        raise LinkageError(option, problem)
+
+
+def check_table(path: str, option: str = '-o', extra: str = 'map') -> None:
+    """
+    Raise LinkageError naming option if path asks for Parquet and pyarrow is missing.
+
+    extra: the extra of linkage_ros that installs pyarrow, named in the message.
+    """
+    if is_parquet(path):
+        try:
+            import pyarrow.parquet  # noqa: F401 (only whether it is there)
+        except ImportError:
+            raise LinkageError(option, 'needs the Python package pyarrow, which is not '
+                               f"installed: pip install -e '.[{extra}]' (in a linkage_ros "
+                               'checkout) or pip install pyarrow') from None
+
+
+def table_status(prog: str, written: Written, rows: str = 'row', where: str = '') -> int:
+    """
+    Return DAMAGED, saying in one line what a table lost, if it lost a cell; else DONE.
+
+    The writers' rule (doc/tables.md): a result that is not finite is written nan, never as
+    a number, the rest of the table is whole, and the program ends 1 naming the columns
+    (base.say_lost; rows: what a row is, 'position'; where: the file, for a folder's tables).
+    """
+    if not written.lost:
+        return DONE
+    print(f'{prog}: {where + ": " if where else ""}{say_lost(written.lost, rows)}',
+          file=sys.stderr)
+    return DAMAGED

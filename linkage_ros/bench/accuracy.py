@@ -29,7 +29,6 @@ summary table on stdout. Lengths in mm, angles in deg, times in microseconds.
 """
 
 import math
-from pathlib import Path
 import sys
 import time
 
@@ -39,14 +38,17 @@ from . import reference
 from .peers import entries
 from .report import level_table, plot_front, progress, report, write_csv
 from .stress import stress_lines
-from ..cli import EXIT_STATUS, fail, Parser, program, writable_file
+from ..cli import EXIT_STATUS, fail, Parser, program
+from ..core.base import LinkageError
 from ..core.model import bundled_scenes, load_scene, SceneError
 from ..core.solve import travel_range
 from ..core.warmup import compile_if_cold
+from ..outputs import output_folder, whole_file
 
 TOLS = (1e-3, 1e-6, 1e-8, 1e-9, 1e-10, 1e-12)     # mm
 STEPS = (0.1, 1.0, 5.0, 20.0)                           # mm
 WARMUP_STEP = 2.0        # mm: untimed walk from design to a timing window
+FILES = ('report.md', 'results.csv', 'bench_front.png')   # written into -o DIR
 
 
 # --- measuring ----------------------------------------------------------------------------
@@ -194,13 +196,6 @@ def parse_args(argv, prog='linkage-bench accuracy'):
     if (args.repeats < 1 or args.positions < 1 or min(args.tols) <= 0
             or min(args.steps) <= 0):
         parser.error('--repeats, --positions, --tols and --steps must be positive')
-    out = Path(args.out)
-    if out.exists() and not out.is_dir():
-        parser.error(f'-o: {out} is a file, not a folder')
-    for name in ('report.md', 'results.csv', 'bench_front.png'):
-        problem = out.is_dir() and writable_file(str(out / name))
-        if problem:
-            parser.error(f'-o: {problem}')
     return args
 
 
@@ -219,11 +214,10 @@ def main(argv: list[str] | None = None, prog: str = 'linkage-bench accuracy') ->
             return fail(prog, f'--entries: unknown {sorted(unknown)} (known: '
                         f'{[e.name for e in chosen]})')
         chosen = [e for e in chosen if e.name in args.entries]
-    out = Path(args.out)
     try:
-        out.mkdir(parents=True, exist_ok=True)
-    except OSError as exc:
-        return fail(prog, f'-o: cannot make {out}: {exc.strerror or exc}')
+        out = output_folder('-o', args.out, FILES, [s.source for s in scenes])
+    except LinkageError as exc:
+        return fail(prog, exc)
     compile_if_cold('linkage-bench')
     started = time.perf_counter()
     progress(f'{len(scenes)} scenes x {len(args.steps)} steps x {len(args.tols)} tolerances, '
@@ -234,7 +228,8 @@ def main(argv: list[str] | None = None, prog: str = 'linkage-bench accuracy') ->
     plot_front(rows, names, [e.name for e in chosen], out / 'bench_front.png')
     stress = [] if args.no_stress else stress_lines(args.reversals)
     text = report(rows, names, chosen, args, stress, time.perf_counter() - started)
-    (out / 'report.md').write_text(text)
+    with whole_file(out / 'report.md') as stream:
+        stream.write(text)
     print('\n'.join(level_table(rows, names, [e.name for e in chosen])))
     progress(f'wrote {out / "report.md"}, {out / "results.csv"}, {out / "bench_front.png"}')
     return 0

@@ -8,7 +8,6 @@ The best setting of each entry per accuracy level, the fastest setting that meet
 the default setting, the CSV, the error-against-time front (PNG) and report.md.
 """
 
-import csv
 import math
 import os
 from pathlib import Path
@@ -19,8 +18,8 @@ import numpy as np
 import scipy
 
 from .peers import exudyn_version
-from ..cli import save_figure
 from ..core.solve import Settings
+from ..outputs import save_figure, write_table
 
 LEVELS = (1e-3, 1e-6, 1e-9, 1e-12)                      # mm: accuracy levels of the summary
 GOAL_US, GOAL_ERROR = 20.0, 1e-9    # the issue's goal: 1e-9 mm in at most 20 us per position
@@ -123,11 +122,8 @@ def default_setting_lines(rows, scenes):
 
 
 def write_csv(rows, path):
-    with open(path, 'w', newline='') as stream:
-        writer = csv.DictWriter(stream, fieldnames=COLUMNS, extrasaction='ignore')
-        writer.writeheader()
-        for r in rows:
-            writer.writerow({k: (f'{v:.6g}' if isinstance(v, float) else v) for k, v in r.items()})
+    """results.csv: a row per (scene, entry, tolerance, step), COLUMNS (the table writer's)."""
+    write_table(path, COLUMNS, [[r.get(k) for k in COLUMNS] for r in rows])
 
 
 def plot_front(rows, scenes, names, path):

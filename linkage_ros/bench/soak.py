@@ -33,6 +33,7 @@ from ..cli import EXIT_STATUS, Parser, program
 from ..core.base import all_finite, LinkageError
 from ..core.model import load_scene
 from ..core.warmup import compile_if_cold
+from ..outputs import write_table
 from ..ros.isolation import init_context
 from ..ros.messages import status_values
 from ..ros.node import QOS, SuspensionNode
@@ -150,11 +151,12 @@ def run(args):
     done, mb = np.array(rss).T
     growth = float(np.polyfit(done, mb, 1)[0] * 1e5) if len(rss) > 2 else math.nan
     rate = (args.commands - start[1]) / (end - start[0])
-    print('soak,commands,commands_per_s,rss_start_mb,rss_end_mb,rss_growth_mb_per_100k,'
-          'residual_max_mm,poses,errors,not_finite_poses')
-    print(f'{args.scene},{args.commands},{rate:.0f},{mb[0]:.1f},{mb[-1]:.1f},{growth:.3f},'
-          f'{counter.residual_m * 1000.0:.3g},{counter.poses},{counter.errors},'
-          f'{counter.not_finite}')
+    write_table(None, ('soak', 'commands', 'commands_per_s', 'rss_start_mb', 'rss_end_mb',
+                       'rss_growth_mb_per_100k', 'residual_max_mm', 'poses', 'errors',
+                       'not_finite_poses'),
+                [[args.scene, args.commands, rate, float(mb[0]), float(mb[-1]), growth,
+                  counter.residual_m * 1000.0, counter.poses, counter.errors,
+                  counter.not_finite]])
     return 0 if counter.not_finite == 0 else 1
 
 

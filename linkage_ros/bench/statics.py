@@ -24,6 +24,7 @@ import time
 from ..core.model import load_scene
 from ..core.solve import Continuation
 from ..core.statics import compliance, Load, solve_loaded
+from ..outputs import write_table
 
 ROUNDS = (1, 10, 100)
 
@@ -84,9 +85,8 @@ def main(argv=None) -> int:
     columns = ('rounds', 'kinematic_us', 'rates_us', 'loaded_us', 'rates_same_travel_us',
                'loaded_same_travel_us', 'rates_ratio', 'loaded_ratio', 'rates_same_travel_ratio',
                'loaded_same_travel_ratio')
-    print(','.join(columns))
-    for row in timings(scene, args.travel, args.rounds):
-        print(','.join(f'{row[c]:.4g}' for c in columns))
+    write_table(None, columns, [[row[c] for c in columns]
+                                for row in timings(scene, args.travel, args.rounds)])
     return 0
 
 

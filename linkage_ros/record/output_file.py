@@ -28,8 +28,17 @@ def claim(path):
     recorder of the same file is refused with RecordingError, and the file is left as it was
     (it is truncated only once the lock is held). Only regular files are locked (a device
     such as /dev/null may take several recordings). A byte is written first, so that a file
-    that cannot be written (/dev/full, a full disk) is refused here with the reason.
+    that cannot be written (/dev/full, a full disk) is refused here with the reason. A FIFO
+    is refused without opening it (the open would wait for a reader, and an MCAP writer keeps
+    offsets into its file, which a FIFO has none of).
     """
+    try:
+        fifo = stat.S_ISFIFO(os.stat(path).st_mode)
+    except OSError:   # none yet, or the open below says what is wrong
+        fifo = False
+    if fifo:
+        raise RecordingError(path, 'is a FIFO; a recording is written to a file (or a device '
+                             'such as /dev/null)')
     try:
         fd = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_CLOEXEC, 0o666)
     except OSError as exc:

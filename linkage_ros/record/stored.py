@@ -10,7 +10,8 @@ record RECORD, so that it can be solved again and drawn from any folder:
     'vehicle_yaml'           the vehicle file (a vehicle run)
     'scene_yaml/<corner>'    each corner's scene file, as the vehicle file names it
 
-load_stored(metadata, where) loads them again with the loaders' own checks and bounds.
+load_stored(metadata, where) loads them again with the loaders' own checks and bounds, as a
+core.model Target (the one scene-or-vehicle loader's result).
 """
 
 from __future__ import annotations
@@ -19,18 +20,19 @@ from pathlib import Path
 import tempfile
 from typing import TYPE_CHECKING
 
-from ..core.model import FILE_LIMIT_BYTES, parse_scene, parse_yaml, SceneError
+from ..core.model import FILE_LIMIT_BYTES, load_target, of_scene, parse_scene, parse_yaml, \
+    SceneError
 
 if TYPE_CHECKING:
-    from ..core.model import Scene, Vehicle
+    from ..core.model import Target
 
 RECORD = 'linkage_ros'
 SCENE_KEY, VEHICLE_KEY = 'scene_yaml', 'vehicle_yaml'
 
 
-def load_stored(metadata: dict, where: str) -> Scene | Vehicle | None:
+def load_stored(metadata: dict, where: str) -> Target | None:
     """
-    Return the vehicle or the scene a recording's metadata stores, or None if none.
+    Return the Target (a vehicle or a scene) a recording's metadata stores, or None if none.
 
     metadata: {record name: {key: value}} (Bag.metadata); where: the recording, for errors.
     Raises SceneError naming where and the key for stored content that does not load.
@@ -40,7 +42,7 @@ def load_stored(metadata: dict, where: str) -> Scene | Vehicle | None:
         return _vehicle(stored, where)
     if stored.get(SCENE_KEY):
         origin = f'{where} (its {SCENE_KEY})'
-        return parse_scene(_parsed(stored[SCENE_KEY], origin), source=origin)
+        return of_scene(parse_scene(_parsed(stored[SCENE_KEY], origin), source=origin))
     return None
 
 
@@ -60,7 +62,6 @@ def _vehicle(stored, where):
     Each corner's scene is written where the vehicle file names it (a relative path, kept
     inside a temporary folder); bundled names need no file.
     """
-    from ..core.model import load_vehicle
     origin = f'{where} (its {VEHICLE_KEY})'
     data = _parsed(stored[VEHICLE_KEY], origin)
     with tempfile.TemporaryDirectory() as folder:
@@ -78,6 +79,6 @@ def _vehicle(stored, where):
         path = root / 'vehicle.yaml'
         path.write_text(stored[VEHICLE_KEY])
         try:
-            return load_vehicle(path)
+            return load_target(path, 'vehicle')
         except SceneError as exc:
             raise SceneError(origin, exc.field, exc.problem.replace(str(root), '.')) from None

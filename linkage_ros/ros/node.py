@@ -54,7 +54,7 @@ from .sinks import check_outputs, open_sinks, recording_metadata, Sinks
 from .solve_service import serve_corners
 from ..answer.cdr import CdrError, from_cdr, to_cdr, type_name
 from ..core.base import LinkageError
-from ..core.model import load_scene
+from ..core.model import load_target
 
 __all__ = ['NODE_NAME', 'PARAMETERS', 'QOS', 'QOS_DEPTH', 'SuspensionNode']
 
@@ -81,11 +81,10 @@ def load_corners(params: dict) -> Corners:
     'corner_name/' with the joint_states joints its vehicle file names ('' where none).
     """
     if not params['vehicle']:
-        scene = load_scene(params['scene'])
+        scene = load_target(params['scene'], 'scene').scene
         return Corners({'': (scene, '', '')}, {'scene_yaml': scene.source},
                        {'scene file': scene.source}, scene.name)
-    from ..core.model import load_vehicle
-    vehicle = load_vehicle(params['vehicle'])
+    vehicle = load_target(params['vehicle'], 'vehicle').vehicle
     scenes = {f'{name}/': (scene, *vehicle.joints.get(name, ('', '')))
               for name, scene in vehicle.corners.items()}
     files = {'vehicle_yaml': vehicle.source,

@@ -31,12 +31,12 @@ solved again from any folder:
 from __future__ import annotations
 
 import contextlib
-import os
 from pathlib import Path
 from typing import Callable, TYPE_CHECKING
 
-from ..cli import missing_package, writable_file
+from ..cli import missing_package
 from ..core.base import LinkageError
+from ..outputs import output_problem, same_file
 
 if TYPE_CHECKING:
     from rclpy.qos import QoSProfile
@@ -59,7 +59,7 @@ def check_outputs(params: dict, inputs: dict[str, str]) -> None:
     """
     outputs = {name: params[name] for name in OUTPUTS if params[name]}
     for name, path in outputs.items():
-        problem = writable_file(path)
+        problem = output_problem(path)
         if problem:
             raise LinkageError(name, problem)
         for what, other in inputs.items():
@@ -68,15 +68,6 @@ def check_outputs(params: dict, inputs: dict[str, str]) -> None:
     if len(outputs) == 2 and same_file(*outputs.values()):
         raise LinkageError('record_mcap', f'{params["record_mcap"]} is also rerun_rrd; give '
                            'each output its own file')
-
-
-def same_file(a: str, b: str) -> bool:
-    """Tell whether two paths name one file: resolved alike, or the same inode."""
-    if Path(a).resolve() == Path(b).resolve():
-        return True
-    with contextlib.suppress(OSError):
-        return os.path.samefile(a, b)
-    return False
 
 
 def recording_metadata(params: dict, sources: dict[str, str]) -> dict[str, str]:

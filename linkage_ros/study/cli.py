@@ -13,9 +13,10 @@ from __future__ import annotations
 import argparse
 import sys
 
-from ..cli import (check_outputs, counted, EXIT_STATUS, fail, INTERRUPTED, millimetres, Parser,
-                   program, SPAN, span, warn)
+from ..cli import (check_plot, check_table, counted, EXIT_STATUS, fail, INTERRUPTED,
+                   millimetres, Parser, program, SPAN, span, warn)
 from ..core.base import LENGTH_LIMIT_MM, LinkageError, positions_needed
+from ..outputs import check_outputs
 
 PROG = 'linkage-study'
 COMMANDS = ('sensitivity', 'tolerance', 'fit')
@@ -123,11 +124,14 @@ def travels(texts) -> list[float]:
 
 def check(args) -> None:
     """Refuse values no study can use, and outputs that cannot be written (LinkageError)."""
+    from ..core.model import resolve_scene_path
     outputs = [('-o', getattr(args, 'out', None)), ('--plot', getattr(args, 'plot', None)),
                ('-o', getattr(args, 'output', None))]
-    inputs = tuple(i for i in (getattr(args, 'scene', None), getattr(args, 'targets', None),
-                               getattr(args, 'tolerances', None)) if i)
-    check_outputs([(o, p) for o, p in outputs if p], inputs)
+    scene = getattr(args, 'scene', None)   # its file: the name of a bundled scene is no path
+    inputs = tuple(str(i) for i in (scene and resolve_scene_path(scene),
+                                    getattr(args, 'targets', None),
+                                    getattr(args, 'tolerances', None)) if i)
+    check_outputs(outputs, inputs)
     if args.command == 'tolerance':
         if not args.sigma > 0:   # NaN too
             raise LinkageError('--sigma', f'must be a number of mm above 0, got {args.sigma:g}')
@@ -140,20 +144,8 @@ def check(args) -> None:
         raise LinkageError('--workers', f'must be 0 (every core) or more, got {args.workers}')
     if args.command == 'fit' and args.starts < 1:
         raise LinkageError('--starts', f'must be at least 1, got {args.starts}')
-    for option, path in outputs:
-        if option == '-o' and path and path.endswith('.parquet'):
-            _need('pyarrow', '-o .parquet', 'study')
-        if option == '--plot' and path:
-            _need('matplotlib', '--plot', 'plot')
-
-
-def _need(module, feature, extra):
-    try:
-        __import__(module)
-    except ImportError:
-        raise LinkageError(feature, f'needs the Python package {module}, which is not '
-                           f"installed: pip install -e '.[{extra}]' (in a linkage_ros "
-                           'checkout)') from None
+    check_table(getattr(args, 'out', None), '-o', 'study')
+    check_plot(getattr(args, 'plot', None), '--plot', inputs)
 
 
 @program(PROG)

@@ -16,11 +16,12 @@ import sys
 import numpy as np
 
 from .executor import executor, Progress
-from .tables import SENSITIVITY_COLUMNS, TOLERANCE_COLUMNS, write_table
-from ..cli import check_outputs, counted
-from ..core.base import LinkageError
+from .tables import SENSITIVITY_COLUMNS, TOLERANCE_COLUMNS
+from ..cli import counted, table_status
+from ..core.base import LinkageError, Need, refuse_if_short
 from ..core.model import read_yaml
 from ..core.vary import load_design, SWEEP_COLUMNS
+from ..outputs import check_outputs, write_table
 
 PROG = 'linkage-study'
 POOL_FROM = 16   # batches (of 4096 variants, about 0.3 s each) that repay starting processes
@@ -42,7 +43,7 @@ def run_sensitivity(args, say) -> int:
         raise LinkageError('--rack', f'{scene.name}: no constraint is marked steer: rack')
     result = sensitivities(scene, args.travel, rack=args.rack,
                            wanted=tuple(args.quantity) if args.quantity else None)
-    write_table(args.out, SENSITIVITY_COLUMNS, rows(result), sys.stdout)
+    written = write_table(args.out, SENSITIVITY_COLUMNS, rows(result), sys.stdout)
     count = len(result.travel)
     if not result.success:
         say(f'{result.message} ({counted(count, "position")} written)')
@@ -50,7 +51,7 @@ def run_sensitivity(args, say) -> int:
     many = len(result.quantities)
     say(f'{scene.name}: {many} quantit{"y" if many == 1 else "ies"} x {len(result.points)} '
         f'points x 3 axes at {counted(count, "travel")}')
-    return 0
+    return table_status(PROG, written)
 
 
 def run_tolerance(args, say) -> int:
@@ -74,7 +75,8 @@ def run_tolerance(args, say) -> int:
             f'{counted(len(prob.travels), "travel")} in {count} '
             f'batch{"es" if count != 1 else ""}{where}{hours}')
         result = tolerance(prob, run, Progress(PROG, count, 'batches'))
-    write_table(args.out, TOLERANCE_COLUMNS, rows(result), sys.stdout)
+    status = table_status(PROG, write_table(args.out, TOLERANCE_COLUMNS, rows(result),
+                                            sys.stdout))
     if args.plot:
         from .plots import plot_tolerance
         plot_tolerance(result, args.plot, f'{design.scene.name}: {args.samples} variants, '
@@ -84,7 +86,7 @@ def run_tolerance(args, say) -> int:
         say(f'{lost} of {args.samples} variants out of reach at some travel (counted in '
             'out_of_reach, left out of the statistics)')
         return 1
-    return 0
+    return status
 
 
 def _check_size(samples: int, travels: int, workers: int) -> str:
@@ -94,7 +96,6 @@ def _check_size(samples: int, travels: int, workers: int) -> str:
     Returns what its time is estimated at, ' (about 3.2 h on 2 cores)', when it is a
     minute or more ('' otherwise): told before it starts, not found out after.
     """
-    from ..tools.map_memory import Need, refuse_if_short
     values = samples * travels * len(SWEEP_COLUMNS)
     refuse_if_short(Need(samples * travels, VALUE_BYTES * values, VALUE_BYTES * values),
                     '--samples', f'{samples:,} variants x {counted(travels, "travel")}',

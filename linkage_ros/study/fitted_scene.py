@@ -16,9 +16,9 @@ from __future__ import annotations
 import numpy as np
 import yaml
 
-from ..cli import whole_file
-from ..core.model import load_scene, UNITS_TO_MM
+from ..core.model import parse_scene, parse_yaml, UNITS_TO_MM
 from ..core.vary import scene_data_with
+from ..outputs import whole_file
 
 
 def _flow_lists(dumper, data):
@@ -62,12 +62,16 @@ def header(targets, result) -> list[str]:
 
 
 def write_fitted(path: str, targets, result) -> None:
-    """Write the fitted scene to path, checked to load (else nothing is left there)."""
+    """
+    Write the fitted scene to path whole, its text checked to load first (SceneError).
+
+    The text, not the file, is loaded: a device (-o /dev/null) is written in place and does
+    not read back.
+    """
     data = scene_data_with(targets.design, result.hardpoints)
     data['name'] = f'{targets.design.scene.name}_fitted'
     text = ''.join(f'# {line}\n' for line in header(targets, result))
     text += yaml.dump(data, Dumper=_Dumper, sort_keys=False, allow_unicode=True, width=99)
-    with whole_file(path, suffix='.yaml') as stream:   # renamed once whole and loaded
+    parse_scene(parse_yaml(text, path), source=str(path))   # as load_scene would load it
+    with whole_file(path) as stream:
         stream.write(text)
-        stream.flush()
-        load_scene(stream.name)

@@ -17,13 +17,14 @@ import time
 
 import numpy as np
 
-from ..cli import (EXIT_STATUS, fail, Parser, program, SPAN, span, warn, writable_file,
-                   write_csv)
+from ..cli import (check_table, EXIT_STATUS, fail, Parser, program, SPAN, span, table_status,
+                   warn)
 from ..core.axle import ACKERMANN_MIN_STEER, solve_axle, wheel_travels
 from ..core.base import LinkageError, positions_needed
-from ..core.model import load_vehicle, SceneError
+from ..core.model import load_target, SceneError
 from ..core.solve import sweep, travel_range
 from ..core.warmup import compile_if_cold
+from ..outputs import check_output, write_table
 
 PROG = 'linkage-axle'
 MAX_ROLL_DEG = 45.0   # |roll| beyond this is a typo: tan(phi) runs away near 90 deg
@@ -222,7 +223,8 @@ def main(argv: list[str] | None = None, rounds: int = 0) -> int:
     args = parse_args(argv, rounds)
     try:
         from ..core.axle import axle_of
-        vehicle = load_vehicle(args.vehicle)
+        target = load_target(args.vehicle, 'vehicle')
+        vehicle = target.vehicle
         axle = axle_of(vehicle, args.axle)
         heave, roll, rack = positions(args, axle)
     except (SceneError, LinkageError) as exc:
@@ -232,9 +234,11 @@ def main(argv: list[str] | None = None, rounds: int = 0) -> int:
     if with_rack and not axle.steered:
         return fail(PROG, f'{vehicle.name} {axle.name} axle: no corner has a steer: rack '
                           'link, so a rack input moves nothing')
-    problem = args.output and writable_file(args.output)
-    if problem:
-        return fail(PROG, f'-o: {problem}')
+    try:
+        check_output(args.output, '-o', target.files)
+        check_table(args.output)
+    except LinkageError as exc:
+        return fail(PROG, exc)
     compile_if_cold(PROG)
     if args.benchmark:
         benchmark(axle, heave, roll, rack, args.benchmark)
@@ -249,12 +253,7 @@ def main(argv: list[str] | None = None, rounds: int = 0) -> int:
               'from): no Ackermann', file=sys.stderr)
     header, rows = table(axle, result, with_rack)
     try:
-        if args.output:
-            with open(args.output, 'w') as stream:
-                write_csv(header, rows, stream)
-        else:
-            write_csv(header, rows, sys.stdout)
-            sys.stdout.flush()
+        written = write_table(args.output, header, rows)
     except BrokenPipeError:
         raise                      # stdout's reader went away: program() ends quietly
     except OSError as exc:         # a full disk; -o was writable when checked
@@ -266,7 +265,7 @@ def main(argv: list[str] | None = None, rounds: int = 0) -> int:
     if result.bar is not None and np.isnan(result.bar.twist).any():
         return 1      # the note above said where
     print(f'{PROG}: done', file=sys.stderr)
-    return 0
+    return table_status(PROG, written, 'position')
 
 
 if __name__ == '__main__':

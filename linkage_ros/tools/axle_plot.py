@@ -18,11 +18,12 @@ import sys
 
 import numpy as np
 
-from ..cli import fail, plot_problem, save_figure, warn
+from ..cli import fail, plot_problem, warn
 from ..core.axle import axle_of, solve_axle
 from ..core.measure import patch_offset
-from ..core.model import link_polylines, load_vehicle, SceneError
+from ..core.model import link_polylines, load_target, SceneError
 from ..core.warmup import compile_if_cold
+from ..outputs import save_figure
 
 PROG = 'linkage-plot'
 ROLL_DEG = 4.0       # the roll sweep, +-
@@ -129,7 +130,8 @@ def main(paths):
         return fail(PROG, 'roll-centre: expected OUT.png [VEHICLE [AXLE]]')
     out, vehicle_name, axle_name = (list(paths) + ['demo_vehicle', 'front'])[:3]
     try:
-        vehicle = load_vehicle(vehicle_name)
+        target = load_target(vehicle_name, 'vehicle')
+        vehicle = target.vehicle
         axle = axle_of(vehicle, axle_name)
     except SceneError as exc:
         return fail(PROG, exc)
@@ -137,7 +139,7 @@ def main(paths):
     if not axle.has_patches:
         return fail(PROG, f'{vehicle.name} {axle_name} axle: roll-centre needs wheel_radius in '
                           'both scenes (the contact patches)')
-    problem = plot_problem(out)
+    problem = plot_problem(out, target.files)
     if problem:
         return fail(PROG, problem)
     compile_if_cold(PROG)

@@ -16,6 +16,7 @@ import sys
 
 from .. import cli
 from ..core.base import LENGTH_LIMIT_MM, LinkageError, MM_PER_M
+from ..outputs import check_outputs, whole_file
 
 PROG = 'linkage-chrono'
 MAX_RADIUS_M = LENGTH_LIMIT_MM / MM_PER_M   # the length limit of every scene
@@ -95,11 +96,11 @@ def _import(args):
     from ..chrono import import_file, inputs_of
     wheel_radius = radius(args.wheel_radius) if args.wheel_radius is not None else None
     inputs = inputs_of(args.source)   # the file and, for a vehicle, its suspension files
-    cli.check_outputs([('-o', args.output)], inputs)
+    check_outputs([('-o', args.output)], inputs)
     texts, summary = import_file(args.source, args.output, wheel_radius)
-    cli.check_outputs([('-o', path) for path in texts], inputs)
+    check_outputs([('-o', path) for path in texts], inputs)
     for path, text in texts.items():
-        with cli.whole_file(path, encoding='utf-8') as out:
+        with whole_file(path, encoding='utf-8') as out:
             out.write(text)
     print(f'{PROG}: {summary}', file=sys.stderr)
     return cli.DONE
@@ -109,9 +110,9 @@ def _export(args):
     from ..chrono import export_file
     from ..core.model import resolve_scene_path
     inputs = [str(resolve_scene_path(args.scene))] + [p for p in (args.like,) if p]
-    cli.check_outputs([('-o', args.output)], inputs)
+    check_outputs([('-o', args.output)], inputs)
     text, summary = export_file(args.scene, args.like)
-    with cli.whole_file(args.output, encoding='utf-8') as out:
+    with whole_file(args.output, encoding='utf-8') as out:
         out.write(text)
     print(f'{PROG}: {summary} -> {args.output}', file=sys.stderr)
     return cli.DONE

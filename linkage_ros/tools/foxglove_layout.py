@@ -19,9 +19,10 @@ import copy
 import json
 import sys
 
-from .target import check_text_output, load_frames, write_text
+from .target import check_text_output, write_text
 from .. import cli
 from ..core.base import LinkageError, M_PER_MM
+from ..core.model import load_target
 
 PROG = 'linkage-foxglove'
 TEMPLATE = 'foxglove_layout.json'     # in the package's config folder (core.model.bundled)
@@ -107,10 +108,10 @@ def _main(argv):
                         'base_link)')
     args = parser.parse_args(argv)
     try:
-        target = load_frames(args.target)
+        target = load_target(args.target)
         cli.warn(PROG, target.warnings)
         check_text_output(args.output, target)
-        scenes = target.scenes
+        scenes = target.prefixed
         text = layout_text(foxglove_layout(scenes, args.frame_id))
         write_text(args.output, text)
     except (cli.Mistake, LinkageError) as exc:

@@ -17,12 +17,13 @@ import sys
 
 import numpy as np
 
-from ..cli import (check_outputs, counted, EXIT_STATUS, fail, Parser, plot_problem, program,
-                   SPAN, span, warn, whole_file, write_csv)
+from ..cli import (check_plot, check_table, counted, EXIT_STATUS, fail, Parser, program, SPAN,
+                   span, table_status, warn)
 from ..core.base import check_position_count, FORCE_LIMIT_N, LinkageError, MOMENT_LIMIT_NM, \
     positions_needed, say_ranges, wrench_problem
 from ..core.model import load_scene, SceneError
 from ..core.solve import travel_range
+from ..outputs import check_outputs, write_table
 
 PROG = 'linkage-kc'
 # The 6x6 matrix's rows (the wheel centre's response) and columns (the load at the wheel
@@ -196,11 +197,10 @@ def select(header, wanted):
     return [header.index(n) for n in names]
 
 
-def write_matrix(matrix, stream):
-    """Write the 6x6 wheel-centre compliance as CSV with labelled rows and columns."""
-    stream.write(','.join((MATRIX_CORNER,) + MATRIX_COLUMNS) + '\n')
-    for label, row in zip(MATRIX_ROWS, np.asarray(matrix, float) + 0.0):
-        stream.write(','.join([label] + ['%.10g' % v for v in row]) + '\n')
+def write_matrix(matrix, output):
+    """Write the 6x6 wheel-centre compliance as a table with labelled rows and columns."""
+    rows = [[label, *row] for label, row in zip(MATRIX_ROWS, np.asarray(matrix, float).tolist())]
+    return write_table(output, (MATRIX_CORNER,) + MATRIX_COLUMNS, rows)
 
 
 def load_of(args):
@@ -273,14 +273,14 @@ def main(argv: list[str] | None = None, rounds: int = 0) -> int:
         scene = load_scene(args.scene)
         travels, racks = positions(args)
         check_request(scene, args)
-        outputs = (('-o', args.output), ('--matrix', args.matrix), ('--plot', args.plot))
-        check_outputs([(option, path) for option, path in outputs if path], [scene.source])
+        check_outputs((('-o', args.output), ('--matrix', args.matrix), ('--plot', args.plot)),
+                      [scene.source])
+        check_plot(args.plot)
+        check_table(args.output)
+        check_table(args.matrix, '--matrix')
     except (SceneError, LinkageError) as exc:
         return fail(PROG, exc)
     warn(PROG, scene.warnings)
-    problem = args.plot and plot_problem(args.plot)
-    if problem:
-        return fail(PROG, f'--plot: {problem}')
     from ..core.warmup import compile_if_cold
     compile_if_cold(PROG)
     if args.rounds:
@@ -291,15 +291,10 @@ def main(argv: list[str] | None = None, rounds: int = 0) -> int:
         header, rows, results, failure = solve(scene, args, travels, racks)
     except LinkageError as exc:   # an unknown column
         return fail(PROG, exc)
-    if args.output:
-        with whole_file(args.output) as stream:
-            write_csv(header, rows, stream)
-    else:
-        write_csv(header, rows, sys.stdout)
-        sys.stdout.flush()
+    status = table_status(PROG, write_table(args.output, header, rows), 'position')
     if args.matrix and results:
-        with whole_file(args.matrix) as stream:
-            write_matrix(results[0].matrix, stream)
+        status = max(status, table_status(PROG, write_matrix(results[0].matrix, args.matrix),
+                                          'row', args.matrix))
     if args.plot and results:
         from .kc_plot import plot_loaded, plot_rates
         if args.loaded:
@@ -311,7 +306,7 @@ def main(argv: list[str] | None = None, rounds: int = 0) -> int:
         print(f'{PROG}: {failure} ({counted(len(rows), "position")} written)', file=sys.stderr)
         return 1
     print(f'{PROG}: done', file=sys.stderr)
-    return 0
+    return status
 
 
 if __name__ == '__main__':

@@ -12,10 +12,10 @@ arrow to one scale (mm of paper per kN), the load on the wheel and the holding f
 
 import numpy as np
 
-from ..cli import save_figure
 from ..core.measure import contact_patch
 from ..core.model import link_polylines
 from ..core.solve import compile_scene, sweep
+from ..outputs import save_figure
 
 # The panels of plot_rates: (title, unit, test on a rate's name); a rate goes to the first
 # panel it fits (the names end in their unit: doc/kc.md).

@@ -21,20 +21,32 @@ import time
 from typing import Callable, NamedTuple
 
 import numpy as np
-import yaml
 
 from .map_files import FORMATS, map_files, UNREACHED, write_map, write_unreached
 from .map_grid import axle_grid_map, AXLE_QUANTITIES, corner_map, Grid, GridMap, quantities
-from .map_memory import memory_needed, refuse_if_short
-from ..cli import EXIT_STATUS, fail, output_folder, Parser, program, same_file, SPAN, span, warn
+from ..cli import check_table, EXIT_STATUS, fail, Parser, program, SPAN, span, warn
 from ..core.axle import axle_of
-from ..core.base import LinkageError
-from ..core.model import load_scene, load_vehicle, vehicle_dir
+from ..core.base import LinkageError, Need, refuse_if_short
+from ..core.model import load_target
 from ..core.warmup import compile_if_cold
+from ..outputs import output_folder
 
 PROG = 'linkage-map'
 GRID_OPTIONS = ('--travel', '--rack')
 DEFAULT_RACK = Grid(-40.0, 40.0, 5.0)   # mm, steered corners when --rack is not given
+# Measured with linkage-map demo_vehicle (4 corners, 41 quantities) on grids of 2,020 and
+# 164,164 points: loading the compiled kernels and solving took 141 MB of address space and
+# 48 MB resident on top of what the program held when it checked; each value of the maps
+# (a grid point's quantity: the map's array, the rows of one rack's sweep, a writer's copy)
+# took 15 B at the peak with CSV and NPZ, 23 B with Parquet too. Rounded up. Every corner's
+# map is kept until the last is written (their points out of reach are listed at the end),
+# so the need is the sum over the corners, not the largest.
+BASE_BYTES = 160e6
+BYTES_PER_VALUE = 24
+# pyarrow's first Parquet file reserved 1.3 GB of address space (its allocator and threads),
+# of which about 100 MB became resident.
+PARQUET_ADDRESS_BYTES = 1.4e9
+PARQUET_RESIDENT_BYTES = 100e6
 
 EPILOG = """writes into DIR, per corner (the scene's name, or the vehicle's corner names):
   <corner>.csv      long form: corner,travel_mm,rack_mm,quantity,value (exact floats)
@@ -110,24 +122,12 @@ def grid_option(text, option):
     return grid
 
 
-def load_target(target):
-    """Return (Vehicle or None, {corner name: Scene}) of a scene file or a vehicle file."""
-    path = Path(target)
-    bundled = vehicle_dir() / f'{target}.yaml'
-    if (not path.suffix and not path.exists() and bundled.is_file()) or _is_vehicle(path):
-        vehicle = load_vehicle(target)
-        return vehicle, vehicle.corners
-    scene = load_scene(target)
-    return None, {re.sub(r'[^A-Za-z0-9_.-]+', '_', scene.name).strip('._-') or 'scene': scene}
-
-
-def _is_vehicle(path):
-    """Tell whether path is a YAML file of a vehicle (a top-level corners mapping)."""
-    try:
-        data = yaml.safe_load(path.read_text()) if path.is_file() else None
-    except (OSError, UnicodeDecodeError, yaml.YAMLError, ValueError, RecursionError):
-        return False   # load_scene then says what is wrong with it
-    return isinstance(data, dict) and isinstance(data.get('corners'), dict)
+def map_corners(target):
+    """Return {corner name: Scene} of a Target: a vehicle's corners, a scene under its name."""
+    if target.vehicle is not None:
+        return target.corners
+    name = re.sub(r'[^A-Za-z0-9_.-]+', '_', target.scene.name).strip('._-') or 'scene'
+    return {name: target.scene}
 
 
 class Job(NamedTuple):
@@ -181,6 +181,15 @@ def solve_axle(axle, travel):
     return axle_grid_map(axle, travel.values())
 
 
+def memory_needed(jobs, parquet: bool = False) -> Need:
+    """Return the Need of jobs (each with shape (n0, n1) and quantities); nothing allocated."""
+    points = sum(job.shape[0] * job.shape[1] for job in jobs)
+    values = sum(job.shape[0] * job.shape[1] * job.quantities for job in jobs)
+    data = BASE_BYTES + BYTES_PER_VALUE * values
+    return Need(points, data + parquet * PARQUET_RESIDENT_BYTES,
+                data + parquet * PARQUET_ADDRESS_BYTES)
+
+
 def check_memory(jobs, formats):
     """Refuse maps that need more memory than this process may take (LinkageError)."""
     need = memory_needed(jobs, 'parquet' in formats)
@@ -188,28 +197,23 @@ def check_memory(jobs, formats):
                     'take a larger --travel or --rack step, or a shorter range')
 
 
-def check_names(folder, jobs, formats, inputs):
+def file_names(folder, jobs, formats):
     """
-    Refuse outputs that would replace an input or each other (LinkageError naming both).
+    Return the names of the files the jobs write into folder, the list out of reach last.
 
-    inputs: the files read (the scene or vehicle file and the corners' scene files).
+    Raises LinkageError for two maps (or a map and that list) that would be one file.
     """
-    unreached = folder / UNREACHED
     written = {}
     for job in jobs:
-        for path in map_files(folder, job.kind, job.name, formats):
-            if path == unreached or path in written:
-                other = 'the list of points out of reach' if path == unreached else \
-                    f'the map of {written[path]}'
+        for path in map_files(Path(folder), job.kind, job.name, formats):
+            if path.name == UNREACHED or path.name in written:
+                other = 'the list of points out of reach' if path.name == UNREACHED else \
+                    f'the map of {written[path.name]}'
                 what = 'axle' if job.kind == 'axle' else 'scene or corner'
                 raise LinkageError('-o', f'the map of {job.name} would be {path}, which '
                                    f'is {other}: rename the {what}')
-            written[path] = job.name
-    for path in [*written, unreached]:
-        for source in inputs:
-            if same_file(str(path), source):
-                raise LinkageError('-o', f'writing {path} would replace the input '
-                                   f'{source}: give another -o folder')
+            written[path.name] = job.name
+    return [*written, UNREACHED]
 
 
 def formats_option(text):
@@ -220,12 +224,7 @@ def formats_option(text):
         raise LinkageError('--format', f'unknown format {", ".join(unknown) or repr(text)} '
                            f'(expected a comma-separated list of: {", ".join(FORMATS)})')
     if 'parquet' in kinds:
-        try:
-            import pyarrow.parquet  # noqa: F401 (only whether it is there)
-        except ImportError:
-            raise LinkageError('--format parquet', 'needs the Python package pyarrow, which '
-                               "is not installed: pip install -e '.[map]' (in a linkage_ros "
-                               'checkout) or pip install pyarrow') from None
+        check_table('maps.parquet', '--format parquet')
     return kinds
 
 
@@ -238,8 +237,9 @@ def main(argv: list[str] | None = None, rounds: int = 0) -> int:
     """
     args = parse_args(argv, rounds)
     try:
-        vehicle, corners = load_target(args.target)
-        warn(PROG, [w for scene in corners.values() for w in scene.warnings])
+        target = load_target(args.target)
+        vehicle, corners = target.vehicle, map_corners(target)
+        warn(PROG, target.warnings)
         jobs = [axle_job(vehicle, args)] if args.axle is not None else corner_jobs(corners, args)
         if args.benchmark:
             from .map_bench import benchmark
@@ -247,9 +247,8 @@ def main(argv: list[str] | None = None, rounds: int = 0) -> int:
             return benchmark(corners, args.benchmark)
         formats = formats_option(args.format)   # pyarrow first: its memory is then in use
         check_memory(jobs, formats)
-        folder = output_folder(args.out, '-o')
-        check_names(folder, jobs, formats, [args.target, *(
-            [vehicle.source] if vehicle else []), *(s.source for s in corners.values())])
+        folder = output_folder('-o', args.out, file_names(args.out, jobs, formats),
+                               target.files)
     except LinkageError as exc:
         return fail(PROG, exc)
     compile_if_cold(PROG)

@@ -8,6 +8,7 @@ For a corner over (travel, rack), in files named for it:
 
     <corner>.csv      corner,travel_mm,rack_mm,quantity,value: one value a line, every value
                       written with the fewest digits that read back to the same float64
+                      (the table writer's rule, outputs/table.py)
     <corner>.npz      travel_mm (nt,), rack_mm (nr,) and each quantity as an (nt, nr) array:
                       what a lookup-table block (or scipy's RegularGridInterpolator) takes
     <corner>.parquet  one row per grid point: travel_mm, rack_mm, then a column per quantity
@@ -15,18 +16,18 @@ For a corner over (travel, rack), in files named for it:
 
 An axle's map is the same over (left_travel_mm, right_travel_mm), in <axle>_axle.* files.
 pyarrow (the map extra) is imported only when Parquet is asked for. Each file is written
-under a temporary name and renamed when whole (cli.whole_file): a full disk leaves no cut file.
+under a temporary name and renamed when whole (outputs.whole_file): a full disk leaves no cut
+file.
 """
 
 from __future__ import annotations
 
-import csv
 from pathlib import Path
 from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..cli import whole_file
+from ..outputs import whole_file, write_table
 
 if TYPE_CHECKING:
     from .map_grid import GridMap
@@ -66,34 +67,26 @@ def write_npz(path: Path, grid: GridMap) -> None:
 def write_long_csv(path: Path, grid: GridMap) -> None:
     """Write one value a line, grid point by grid point (first axis, then second), exact."""
     names = grid.quantities
-    with whole_file(path) as stream:
-        stream.write(f'{grid.kind},{",".join(grid.axis_names)},quantity,value\n')
+
+    def rows():
         for i, first in enumerate(grid.axes[0].tolist()):
             for j, second in enumerate(grid.axes[1].tolist()):
-                start = f'{grid.name},{first!r},{second!r},'
-                stream.writelines(f'{start}{name},{value!r}\n'
-                                  for name, value in zip(names, grid.values[i, j].tolist()))
+                for name, value in zip(names, grid.values[i, j].tolist()):
+                    yield grid.name, first, second, name, value
+
+    write_table(path, [grid.kind, *grid.axis_names, 'quantity', 'value'], rows())
 
 
 def write_parquet(path: Path, grid: GridMap) -> None:
     """Write one row per grid point: the two axes, then a column per quantity."""
-    import pyarrow as pa
-    import pyarrow.parquet as pq
     first, second = np.meshgrid(*grid.axes, indexing='ij')
-    columns = dict(zip(grid.axis_names, (first.ravel(), second.ravel())))
-    columns.update((name, grid.values[:, :, i].ravel()) for i, name in enumerate(grid.quantities))
-    with whole_file(path, 'wb') as stream:
-        pq.write_table(pa.table(columns), stream)
+    columns = [first.ravel(), second.ravel()] + [grid.values[:, :, i].ravel()
+                                                 for i in range(len(grid.quantities))]
+    write_table(path, [*grid.axis_names, *grid.quantities], np.column_stack(columns))
 
 
 def write_unreached(path: Path, maps: list[GridMap]) -> int:
     """List every solve out of reach (its corner, travel and rack), with why; return how many."""
-    count = 0
-    with whole_file(path, newline='') as stream:
-        writer = csv.writer(stream, lineterminator='\n')
-        writer.writerow(['corner', 'travel_mm', 'rack_mm', 'reason'])
-        for grid in maps:
-            for corner, travel, rack, why in grid.unreached:
-                writer.writerow([corner, repr(travel), repr(rack), why])
-                count += 1
-    return count
+    rows = [row for grid in maps for row in grid.unreached]
+    write_table(path, ['corner', 'travel_mm', 'rack_mm', 'reason'], rows)
+    return len(rows)

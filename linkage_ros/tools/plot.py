@@ -25,11 +25,11 @@ import sys
 
 import numpy as np
 
-from ..cli import (counted, deprecated, EXIT_STATUS, fail, Parser, plot_problem, program,
-                   save_figure, warn)
+from ..cli import counted, deprecated, EXIT_STATUS, fail, Parser, plot_problem, program, warn
 from ..core.model import load_scene, scene_dir, SceneError
 from ..core.solve import sweep, travel_range
 from ..core.warmup import compile_if_cold
+from ..outputs import save_figure
 
 
 def swept(scenes):
@@ -251,7 +251,8 @@ def main(argv: list[str] | None = None) -> int:
             return fail(prog, exc)
         for scene in scenes:
             warn(prog, scene.warnings)
-    problem = plot_problem(out)
+    problem = plot_problem(out, [source] if args.what == 'latency' else
+                           [s.source for s in scenes])
     if problem:
         return fail(prog, problem)
     results = []

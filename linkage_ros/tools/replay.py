@@ -46,6 +46,7 @@ from .. import cli
 from ..cli import counted
 from ..core.base import LinkageError
 from ..core.warmup import compile_if_cold
+from ..outputs import check_output
 
 PROGRESS_PERIOD = 1.0   # s between progress lines
 
@@ -134,8 +135,7 @@ def run(args):
         suffix = {'solve': '_solved.mcap', 'copy': '_copy.mcap'}.get(args.command)
         output = args.output or (cli.default_output(bag_path, suffix) if bag_path else
                                  str(Path.cwd() / f'{scene.file_stem}_sweep.mcap'))
-        cli.check_output(output, '-o' if args.output else 'output',
-                         inputs=_inputs(bag_path, scene))
+        check_output(output, '-o' if args.output else 'output', _inputs(bag_path, scene))
     if args.command == 'copy':
         return _copy(args, output)
     if bag_path:

@@ -318,11 +318,11 @@ def stored_scene(bag, topic):
     namespace (/front_left/wheel_travel: front_left). Raises SceneError naming the bag for
     stored content that does not load.
     """
-    from ..core.model import Scene, SceneError
+    from ..core.model import SceneError
     from ..record.stored import load_stored
     loaded = load_stored(bag.metadata, str(bag.path))
-    if loaded is None or isinstance(loaded, Scene):
-        return loaded
+    if loaded is None or loaded.vehicle is None:
+        return loaded and loaded.scene
     corner = topic.strip('/').rpartition('/')[0].rpartition('/')[2]
     if corner not in loaded.corners:
         raise SceneError(f'{bag.path} (its vehicle_yaml)', 'corners', f'no corner '

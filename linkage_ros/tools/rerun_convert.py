@@ -44,8 +44,9 @@ import sys
 
 from .. import cli
 from ..core.base import LinkageError
-from ..core.model import load_scene, load_vehicle, Scene
+from ..core.model import load_scene, load_vehicle, resolve_scene_path
 from ..core.warmup import compile_if_cold
+from ..outputs import check_output
 from ..record.stored import load_stored
 
 PROG = 'linkage-rerun'
@@ -139,7 +140,8 @@ def run(args):
     from ..record.mcap_reader import read_bag
     cli.check_input(args.bag)
     output = args.output or cli.default_output(args.bag, '.rrd')
-    cli.check_output(output, '-o' if args.output else 'output', inputs=[args.bag])
+    check_output(output, '-o' if args.output else 'output',
+                 [args.bag] + ([resolve_scene_path(args.scene)] if args.scene else []))
     bag = read_bag(args.bag)
     if args.tf:
         return _run_tf(args, bag, output)
@@ -211,10 +213,10 @@ def drawing(args, bag):
         loaded = load_stored(bag.metadata, str(args.bag))
     except LinkageError as exc:
         raise cli.Mistake(f'{exc} (choose a scene with --scene)') from None
-    if isinstance(loaded, Scene):
-        return loaded, None, {}
+    if loaded is not None and loaded.vehicle is None:
+        return loaded.scene, None, {}
     if loaded is not None:
-        return None, loaded.corners, loaded.joints
+        return None, loaded.corners, loaded.vehicle.joints
     vehicle, named = bag.custom_data.get('vehicle'), bag.custom_data.get('scene')
     try:
         if vehicle:

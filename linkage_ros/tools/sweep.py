@@ -13,14 +13,15 @@ import time
 
 import numpy as np
 
-from ..cli import (counted, EXIT_STATUS, fail, millimetres, Parser, program, SPAN, span, warn,
-                   writable_file)
+from ..cli import (check_table, counted, EXIT_STATUS, fail, millimetres, Parser, program, SPAN,
+                   span, table_status, warn)
 from ..core.base import (check_position_count, LinkageError, lost_cells, positions_needed,
-                         say_lost, say_ranges)
+                         say_ranges)
 from ..core.measure import columns
 from ..core.model import load_scene, SceneError
 from ..core.solve import Continuation, METHODS, sweep, travel_range
 from ..core.warmup import compile_if_cold
+from ..outputs import check_output, write_table
 
 PROG = 'linkage-sweep'
 # The columns, each declared once in the registry (core/measure/quantities.py), in the
@@ -81,29 +82,21 @@ def header(scene=None, with_rack=False, elements=None):
         element_columns(elements) if elements is not None else [])
 
 
-def write_csv(results, stream, scene=None, with_rack=False, elements=None):
+def write_sweeps(results, output, scene=None, with_rack=False, elements=None):
     """
-    Write Sweeps (one or several, e.g. a rack grid) as one CSV table; return the cells lost.
+    Write Sweeps (one or several, e.g. a rack grid) as one table to output (None: stdout).
 
-    Values are written to 10 significant digits. The writers' rule (base.lost_cells): a value
-    that is not finite is written as nan, and returned, {column: mask over all the rows},
-    unless the quantity is undefined there by its definition (an alignment quantity, NaN
-    where the scene has no steer axis; an element's quantities where its ends crossed).
+    The table writer's format (outputs.write_table: CSV, or Parquet by the suffix); returns
+    what it wrote (Written). The writers' rule (base.lost_cells): a value that is not finite
+    is written as nan and told in Written.lost, unless the quantity is undefined there by its
+    definition (an alignment quantity, NaN where the scene has no steer axis; an element's
+    quantities where its ends crossed).
     """
+    rows = [table(result, scene, with_rack, elements) for result in results]
     columns = header(scene, with_rack, elements)
-    row_format = ','.join(['%.10g'] * len(columns)) + '\n'
-    stream.write(','.join(columns) + '\n')
-    parts = []   # (rows, lost cells) of each result
-    for result in results:
-        rows = table(result, scene, with_rack, elements) + 0.0   # + 0.0: no '-0' in the table
-        cells = lost_cells(dict(zip(columns, rows.T)), undefined(columns, rows, scene, elements))
-        for name, mask in cells.items():
-            rows[mask, columns.index(name)] = np.nan
-        parts.append((len(rows), cells))
-        stream.writelines(row_format % tuple(row) for row in rows.tolist())
-    names = dict.fromkeys(name for _, cells in parts for name in cells)
-    return {name: np.concatenate([cells.get(name, np.zeros(n, bool)) for n, cells in parts])
-            for name in names}
+    rows = np.concatenate(rows) if rows else np.empty((0, len(columns)))
+    return write_table(output, columns, rows, lost=lost_cells(
+        dict(zip(columns, rows.T)), undefined(columns, rows, scene, elements)))
 
 
 def undefined(columns, rows, scene=None, elements=None):
@@ -234,9 +227,11 @@ def main(argv: list[str] | None = None, rounds: int = 0) -> int:
     except SceneError as exc:
         return fail(PROG, exc)
     warn(PROG, scene.warnings)
-    problem = args.output and writable_file(args.output)
-    if problem:
-        return fail(PROG, f'-o: {problem}')
+    try:
+        check_output(args.output, '-o', [scene.source])
+        check_table(args.output)
+    except LinkageError as exc:
+        return fail(PROG, exc)
     start, stop, step = args.travel or (
         given if given is not None else default
         for given, default in zip((args.start, args.stop, args.step), scene.travel))
@@ -272,12 +267,7 @@ def main(argv: list[str] | None = None, rounds: int = 0) -> int:
              'with_rack': args.rack is not None,
              'elements': scene if args.elements else None}
     try:
-        if args.output:
-            with open(args.output, 'w') as stream:
-                lost = write_csv(results, stream, **table)
-        else:
-            lost = write_csv(results, sys.stdout, **table)
-            sys.stdout.flush()
+        written = write_sweeps(results, args.output, **table)
     except BrokenPipeError:
         raise                      # stdout's reader went away: program() ends quietly
     except OSError as exc:         # a full disk; -o was writable when checked
@@ -292,10 +282,9 @@ def main(argv: list[str] | None = None, rounds: int = 0) -> int:
             print(f'{PROG}: {line}', file=sys.stderr)
     failed = [r for r in results if not r.success]
     if failed:
-        written = counted(sum(len(r.travel) for r in results), 'position')
-        print(f'linkage-sweep: {failed[0].message} ({written} written)', file=sys.stderr)
-    if lost:
-        print(f'linkage-sweep: {say_lost(lost, "position")}', file=sys.stderr)
+        print(f'linkage-sweep: {failed[0].message} ({counted(written.rows, "position")} '
+              'written)', file=sys.stderr)
+    lost = table_status(PROG, written, 'position')
     if failed or lost:
         return 1
     worst = max(r.residual.max() for r in results if len(r.travel))

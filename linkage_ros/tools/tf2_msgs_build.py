@@ -34,6 +34,7 @@ import time
 
 from .. import cli
 from ..core.model import config_dir
+from ..outputs import output_problem
 
 PROG = 'linkage-tf2-msgs'
 EXAMPLE = """example:
@@ -162,7 +163,7 @@ def main(argv=None) -> int:
               file=sys.stderr)
         return failed
     log = Path(args.log) if args.log else Path(tempfile.gettempdir()) / 'linkage_tf2_msgs.log'
-    problem = cli.writable_file(str(log))
+    problem = output_problem(log)
     if problem:
         return cli.fail(PROG, f'--log {log}: {problem}')
     log.write_text('')

@@ -13,9 +13,10 @@ node's /tf.
 
 import sys
 
-from .target import check_text_output, load_frames, write_text
+from .target import check_text_output, write_text
 from .. import cli
 from ..core.base import LinkageError
+from ..core.model import load_target
 
 PROG = 'linkage-urdf'
 EPILOG = """frames and links: <corner>/wheel_carrier, <corner>/wheel, <corner>/<constraint
@@ -46,11 +47,11 @@ def _main(argv):
                         help="the root link: the node's frame_id (default: base_link)")
     args = parser.parse_args(argv)
     try:
-        target = load_frames(args.target)
+        target = load_target(args.target)
         cli.warn(PROG, target.warnings)
         check_text_output(args.output, target)
         from ..answer.robot_description import robot_description
-        text = robot_description(target.scenes, args.frame_id, target.name)
+        text = robot_description(target.prefixed, args.frame_id, target.name)
         write_text(args.output, text)
     except (cli.Mistake, LinkageError) as exc:
         return cli.fail(PROG, exc)

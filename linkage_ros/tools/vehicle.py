@@ -13,15 +13,17 @@ has no setup sheet, and says so in one line. --tables writes each axle's quantit
 heave, roll and rack (front_heave.csv, front_roll.csv, front_rack.csv, rear_heave.csv, ...).
 """
 
-import csv
 import math
 import sys
 
-from ..cli import (EXIT_STATUS, fail, output_folder, Parser, plot_problem, program, warn,
-                   writable_file)
-from ..core.base import LinkageError, lost_cells, say_lost, say_ranges
-from ..core.model import load_vehicle, SceneError
+import numpy as np
+
+from ..cli import (check_plot, check_table, EXIT_STATUS, fail, Parser, program, table_status,
+                   warn)
+from ..core.base import LinkageError, lost_cells, say_ranges
+from ..core.model import load_vehicle, SceneError, Target
 from ..core.warmup import compile_if_cold
+from ..outputs import check_outputs, output_folder, write_table
 
 PROG = 'linkage-vehicle'
 TABLE_INPUTS = ('heave_mm', 'roll_deg', 'rack_mm')   # the columns a table is solved over
@@ -69,18 +71,11 @@ def sheet_table(sheet):
     return header, rows
 
 
-def write_csv(header, rows, stream):
-    """
-    Write the sheet as CSV: numbers to 10 significant digits, '' where a row has none.
-
-    A value that is not finite is never written as a number (base.lost_cells): it is left
-    empty too, and lost() says which.
-    """
-    writer = csv.writer(stream, lineterminator='\n')
-    writer.writerow(header)
-    for row in rows:
-        writer.writerow([v if isinstance(v, str) else '' if v is None or not math.isfinite(v)
-                         else f'{v + 0.0:.10g}' for v in row])
+def table_names(vehicle):
+    """Return the files --tables writes: <axle>_heave.csv, _roll.csv, _rack.csv if it steers."""
+    from ..core.axle import axle_of
+    return [f'{name}_{table}.csv' for name in ('front', 'rear') for table in
+            ('heave', 'roll') + (('rack',) if axle_of(vehicle, name).steered else ())]
 
 
 def lost(header, rows, inputs=()):
@@ -127,16 +122,18 @@ def main(argv=None, rounds=0):
         vehicle = load_vehicle(args.vehicle)
     except SceneError as exc:
         return fail(PROG, exc)
+    target = Target(vehicle, vehicle.corners)   # its files: the vehicle's and every scene's
     warn(PROG, vehicle.warnings)
     problem = problem_of(vehicle)
     if problem:
         return fail(PROG, problem)
-    for option, path in (('-o', args.output), ('--plot', args.plot)):
-        problem = path and (plot_problem(path) if option == '--plot' else writable_file(path))
-        if problem:
-            return fail(PROG, f'{option}: {problem}')
     try:
-        folder = args.tables and output_folder(args.tables, '--tables')
+        check_outputs((('-o', args.output), ('--plot', args.plot)), target.files)
+        check_plot(args.plot)
+        check_table(args.output)
+        folder = args.tables and output_folder('--tables', args.tables, table_names(vehicle),
+                                               target.files + tuple(p for p in (
+                                                   args.output, args.plot) if p))
     except LinkageError as exc:
         return fail(PROG, exc)
     compile_if_cold(PROG)
@@ -149,29 +146,23 @@ def main(argv=None, rounds=0):
     for note in sheet.notes:
         print(f'{PROG}: {note}', file=sys.stderr)
     header, rows = sheet_table(sheet)
-    if args.output:
-        with open(args.output, 'w', newline='') as stream:
-            write_csv(header, rows, stream)
-    else:
-        write_csv(header, rows, sys.stdout)
-        sys.stdout.flush()
-    said = [say_lost(lost(header, rows), 'row')]
+    status = table_status(PROG, write_table(args.output, header, rows,
+                                            lost=lost(header, rows)))
     if folder:
         for name, sheet_axle in sheet.axles.items():
             for table, columns in sheet_axle.tables.items():
-                cells = [list(r) for r in zip(*columns.values())]
-                with open(folder / f'{name}_{table}.csv', 'w', newline='') as stream:
-                    write_csv(list(columns), cells, stream)
-                problem = say_lost(lost(list(columns), cells, TABLE_INPUTS), 'position')
-                said.append(problem and f'{name}_{table}.csv: {problem}')
+                cells = np.column_stack([np.asarray(c, float) for c in columns.values()])
+                written = write_table(folder / f'{name}_{table}.csv', list(columns), cells,
+                                      lost=lost(list(columns), cells.tolist(), TABLE_INPUTS))
+                status = max(status, table_status(PROG, written, 'position',
+                                                  f'{name}_{table}.csv'))
     if args.plot:
         from .vehicle_plot import plot_sheet
         plot_sheet(sheet, args.plot)
         print(f'{PROG}: wrote {args.plot}', file=sys.stderr)
-    messages = list(sheet.messages) + [line for line in said if line]
-    for message in messages:
+    for message in sheet.messages:
         print(f'{PROG}: {message}', file=sys.stderr)
-    if messages:
+    if sheet.messages or status:
         return 1
     print(f'{PROG}: done', file=sys.stderr)
     return 0

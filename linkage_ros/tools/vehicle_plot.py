@@ -12,7 +12,7 @@ textbook 0.5 k t^2); Ackermann against steer; the steering ratio against the rac
 
 import numpy as np
 
-from ..cli import save_figure
+from ..outputs import save_figure
 
 AXLES = ('front', 'rear')
 COLOURS = {'front': 'C0', 'rear': 'C1'}

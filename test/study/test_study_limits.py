@@ -39,6 +39,16 @@ def test_a_monte_carlo_study_too_large_for_memory_is_refused_up_front(samples):
                           'need about ') and len(err.splitlines()) == 1
 
 
+def test_the_memory_check_is_the_one_of_the_core_and_imports_no_program():
+    # the study once imported linkage-map's module (tools/map_memory) for its memory check
+    code = ('import sys; from linkage_ros.study.commands import _check_size; '
+            '_check_size(1000, 3, 2); '
+            'print(sorted(m for m in sys.modules if m.startswith("linkage_ros.tools")))')
+    done = subprocess.run([sys.executable, '-c', code], capture_output=True, text=True,
+                          check=True)
+    assert done.stdout == '[]\n'
+
+
 def test_a_long_study_says_how_long_it_will_take_before_it_starts():
     from linkage_ros.study.commands import _check_size
     said = _check_size(8_000_000, 3, 2)   # 2.4e7 solves at 15 us on 2 cores: 3 min

@@ -99,8 +99,8 @@ def test_points_beyond_a_travel_limit_are_nan_and_listed_with_status_1(tmp_path,
     assert np.isfinite(stored['camber_deg'][~beyond]).all()
     with open(tmp_path / 'out_of_reach.csv', newline='') as stream:
         listed = list(csv.DictReader(stream))
-    assert [(row['travel_mm'], row['rack_mm']) for row in listed] == [('400.0', '0.0'),
-                                                                      ('450.0', '0.0')]
+    assert [(row['travel_mm'], row['rack_mm']) for row in listed] == [('400', '0'),
+                                                                      ('450', '0')]
     assert 'bump limit 387.469 mm' in listed[0]['reason']
 
 

@@ -101,11 +101,10 @@ def test_a_reader_that_stops_early_ends_the_table_quietly_as_cat_does():
 
 
 @pytest.mark.skipif(not Path('/dev/full').exists(), reason='needs /dev/full')
-def test_a_full_disk_under_the_table_is_one_line_and_status_2(capsys):
+def test_a_device_that_refuses_writes_is_one_line_and_status_2_before_the_sweep(capsys):
     code, _, _, err = run(capsys, 'five_link', '-o', '/dev/full')
-    assert code == 2
-    assert err.splitlines()[-1] == ('linkage-sweep: /dev/full: cannot write the table (No space '
-                                    'left on device)')
+    assert code == 2   # refused before any work: /dev/full refuses even a write of no byte
+    assert err == 'linkage-sweep: -o: /dev/full: cannot write (No space left on device)\n'
 
 
 def test_rack_option_adds_the_rack_column_and_steers(capsys):

@@ -4,9 +4,10 @@
 """
 The writers' rule (issue 36, item 11): a result that is not finite is never written as a number.
 
-linkage-sweep writes it as nan and linkage-vehicle leaves it empty; the rest of the table is
-written, and the program ends with status 1 and one line naming the columns, as a sweep does
-for a position out of reach. A NaN a quantity has by its definition (an alignment quantity
+Every table writes it as nan (outputs.write_table, doc/tables.md; the setup sheet once left
+it empty, as a column that is not the row's); the rest of the table is written, and the
+program ends with status 1 and one line naming the columns, as a sweep does for a position
+out of reach. A NaN a quantity has by its definition (an alignment quantity
 of a scene without a steer axis, Ackermann straight ahead) is no loss: status 0, as before.
 The loader refuses the inputs that overflowed (doc/scenes.md#ranges); these scenes and
 vehicles are built in Python, past it, as a caller of the core can build them. The tables
@@ -79,7 +80,7 @@ def test_a_sheet_writes_no_infinity_and_ends_1_naming_the_cells(monkeypatch, cap
     rows = {row['axle']: row for row in table(out)}
     assert status == 1 and list(rows) == ['front', 'rear', 'vehicle']
     assert 'inf' not in out
-    assert rows['rear']['sprung_mass_kg'] == '' and rows['front']['sprung_mass_kg'] == ''
+    assert rows['rear']['sprung_mass_kg'] == 'nan' and rows['front']['sprung_mass_kg'] == 'nan'
     assert float(rows['vehicle']['sprung_mass_kg']) == 1e308      # a finite input, as given
     assert float(rows['front']['wheel_rate_N_per_mm']) == pytest.approx(19.77384189)
     lines = [line for line in err.splitlines() if 'not finite' in line]
@@ -96,8 +97,8 @@ def test_a_body_its_roll_stiffness_cannot_hold_ends_1_and_says_why(monkeypatch, 
     assert vehicle.main(['demo_vehicle']) == 1
     out, err = capsys.readouterr()
     rows = {row['axle']: row for row in table(out)}
-    assert rows['vehicle']['roll_gradient_deg_per_g'] == ''
-    assert rows['vehicle']['lltd_front_pct'] == ''
+    assert rows['vehicle']['roll_gradient_deg_per_g'] == 'nan'
+    assert rows['vehicle']['lltd_front_pct'] == 'nan'
     # m_s g d per degree, from the sheet's own cells: 1e7 kg x g x 0.4427 m x pi / 180
     moment = 1e7 * 9.80665 * float(rows['vehicle']['roll_moment_arm_mm']) / 1000.0 * math.pi / 180
     assert f'overturning moment m_s g d = {moment:.6g} N m/deg' in err
@@ -108,4 +109,5 @@ def test_the_bundled_sheet_and_its_tables_end_0(capsys, tmp_path):
     # Ackermann is NaN straight ahead (its definition): no loss
     assert vehicle.main(['demo_vehicle', '--tables', str(tmp_path)]) == 0
     assert 'not finite' not in capsys.readouterr().err
-    assert '' in {row['ackermann_pct'] for row in table((tmp_path / 'front_rack.csv').read_text())}
+    assert 'nan' in {row['ackermann_pct']
+                     for row in table((tmp_path / 'front_rack.csv').read_text())}

@@ -56,7 +56,7 @@ from .solver import bench_core, bench_sweep
 from .start import bench_start, start_once
 from .tables import progress
 from .vehicle import bench_vehicle
-from ...cli import EXIT_STATUS, Parser, program, writable_file
+from ...cli import EXIT_STATUS, Parser, plot_problem, program
 from ...core.base import LinkageError
 from ...core.model import load_scene
 from ...core.warmup import compile_if_cold
@@ -109,7 +109,7 @@ def parse_args(argv, prog='linkage-node-bench'):
     if not (args.echo or args.echo_vehicle or args.start_once):   # the user's command
         if ros_args:            # only the echo processes take ROS arguments
             parser.error(f'unrecognized arguments: {" ".join(ros_args)}')
-        problem = args.plot and writable_file(args.plot)
+        problem = args.plot and plot_problem(args.plot)
         if problem:
             parser.error(f'--plot: {problem}')
         try:

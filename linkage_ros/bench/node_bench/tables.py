@@ -7,16 +7,16 @@ import sys
 
 import numpy as np
 
+from ...outputs import write_table
+
 
 def progress(text):
     print(f'linkage-node-bench: {text}', file=sys.stderr, flush=True)
 
 
 def table(header, rows):
-    """Print a CSV table: header (first cell: the section) and rows, floats to 4 digits."""
-    print(','.join(header))
-    for row in rows:
-        print(','.join(f'{v:.4g}' if isinstance(v, float) else str(v) for v in row))
+    """Print a CSV table with the table writer (doc/tables.md), the section its first cell."""
+    write_table(None, header, rows)
     print()
 
 

@@ -2,18 +2,19 @@
 # SPDX-License-Identifier: Apache-2.0
 
 """
-The memory a kinematic map needs, and the memory it may have, both known before it is solved.
+The memory a run may take, known before it starts: one check for every program.
 
-    need = memory_needed(jobs, parquet)   # Need(points, resident, address_space) bytes
-    room = memory_room()                  # Room(bytes, what limits it), or None: no limit known
+    room = memory_room()                               # Room(bytes, what limits it), or None
+    refuse_if_short(Need(points, resident, address), field, what, advice)   # LinkageError
 
-Every corner's map is kept until the last is written (their points out of reach are listed
-at the end), so the need is the sum over the corners, not the largest. The room is the
-smallest of what applies to this process: the host's MemAvailable, the address-space limit
-(RLIMIT_AS, `ulimit -v`) less the address space in use, and the cgroup's memory.max (v2) or
-memory.limit_in_bytes (v1) less what the cgroup already uses, at every level of its path. The
-address-space limit counts reserved address space, which pyarrow reserves plenty of; the
-others count resident memory, so each is compared with its own need.
+A program says what its run needs (Need: bytes resident and of address space, estimated from
+its own measurements: linkage-map's maps, linkage-study's variants) and refuses a run that
+does not fit before it starts, in one line. The room is the smallest of what applies to this
+process: the host's MemAvailable, the address-space limit (RLIMIT_AS, `ulimit -v`) less the
+address space in use, and the cgroup's memory.max (v2) or memory.limit_in_bytes (v1) less
+what the cgroup already uses, at every level of its path. The address-space limit counts
+reserved address space (pyarrow reserves plenty); the others count resident memory, so each
+is compared with its own need.
 """
 
 from __future__ import annotations
@@ -23,22 +24,13 @@ from pathlib import Path
 import resource
 from typing import NamedTuple
 
-# Measured with linkage-map demo_vehicle (4 corners, 41 quantities) on grids of 2,020 and
-# 164,164 points: loading the compiled kernels and solving took 141 MB of address space and
-# 48 MB resident on top of what the program held when it checked; each value of the maps
-# (a grid point's quantity: the map's array, the rows of one rack's sweep, a writer's copy)
-# took 15 B at the peak with CSV and NPZ, 23 B with Parquet too. Rounded up.
-BASE_BYTES = 160e6
-BYTES_PER_VALUE = 24
-# pyarrow's first Parquet file reserved 1.3 GB of address space (its allocator and threads),
-# of which about 100 MB became resident.
-PARQUET_ADDRESS_BYTES = 1.4e9
-PARQUET_RESIDENT_BYTES = 100e6
+from .errors import LinkageError
+
 CGROUP_ROOT = Path('/sys/fs/cgroup')
 
 
 class Need(NamedTuple):
-    """What the maps of a run need: grid points, bytes resident, bytes of address space."""
+    """What a run needs: its points (solves), bytes resident, bytes of address space."""
 
     points: int
     resident: float
@@ -59,15 +51,6 @@ class Room(NamedTuple):
 ADDRESS_SPACE = 'the address-space limit RLIMIT_AS, ulimit -v'
 
 
-def memory_needed(jobs, parquet: bool = False) -> Need:
-    """Return the Need of jobs (each with shape (n0, n1) and quantities); nothing allocated."""
-    points = sum(job.shape[0] * job.shape[1] for job in jobs)
-    values = sum(job.shape[0] * job.shape[1] * job.quantities for job in jobs)
-    data = BASE_BYTES + BYTES_PER_VALUE * values
-    return Need(points, data + parquet * PARQUET_RESIDENT_BYTES,
-                data + parquet * PARQUET_ADDRESS_BYTES)
-
-
 def refuse_if_short(need: Need, field: str, what: str, advice: str) -> None:
     """
     Refuse a run whose Need does not fit the memory this process may take.
@@ -77,7 +60,6 @@ def refuse_if_short(need: Need, field: str, what: str, advice: str) -> None:
     """
     room = memory_room()
     if room is not None and room.wanted(need) > room.size:
-        from ..core.base import LinkageError
         raise LinkageError(field, f'{what} need about {_gb(room.wanted(need))} of memory and '
                            f'{_gb(room.size)} is available ({room.limit}): {advice}')
 
