@@ -195,7 +195,7 @@ class SuspensionNode(Node):
         self.qos = topic_qos(params['qos_depth'])
         self.sinks.active = open_sinks(
             params, scenes, self._offered_qos(corners, params),
-            recording_metadata(params, corners.files)) + list(sinks)
+            recording_metadata(params, corners.files), self.get_logger().warning) + list(sinks)
         if before_solving is not None:
             before_solving()
         self.frame_id = params['frame_id']
