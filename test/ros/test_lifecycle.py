@@ -129,6 +129,24 @@ def test_cleanup_releases_what_configure_made_and_configure_works_again(
         node.destroy_node()
 
 
+def test_each_transition_is_one_line_on_the_log(ros_context, capfd):
+    node = ManagedSuspensionNode(context=ros_context)
+    try:
+        for trigger in (node.trigger_configure, node.trigger_activate, node.trigger_deactivate,
+                        node.trigger_cleanup, node.trigger_configure, node.trigger_shutdown):
+            assert trigger() == TransitionCallbackReturn.SUCCESS
+    finally:
+        node.destroy_node()
+    said = [line.split(']: ', 1)[1] for line in capfd.readouterr().err.splitlines()
+            if '[INFO]' in line and ']: transition ' in line]
+    assert said == ['transition configure: unconfigured -> inactive',
+                    'transition activate: inactive -> active',
+                    'transition deactivate: active -> inactive',
+                    'transition cleanup: inactive -> unconfigured',
+                    'transition configure: unconfigured -> inactive',
+                    'transition shutdown: inactive -> finalized']
+
+
 def test_a_parameter_change_while_configured_is_refused_saying_why(ros_context):
     node = ManagedSuspensionNode(context=ros_context)
     try:
