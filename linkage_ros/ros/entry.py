@@ -34,7 +34,7 @@ from rclpy.signals import SignalHandlerOptions
 
 from .node import SuspensionNode
 from .parameters import help_lines
-from ..cli import held_stderr
+from ..cli import held_stderr, program
 from ..core import warmup
 from ..core.base import LinkageError
 
@@ -179,6 +179,7 @@ def lifecycle_main(args: list[str] | None = None) -> int:
     return main(args, managed=True)
 
 
+@program(PROG)
 def main(args: list[str] | None = None, managed: bool = False) -> int:
     """Run suspension_node: 0 when stopped by SIGINT or SIGTERM, 2 for a mistake."""
     prog = LIFECYCLE_PROG if managed else PROG
