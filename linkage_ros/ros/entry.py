@@ -20,6 +20,7 @@ stops within POLL s, the recordings are closed and the status is 0, whatever was
 
 from __future__ import annotations
 
+import functools
 from pathlib import Path
 import signal
 import sys
@@ -202,7 +203,8 @@ def main(args: list[str] | None = None, managed: bool = False) -> int:
         init_ros(argv)
         if managed:
             from .lifecycle import ManagedSuspensionNode
-            node = ManagedSuspensionNode(before_solving=compile_kernels)
+            node = ManagedSuspensionNode(before_solving=functools.partial(
+                compile_kernels, prog=LIFECYCLE_PROG))
         else:
             node = SuspensionNode(before_solving=compile_kernels)
         return run(node, signals)
@@ -218,14 +220,15 @@ def main(args: list[str] | None = None, managed: bool = False) -> int:
         return 2
 
 
-def compile_kernels(statics: bool = False) -> None:
+def compile_kernels(statics: bool = False, prog: str = PROG) -> None:
     """
     Compile the kernels in a child process if numba's cache lacks them, saying so once.
 
     statics: the statics kernels too (a scene with bushings, or statics asked for:
-    warmup.wants_statics), so that the first loaded answer does not compile them.
+    warmup.wants_statics), so that the first loaded answer does not compile them. prog: the
+    program that says so (suspension_node or suspension_lifecycle_node).
     """
-    if warmup.say_if_cold(PROG, statics=statics):
+    if warmup.say_if_cold(prog, statics=statics):
         warmup.compile_in_child(statics)
 
 
