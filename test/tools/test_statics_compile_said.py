@@ -6,10 +6,11 @@ A program that runs the statics kernels says their first compile, as for the oth
 
 linkage-kc compiled the statics kernels for a minute without a word: it asked
 warmup.compile_if_cold for the kinematic kernels only. Each program runs here in a fresh
-Python in which numba's cache is taken to lack the statics kernels (warmup._in_cache answers
-so for STATICS_MODULES; the rest as the cache holds them) and compile_in_child only notes what
-it is asked to compile. Afterwards, the statics kernels that ran in that process are read off
-numba (a Dispatcher's signatures: compiled or loaded there). A program that ran one must have
+Python in which numba's cache is taken to lack the statics kernels and to hold every other
+(warmup._in_cache answers so, whatever the cache holds: a kernel it lacks is compiled where it
+is first run, unsaid, as before) and compile_in_child only notes what it is asked to compile.
+Afterwards, the statics kernels that ran in that process are read off numba (a Dispatcher's
+signatures: compiled or loaded there). A program that ran one must have
 said the compile once, before its work, and asked for the statics kernels; one that ran none
 need not. kc and replay (solve and sweep) on a scene with bushings run them; sweep, axle and
 vehicle on scenes with bushings (kinematics, springs and bar) do not, today.
@@ -27,9 +28,7 @@ CHILD = """
 import importlib, json, sys
 from numba.core.dispatcher import Dispatcher
 from linkage_ros.core import warmup
-cached = warmup._in_cache
-warmup._in_cache = lambda kernel: (kernel.py_func.__module__ not in warmup.STATICS_MODULES
-                                   and cached(kernel))
+warmup._in_cache = lambda kernel: kernel.py_func.__module__ not in warmup.STATICS_MODULES
 asked = []
 warmup.compile_in_child = lambda statics=False: asked.append(statics) or True
 module, name, argv = sys.argv[1], sys.argv[2], sys.argv[3:]
@@ -90,7 +89,7 @@ def test_a_program_that_runs_the_statics_kernels_says_their_compile(case, tmp_pa
     lines, report = run(prog, module, argv, tmp_path)
     assert report['status'] == 0, lines
     assert bool(report['ran']) == runs_statics, report     # what this case is about
-    said = f'{prog}: {warmup.STATICS_MESSAGE}'    # the other kernels are cached here
+    said = f'{prog}: {warmup.STATICS_MESSAGE}'    # the other kernels taken as cached
     if report['ran']:
         solving = next(i for i, line in enumerate(lines) if WORK[prog] in line)
         assert lines.count(said) == 1 and lines.index(said) < solving, lines   # before work
