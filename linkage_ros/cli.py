@@ -161,12 +161,24 @@ def program(prog: str):
     A reader of stdout that went away (`linkage-sweep five_link | head -1`) ends it quietly,
     status READER_GONE; a full disk, a quota or a file-size limit met while writing is one
     line, status 2. Other errors are raised as before: they are not the user's.
+
+    stdout is flushed here, before main's status (or its sys.exit, as argparse's --help)
+    leaves: where stdout is a pipe it is block-buffered (PYTHONUNBUFFERED unset, as in a
+    fresh shell), so a short table or help is written only at the flush, and a flush left to
+    the interpreter's exit meets the gone reader as "Exception ignored ... BrokenPipeError",
+    status 120.
     """
     def wrap(main):
         @functools.wraps(main)
         def run(argv=None, **kwargs):
             try:
-                return main(argv, **kwargs)
+                try:
+                    status = main(argv, **kwargs)
+                except SystemExit:
+                    _flush_stdout()
+                    raise
+                _flush_stdout()
+                return status
             except BrokenPipeError:
                 if not stdout_reader_gone():
                     raise
@@ -178,6 +190,12 @@ def program(prog: str):
                                   f'({exc.strerror})')
         return run
     return wrap
+
+
+def _flush_stdout() -> None:
+    """Flush sys.stdout, if there is one still open: a BrokenPipeError comes out here."""
+    if sys.stdout is not None and not sys.stdout.closed:
+        sys.stdout.flush()
 
 
 def stdout_reader_gone() -> bool:

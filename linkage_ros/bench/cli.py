@@ -26,7 +26,7 @@ stderr.
 
 import sys
 
-from ..cli import deprecated, EXIT_STATUS, fail, MISTAKE, program
+from ..cli import deprecated, EXIT_STATUS, fail, MISTAKE, program, READER_GONE
 
 PROG = 'linkage-bench'
 ROUNDS = 5   # default --rounds of sweep, axle, map and kc
@@ -128,7 +128,7 @@ def _old(prog, old, command, argv):
     run = COMMANDS[command]
     # --help and a mistake exit here, without the note; their lines name the old program
     status = run(argv, prog=prog)
-    if status != MISTAKE:
+    if status not in (MISTAKE, READER_GONE):   # a reader gone: quiet, as cat
         deprecated(prog, old, f'{PROG} {command}')
     return status
 

@@ -12,6 +12,8 @@ later processes load it in well under a second. A program calls, before its firs
     cold() -> bool                   numba's cache lacks a kernel: the next solve compiles
     say_if_cold(prog, file=stderr)   print 'prog: compiling the numerical kernels, once, about
                                      20 s' once per process if cold(); returns cold()
+                                     (with statics=True and those kernels cold, it names
+                                     them: message())
     compile_if_cold(prog)            say_if_cold, then compile_in_child: what a program
                                      calls (the next process is warm, whatever it solves)
     compile_kernels()                solve once along every path (both methods, a rack, a
@@ -46,6 +48,10 @@ KERNEL_MODULES = ('linkage_ros.core.base.so3', 'linkage_ros.core.base.force_tabl
 # The statics' (only for a scene with bushings, or when statics is asked for).
 STATICS_MODULES = ('linkage_ros.core.statics.rotation', 'linkage_ros.core.statics.kernel')
 MESSAGE = 'compiling the numerical kernels, once, about 20 s'
+# The statics kernels take about as long again (66 s after 83 s for the others, both measured
+# on one busy machine: python -m linkage_ros.core.warmup, then with --statics).
+STATICS_MESSAGE = 'compiling the statics kernels, once, about 20 s'
+BOTH_MESSAGE = 'compiling the numerical kernels and the statics kernels, once, about 40 s'
 STATICS_FLAG = '--statics'
 _said = False
 
@@ -57,12 +63,17 @@ def wants_statics(scene, asked: bool = False) -> bool:
 
 def uncached_kernels(statics: bool = False) -> list:
     """Return the names (module.function) of kernels numba's on-disk cache lacks (yet)."""
+    return _uncached(KERNEL_MODULES + (STATICS_MODULES if statics else ()))
+
+
+def _uncached(modules) -> list:
+    """Return the names (module.function) of the kernels of modules the cache lacks."""
     from numba.core.dispatcher import Dispatcher
 
-    modules = KERNEL_MODULES + (STATICS_MODULES if statics else ())
     return [f'{module.rsplit(".", 1)[1]}.{name}' for module in modules
             for name, value in vars(importlib.import_module(module)).items()
-            if isinstance(value, Dispatcher) and not _in_cache(value)]
+            if isinstance(value, Dispatcher) and value.py_func.__module__ == module
+            and not _in_cache(value)]   # each kernel in its own module, not where imported
 
 
 def _in_cache(dispatcher) -> bool:
@@ -85,13 +96,27 @@ def cold(statics: bool = False) -> bool:
     return bool(uncached_kernels(statics))
 
 
+def message(statics: bool = False) -> str:
+    """
+    Return what is said of the compile due, or '' if none is.
+
+    MESSAGE (the kernels), STATICS_MESSAGE (statics asked for, only their kernels cold) or
+    BOTH_MESSAGE: a program that solves statics says the time its compile takes.
+    """
+    kinematic = bool(_uncached(KERNEL_MODULES))
+    more = statics and bool(_uncached(STATICS_MODULES))
+    return (BOTH_MESSAGE if kinematic else STATICS_MESSAGE) if more else \
+        (MESSAGE if kinematic else '')
+
+
 def say_if_cold(prog: str, file=None, statics: bool = False) -> bool:
-    """If cold(), say once per process on file (stderr) that the kernels are being compiled."""
+    """If cold(), say once per process on file (stderr) what is being compiled (message())."""
     global _said
-    if not cold(statics):
+    said = message(statics)
+    if not said:
         return False
     if not _said:
-        print(f'{prog}: {MESSAGE}', file=file or sys.stderr, flush=True)
+        print(f'{prog}: {said}', file=file or sys.stderr, flush=True)
         _said = True
     return True
 

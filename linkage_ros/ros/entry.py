@@ -20,6 +20,7 @@ stops within POLL s, the recordings are closed and the status is 0, whatever was
 
 from __future__ import annotations
 
+import functools
 from pathlib import Path
 import signal
 import sys
@@ -34,7 +35,7 @@ from rclpy.signals import SignalHandlerOptions
 
 from .node import SuspensionNode
 from .parameters import help_lines
-from ..cli import held_stderr
+from ..cli import held_stderr, program
 from ..core import warmup
 from ..core.base import LinkageError
 
@@ -47,9 +48,9 @@ POLL = 0.1    # s: the longest the executor waits before it looks whether a sign
 # rclpy's exception for ROS arguments it does not know (a class of its C extension).
 UNKNOWN_ROS_ARGS = getattr(_rclpy, 'UnknownROSArgsError', ())
 
-HELP = """usage: suspension_node [--help] [--ros-args -p NAME:=VALUE ... --params-file FILE]
+HELP = """usage: {prog} [--help] [--ros-args -p NAME:=VALUE ... --params-file FILE]
 
-Wheel travel in; wheel-carrier pose, camber, toe and solver health out (ROS 2, SI units).
+{about}
 
 parameters (-p NAME:=VALUE after --ros-args, or a params file under /**: ros__parameters:):
 {parameters}
@@ -98,31 +99,45 @@ The first start after an install compiles the numerical kernels (about 20 s, sai
 Ctrl-C stops it at once); later starts load them.
 
 example:
-  ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST suspension_node --ros-args -p scene:=macpherson \\
-      -p record_mcap:=run.mcap
-
+  ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST {prog} \\
+      --ros-args -p scene:=macpherson -p record_mcap:=run.mcap
+{example}
 exit status: 0 stopped by Ctrl-C (SIGINT) or SIGTERM, at any time: the command in hand is
-               finished, queued ones are dropped, recordings are closed;
+               finished, queued ones are dropped, recordings are closed;{shutdown}
              2 a mistake: unknown parameter, bad value, bad scene or vehicle file, an output
                file that cannot be written or that is an input, a missing optional package
                (one line on stderr)
 """
 
 
-LIFECYCLE_HELP = """suspension_lifecycle_node: suspension_node as a managed (lifecycle) node. It
-starts unconfigured; drive it with the standard <node>/change_state service (ros2 lifecycle
-set /suspension_kinematics configure, activate, deactivate, cleanup, shutdown): configure
-parses the scene or vehicle, compiles the kernels and creates the topics (a bad scene fails
-it, with its reason on the log); it answers only while active; shutdown closes the
-recordings and ends the process (status 0). Parameters are read at configure. Otherwise as
-suspension_node:
+ABOUT = 'Wheel travel in; wheel-carrier pose, camber, toe and solver health out (ROS 2, SI units).'
 
+LIFECYCLE_ABOUT = """suspension_node as a managed (lifecycle) node. It starts unconfigured; drive
+it with the standard <node>/change_state service (ros2 lifecycle set /suspension_kinematics
+configure, activate, deactivate, cleanup, shutdown): configure parses the scene or vehicle,
+compiles the kernels and creates the topics (a bad scene fails it, with its reason on the
+log); it answers only while active; cleanup closes the recordings (the next configure
+records into run_1.mcap, never over them); shutdown closes the recordings and ends the
+process (status 0). Each transition is one line on the log. Parameters are read at
+configure. Otherwise as suspension_node:"""
+
+LIFECYCLE_EXAMPLE = """  ros2 lifecycle set /suspension_kinematics configure
+      (then activate; ros2 needs a full ROS install: from Python, doc/node.md's manage.py)
 """
 
 
-def help_text() -> str:
-    """Return the text of suspension_node --help: the parameters with defaults and ranges."""
-    return HELP.format(parameters='\n'.join(help_lines()))
+def help_text(managed: bool = False) -> str:
+    """
+    Return the text of --help: the parameters with defaults and ranges.
+
+    managed: suspension_lifecycle_node's, which names it and says what its transitions do.
+    """
+    return HELP.format(
+        prog=LIFECYCLE_PROG if managed else PROG, parameters='\n'.join(help_lines()),
+        about=LIFECYCLE_ABOUT if managed else ABOUT,
+        example=LIFECYCLE_EXAMPLE if managed else '',
+        shutdown='\n               or shut down through change_state: recordings closed;'
+        if managed else '')
 
 
 class Stopped(BaseException):
@@ -165,13 +180,14 @@ def lifecycle_main(args: list[str] | None = None) -> int:
     return main(args, managed=True)
 
 
+@program(PROG)
 def main(args: list[str] | None = None, managed: bool = False) -> int:
     """Run suspension_node: 0 when stopped by SIGINT or SIGTERM, 2 for a mistake."""
     prog = LIFECYCLE_PROG if managed else PROG
     argv = sys.argv[1:] if args is None else list(args)
     own = argv[:argv.index('--ros-args')] if '--ros-args' in argv else argv
     if {'-h', '--help'} & set(own):          # before ROS starts
-        print(LIFECYCLE_HELP * managed + help_text(), end='')
+        print(help_text(managed), end='')
         return 0
     if own:
         print(f'{prog}: unknown argument {own[0]!r}: parameters go after --ros-args, '
@@ -187,7 +203,8 @@ def main(args: list[str] | None = None, managed: bool = False) -> int:
         init_ros(argv)
         if managed:
             from .lifecycle import ManagedSuspensionNode
-            node = ManagedSuspensionNode(before_solving=compile_kernels)
+            node = ManagedSuspensionNode(before_solving=functools.partial(
+                compile_kernels, prog=LIFECYCLE_PROG))
         else:
             node = SuspensionNode(before_solving=compile_kernels)
         return run(node, signals)
@@ -203,14 +220,15 @@ def main(args: list[str] | None = None, managed: bool = False) -> int:
         return 2
 
 
-def compile_kernels(statics: bool = False) -> None:
+def compile_kernels(statics: bool = False, prog: str = PROG) -> None:
     """
     Compile the kernels in a child process if numba's cache lacks them, saying so once.
 
     statics: the statics kernels too (a scene with bushings, or statics asked for:
-    warmup.wants_statics), so that the first loaded answer does not compile them.
+    warmup.wants_statics), so that the first loaded answer does not compile them. prog: the
+    program that says so (suspension_node or suspension_lifecycle_node).
     """
-    if warmup.say_if_cold(PROG, statics=statics):
+    if warmup.say_if_cold(prog, statics=statics):
         warmup.compile_in_child(statics)
 
 

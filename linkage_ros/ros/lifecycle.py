@@ -24,6 +24,9 @@ LifecycleNodeMixin), driven over the standard services <node>/change_state and
 
 Parameters are read at configure: a change while configured is refused with that reason
 (cleanup, set, configure again); unconfigured, a change is taken at the next configure.
+
+Each transition is one line on the log: 'transition configure: unconfigured -> inactive' (an
+INFO), or the reason it failed (an ERROR: 'configure failed: ...').
 """
 
 from __future__ import annotations
@@ -84,29 +87,36 @@ class ManagedSuspensionNode(LifecycleNodeMixin, SuspensionNode):
             return TransitionCallbackReturn.FAILURE
         self._start(params)
         self.configured = True
-        return TransitionCallbackReturn.SUCCESS
+        return self._done('configure', state, 'inactive')
 
     def on_activate(self, state) -> TransitionCallbackReturn:
         """Answer commands from now on."""
         self.taking_commands = True
-        return super().on_activate(state)
+        return self._done('activate', state, 'active', super().on_activate(state))
 
     def on_deactivate(self, state) -> TransitionCallbackReturn:
         """Drop commands from now on; the corners keep their poses."""
         self.taking_commands = False
-        return super().on_deactivate(state)
+        return self._done('deactivate', state, 'inactive', super().on_deactivate(state))
 
     def on_cleanup(self, state) -> TransitionCallbackReturn:
         """Release what configure made: recordings closed, topics and services gone."""
         self._release()
-        return TransitionCallbackReturn.SUCCESS
+        return self._done('cleanup', state, 'unconfigured')
 
     def on_shutdown(self, state) -> TransitionCallbackReturn:
         """Stop answering and close the recordings; the process may end."""
         self.stop_taking_commands()
         self.close_sinks()
         self.finished = True
-        return TransitionCallbackReturn.SUCCESS
+        return self._done('shutdown', state, 'finalized')
+
+    def _done(self, transition, state, reached,
+              result=TransitionCallbackReturn.SUCCESS) -> TransitionCallbackReturn:
+        """Say a transition from state that succeeded (result) in one line; return result."""
+        if result == TransitionCallbackReturn.SUCCESS:
+            self.get_logger().info(f'transition {transition}: {state.label} -> {reached}')
+        return result
 
     def on_error(self, state) -> TransitionCallbackReturn:
         """Release everything after a transition that raised: unconfigured again."""

@@ -55,6 +55,7 @@ from .solve_service import serve_corners
 from ..answer.cdr import CdrError, from_cdr, to_cdr, type_name
 from ..core.base import LinkageError
 from ..core.model import load_target
+from ..core.warmup import wants_statics
 
 __all__ = ['NODE_NAME', 'PARAMETERS', 'QOS', 'QOS_DEPTH', 'SuspensionNode']
 
@@ -103,15 +104,17 @@ class SuspensionNode(Node):
     One scene, or every corner of a vehicle (parameter vehicle), each a Corner.
     """
 
-    def __init__(self, sinks=(), before_solving: Callable[[], None] | None = None,
+    def __init__(self, sinks=(), before_solving: Callable[..., None] | None = None,
                  **kwargs) -> None:
         """
         Declare the parameters, load the scenes and open the sinks, topics and timer.
 
         sinks: extra objects with record(topic, type_name, cdr_bytes, receive_ns, publish_ns)
         and close(), after those the parameters turn on. before_solving: called once the
-        parameters, scenes and outputs are checked and before the first solve (the process
-        entry compiles the kernels there, interruptibly). kwargs go to rclpy Node. A mistake
+        parameters, scenes and outputs are checked and before the first solve, as
+        before_solving(statics=...): True when a corner answers loaded poses (the process
+        entry compiles the kernels there, interruptibly, and the statics kernels with them
+        when told). kwargs go to rclpy Node. A mistake
         raises LinkageError (a ValueError) naming the parameter, file or field.
         """
         self._begin(kwargs)
@@ -150,9 +153,10 @@ class SuspensionNode(Node):
         self.qos = topic_qos(params['qos_depth'])
         self.sinks.active = open_sinks(
             params, scenes, self._offered_qos(corners, params),
-            recording_metadata(params, corners.files)) + list(sinks)
-        if before_solving is not None:
-            before_solving()
+            recording_metadata(params, corners.files), self.get_logger().warning) + list(sinks)
+        if before_solving is not None:   # the statics kernels too if a corner answers loaded
+            before_solving(statics=any(wants_statics(scene, params['statics'])
+                                       for scene in scenes.values()))
         self.frame_id = params['frame_id']
         self.diagnostics_pub = publisher(self, DiagnosticArray, '/diagnostics', self.qos)
         self.corners = {prefix.rstrip('/'): Corner(self, self, scene, params, prefix, *joints)

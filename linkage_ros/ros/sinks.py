@@ -6,10 +6,13 @@ The sinks of suspension_node: recorders and viewers that receive every input and
 
     check_outputs(params, inputs)        refuse an output that is an input file or the other
                                          output (LinkageError naming the parameter)
+    recording_files(params)              {output parameter: the file it records into}: as
+                                         given, or a numbered sibling (never truncate a
+                                         recording this process wrote)
     recording_metadata(params, inputs)   what the MCAP stores of the run: the parameters that
                                          shaped it, and the text of every scene and vehicle file
-    open_sinks(params, scenes, qos, metadata) -> the recorders the parameters turn on; their
-                                         modules (mcap, rerun) are imported only then
+    open_sinks(params, scenes, qos, metadata, say) -> the recorders the parameters turn on;
+                                         their modules (mcap, rerun) are imported only then
     Sinks(sinks, on_failure, log_error)  hands each input and output to every sink; one that
                                          fails is dropped, closed and reported, the others go on
 
@@ -26,12 +29,21 @@ solved again from any folder:
     'vehicle_yaml'           the vehicle file (a vehicle node)
     'scene_yaml/<corner>'    each corner's scene file, as the vehicle file names it (unmirrored,
                              unplaced: the vehicle file says how)
+
+A file a recorder of this process wrote is never opened again for writing (which would empty
+it): the managed node's configure after a cleanup, say, with record_mcap still run.mcap,
+records into run_1.mcap, the next into run_2.mcap, and says so on the log. Each file is a
+whole recording of one configure (its own header, metadata, summary and footer), readable
+alone, as rosbag2 splits a bag into numbered files; a finished MCAP is not reopened to
+append, which would rewrite its summary and could lose it. A file written by an earlier
+process is overwritten, as always.
 """
 
 from __future__ import annotations
 
 import contextlib
 from pathlib import Path
+import stat
 from typing import Callable, TYPE_CHECKING
 
 from ..cli import missing_package
@@ -44,6 +56,9 @@ if TYPE_CHECKING:
     from ..core.model import Scene
 
 OUTPUTS = ('record_mcap', 'rerun_rrd')
+# The regular files this process's recorders (open_sinks) wrote: their resolved paths and
+# (st_dev, st_ino), so that a symbolic or hard link to one is known too.
+RECORDED: set = set()
 ABOUT = ('scene', 'vehicle', 'method', 'frame_id', 'max_step_mm')
 STORED_RECORD = 'linkage_ros'   # the MCAP metadata record of the files' content
 
@@ -57,7 +72,7 @@ def check_outputs(params: dict, inputs: dict[str, str]) -> None:
     both exist), so that ./run.mcap and $PWD/run.mcap are one file. Raises LinkageError naming
     the parameter, before anything is written.
     """
-    outputs = {name: params[name] for name in OUTPUTS if params[name]}
+    outputs = recording_files(params)
     for name, path in outputs.items():
         problem = output_problem(path)
         if problem:
@@ -68,6 +83,45 @@ def check_outputs(params: dict, inputs: dict[str, str]) -> None:
     if len(outputs) == 2 and same_file(*outputs.values()):
         raise LinkageError('record_mcap', f'{params["record_mcap"]} is also rerun_rrd; give '
                            'each output its own file')
+
+
+def recording_files(params: dict) -> dict[str, str]:
+    """
+    Return {output parameter: the file it records into} of the outputs turned on.
+
+    That is the file the parameter names, unless this process recorded into it before (an
+    earlier configure of the managed node): then the first of its numbered siblings,
+    <stem>_1<suffix>, <stem>_2<suffix>, ..., that this process has not recorded into.
+    """
+    files = {}
+    for name in OUTPUTS:
+        if params[name]:
+            path, number = Path(params[name]), 0
+            while _recorded_here(path):
+                number += 1
+                path = Path(params[name]).with_name(
+                    f'{Path(params[name]).stem}_{number}{Path(params[name]).suffix}')
+            files[name] = str(path)
+    return files
+
+
+def _recorded_here(path: Path) -> bool:
+    """Tell whether a recorder of this process wrote the file path names (RECORDED)."""
+    if path.resolve() in RECORDED:
+        return True
+    try:
+        status = path.stat()
+    except OSError:
+        return False
+    return (status.st_dev, status.st_ino) in RECORDED
+
+
+def _remember(path: str) -> None:
+    """Add a file a recorder just claimed to RECORDED (regular files: not /dev/null)."""
+    with contextlib.suppress(OSError):
+        status = Path(path).stat()
+        if stat.S_ISREG(status.st_mode):
+            RECORDED.update({Path(path).resolve(), (status.st_dev, status.st_ino)})
 
 
 def recording_metadata(params: dict, sources: dict[str, str]) -> dict[str, str]:
@@ -92,7 +146,7 @@ def named(parameter: str):
 
 
 def open_sinks(params: dict, scenes: dict[str, Scene], qos: dict[str, QoSProfile],
-               metadata: dict[str, str]) -> list:
+               metadata: dict[str, str], say: Callable[[str], None]) -> list:
     """
     Open the sinks the parameters turn on; their modules are imported only then.
 
@@ -100,8 +154,15 @@ def open_sinks(params: dict, scenes: dict[str, Scene], qos: dict[str, QoSProfile
     {topic: QoSProfile} the node offers, stored in the MCAP channel metadata; metadata: what
     recording_metadata gives. With a vehicle, the one Rerun recording draws every corner
     under its name. An output that cannot be written or a missing package raises
-    LinkageError naming the parameter, before any command is taken.
+    LinkageError naming the parameter, before any command is taken. Each records into the
+    file recording_files gives; say(line) tells where that is not the one the parameter
+    names.
     """
+    files = recording_files(params)
+    for name, path in files.items():
+        if path != params[name]:
+            say(f'{name}: {params[name]} holds an earlier recording of this process, kept '
+                f'whole; this one goes to {path}')
     sinks = []
     try:
         if params['record_mcap']:
@@ -113,8 +174,9 @@ def open_sinks(params: dict, scenes: dict[str, Scene], qos: dict[str, QoSProfile
             about = {k: v for k, v in metadata.items() if k in ABOUT}
             stored = {k: v for k, v in metadata.items() if k not in ABOUT}
             with named('record_mcap'):
-                sinks.append(McapRecorder(params['record_mcap'], qos=qos, custom_data=about,
+                sinks.append(McapRecorder(files['record_mcap'], qos=qos, custom_data=about,
                                           metadata={STORED_RECORD: stored}))
+            _remember(files['record_mcap'])
         if params['rerun_rrd']:
             try:
                 from ..record.rerun_view import RerunRecorder
@@ -123,10 +185,11 @@ def open_sinks(params: dict, scenes: dict[str, Scene], qos: dict[str, QoSProfile
                     from None
             with named('rerun_rrd'):
                 if '' in scenes:
-                    sinks.append(RerunRecorder(params['rerun_rrd'], scenes['']))
+                    sinks.append(RerunRecorder(files['rerun_rrd'], scenes['']))
                 else:
-                    sinks.append(RerunRecorder(params['rerun_rrd'], corners={
+                    sinks.append(RerunRecorder(files['rerun_rrd'], corners={
                         prefix.rstrip('/'): scene for prefix, scene in scenes.items()}))
+            _remember(files['rerun_rrd'])
     except BaseException:
         for sink in sinks:
             sink.close()

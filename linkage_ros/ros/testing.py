@@ -96,15 +96,20 @@ class Probe:
     order.
     """
 
-    def __init__(self, context, executor):
+    def __init__(self, context, executor, name='probe', node_name=None):
+        """
+        Make the probe's node, named name, in context; add it to executor.
+
+        node_name: the name of the suspension_node whose statuses are kept (NODE_NAME).
+        """
         import rclpy
         from diagnostic_msgs.msg import DiagnosticArray
         from geometry_msgs.msg import PoseStamped
         from std_msgs.msg import Float64
 
         from .node import NODE_NAME, QOS
-        self._node_name = NODE_NAME
-        self.node = rclpy.create_node('probe', context=context, enable_rosout=False,
+        self._node_name = node_name or NODE_NAME
+        self.node = rclpy.create_node(name, context=context, enable_rosout=False,
                                       start_parameter_services=False)
         self.executor = executor
         self.poses, self.cambers, self.toes, self.statuses = [], [], [], []

@@ -12,6 +12,7 @@ arrow to one scale (mm of paper per kN), the load on the wheel and the holding f
 
 import numpy as np
 
+from .plot_labels import Labels
 from ..core.measure import contact_patch
 from ..core.model import link_polylines
 from ..core.solve import compile_scene, sweep
@@ -28,6 +29,7 @@ PANELS = (('toe per force', 'deg/kN', lambda n: n.startswith('toe_') and n.endsw
 VIEWS = (('front view (seen from ahead: + y, left, to the right)', 1),
          ('side view (seen from the left: + x, forward, to the right)', 0))
 ARROW_MM = 150.0   # the longest arrow, mm of the drawing
+DPI = 100          # of the written pictures
 
 
 def _pyplot():
@@ -44,6 +46,14 @@ def plot_rates(scene, header, rows, path):
     With a rack range, one line per rack (the legend names it).
     """
     plt = _pyplot()
+    fig = rates_figure(scene, header, rows)
+    save_figure(fig, path, dpi=DPI)
+    plt.close(fig)
+
+
+def rates_figure(scene, header, rows):
+    """Return the figure of plot_rates, laid out: each panel's legend under it."""
+    plt = _pyplot()
     rows = np.asarray(rows, float)
     lead = 2 if len(header) > 1 and header[1] == 'rack_mm' else 1
     names = header[lead:]
@@ -53,7 +63,7 @@ def plot_rates(scene, header, rows, path):
     racks = np.unique(rows[:, 1]) if lead == 2 else [None]
     columns = min(3, len(panels))
     lines = -(-len(panels) // columns)
-    fig, axes = plt.subplots(lines, columns, figsize=(5.2 * columns, 3.8 * lines),
+    fig, axes = plt.subplots(lines, columns, figsize=(5.2 * columns, 4.6 * lines),
                              squeeze=False)
     for ax, (title, unit, chosen) in zip(axes.flat, panels):
         for k, name in enumerate(chosen):
@@ -68,14 +78,16 @@ def plot_rates(scene, header, rows, path):
         ax.set_xlabel('travel_mm (+ = bump)', fontsize=9)
         ax.set_ylabel(unit, fontsize=9)
         ax.grid(True, alpha=0.3)
-        ax.legend(fontsize=7)
+        # under the panel: inside, 'best' still covered a line where they cross the plot
+        ax.legend(fontsize=7, loc='upper center', bbox_to_anchor=(0.5, -0.16),
+                  frameon=False)
     for ax in list(axes.flat)[len(panels):]:
         ax.axis('off')
     fig.suptitle(f'linkage_ros: {scene.name}: compliance at the held travel (toe + = toe-in, '
                  'camber + = top outboard, vehicle frame)', fontsize=11)
     fig.tight_layout()
-    save_figure(fig, path, dpi=100)
-    plt.close(fig)
+    fig.set_dpi(DPI)
+    return fig
 
 
 def pickups(result):
@@ -144,19 +156,57 @@ def load_point(scene, result, free, at):
 def plot_loaded(scene, result, load, path):
     """Write the loaded mechanism of a Loaded (one position) in front and side views to path."""
     plt = _pyplot()
+    fig = loaded_figure(scene, result, load)
+    save_figure(fig, path, dpi=DPI)
+    plt.close(fig)
+
+
+def moment_lever_mm(scene):
+    """
+    Return the lever (mm) that draws a moment to the forces' scale: the wheel radius.
+
+    A moment M is drawn as long as the force M / lever would be, the force at the contact
+    patch that makes M about the wheel centre (300 mm for a scene without a wheel).
+    """
+    return scene.wheel_radius if scene.wheel_radius > 0 else 300.0
+
+
+def loaded_figure(scene, result, load):
+    """
+    Return the figure of plot_loaded, drawn and its labels placed (plot_labels.Labels).
+
+    Every arrow is named in each view, with its size: the force of each pickup on the body,
+    the load on the wheel, the holding force and the load's moment (a double-headed arrow
+    along its vector, right-hand rule, to the forces' scale at moment_lever_mm). An arrow
+    whose projection on a view is under a millimetre of the drawing is not drawn there; its
+    label is, at its point.
+    """
+    plt = _pyplot()
     mech = compile_scene(scene)
     rotation = np.asarray(result.rotation, float)
     wheel = np.asarray(result.wheel_center_mm, float)
     joints = wheel + mech.offsets @ rotation.T
     free = sweep(scene, [result.travel_mm], rack=getattr(result, 'rack_mm', 0.0))
-    arrows = [(name, p, f, 'C3') for name, p, f in pickups(result)]
-    arrows.append(('load', load_point(scene, result, free, load.at),
-                   np.asarray(load.force_n, float), 'C0'))
-    arrows.append(('holding', wheel, np.array([0.0, 0.0, result.holding_force_n]), 'C2'))
-    largest = max([np.linalg.norm(f) for _, _, f, _ in arrows] + [1e-9])
+    lever = moment_lever_mm(scene)
+    at = load_point(scene, result, free, load.at)
+    moment = np.asarray(load.moment_nm, float)
+    # (label, point mm, vector drawn: N, or N m as the force at lever, color, heads)
+    arrows = [(f'{name} {np.linalg.norm(f):.0f} N', p, f, 'C3', 1)
+              for name, p, f in pickups(result)]
+    arrows.append((f'load {np.linalg.norm(load.force_n):.0f} N', at,
+                   np.asarray(load.force_n, float), 'C0', 1))
+    if np.any(moment):
+        arrows.append((f'moment {np.linalg.norm(moment):.0f} N m', at,
+                       moment * 1e3 / lever, 'C4', 2))
+    arrows.append((f'holding {abs(result.holding_force_n):.0f} N', wheel,
+                   np.array([0.0, 0.0, result.holding_force_n]), 'C2', 1))
+    largest = max([np.linalg.norm(f) for _, _, f, _, _ in arrows] + [1e-9])
     scale = ARROW_MM / largest   # mm of drawing per N
     fig, axes = plt.subplots(1, 2, figsize=(15, 7.8))
+    placing = []
     for ax, (title, across) in zip(axes, VIEWS):
+        labels = Labels(ax)
+        placing.append(labels)
         if scene.wheel_radius > 0:
             rings = wheel_outline(scene, wheel, rotation)
             for ring in rings:
@@ -168,38 +218,57 @@ def plot_loaded(scene, result, load, path):
                 ax.plot(line[:, across], line[:, 2], '-', color='0.82', lw=4, zorder=1)
         for line in link_polylines(scene, joints):
             ax.plot(line[:, across], line[:, 2], '-', color='0.2', lw=1.4, zorder=2)
+            labels.obstacle(line[:, [across, 2]])
         ax.plot(joints[:, across], joints[:, 2], 'o', color='0.1', ms=4, zorder=3)
         ax.plot(wheel[across], wheel[2], 'P', color='k', ms=9, zorder=3)
         ends = []
-        for name, point, force, color in arrows:
-            tip = point + scale * force
+        for label, point, vector, color, heads in arrows:
+            tip = point + scale * vector
             ends += [point[[across, 2]], tip[[across, 2]]]
-            if np.linalg.norm(force[[across, 2]]) * scale < 1.0:
-                continue   # less than a millimetre of drawing: a dot would say nothing
-            ax.annotate('', xy=(tip[across], tip[2]), xytext=(point[across], point[2]),
-                        arrowprops={'arrowstyle': '-|>', 'color': color, 'lw': 1.8},
-                        zorder=4)
-            if color != 'C3' or across == named_in(name, force):
-                ax.text(tip[across], tip[2], f' {name} {np.linalg.norm(force):.0f} N',
-                        fontsize=7, color=color, zorder=5)
+            drawn = np.linalg.norm(vector[[across, 2]]) * scale >= 1.0
+            if drawn:   # under a millimetre of drawing an arrow would be a dot: label alone
+                _arrow(ax, point[[across, 2]], tip[[across, 2]], color, heads)
+                labels.obstacle([point[[across, 2]], tip[[across, 2]]])
+            away = vector[[across, 2]] if drawn else (1.0, 0.0)
+            labels.add(label, tip[[across, 2]] if drawn else point[[across, 2]], away, color)
         ax.set_aspect('equal')
         ax.set_title(title, fontsize=10)
         ax.set_xlabel('y, mm' if across == 1 else 'x, mm')
         ax.set_ylabel('z, mm')
         ax.grid(True, alpha=0.3)
         ax.update_datalim(np.array(ends))
+        ax.margins(0.12)       # room for the labels of the arrows at the edges
         ax.autoscale_view()
-    handles = [plt.Line2D([], [], color=color, lw=width, label=label) for label, color, width in (
-        ('unloaded at this travel', '0.82', 4), ('loaded', '0.2', 1.4), ('wheel', '0.55', 1),
-        ('force of each pickup on the body', 'C3', 2), ('load on the wheel', 'C0', 2),
-        ('holding force (the travel held)', 'C2', 2))]
-    fig.legend(handles=handles, loc='lower center', ncol=6, fontsize=9, frameon=False)
+    kinds = (('unloaded at this travel', '0.82', 4), ('loaded', '0.2', 1.4),
+             ('wheel', '0.55', 1), ('force of each pickup on the body', 'C3', 2),
+             ('load on the wheel', 'C0', 2)) + \
+        ((('its moment (double head)', 'C4', 2),) if np.any(moment) else ()) + \
+        (('holding force (the travel held)', 'C2', 2),)
+    handles = [plt.Line2D([], [], color=color, lw=width, label=label)
+               for label, color, width in kinds]
+    fig.legend(handles=handles, loc='lower center', ncol=len(kinds), fontsize=9,
+               frameon=False)
     force = ', '.join(f'{v:g}' for v in load.force_n)
-    moment = ', '.join(f'{v:g}' for v in load.moment_nm)
+    moments = ', '.join(f'{v:g}' for v in load.moment_nm)
+    drawn_to = (f'; a moment, right-hand rule: 1 kN m = {1e6 * scale / lever:.3g} mm (as the '
+                f'force at {lever:g} mm)') if np.any(moment) else ''
     fig.suptitle(f'linkage_ros: {scene.name} at travel {result.travel_mm:g} mm, loaded by '
-                 f'F ({force}) N at {load.at} and M ({moment}) N m: camber '
+                 f'F ({force}) N at {load.at} and M ({moments}) N m: camber '
                  f'{result.camber_deg:+.3f} deg, toe {result.toe_deg:+.3f} deg\n'
-                 f'arrows to scale: 1 kN = {1e3 * scale:.3g} mm of the drawing', fontsize=11)
+                 f'arrows to scale: 1 kN = {1e3 * scale:.3g} mm of the drawing{drawn_to}',
+                 fontsize=11)
     fig.tight_layout(rect=(0, 0.06, 1, 0.93))
-    save_figure(fig, path, dpi=100)
-    plt.close(fig)
+    fig.set_dpi(DPI)
+    fig.canvas.draw()      # the axes' final places: the labels are measured against them
+    for labels in placing:
+        labels.place()
+    return fig
+
+
+def _arrow(ax, start, tip, color, heads):
+    """Draw an arrow from start to tip (2,); heads 2: a moment's double head at the tip."""
+    style = {'arrowstyle': '-|>', 'color': color, 'lw': 1.8}
+    ax.annotate('', xy=tuple(tip), xytext=tuple(start), arrowprops=style, zorder=4)
+    if heads == 2:
+        ax.annotate('', xy=tuple(start + 0.8 * (tip - start)), xytext=tuple(start),
+                    arrowprops=style, zorder=4)

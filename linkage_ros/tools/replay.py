@@ -45,7 +45,7 @@ from .replay_commands import (load_changed_scenes, METADATA, parameter_changes,
 from .. import cli
 from ..cli import counted
 from ..core.base import LinkageError
-from ..core.warmup import compile_if_cold
+from ..core.warmup import compile_if_cold, wants_statics
 from ..outputs import check_output
 
 PROGRESS_PERIOD = 1.0   # s between progress lines
@@ -165,7 +165,8 @@ def run(args):
     if args.command == 'publish':   # the Float64 commands: travel and rack
         from .replay_commands import WRENCH
         return _publish(args, [c for c in commands if c.kind != WRENCH], source, status)
-    compile_if_cold(PROG)
+    # a corner of a scene with bushings answers loaded poses (protocol.statics_on)
+    compile_if_cold(PROG, statics=any(wants_statics(s) for s in (scene, *scenes.values())))
     if args.command == 'bench':
         if not commands:
             print(f'{PROG}: nothing to time: no commands', file=sys.stderr)

@@ -8,6 +8,7 @@ Each checked against an independent route: the elastic energy's central differen
 wheel load's central difference, a published worked example, and the moment balance.
 """
 
+import csv
 import math
 
 from linkage_ros.core.axle import axle_of, solve_axle
@@ -205,3 +206,34 @@ def test_the_steering_ratio_is_the_mean_steers_slope_at_rack_0():
     # the sheet's table has 1 mm steps: its second-order difference is off by h^2 f''' / 6
     assert setup_sheet(vehicle).rows['front']['steering_ratio_deg_per_mm'] == pytest.approx(
         slope, rel=1e-4)
+
+
+def test_the_pitch_gradients_follow_from_the_numbers_the_sheet_prints(tmp_path):
+    # The sheet printed cg_height_mm (550, the sprung mass's) but took the whole car's
+    # centre (498 mm) for the pitch gradient: it did not follow from what it printed.
+    from linkage_ros.tools.vehicle import main
+    path = tmp_path / 'sheet.csv'
+    assert main(['demo_vehicle', '-o', str(path)]) == 0
+    with open(path, newline='') as stream:
+        rows = {row['axle']: row for row in csv.DictReader(stream)}
+
+    def number(axle, column):
+        return float(rows[axle][column] or 0.0)   # empty: not this axle's (no share, 0 %)
+    # printed to 10 significant digits: each number to 5e-10 relative, the result to 1e-8
+    car = rows['vehicle']
+    wheelbase = float(car['wheelbase_mm'])
+    transfer = float(car['mass_kg']) * G * float(car['cg_height_total_mm']) / wheelbase
+    for case, antis, sign in (('braking', ('anti_dive_pct', 'anti_lift_pct'), 1.0),
+                              ('drive', ('anti_lift_pct', 'anti_squat_pct'), -1.0)):
+        pitch = sum(transfer * ((1.0 - number(a, anti) / 100.0)
+                                / (2.0 * number(a, 'wheel_rate_N_per_mm'))
+                                + 1.0 / (2.0 * number(a, 'tyre_rate_N_per_mm')))
+                    for a, anti in zip(('front', 'rear'), antis)) / wheelbase
+        assert float(car[f'pitch_gradient_{case}_deg_per_g']) == pytest.approx(
+            sign * math.degrees(pitch), rel=1e-8)
+    # the whole car's centre, from the printed masses (the file's unsprung heights)
+    heights = load_vehicle('demo_vehicle').mass.unsprung_cg_height
+    whole = (float(car['sprung_mass_kg']) * float(car['cg_height_mm']) + sum(
+        number(a, 'unsprung_mass_kg') * heights[a] for a in ('front', 'rear'))) \
+        / float(car['mass_kg'])
+    assert float(car['cg_height_total_mm']) == pytest.approx(whole, rel=1e-9)

@@ -15,6 +15,7 @@ import subprocess
 import sys
 
 from linkage_ros.core import warmup
+import pytest
 
 
 def python(code, cache, timeout=600):
@@ -74,3 +75,19 @@ def test_the_statics_kernels_are_checked_and_compiled_only_when_asked_for(tmp_pa
         'warmup.compile_in_child(statics=True)\n'
         'print(warmup.uncached_kernels(statics=True))\n', tmp_path)
     assert (status, out, err) == (0, 'False True\n[]\n', '')
+
+
+@pytest.mark.parametrize('cold, statics, said', [
+    ((), False, ''), ((), True, ''),
+    (('kinematic',), False, warmup.MESSAGE), (('kinematic',), True, warmup.MESSAGE),
+    (('statics',), False, ''), (('statics',), True, warmup.STATICS_MESSAGE),
+    (('kinematic', 'statics'), False, warmup.MESSAGE),
+    (('kinematic', 'statics'), True, warmup.BOTH_MESSAGE)])
+def test_the_compile_said_names_the_kernels_due_and_their_time(monkeypatch, cold, statics,
+                                                               said):
+    # linkage-kc said 'about 20 s' of nothing and compiled the statics kernels for a minute
+    def cached(kernel):
+        module = kernel.py_func.__module__
+        return ('statics' if module in warmup.STATICS_MODULES else 'kinematic') not in cold
+    monkeypatch.setattr(warmup, '_in_cache', cached)
+    assert warmup.message(statics) == said

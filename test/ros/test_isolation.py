@@ -9,18 +9,23 @@ ROS_DOMAIN_ID), as someone else's node would be: it publishes and listens on /wh
 and /clock, the topics a test once published into another user's domain. Two outsiders run
 side by side (one with discovery LOCALHOST, one with ROS's default range) and must hear each
 other: that shows they are alive on the domain, so that a test would see anything crossing.
+The user's own suspension_node runs beside them: the test's nodes have names of their own,
+and only those are looked for.
 """
 
 import json
 import os
 from pathlib import Path
 import select
+import signal
 import subprocess
 import sys
 import time
+import uuid
 
 from linkage_ros.ros.isolation import environment_domain_id, init_context, start_outside
-from linkage_ros.ros.testing import connect, Probe, rclpy_try_shutdown, spin_until
+from linkage_ros.ros.node import NODE_NAME
+from linkage_ros.ros.testing import connect, node_script, Probe, rclpy_try_shutdown, spin_until
 import pytest
 
 BAG = Path(__file__).resolve().parents[2] / 'bags' / 'five_link_sweep.mcap'  # 161 commands
@@ -128,12 +133,12 @@ def outsiders_beside(private_network):
 class Listener:
     """A node of context that keeps what arrives on /wheel_travel (m) and /clock (s)."""
 
-    def __init__(self, context, executor):
+    def __init__(self, context, executor, name='listener'):
         import rclpy
         from rclpy.qos import QoSProfile
         from rosgraph_msgs.msg import Clock
         from std_msgs.msg import Float64
-        self.node = rclpy.create_node('listener', context=context)
+        self.node = rclpy.create_node(name, context=context)
         self.travels, self.clocks = [], []
         qos = QoSProfile(depth=1000)
         self.node.create_subscription(Float64, '/wheel_travel',
@@ -161,32 +166,60 @@ def assert_nothing_crossed(heard, listener, our_node_names):
     assert listener.clocks and not set(listener.clocks) & theirs_clocks
 
 
+@pytest.fixture
+def users_node_outside(private_network):
+    """Give the user's own suspension_node, outside the private network, on the domain."""
+    skip_without_a_private_network(private_network)
+    node = start_outside([str(node_script())], env=dict(
+        os.environ, ROS_AUTOMATIC_DISCOVERY_RANGE='LOCALHOST'), stdout=subprocess.DEVNULL,
+        stderr=subprocess.PIPE, text=True)
+    yield node
+    if node.poll() is None:
+        node.send_signal(signal.SIGINT)
+    node.communicate(timeout=30)
+
+
 def test_nothing_crosses_between_cross_process_tests_and_another_ros_process_on_the_domain(
-        outsiders_outside, node_process, localhost_context, localhost_executor):
-    # The outsiders run outside the private network, on the same domain (the user's); inside
-    # run what the cross-process tests run: suspension_node in its own process answering a
-    # probe, and linkage-replay --publish --clock, which publishes /wheel_travel and /clock.
+        outsiders_outside, users_node_outside, node_process, localhost_context,
+        localhost_executor):
+    # The outsiders run outside the private network, on the same domain (the user's), beside
+    # the user's own suspension_node; inside run what the cross-process tests run:
+    # suspension_node in its own process answering a probe, and linkage-replay --publish
+    # --clock, which publishes /wheel_travel and /clock.
     assert outsiders_outside.wait_until_they_meet(), 'the outsiders did not hear each other'
-    process = node_process()
-    probe = Probe(localhost_context, localhost_executor)
-    listener = Listener(localhost_context, localhost_executor)
+    # Each node of the test has a name of its own, so that another's of the same program
+    # (the user's suspension_node) is not taken for a leak.
+    ours = {role: f'{role}_{uuid.uuid4().hex}' for role in
+            ('suspension_kinematics', 'probe', 'listener', 'linkage_replay')}
+    process = node_process('-r', f'__node:={ours["suspension_kinematics"]}')
+    probe = Probe(localhost_context, localhost_executor, ours['probe'])
+    listener = Listener(localhost_context, localhost_executor, ours['listener'])
     connect(localhost_executor, probe)
     travels = [0.011, 0.012, 0.013]
     probe.send(*travels)
     assert spin_until(localhost_executor, lambda: len(probe.poses) >= len(travels) + 1, 20.0)
+    # linkage-replay's main, its node renamed by the ROS arguments rclpy.init reads (sys.argv)
     replay = subprocess.Popen(
-        [str(Path(sys.executable).parent / 'linkage-replay'), str(BAG), '--publish', '--clock',
-         '--rate', '4', '--wait', '20'], env=dict(os.environ,
-                                                  ROS_AUTOMATIC_DISCOVERY_RANGE='LOCALHOST'),
+        [sys.executable, '-c', 'import sys; from linkage_ros.tools.replay import main; '
+         f'sys.exit(main([{str(BAG)!r}, "--publish", "--clock", "--rate", "4", "--wait", "20"]))',
+         '--ros-args', '-r', f'__node:={ours["linkage_replay"]}'],
+        env=dict(os.environ, ROS_AUTOMATIC_DISCOVERY_RANGE='LOCALHOST'),
         stderr=subprocess.PIPE, text=True)
-    spin_until(localhost_executor, lambda: replay.poll() is not None, 60.0)  # all acknowledged
+    seen = set()      # the node names of the graph inside, while the replay runs
+
+    def replayed():
+        seen.update(listener.node.get_node_names())
+        return replay.poll() is not None
+    spin_until(localhost_executor, replayed, 60.0)  # all acknowledged
     _, err = replay.communicate(timeout=30)
     assert replay.returncode == 0, err
+    assert set(ours.values()) <= seen, seen      # the names looked for are those of our nodes
     spin_until(localhost_executor, lambda: False, QUIET_S)      # time to discover, if it could
     assert process.stop()[0] == 0
     heard = outsiders_outside.stop()
-    assert_nothing_crossed(heard, listener, ['suspension_kinematics', 'probe', 'listener',
-                                             'linkage_replay'])
+    assert_nothing_crossed(heard, listener, list(ours.values()))
+    # the user's node was there to be heard
+    assert all(NODE_NAME in heard[name]['nodes'] for name in OUTSIDERS), heard
     assert set(travels) <= set(listener.travels)
     assert len(listener.clocks) == 161          # the replay's, every one, and nothing else
 

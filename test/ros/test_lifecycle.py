@@ -129,6 +129,24 @@ def test_cleanup_releases_what_configure_made_and_configure_works_again(
         node.destroy_node()
 
 
+def test_each_transition_is_one_line_on_the_log(ros_context, capfd):
+    node = ManagedSuspensionNode(context=ros_context)
+    try:
+        for trigger in (node.trigger_configure, node.trigger_activate, node.trigger_deactivate,
+                        node.trigger_cleanup, node.trigger_configure, node.trigger_shutdown):
+            assert trigger() == TransitionCallbackReturn.SUCCESS
+    finally:
+        node.destroy_node()
+    said = [line.split(']: ', 1)[1] for line in capfd.readouterr().err.splitlines()
+            if '[INFO]' in line and ']: transition ' in line]
+    assert said == ['transition configure: unconfigured -> inactive',
+                    'transition activate: inactive -> active',
+                    'transition deactivate: active -> inactive',
+                    'transition cleanup: inactive -> unconfigured',
+                    'transition configure: unconfigured -> inactive',
+                    'transition shutdown: inactive -> finalized']
+
+
 def test_a_parameter_change_while_configured_is_refused_saying_why(ros_context):
     node = ManagedSuspensionNode(context=ros_context)
     try:
@@ -155,3 +173,59 @@ def test_a_destroyed_node_leaves_nothing_that_crashes_a_forked_child(ros_context
     child.start()
     child.join(WAIT)
     assert child.exitcode == 0
+
+
+def carrier_heights_mm(rrd):
+    """Return the z (mm) of every carrier pose a .rrd holds, as rerun-sdk's reader reads it."""
+    from rerun.chunk import RrdReader
+    reader = RrdReader(str(rrd))
+    (recording,) = reader.recordings()
+    heights = []
+    for chunk in reader.stream(store=recording):
+        if chunk.entity_path == '/suspension/carrier' and not chunk.is_static:
+            column = chunk.to_record_batch().column('Transform3D:translation').to_pylist()
+            heights += [row[0][2] for row in column]
+    return heights
+
+
+def test_configure_after_cleanup_keeps_the_first_recording_and_starts_a_numbered_one(
+        node_process, localhost_context, localhost_executor, tmp_path):
+    # Configure after cleanup emptied record_mcap: of 150 answers the file held the last 50.
+    # The first file is kept whole, the second configure records into run_1.mcap (.rrd
+    # alike), and every command and answer is in one of them, read back by mcap-ros2-support
+    # (MCAP) and rerun-sdk's RrdReader (Rerun).
+    mcap, rrd = tmp_path / 'run.mcap', tmp_path / 'run.rrd'
+    node = node_process('-p', f'record_mcap:={mcap}', '-p', f'rerun_rrd:={rrd}',
+                        script='suspension_lifecycle_node')
+    probe = Probe(localhost_context, localhost_executor)
+    manager = Manager(probe)
+    first = [(i - 50) * 0.0004 for i in range(100)]       # m: -20 .. 19.6 mm
+    second = [(j + 0.5) * 0.0004 - 0.01 for j in range(50)]   # m: none equal to a first
+    heights = []
+    for travels, last in ((first, 'cleanup'), (second, 'shutdown')):
+        assert manager.transition('configure')
+        assert manager.transition('activate')
+        assert spin_until(localhost_executor, probe.matched, WAIT)
+        heights += [answer_of(probe, travel) for travel in travels]
+        if last == 'cleanup':
+            assert manager.transition('deactivate')
+        assert manager.transition(last)
+    status, _, err = node.finish(WAIT)
+    assert status == 0, err
+    assert sorted(p.name for p in tmp_path.iterdir()) == [
+        'run.mcap', 'run.rrd', 'run_1.mcap', 'run_1.rrd']
+    for name, parameter in (('run_1.mcap', 'record_mcap'), ('run_1.rrd', 'rerun_rrd')):
+        said = [line for line in err.splitlines() if f'this one goes to {tmp_path / name}' in line]
+        assert len(said) == 1 and said[0].startswith('[WARN]'), err
+        assert f'{parameter}: {tmp_path / name.replace("_1", "")} holds an earlier ' \
+               'recording of this process, kept whole' in said[0]
+    for path, travels, answers in ((mcap, first, heights[:100]),
+                                   (tmp_path / 'run_1.mcap', second, heights[100:])):
+        topics = read_mcap_ros2(path)
+        assert [m.data for m in topics['/wheel_travel']] == travels
+        assert [m.pose.position.z for m in topics['/wheel_carrier_pose']] == answers
+    # Rerun stores the pose in float32 mm: 1 ulp of 300 mm is 3e-5 mm.
+    for path, answers in ((rrd, heights[:100]), (tmp_path / 'run_1.rrd', heights[100:])):
+        drawn = carrier_heights_mm(path)
+        assert len(drawn) == len(answers)
+        assert all(math.isclose(d, a * 1000.0, abs_tol=1e-4) for d, a in zip(drawn, answers))

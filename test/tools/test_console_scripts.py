@@ -11,6 +11,7 @@ package's entry points, so a new script is covered as soon as it is declared in 
 """
 
 from importlib.metadata import distribution
+import os
 from pathlib import Path
 import subprocess
 import sys
@@ -23,6 +24,22 @@ SCRIPTS = sorted(e.name for e in distribution('linkage_ros').entry_points
 REQUIRED = {'linkage-sweep': ['five_link'], 'linkage-plot': ['camber-toe', 'out.png'],
             'linkage-rerun': ['run.mcap'], 'linkage-replay': ['run.mcap'],
             'linkage-map': ['five_link']}
+
+
+# What each program writes to stdout when no file is named: a table, a URDF, a layout.
+TABLES = {'linkage-sweep': ['five_link'], 'linkage-axle': [],
+          'linkage-vehicle': ['demo_vehicle'],
+          'linkage-kc': ['double_wishbone_bushings', '--travel', '0'],
+          'linkage-study': ['sensitivity', 'five_link', '--travel', '0'],
+          'linkage-replay': ['bench', str(Path(__file__).resolve().parents[2] / 'bags'
+                                          / 'five_link_sweep.mcap')],
+          'linkage-urdf': ['five_link', '-o', '-'], 'linkage-foxglove': ['five_link', '-o', '-']}
+# Programs with subcommands: each subcommand's --help too.
+SUBCOMMANDS = {'linkage-bench': ['accuracy', 'node', 'soak', 'sweep', 'axle', 'map', 'vehicle',
+                                 'study', 'replay', 'kc', 'chrono'],
+               'linkage-replay': ['solve', 'sweep', 'copy', 'publish', 'bench'],
+               'linkage-study': ['sensitivity', 'tolerance', 'fit'],
+               'linkage-chrono': ['import', 'export']}
 
 
 def run(name, *args, cwd=None):
@@ -42,7 +59,7 @@ def test_every_documented_program_is_a_console_script():
 def test_help_says_what_it_does_an_example_and_the_exit_statuses(name):
     status, out, err = run(name, '--help')
     assert status == 0 and err == '', err
-    assert out.startswith(f'usage: {name}') or out.startswith(name), out[:200]
+    assert out.startswith(f'usage: {name} '), out[:200]   # its own name, no other's
     assert 'example' in out.lower(), out
     assert 'exit status' in out and 'mistake' in out
 
@@ -77,3 +94,41 @@ def test_a_benchmark_given_a_mistake_says_it_in_one_line_before_it_runs(
     assert status == 2 and out == '', (out, err)
     assert err.count('\n') == 1 and err.startswith(f'{name}: ') and says in err, err
     assert sorted(p.name for p in tmp_path.iterdir()) == ['setup.py']
+
+
+def into_a_closed_pipe(name, *args, cwd):
+    """
+    Run a console script with stdout a pipe whose reader is gone before it starts.
+
+    The environment is a fresh shell's (env -i, with PATH and HOME only): no
+    PYTHONUNBUFFERED, so that stdout to a pipe is block-buffered and a short output meets the
+    gone reader only at the flush. Returns (status, stderr).
+    """
+    read, write = os.pipe()
+    os.close(read)
+    fresh = {'PATH': os.defpath, 'HOME': os.environ.get('HOME', '/'),
+             'ROS_AUTOMATIC_DISCOVERY_RANGE': 'LOCALHOST'}
+    try:
+        done = subprocess.run([str(Path(sys.executable).parent / name), *args], stdout=write,
+                              stderr=subprocess.PIPE, text=True, env=fresh, cwd=cwd,
+                              timeout=300)
+    finally:
+        os.close(write)
+    return done.returncode, done.stderr
+
+
+HELPS = [(name, ['--help']) for name in SCRIPTS] + [
+    (name, [command, '--help']) for name, commands in SUBCOMMANDS.items() for command in commands]
+
+
+@pytest.mark.parametrize('name, args', HELPS, ids=[' '.join([n, *a]) for n, a in HELPS])
+def test_help_into_a_closed_pipe_ends_quietly_as_cat_does(name, args, tmp_path):
+    # Status 120 and "Exception ignored ... BrokenPipeError" in a fresh shell (issue 36)
+    assert into_a_closed_pipe(name, *args, cwd=tmp_path) == (128 + 13, '')   # SIGPIPE, as cat
+
+
+@pytest.mark.parametrize('name', sorted(TABLES))
+def test_a_table_into_a_closed_pipe_ends_quietly_as_cat_does(name, tmp_path):
+    status, err = into_a_closed_pipe(name, *TABLES[name], cwd=tmp_path)
+    assert status == 128 + 13 and 'Error' not in err and 'Traceback' not in err, err
+    assert list(tmp_path.iterdir()) == []      # nothing written in place of stdout

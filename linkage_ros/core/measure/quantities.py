@@ -319,6 +319,9 @@ _DECLARED += (
        _SHEET),
     _q('cg_height_mm', 'mm', '+ = up', 'setup_vehicle',
        "the sprung mass's centre above the ground", _SHEET),
+    _q('cg_height_total_mm', 'mm', '+ = up', 'setup_vehicle',
+       "the whole car's centre (sprung and four unsprung masses) above the ground: the h of "
+       'the pitch gradient', _SHEET),
     _q('wheelbase_mm', 'mm', '', 'setup_vehicle', 'front minus rear axle x'),
     _q('roll_axis_height_at_cg_mm', 'mm', '+ = up', 'setup_vehicle',
        'the line through the front and rear roll centres, above the ground at cg_x', _SHEET),

@@ -214,8 +214,7 @@ def vehicle_row(vehicle: Vehicle, sheets: dict, x: dict, sprung: dict) -> dict[s
     stiffness = sum(per_rad.values())
     gradient = balance.roll_gradient(mass.sprung, arm / 1000.0, stiffness)
     roll = gradient * g                                     # rad at 1 g
-    heights = {n: mass.unsprung_cg_height[n] if not math.isnan(mass.unsprung_cg_height[n])
-               else s.axle.left.wheel_radius for n, s in sheets.items()}
+    heights = unsprung_heights(vehicle, sheets)
     transfer = {}
     for n, s in sheets.items():
         transfer[n] = balance.load_transfer(
@@ -226,13 +225,15 @@ def vehicle_row(vehicle: Vehicle, sheets: dict, x: dict, sprung: dict) -> dict[s
                       'load_transfer_unsprung_N': transfer[n].unsprung,
                       'load_transfer_N': transfer[n].total})
     row = {'mass_kg': mass.total, 'sprung_mass_kg': mass.sprung, 'cg_x_mm': mass.cg_x,
-           'cg_height_mm': mass.cg_height, 'wheelbase_mm': x['front'] - x['rear'],
+           'cg_height_mm': mass.cg_height,
+           'cg_height_total_mm': whole_cg_height(mass, heights),
+           'wheelbase_mm': x['front'] - x['rear'],
            'roll_stiffness_Nm_per_deg': stiffness * math.pi / 180.0,
            'roll_axis_height_at_cg_mm': axis, 'roll_moment_arm_mm': arm,
            'roll_gradient_deg_per_g': math.degrees(roll),
            'lltd_front_pct': 100.0 * transfer['front'].total
            / (transfer['front'].total + transfer['rear'].total)}
-    row.update(pitch(vehicle, sheets, x))
+    row.update(pitch(vehicle, sheets, x, row['cg_height_total_mm']))
     return row
 
 
@@ -251,14 +252,27 @@ def falls_over(vehicle: Vehicle, row: dict) -> list[str]:
             'over in roll): no roll gradient, elastic load transfer or LLTD']
 
 
-def pitch(vehicle: Vehicle, sheets: dict, x: dict) -> dict[str, float]:
-    """Return the pitch centres and pitch gradients under braking and drive."""
+def unsprung_heights(vehicle: Vehicle, sheets: dict) -> dict[str, float]:
+    """Return {axle: its unsprung masses' centre above the ground, mm} (default wheel radius)."""
+    given = vehicle.mass.unsprung_cg_height
+    return {n: given[n] if not math.isnan(given[n]) else s.axle.left.wheel_radius
+            for n, s in sheets.items()}
+
+
+def whole_cg_height(mass, heights: dict[str, float]) -> float:
+    """
+    Return the whole car's centre of gravity above the ground, mm.
+
+    The sprung mass at cg_height and each axle's two unsprung masses at heights (mm), by
+    their masses: the h of the pitch gradient's load transfer m g h / L (m the whole car).
+    """
+    return (mass.sprung * mass.cg_height + 2.0 * sum(
+        mass.unsprung[n] * height for n, height in heights.items())) / mass.total
+
+
+def pitch(vehicle: Vehicle, sheets: dict, x: dict, height: float) -> dict[str, float]:
+    """Return the pitch centres and pitch gradients under braking and drive (height: mm)."""
     mass = vehicle.mass
-    height = (mass.sprung * mass.cg_height + 2.0 * sum(
-        mass.unsprung[n] * (mass.unsprung_cg_height[n]
-                            if not math.isnan(mass.unsprung_cg_height[n])
-                            else s.axle.left.wheel_radius) for n, s in sheets.items())) \
-        / mass.total
     wheelbase = (x['front'] - x['rear']) / 1000.0
     row = {}
     for case, antis, sign in (('braking', BRAKING, 1.0), ('drive', DRIVE, -1.0)):
