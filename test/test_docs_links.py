@@ -89,3 +89,9 @@ def test_every_relative_link_reaches_a_file_and_a_heading(page):
 def test_the_readme_links_every_page_of_the_manual():
     readme = set(links(ROOT / 'README.md'))
     assert [p.name for p in PAGES[1:] if f'doc/{p.name}' not in readme] == []
+
+
+def test_the_readme_is_a_front_door_of_at_most_150_lines():
+    # what it is, the two commands, an example, where the manual is (style guide, item 14);
+    # the rest lives in doc/
+    assert len((ROOT / 'README.md').read_text().splitlines()) <= 150
