@@ -19,10 +19,9 @@ import copy
 import json
 import sys
 
-from .target import check_text_output, write_text
+from .target import TextProgram
 from .. import cli
-from ..core.base import LinkageError, M_PER_MM
-from ..core.model import load_target
+from ..core.base import M_PER_MM
 
 PROG = 'linkage-foxglove'
 TEMPLATE = 'foxglove_layout.json'     # in the package's config folder (core.model.bundled)
@@ -96,30 +95,21 @@ def main(argv=None):
     return _main(argv)
 
 
+def _said(target, text):
+    scenes = target.prefixed
+    return (f'{len(scenes)} corner{"s" if len(scenes) > 1 else ""}, ground at z = '
+            f'{ground_z(scenes):.4f} m')
+
+
+PROGRAM = TextProgram(
+    PROG, __doc__, EPILOG, "the layout (.json) to write ('-': stdout)",
+    "the node's frame_id, which the 3D view follows (default: base_link)",
+    lambda target, frame_id: layout_text(foxglove_layout(target.prefixed, frame_id)), _said)
+
+
 @cli.program(PROG)
 def _main(argv):
-    parser = cli.Parser(PROG, cli.summary(__doc__), EPILOG)
-    parser.add_argument('target', metavar='SCENE_OR_VEHICLE',
-                        help='bundled scene or vehicle name, or the path of either file')
-    parser.add_argument('-o', '--output', metavar='FILE', required=True,
-                        help="the layout (.json) to write ('-': stdout)")
-    parser.add_argument('--frame-id', default='base_link',
-                        help="the node's frame_id, which the 3D view follows (default: "
-                        'base_link)')
-    args = parser.parse_args(argv)
-    try:
-        target = load_target(args.target)
-        cli.warn(PROG, target.warnings)
-        check_text_output(args.output, target)
-        scenes = target.prefixed
-        text = layout_text(foxglove_layout(scenes, args.frame_id))
-        write_text(args.output, text)
-    except (cli.Mistake, LinkageError) as exc:
-        return cli.fail(PROG, exc)
-    if args.output != '-':
-        print(f'{PROG}: {target.name}: {len(scenes)} corner{"s" if len(scenes) > 1 else ""}, '
-              f'ground at z = {ground_z(scenes):.4f} m -> {args.output}', file=sys.stderr)
-    return cli.DONE
+    return PROGRAM.run(argv)
 
 
 if __name__ == '__main__':

@@ -13,10 +13,8 @@ node's /tf.
 
 import sys
 
-from .target import check_text_output, write_text
+from .target import TextProgram
 from .. import cli
-from ..core.base import LinkageError
-from ..core.model import load_target
 
 PROG = 'linkage-urdf'
 EPILOG = """frames and links: <corner>/wheel_carrier, <corner>/wheel, <corner>/<constraint
@@ -36,29 +34,19 @@ def main(argv=None):
     return _main(argv)
 
 
+def _text(target, frame_id):
+    from ..answer.robot_description import robot_description
+    return robot_description(target.prefixed, frame_id, target.name)
+
+
+PROGRAM = TextProgram(PROG, __doc__, EPILOG, "the URDF file to write ('-': stdout)",
+                      "the root link: the node's frame_id (default: base_link)", _text,
+                      lambda target, text: f'{text.count("<link ")} links')
+
+
 @cli.program(PROG)
 def _main(argv):
-    parser = cli.Parser(PROG, cli.summary(__doc__), EPILOG)
-    parser.add_argument('target', metavar='SCENE_OR_VEHICLE',
-                        help='bundled scene or vehicle name, or the path of either file')
-    parser.add_argument('-o', '--output', metavar='FILE', required=True,
-                        help="the URDF file to write ('-': stdout)")
-    parser.add_argument('--frame-id', default='base_link',
-                        help="the root link: the node's frame_id (default: base_link)")
-    args = parser.parse_args(argv)
-    try:
-        target = load_target(args.target)
-        cli.warn(PROG, target.warnings)
-        check_text_output(args.output, target)
-        from ..answer.robot_description import robot_description
-        text = robot_description(target.prefixed, args.frame_id, target.name)
-        write_text(args.output, text)
-    except (cli.Mistake, LinkageError) as exc:
-        return cli.fail(PROG, exc)
-    if args.output != '-':
-        print(f'{PROG}: {target.name}: {text.count("<link ")} links -> {args.output}',
-              file=sys.stderr)
-    return cli.DONE
+    return PROGRAM.run(argv)
 
 
 if __name__ == '__main__':
