@@ -284,7 +284,7 @@ def main(argv: list[str] | None = None, rounds: int = 0) -> int:
     from ..core.warmup import compile_if_cold
     compile_if_cold(PROG, statics=True)   # every answer here is a statics solve
     if args.rounds:
-        from .kc_bench import benchmark
+        from ..bench.kc import benchmark
         return benchmark(scene, travels, racks, load_of(args) if args.loaded else None,
                          args.rounds)
     try:

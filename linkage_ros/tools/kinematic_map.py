@@ -242,7 +242,7 @@ def main(argv: list[str] | None = None, rounds: int = 0) -> int:
         warn(PROG, target.warnings)
         jobs = [axle_job(vehicle, args)] if args.axle is not None else corner_jobs(corners, args)
         if args.benchmark:
-            from .map_bench import benchmark
+            from ..bench.map import benchmark
             compile_if_cold(PROG)
             return benchmark(corners, args.benchmark)
         formats = formats_option(args.format)   # pyarrow first: its memory is then in use
