@@ -18,15 +18,12 @@ linkage-bench: every benchmark of linkage_ros, one subcommand each.
     linkage-bench chrono [FILE...]     import, solve and write Chrono files (bench/chrono.py)
 
 Each subcommand takes the options of the program it times (SUBCOMMAND --help lists them);
-sweep, axle, map, vehicle and kc take --rounds N too. The earlier entry points
-(linkage-node-bench, linkage-soak, linkage-bench without a subcommand, --benchmark of
-linkage-sweep, linkage-axle and linkage-map) still work for one release, each with a note on
-stderr.
+sweep, axle, map, vehicle and kc take --rounds N too.
 """
 
 import sys
 
-from ..cli import deprecated, EXIT_STATUS, fail, MISTAKE, program, READER_GONE
+from ..cli import EXIT_STATUS, fail, program
 
 PROG = 'linkage-bench'
 ROUNDS = 5   # default --rounds of sweep, axle, map and kc
@@ -42,19 +39,19 @@ EPILOG = """examples:
 exit status: as the program timed; """ + EXIT_STATUS
 
 
-def _accuracy(argv, prog=f'{PROG} accuracy'):
+def _accuracy(argv):
     from .accuracy import main
-    return main(argv, prog=prog)
+    return main(argv)
 
 
-def _node(argv, prog=f'{PROG} node'):
+def _node(argv):
     from .node_bench.cli import main
-    return main(argv, prog=prog)
+    return main(argv)
 
 
-def _soak(argv, prog=f'{PROG} soak'):
+def _soak(argv):
     from .soak import main
-    return main(argv, prog=prog)
+    return main(argv)
 
 
 def _study(argv):
@@ -109,7 +106,7 @@ def _rounds(argv, prog):
 
 @program(PROG)
 def main(argv: list[str] | None = None) -> int:
-    """Run the benchmark a subcommand names; without one, accuracy (the earlier spelling)."""
+    """Run the benchmark the first argument names: 0, 1 or 2 as that benchmark ends."""
     argv = list(sys.argv[1:] if argv is None else argv)
     if argv and argv[0] in ('-h', '--help'):
         print(f'usage: {PROG} {{{",".join(COMMANDS)}}} [options]\n\n{__doc__.strip()}\n\n'
@@ -117,30 +114,14 @@ def main(argv: list[str] | None = None) -> int:
         return 0
     if argv and argv[0] in COMMANDS:
         return COMMANDS[argv[0]](argv[1:])
-    if argv and not argv[0].startswith('-'):
-        return fail(PROG, f'error: unknown benchmark {argv[0]!r}: choose one of '
-                          f'{", ".join(COMMANDS)} (see {PROG} --help)')
-    return _old(PROG, f'{PROG} without a subcommand', 'accuracy', argv)
-
-
-def _old(prog, old, command, argv):
-    """Run an earlier spelling of linkage-bench COMMAND; after it, note the new spelling."""
-    run = COMMANDS[command]
-    # --help and a mistake exit here, without the note; their lines name the old program
-    status = run(argv, prog=prog)
-    if status not in (MISTAKE, READER_GONE):   # a reader gone: quiet, as cat
-        deprecated(prog, old, f'{PROG} {command}')
-    return status
-
-
-def node_bench() -> int:
-    """Run linkage-node-bench, the earlier spelling of linkage-bench node."""
-    return _old('linkage-node-bench', 'linkage-node-bench', 'node', sys.argv[1:])
-
-
-def soak() -> int:
-    """Run linkage-soak, the earlier spelling of linkage-bench soak."""
-    return _old('linkage-soak', 'linkage-soak', 'soak', sys.argv[1:])
+    if not argv:
+        return fail(PROG, f'error: choose a benchmark: {", ".join(COMMANDS)} (see {PROG} '
+                          '--help)')
+    if argv[0].startswith('-'):
+        return fail(PROG, f'error: unrecognized arguments: {argv[0]}: the benchmark comes '
+                          f'first, one of {", ".join(COMMANDS)} (see {PROG} --help)')
+    return fail(PROG, f'error: unknown benchmark {argv[0]!r}: choose one of '
+                      f'{", ".join(COMMANDS)} (see {PROG} --help)')
 
 
 if __name__ == '__main__':

@@ -53,8 +53,7 @@ examples:
   linkage-axle demo_vehicle --axle front --rack -30:30:10 --heave 0
 
 --heave, --roll and --rack take one value or a range FROM:TO:STEP (TO included). Timing:
-linkage-bench axle. Old spellings kept for one release, each with a note: --rack-grid,
---csv, --benchmark.
+linkage-bench axle.
 
 exit status: 0 every position solved; 1 a position is out of reach of a wheel or beyond a
 corner's travel limits (its scene's travel block; the rows solved before it are written, the
@@ -78,17 +77,10 @@ def parse_args(argv, rounds=0):
     parser.add_argument('--rack', type=span, metavar=SPAN,
                         help='steering rack travel, mm, + = to the left; adds the steer and '
                         'Ackermann columns; a range solves every heave and roll at each rack')
-    parser.old('--rack-grid', dest='rack', type=span, metavar=SPAN,
-               new='--rack FROM:TO:STEP')
     parser.add_argument('-o', '--output', metavar='FILE',
                         help='write the table to this file (default: stdout)')
-    parser.old('--csv', dest='output', metavar='FILE', new='-o/--output')
-    parser.old('--benchmark', type=int, metavar='ROUNDS', default=0,
-               new='linkage-bench axle --rounds ROUNDS')
     args = parser.parse_args(argv)
-    args.benchmark = rounds or args.benchmark
-    if args.benchmark < 0:
-        parser.error(f'--benchmark: expected a number of rounds >= 0, got {args.benchmark}')
+    args.benchmark = rounds
     return args
 
 

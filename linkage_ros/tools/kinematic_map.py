@@ -64,7 +64,7 @@ examples:
   linkage-map demo_vehicle --axle front -o maps
 
 --travel and --rack take a range FROM:TO:STEP (TO included) or one value. Timing:
-linkage-bench map. Old spellings kept for one release, each with a note: --out, --benchmark.
+linkage-bench map.
 
 exit status: 0 every grid point solved; 1 done, but some points are out of reach (NaN, listed
 in out_of_reach.csv); """ + EXIT_STATUS
@@ -85,15 +85,10 @@ def parse_args(argv, rounds=0):
                         "wheels' camber and toe")
     parser.add_argument('-o', '--output', dest='out', metavar='DIR',
                         help='folder for the map files (made if missing)')
-    parser.old('--out', dest='out', metavar='DIR', new='-o/--output')
     parser.add_argument('--format', default='csv,npz',
                         help=f'comma-separated, of {", ".join(FORMATS)} (default csv,npz)')
-    parser.old('--benchmark', type=int, metavar='ROUNDS', default=0,
-               new='linkage-bench map --rounds ROUNDS')
     args = parser.parse_args(joined_grids(sys.argv[1:] if argv is None else argv))
-    args.benchmark = rounds or args.benchmark
-    if args.benchmark < 0:
-        parser.error(f'--benchmark: expected a number of rounds >= 0, got {args.benchmark}')
+    args.benchmark = rounds
     if not args.out and not args.benchmark:
         parser.error('-o/--output DIR is required')
     return args

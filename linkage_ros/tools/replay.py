@@ -30,9 +30,6 @@ level, and one after the last command. The new bag keeps the recorded timeline. 
 short (hard kill) or damaged gives a warning naming what was found (where the file is cut,
 which chunk fails its CRC, ...) and every readable message is used; copy writes those into
 a complete file. Progress goes to stderr.
-
-The spellings of earlier versions still work, with a note on stderr: BAG alone (solve),
---sweep, --copy, --publish, --benchmark.
 """
 
 from pathlib import Path
@@ -112,12 +109,9 @@ def main(argv=None):
     """Run linkage-replay; returns the exit status (0, 1 or 2; 130 if interrupted)."""
     args = parse_args(argv, __doc__)
     try:
-        status = run(args)
+        return run(args)
     except (cli.Mistake, LinkageError) as exc:   # SceneError, RecordingError, ReplayError
-        return cli.fail(PROG, exc)               # one line: no note after a mistake
-    if args.note:
-        print(args.note, file=sys.stderr)
-    return status
+        return cli.fail(PROG, exc)
 
 
 def run(args):

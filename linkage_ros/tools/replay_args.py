@@ -2,19 +2,16 @@
 # SPDX-License-Identifier: Apache-2.0
 
 """
-The command line of linkage-replay: its subcommands, their options, and the earlier spellings.
+The command line of linkage-replay: its subcommands and their options.
 
     parse_args(argv, description)  -> argparse Namespace (args.command: solve, sweep, copy,
-                                      publish or bench; args.note: the line naming the new
-                                      spelling of an earlier one, else None)
+                                      publish or bench)
 
 Each subcommand has its own parser, --help, examples and exit statuses; an option given to a
-subcommand that does not take it is named with the subcommands that do (in the earlier
-spelling: '--rate needs --publish').
+subcommand that does not take it is named with the subcommands that do.
 """
 
 import argparse
-import shlex
 import sys
 import textwrap
 
@@ -68,8 +65,7 @@ def examples(*commands):
     return '\n'.join(lines)
 
 
-LEGACY = {'--publish': 'publish', '--copy': 'copy', '--benchmark': 'bench', '--sweep': 'sweep'}
-SWEEP_OPTIONS = ('--travel', '--from', '--to', '--step', '--hz')
+SWEEP_OPTIONS = ('--travel', '--hz')
 
 
 class Parser(cli.Parser):
@@ -80,21 +76,13 @@ class Parser(cli.Parser):
         sys.exit(cli.fail(PROG, f'error: {message} (see {self.prog} --help)'))
 
 
-def _number(minimum=None, strict=False, millimetres=False):
-    """
-    Return an argparse type: a finite number above (strict) or at least minimum (None: any).
-
-    millimetres: read as linkage-sweep reads a length (cli.millimetres), so that a unit after
-    the number (--from -80mm) is refused saying how to give it.
-    """
+def _number(minimum=None, strict=False):
+    """Return an argparse type: a finite number above (strict) or at least minimum (None: any)."""
     def parse(text):
-        if millimetres:
-            value = cli.millimetres(text)
-        else:
-            try:
-                value = float(text)
-            except ValueError:
-                raise argparse.ArgumentTypeError(f'expected a number, got {text!r}') from None
+        try:
+            value = float(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f'expected a number, got {text!r}') from None
         if minimum is None:
             if not is_finite_number(value):
                 raise argparse.ArgumentTypeError(f'must be a finite number, got {text}')
@@ -149,11 +137,6 @@ def _options(parser, command):
         option('--travel', type=cli.span, metavar=cli.SPAN,
                help=f'{which}travels, mm: FROM:TO:STEP (TO included) or one value (default: '
                "the scene's travel block)")
-        for name, dest, number in (('--from', 'start', _number(millimetres=True)),
-                                   ('--to', 'stop', _number(millimetres=True)),
-                                   ('--step', 'step', _number(0.0, True, millimetres=True))):
-            known.add(name)
-            parser.old(name, dest=dest, type=number, new='--travel FROM:TO:STEP')
         option('--hz', type=_number(0.0, True),
                help=f'{which}command rate, Hz, > 0 (default {SWEEP_HZ:g})')
     return known
@@ -180,68 +163,34 @@ def make_parser(description):
     return parser
 
 
-def translate(argv):
-    """
-    Return (argv in the subcommand spelling, the note to print or None).
-
-    The earlier spellings: BAG alone solves; --sweep, --copy, --publish and --benchmark
-    chose the others (--publish and --benchmark with --sweep: of a sweep's commands). Taken
-    as such when a mode flag or a word that can be a BAG is among the arguments.
-    """
-    if not argv or argv[0] in COMMANDS or argv[0] in ('-h', '--help') or not any(
-            a in LEGACY or not a.startswith('-') for a in argv):
-        return list(argv), None
-    modes = [a for a in argv if a in LEGACY]
-    rest = [a for a in argv if a not in LEGACY]
-    chosen = [m for m in dict.fromkeys(modes) if m != '--sweep']
-    if len(chosen) > 1:
-        raise cli.Mistake(f'error: {chosen[0]} and {chosen[1]}: choose one (see {PROG} --help)')
-    if chosen == ['--copy'] and '--sweep' in modes:
-        raise cli.Mistake(f'error: --copy needs a BAG (see {PROG} --help)')
-    command = LEGACY[chosen[0]] if chosen else 'sweep' if '--sweep' in modes else 'solve'
-    new = [command, *rest]
-    return new, f'{PROG}: note: {shlex.join([PROG, *argv])} is now spelled ' \
-                f'{shlex.join([PROG, *new])}'
-
-
 def parse_args(argv, description):
-    """
-    Parse linkage-replay's arguments (either spelling); a mistake exits with status 2.
-
-    args.note: for an earlier spelling, the line that names the new one, else None.
-    """
+    """Parse linkage-replay's arguments; a mistake exits with one line and status 2."""
     parser = make_parser(description)
-    try:
-        argv, note = translate(list(sys.argv[1:] if argv is None else argv))
-        argv = _joined_values(argv, parser)
-    except cli.Mistake as exc:
-        sys.exit(cli.fail(PROG, exc))
+    argv = _joined_values(list(sys.argv[1:] if argv is None else argv), parser)
     args, extras = parser.parse_known_args(argv)
     if args.command is None:
         parser.error(f'unrecognized arguments: {" ".join(extras)}' if extras else
                      f'choose what to do: {", ".join(COMMANDS)}')
     sub = parser.commands[args.command][0]
     if extras:
-        sub.error(_misplaced(parser, args.command, extras, note))
-    args.note = note
+        sub.error(_misplaced(parser, args.command, extras))
     if args.command in ('publish', 'bench') and args.bag:
-        given = [o for o, dest in zip(SWEEP_OPTIONS, ('travel', 'start', 'stop', 'step', 'hz'))
-                 if getattr(args, dest) is not None]
+        given = [o for o in SWEEP_OPTIONS if getattr(args, o[2:]) is not None]
         if given or (args.command == 'publish' and args.scene):
             sub.error(f'{(given or ["--scene"])[0]} makes a sweep: give it without BAG')
-    if getattr(args, 'travel', None) is not None:
-        args.start, args.stop, args.step = args.travel
+    if 'travel' in args:   # a sweep's range: None, the scene's travel block
+        args.start, args.stop, args.step = args.travel or (None, None, None)
     return args
 
 
 def _joined_values(argv, parser):
     """
-    Join a number option and a value that starts with '-' ('--from', '-1e300': --from=-1e300).
+    Join a number option and a value that starts with '-' ('--hz', '-1e300': --hz=-1e300).
 
     argparse takes '-1e300' or '-80mm' for an option of its own ('expected one argument');
     joined, the value is checked as a number, and a mistake is said as such.
     """
-    numeric = {'--travel', '--from', '--to', '--step', '--hz', '--rate', '--wait'}
+    numeric = {'--travel', '--hz', '--rate', '--wait'}
     known = set().union(*(options for _, options in parser.commands.values()))
     joined, i = [], 0
     while i < len(argv):
@@ -255,7 +204,7 @@ def _joined_values(argv, parser):
     return joined
 
 
-def _misplaced(parser, command, extras, note):
+def _misplaced(parser, command, extras):
     """Say what is wrong with arguments a subcommand does not take."""
     option = next((e.split('=')[0] for e in extras if e.startswith('-')), None)
     if option is None and command == 'sweep':
@@ -263,12 +212,5 @@ def _misplaced(parser, command, extras, note):
     owners = [name for name, (_, known) in parser.commands.items() if option in known]
     if not owners:
         return f'unrecognized arguments: {" ".join(extras)}'
-    if note is None:
-        return f'{option} is not an option of {PROG} {command} (it is one of: ' \
-               f'{", ".join(owners)})'
-    flags = {command: flag for flag, command in LEGACY.items()}
-    if owners == ['publish']:
-        return f'{option} needs --publish'
-    if 'sweep' in owners and set(owners) <= {'sweep', 'publish', 'bench'}:
-        return f'{option} needs --sweep'
-    return f'{option} is not used with {flags.get(command, "a BAG alone")}'
+    return f'{option} is not an option of {PROG} {command} (it is one of: ' \
+           f'{", ".join(owners)})'

@@ -13,8 +13,8 @@ import time
 
 import numpy as np
 
-from ..cli import (check_table, counted, EXIT_STATUS, fail, millimetres, Parser, program, SPAN,
-                   span, table_status, warn)
+from ..cli import (check_table, counted, EXIT_STATUS, fail, Parser, program, SPAN, span,
+                   table_status, warn)
 from ..core.base import (check_position_count, LinkageError, lost_cells, positions_needed,
                          say_ranges)
 from ..core.measure import columns
@@ -131,9 +131,6 @@ ranges (doc/scenes.md#ranges; outside them a scene is refused in one line, statu
 """ + \
     say_ranges('coordinate', 'spring_rate', 'force_table_force', 'force_table_slope') + """
 
-Old spellings kept for one release, each with a note: --from/--to/--step, --grid, --csv,
---benchmark.
-
 exit status: 0 every travel solved; 1 a travel is out of reach (the rows solved before it
 are written, the message names the limit), or a value is not finite where its quantity is
 defined (written as nan, the message names the columns); """ + EXIT_STATUS
@@ -145,30 +142,21 @@ def parse_args(argv, rounds=0):
     parser.add_argument('--travel', type=span, metavar=SPAN,
                         help='wheel travel, mm, + = bump: one value or a range (default: the '
                         "scene's travel block)")
-    parser.old('--from', dest='start', type=millimetres, new='--travel FROM:TO:STEP')
-    parser.old('--to', dest='stop', type=millimetres, new='--travel FROM:TO:STEP')
-    parser.old('--step', type=millimetres, new='--travel FROM:TO:STEP')
     parser.add_argument('--method', choices=METHODS, default='fast',
                         help='fast (pose Newton, compiled) or paper (Alexandru 2018); '
                         'default fast')
     parser.add_argument('-o', '--output', metavar='FILE',
                         help='write the table to this file (default: stdout)')
-    parser.old('--csv', dest='output', new='-o/--output')
     parser.add_argument('--rack', type=span, metavar=SPAN,
                         help='steering rack travel, mm (+ = rack to the left); adds rack_mm; '
                         'a range solves a travel x rack grid')
-    parser.old('--grid', dest='rack', type=span, metavar=SPAN, new='--rack FROM:TO:STEP')
     parser.add_argument('--alignment', action='store_true',
                         help='add the alignment columns (gains, steer axis, scrub, trail, '
                         'instant centres, screw axis)')
     parser.add_argument('--elements', action='store_true',
                         help="add the columns of the scene's springs, dampers and lengths")
-    parser.old('--benchmark', type=int, metavar='ROUNDS', default=0,
-               new='linkage-bench sweep --rounds ROUNDS')
     args = parser.parse_args(argv)
-    args.benchmark = rounds or args.benchmark
-    if args.benchmark < 0:
-        parser.error(f'--benchmark: expected a number of rounds >= 0, got {args.benchmark}')
+    args.benchmark = rounds
     return args
 
 
@@ -232,9 +220,7 @@ def main(argv: list[str] | None = None, rounds: int = 0) -> int:
         check_table(args.output)
     except LinkageError as exc:
         return fail(PROG, exc)
-    start, stop, step = args.travel or (
-        given if given is not None else default
-        for given, default in zip((args.start, args.stop, args.step), scene.travel))
+    start, stop, step = args.travel or scene.travel
     try:
         count = positions_needed(start, stop, step, '--travel')
         racks = [0.0]

@@ -79,7 +79,6 @@ def test_replay_help_names_each_subcommand_with_examples_and_the_statuses(capsys
     for command in ('solve', 'sweep', 'copy', 'publish', 'bench'):
         assert f'\n    {command} ' in text                          # listed with its summary
         assert f'\n  linkage-replay {command} ' in text             # and an example
-    assert 'BAG alone (solve),\n--sweep, --copy, --publish, --benchmark' in text   # old spellings
 
 
 def test_replay_help_names_every_topic_a_solved_run_holds_with_its_type(capsys, tmp_path):
@@ -236,27 +235,6 @@ def replay_mistakes(tmp_path, foreign_bag):
     ]
 
 
-def old_spelling_mistakes(tmp_path):
-    """(argv, the line's expected end) of mistakes in the spelling of earlier versions."""
-    bag = str(EXAMPLE)
-    return [
-        ([bag, '--rate', '2'], 'error: --rate needs --publish'),
-        ([bag, '--wait', '2'], 'error: --wait needs --publish'),
-        (['--sweep', '--clock'], 'error: --clock needs --publish'),
-        ([bag, '--from', '3'], 'error: --from needs --sweep'),
-        ([bag, '--hz', '3'], 'error: --hz needs --sweep'),
-        ([bag, '--copy', '--scene', 'macpherson'], 'error: --scene is not used with --copy'),
-        ([bag, '--copy', '--topic', '/x'], 'error: --topic is not used with --copy'),
-        ([bag, '--publish', '--method', 'paper'], 'error: --method is not used with --publish'),
-        ([bag, '--publish', '-o', 'x.mcap'], 'error: -o is not used with --publish'),
-        ([bag, '--benchmark', '-o', 'x.mcap'], 'error: -o is not used with --benchmark'),
-        ([bag, '--copy', '--publish'], 'error: --copy and --publish: choose one'),
-        (['--sweep', '--copy'], 'error: --copy needs a BAG'),
-        ([bag, '--sweep'], 'error: a sweep takes no BAG'),
-        ([bag, '--copy', '-o', bag], f'-o: {bag} is the input {bag}; give another file name'),
-    ]
-
-
 def test_every_replay_mistake_is_one_line_and_status_2_and_writes_nothing(
         tmp_path, capsys, foreign_bag):
     for argv, expected in replay_mistakes(tmp_path, foreign_bag):
@@ -264,16 +242,6 @@ def test_every_replay_mistake_is_one_line_and_status_2_and_writes_nothing(
         line = one_line(capsys, 'linkage-replay')
         assert expected in line, (argv, line)
         assert not (tmp_path / 'out.mcap').exists()
-
-
-def test_every_old_spelling_mistake_is_one_line_in_the_old_terms_and_status_2(
-        tmp_path, capsys, monkeypatch):
-    monkeypatch.chdir(tmp_path)
-    for argv, expected in old_spelling_mistakes(tmp_path):
-        assert status_of(replay.main, argv) == 2, argv
-        line = one_line(capsys, 'linkage-replay')
-        assert expected in line, (argv, line)
-    assert list(tmp_path.iterdir()) == []
 
 
 def test_every_rerun_mistake_is_one_line_and_status_2_and_writes_nothing(
@@ -311,7 +279,7 @@ def test_every_rerun_mistake_is_one_line_and_status_2_and_writes_nothing(
 
 
 @pytest.mark.parametrize('module, argv, expected', [
-    ('mcap', ['linkage_ros.tools.replay', str(EXAMPLE), '--copy'],
+    ('mcap', ['linkage_ros.tools.replay', 'copy', str(EXAMPLE)],
      'linkage-replay: reading and writing bags needs the Python package mcap, which is not '
      "installed: pip install -e '.[record]' (in a linkage_ros checkout) or pip install mcap"),
     ('rclpy', ['linkage_ros.tools.replay', 'publish', str(EXAMPLE)],

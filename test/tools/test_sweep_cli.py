@@ -160,8 +160,7 @@ def test_a_negative_rack_range_after_a_space_is_read_as_the_range(capsys):
 
 
 def test_negative_travels_in_any_float_spelling_are_read(capsys):
-    code, rows, _, _ = run(capsys, 'five_link', '--from', '-4e1', '--to', '-.5e1', '--step',
-                           '35')
+    code, rows, _, _ = run(capsys, 'five_link', '--travel', '-4e1:-.5e1:35')
     assert code == 0 and [float(r['travel_mm']) for r in rows] == [-40.0, -5.0]
 
 
