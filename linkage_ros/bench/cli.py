@@ -7,18 +7,21 @@ linkage-bench: every benchmark of linkage_ros, one subcommand each.
     linkage-bench accuracy [...]       error against run time of every solver (accuracy.py)
     linkage-bench node [...]           the node over DDS: latency, throughput (node_bench/)
     linkage-bench soak [...]           a million commands through the node (soak.py)
-    linkage-bench sweep SCENE [...]    paper and fast sweeps side by side (linkage-sweep)
-    linkage-bench axle [VEHICLE] [...] an axle position against corner positions
-    linkage-bench map SCENE [...]      map answers with and without the elements
+    linkage-bench sweep SCENE [...]    paper and fast sweeps side by side (sweep.py)
+    linkage-bench axle [VEHICLE] [...] an axle position against corner positions (axle.py)
+    linkage-bench map SCENE [...]      map answers with and without the elements (map.py)
     linkage-bench vehicle VEHICLE [...] the setup sheet at 1x, 10x, 100x its tables (sheet.py)
     linkage-bench study [...]          tolerance, sensitivity and fit (study.py)
     linkage-bench replay [BAG] [...]   solving recorded commands with and without recording
+                                       (replay.py)
     linkage-bench kc SCENE [...]       compliance rates and a loaded solve against a
-                                       kinematic solve (linkage-kc; kc_bench.py)
-    linkage-bench chrono [FILE...]     import, solve and write Chrono files (bench/chrono.py)
+                                       kinematic solve (kc.py)
+    linkage-bench chrono [FILE...]     import, solve and write Chrono files (chrono.py)
 
-Each subcommand takes the options of the program it times (SUBCOMMAND --help lists them);
-sweep, axle, map, vehicle and kc take --rounds N too.
+Each subcommand takes the options of the program it times (sweep, axle, map, vehicle, kc:
+linkage-sweep's, ... parsed by that program; SUBCOMMAND --help lists them); those five take
+--rounds N too, which linkage-bench reads. The timing is bench's: the programs only turn
+their options into the work's inputs (their request()), which the benchmark times.
 """
 
 import sys
@@ -26,7 +29,7 @@ import sys
 from ..cli import EXIT_STATUS, fail, program
 
 PROG = 'linkage-bench'
-ROUNDS = 5   # default --rounds of sweep, axle, map and kc
+ROUNDS = 5   # default --rounds of sweep, axle, map, vehicle and kc
 
 EPILOG = """examples:
   linkage-bench accuracy --quick -o bench-report
@@ -60,8 +63,8 @@ def _study(argv):
 
 
 def _replay(argv):
-    from ..tools.replay import main
-    return main(['bench', *argv])
+    from .replay import main
+    return main(argv)
 
 
 def _chrono(argv):
@@ -69,20 +72,19 @@ def _chrono(argv):
     return main(argv)
 
 
-def _timed(module):
-    """Return the runner of a program whose main(argv, rounds) times instead of solving."""
+def _timed(command, module):
+    """Return the runner of bench/<module>.py: its main(argv, rounds), --rounds taken here."""
     def run(argv):
         import importlib
-        rounds, rest = _rounds(argv, f'{PROG} {module.rsplit(".", 1)[-1]}')
-        return importlib.import_module(f'..tools.{module}', __package__).main(rest,
-                                                                              rounds=rounds)
+        rounds, rest = _rounds(argv, f'{PROG} {command}')
+        return importlib.import_module(f'.{module}', __package__).main(rest, rounds)
     return run
 
 
 COMMANDS = {'accuracy': _accuracy, 'node': _node, 'soak': _soak,
-            'sweep': _timed('sweep'), 'axle': _timed('axle'), 'map': _timed('kinematic_map'),
-            'vehicle': _timed('vehicle'), 'study': _study, 'replay': _replay,
-            'kc': _timed('kc'), 'chrono': _chrono}
+            'sweep': _timed('sweep', 'sweep'), 'axle': _timed('axle', 'axle'),
+            'map': _timed('map', 'map'), 'vehicle': _timed('vehicle', 'sheet'),
+            'study': _study, 'replay': _replay, 'kc': _timed('kc', 'kc'), 'chrono': _chrono}
 
 
 def _rounds(argv, prog):

@@ -4,8 +4,13 @@
 """
 The command line of linkage-replay: its subcommands and their options.
 
-    parse_args(argv, description)  -> argparse Namespace (args.command: solve, sweep, copy,
-                                      publish or bench)
+    parse_args(argv, description)  -> argparse Namespace (args.command: solve, sweep, copy or
+                                      publish)
+    parse_source(argv, prog, description, epilog)
+                                   -> the options that name commands to solve and how, alone
+                                      (a BAG or a sweep; --topic, --scene, --method), for a
+                                      program that answers them its own way (linkage-bench
+                                      replay)
 
 Each subcommand has its own parser, --help, examples and exit statuses; an option given to a
 subcommand that does not take it is named with the subcommands that do.
@@ -49,10 +54,8 @@ COMMANDS = {
                 'solving them',
                 [('run.mcap --rate 2 --clock', 'twice as fast, with /clock'),
                  ('--scene macpherson --hz 100', 'the commands of a sweep')]),
-    'bench': ('time solving the commands with no recording, McapRecorder, RerunRecorder and '
-              'both; print a CSV table on stdout (us per command)',
-              [('run.mcap', ''), ('--travel -80:80:0.1', 'the commands of a sweep')]),
 }
+SOURCE = 'source'   # not a subcommand: the options of parse_source
 
 
 def examples(*commands):
@@ -95,8 +98,8 @@ def _number(minimum=None, strict=False):
 
 
 def _options(parser, command):
-    """Add the options of a subcommand to its parser; return their option strings."""
-    source = command in ('publish', 'bench')   # a BAG, or without one a sweep
+    """Add the options of a subcommand (or SOURCE) to its parser; return their option strings."""
+    source = command in ('publish', SOURCE)   # a BAG, or without one a sweep
     known = set()
 
     def option(*names, **kwargs):
@@ -117,10 +120,10 @@ def _options(parser, command):
         option('--topic', default=DEFAULT_TOPIC, help='wheel-travel topic, '
                f'std_msgs/msg/Float64 in m (default {DEFAULT_TOPIC})')
         stored = (' (default: the scene the recording stores, else five_link)'
-                  if command in ('solve', 'bench') else ' (default five_link)')
+                  if command in ('solve', SOURCE) else ' (default five_link)')
         option('--scene', help=('sweep: ' if command == 'publish' else '') +
                'bundled scene name or scene YAML path' + stored)
-    if command in ('solve', 'sweep', 'bench'):
+    if command in ('solve', 'sweep', SOURCE):
         option('--method', choices=METHODS, default='fast', help='solver (default fast)')
     if command in ('solve', 'sweep'):
         option('--frame-id', default=FRAME_ID,
@@ -132,7 +135,7 @@ def _options(parser, command):
                "at the commands' recorded times, for nodes with use_sim_time:=true")
         option('--wait', type=_number(0.0, False), default=10.0,
                help='s to wait for a subscriber, >= 0 (default 10)')
-    if command in ('sweep', 'publish', 'bench'):
+    if command in ('sweep', 'publish', SOURCE):
         which = 'sweep: ' if source else ''
         option('--travel', type=cli.span, metavar=cli.SPAN,
                help=f'{which}travels, mm: FROM:TO:STEP (TO included) or one value (default: '
@@ -166,7 +169,8 @@ def make_parser(description):
 def parse_args(argv, description):
     """Parse linkage-replay's arguments; a mistake exits with one line and status 2."""
     parser = make_parser(description)
-    argv = _joined_values(list(sys.argv[1:] if argv is None else argv), parser)
+    known = set().union(*(options for _, options in parser.commands.values()))
+    argv = _joined_values(list(sys.argv[1:] if argv is None else argv), known)
     args, extras = parser.parse_known_args(argv)
     if args.command is None:
         parser.error(f'unrecognized arguments: {" ".join(extras)}' if extras else
@@ -174,16 +178,35 @@ def parse_args(argv, description):
     sub = parser.commands[args.command][0]
     if extras:
         sub.error(_misplaced(parser, args.command, extras))
-    if args.command in ('publish', 'bench') and args.bag:
+    return _sweep_checked(args, args.command, sub)
+
+
+def parse_source(argv, prog, description, epilog):
+    """
+    Parse the options that name commands to solve (SOURCE's), with prog's own --help.
+
+    BAG, or without it a sweep (--travel, --hz); --topic, --scene, --method, as linkage-replay
+    reads them (args.bag, args.start, args.stop, args.step as for its subcommands). A mistake
+    exits with one line, prog first, and status 2.
+    """
+    parser = cli.Parser(prog, description, epilog)
+    known = _options(parser, SOURCE)
+    args = parser.parse_args(_joined_values(list(argv), known))
+    return _sweep_checked(args, SOURCE, parser)
+
+
+def _sweep_checked(args, command, parser):
+    """Refuse a sweep's option given with BAG (parser.error); set the sweep's range; args."""
+    if command in ('publish', SOURCE) and args.bag:
         given = [o for o in SWEEP_OPTIONS if getattr(args, o[2:]) is not None]
-        if given or (args.command == 'publish' and args.scene):
-            sub.error(f'{(given or ["--scene"])[0]} makes a sweep: give it without BAG')
+        if given or (command == 'publish' and args.scene):
+            parser.error(f'{(given or ["--scene"])[0]} makes a sweep: give it without BAG')
     if 'travel' in args:   # a sweep's range: None, the scene's travel block
         args.start, args.stop, args.step = args.travel or (None, None, None)
     return args
 
 
-def _joined_values(argv, parser):
+def _joined_values(argv, known):
     """
     Join a number option and a value that starts with '-' ('--hz', '-1e300': --hz=-1e300).
 
@@ -191,7 +214,6 @@ def _joined_values(argv, parser):
     joined, the value is checked as a number, and a mistake is said as such.
     """
     numeric = {'--travel', '--hz', '--rate', '--wait'}
-    known = set().union(*(options for _, options in parser.commands.values()))
     joined, i = [], 0
     while i < len(argv):
         if argv[i] in numeric and i + 1 < len(argv) and argv[i + 1].startswith('-') \

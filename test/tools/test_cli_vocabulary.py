@@ -144,6 +144,8 @@ def test_a_bad_range_is_one_line_naming_the_option_with_status_2(
     ('linkage-replay', ['--sweep'], 'unrecognized arguments: --sweep'),
     ('linkage-replay', [BAG, '--copy', '-o', 'x.mcap'], f"invalid choice: '{BAG}'"),
     ('linkage-replay', [BAG, '-o', 'x.mcap'], f"invalid choice: '{BAG}'"),
+    # its timing is linkage-bench replay's (bench/ owns all timing)
+    ('linkage-replay', ['bench', BAG], "invalid choice: 'bench'"),
 ])
 def test_an_old_spelling_is_now_an_unknown_option_in_one_line_with_status_2(
         prog, argv, says, capsys, tmp_path, monkeypatch):

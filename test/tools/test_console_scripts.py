@@ -31,13 +31,13 @@ TABLES = {'linkage-sweep': ['five_link'], 'linkage-axle': [],
           'linkage-vehicle': ['demo_vehicle'],
           'linkage-kc': ['double_wishbone_bushings', '--travel', '0'],
           'linkage-study': ['sensitivity', 'five_link', '--travel', '0'],
-          'linkage-replay': ['bench', str(Path(__file__).resolve().parents[2] / 'bags'
+          'linkage-bench': ['replay', str(Path(__file__).resolve().parents[2] / 'bags'
                                           / 'five_link_sweep.mcap')],
           'linkage-urdf': ['five_link', '-o', '-'], 'linkage-foxglove': ['five_link', '-o', '-']}
 # Programs with subcommands: each subcommand's --help too.
 SUBCOMMANDS = {'linkage-bench': ['accuracy', 'node', 'soak', 'sweep', 'axle', 'map', 'vehicle',
                                  'study', 'replay', 'kc', 'chrono'],
-               'linkage-replay': ['solve', 'sweep', 'copy', 'publish', 'bench'],
+               'linkage-replay': ['solve', 'sweep', 'copy', 'publish'],
                'linkage-study': ['sensitivity', 'tolerance', 'fit'],
                'linkage-chrono': ['import', 'export']}
 

@@ -272,15 +272,6 @@ def test_publish_republishes_the_commands_in_order_at_the_recorded_pace(tmp_path
     assert '20/20 commands published' in err
 
 
-def test_benchmark_prints_one_row_per_recording_mode(capsys):
-    assert main(['bench', '--travel', '0:3:1']) == 0
-    lines = capsys.readouterr().out.strip().splitlines()
-    assert lines[0] == 'mode,commands,us_per_command,ratio,extra_us_per_message'
-    assert [line.split(',')[:2] for line in lines[1:]] == [
-        ['no recording', '4'], ['McapRecorder', '4'], ['RerunRecorder', '4'], ['both', '4']]
-    assert lines[1].split(',')[3] == '1.000'
-
-
 # --- the scene a recording stores ----------------------------------------------------------
 
 def write_stored(path, metadata, travels_m, topic='/wheel_travel'):
