@@ -62,8 +62,8 @@ class Parser(argparse.ArgumentParser):
         super().__init__(prog=prog, description=description, epilog=epilog,
                          formatter_class=argparse.RawDescriptionHelpFormatter, **kwargs)
         # An argument that starts with '-' and a digit is a value, not an option: argparse
-        # takes only -80 and -0.5 so, and said "expected one argument" for --grid -20:20:10,
-        # --from -1e3 or --from -80mm (which then fails as a number, with its own line).
+        # takes only -80 and -0.5 so, and said "expected one argument" for --rack -20:20:10,
+        # --travel -1e3 or --travel -80mm (which then fails as a number, with its own line).
         self._negative_number_matcher = re.compile(r'^-\.?[0-9]')
 
     def parse_known_args(self, args=None, namespace=None):
@@ -81,42 +81,12 @@ class Parser(argparse.ArgumentParser):
                 message = f'unrecognized arguments: {" ".join(unknown)}'
         sys.exit(fail(self.prog, f'error: {message} (see {self.prog} --help)'))
 
-    def old(self, *names: str, new: str, **kwargs) -> None:
-        """
-        Add an old spelling of an option, kept for one release and left out of --help.
-
-        Given, it works as before and prints one line on stderr naming its new spelling.
-        """
-        self.add_argument(*names, action=OldSpelling, new=new, help=argparse.SUPPRESS,
-                          **kwargs)
-
     def _unknown_option(self, arg: str) -> bool:
         """Tell whether arg looks like an option (not a number) that no option starts with."""
         if not arg.startswith('-') or arg == '-' or self._negative_number_matcher.match(arg):
             return False
         name = arg.split('=', 1)[0]
         return not any(option.startswith(name) for option in self._option_string_actions)
-
-
-class OldSpelling(argparse.Action):
-    """Store an option's value as argparse does, noting on stderr that it is deprecated."""
-
-    def __init__(self, option_strings, dest, new: str, **kwargs) -> None:
-        super().__init__(option_strings, dest, **kwargs)
-        self.new = new
-
-    def __call__(self, parser, namespace, values, option_string=None) -> None:
-        """Note the new spelling (once per option), then store values."""
-        noted = parser.__dict__.setdefault('_noted', set())
-        if option_string not in noted:
-            noted.add(option_string)
-            deprecated(parser.prog, option_string, self.new)
-        setattr(namespace, self.dest, True if self.nargs == 0 else values)
-
-
-def deprecated(prog: str, old: str, new: str) -> None:
-    """Print the one-line note of an old spelling that still works, on stderr."""
-    print(f'{prog}: {old} is deprecated, use {new} (kept for one release)', file=sys.stderr)
 
 
 class Span(NamedTuple):

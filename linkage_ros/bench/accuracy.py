@@ -45,6 +45,8 @@ from ..core.solve import travel_range
 from ..core.warmup import compile_if_cold
 from ..outputs import output_folder, whole_file
 
+PROG = 'linkage-bench accuracy'
+
 TOLS = (1e-3, 1e-6, 1e-8, 1e-9, 1e-10, 1e-12)     # mm
 STEPS = (0.1, 1.0, 5.0, 20.0)                           # mm
 WARMUP_STEP = 2.0        # mm: untimed walk from design to a timing window
@@ -164,17 +166,13 @@ EPILOG = f"""examples:
   linkage-bench accuracy --quick -o bench-report
   linkage-bench accuracy --scenes five_link macpherson --tols 1e-9 --steps 1 5
 
-Old spellings kept for one release, each with a note: linkage-bench without a subcommand,
---out.
-
 exit status: 0 the report was written; {EXIT_STATUS}"""
 
 
-def parse_args(argv, prog='linkage-bench accuracy'):
-    parser = Parser(prog, __doc__, EPILOG)
+def parse_args(argv):
+    parser = Parser(PROG, __doc__, EPILOG)
     parser.add_argument('-o', '--output', dest='out', default='bench-report', metavar='DIR',
                         help='report folder (created; default bench-report)')
-    parser.old('--out', dest='out', metavar='DIR', new='-o/--output')
     parser.add_argument('--scenes', nargs='+', help='scene names or paths (default: bundled)')
     parser.add_argument('--tols', nargs='+', type=float, default=list(TOLS), help='mm')
     parser.add_argument('--steps', nargs='+', type=float, default=list(STEPS), help='mm')
@@ -200,24 +198,24 @@ def parse_args(argv, prog='linkage-bench accuracy'):
 
 
 @program('linkage-bench')
-def main(argv: list[str] | None = None, prog: str = 'linkage-bench accuracy') -> int:
+def main(argv: list[str] | None = None) -> int:
     """Run linkage-bench accuracy: 0 when the report is written, 2 for a bad scene or entry."""
-    args = parse_args(argv, prog)
+    args = parse_args(argv)
     try:
         scenes = [load_scene(s) for s in (args.scenes or bundled_scenes())]
     except SceneError as exc:
-        return fail(prog, exc)
+        return fail(PROG, exc)
     chosen = entries()
     if args.entries:
         unknown = set(args.entries) - {e.name for e in chosen}
         if unknown:
-            return fail(prog, f'--entries: unknown {sorted(unknown)} (known: '
+            return fail(PROG, f'--entries: unknown {sorted(unknown)} (known: '
                         f'{[e.name for e in chosen]})')
         chosen = [e for e in chosen if e.name in args.entries]
     try:
         out = output_folder('-o', args.out, FILES, [s.source for s in scenes])
     except LinkageError as exc:
-        return fail(prog, exc)
+        return fail(PROG, exc)
     compile_if_cold('linkage-bench')
     started = time.perf_counter()
     progress(f'{len(scenes)} scenes x {len(args.steps)} steps x {len(args.tols)} tolerances, '

@@ -7,29 +7,29 @@ linkage-bench: every benchmark of linkage_ros, one subcommand each.
     linkage-bench accuracy [...]       error against run time of every solver (accuracy.py)
     linkage-bench node [...]           the node over DDS: latency, throughput (node_bench/)
     linkage-bench soak [...]           a million commands through the node (soak.py)
-    linkage-bench sweep SCENE [...]    paper and fast sweeps side by side (linkage-sweep)
-    linkage-bench axle [VEHICLE] [...] an axle position against corner positions
-    linkage-bench map SCENE [...]      map answers with and without the elements
+    linkage-bench sweep SCENE [...]    paper and fast sweeps side by side (sweep.py)
+    linkage-bench axle [VEHICLE] [...] an axle position against corner positions (axle.py)
+    linkage-bench map SCENE [...]      map answers with and without the elements (map.py)
     linkage-bench vehicle VEHICLE [...] the setup sheet at 1x, 10x, 100x its tables (sheet.py)
     linkage-bench study [...]          tolerance, sensitivity and fit (study.py)
     linkage-bench replay [BAG] [...]   solving recorded commands with and without recording
+                                       (replay.py)
     linkage-bench kc SCENE [...]       compliance rates and a loaded solve against a
-                                       kinematic solve (linkage-kc; kc_bench.py)
-    linkage-bench chrono [FILE...]     import, solve and write Chrono files (bench/chrono.py)
+                                       kinematic solve (kc.py)
+    linkage-bench chrono [FILE...]     import, solve and write Chrono files (chrono.py)
 
-Each subcommand takes the options of the program it times (SUBCOMMAND --help lists them);
-sweep, axle, map, vehicle and kc take --rounds N too. The earlier entry points
-(linkage-node-bench, linkage-soak, linkage-bench without a subcommand, --benchmark of
-linkage-sweep, linkage-axle and linkage-map) still work for one release, each with a note on
-stderr.
+Each subcommand takes the options of the program it times (sweep, axle, map, vehicle, kc:
+linkage-sweep's, ... parsed by that program; SUBCOMMAND --help lists them); those five take
+--rounds N too, which linkage-bench reads. The timing is bench's: the programs only turn
+their options into the work's inputs (their request()), which the benchmark times.
 """
 
 import sys
 
-from ..cli import deprecated, EXIT_STATUS, fail, MISTAKE, program, READER_GONE
+from ..cli import EXIT_STATUS, fail, program
 
 PROG = 'linkage-bench'
-ROUNDS = 5   # default --rounds of sweep, axle, map and kc
+ROUNDS = 5   # default --rounds of sweep, axle, map, vehicle and kc
 
 EPILOG = """examples:
   linkage-bench accuracy --quick -o bench-report
@@ -42,19 +42,19 @@ EPILOG = """examples:
 exit status: as the program timed; """ + EXIT_STATUS
 
 
-def _accuracy(argv, prog=f'{PROG} accuracy'):
+def _accuracy(argv):
     from .accuracy import main
-    return main(argv, prog=prog)
+    return main(argv)
 
 
-def _node(argv, prog=f'{PROG} node'):
+def _node(argv):
     from .node_bench.cli import main
-    return main(argv, prog=prog)
+    return main(argv)
 
 
-def _soak(argv, prog=f'{PROG} soak'):
+def _soak(argv):
     from .soak import main
-    return main(argv, prog=prog)
+    return main(argv)
 
 
 def _study(argv):
@@ -63,8 +63,8 @@ def _study(argv):
 
 
 def _replay(argv):
-    from ..tools.replay import main
-    return main(['bench', *argv])
+    from .replay import main
+    return main(argv)
 
 
 def _chrono(argv):
@@ -72,20 +72,19 @@ def _chrono(argv):
     return main(argv)
 
 
-def _timed(module):
-    """Return the runner of a program whose main(argv, rounds) times instead of solving."""
+def _timed(command, module):
+    """Return the runner of bench/<module>.py: its main(argv, rounds), --rounds taken here."""
     def run(argv):
         import importlib
-        rounds, rest = _rounds(argv, f'{PROG} {module.rsplit(".", 1)[-1]}')
-        return importlib.import_module(f'..tools.{module}', __package__).main(rest,
-                                                                              rounds=rounds)
+        rounds, rest = _rounds(argv, f'{PROG} {command}')
+        return importlib.import_module(f'.{module}', __package__).main(rest, rounds)
     return run
 
 
 COMMANDS = {'accuracy': _accuracy, 'node': _node, 'soak': _soak,
-            'sweep': _timed('sweep'), 'axle': _timed('axle'), 'map': _timed('kinematic_map'),
-            'vehicle': _timed('vehicle'), 'study': _study, 'replay': _replay,
-            'kc': _timed('kc'), 'chrono': _chrono}
+            'sweep': _timed('sweep', 'sweep'), 'axle': _timed('axle', 'axle'),
+            'map': _timed('map', 'map'), 'vehicle': _timed('vehicle', 'sheet'),
+            'study': _study, 'replay': _replay, 'kc': _timed('kc', 'kc'), 'chrono': _chrono}
 
 
 def _rounds(argv, prog):
@@ -109,7 +108,7 @@ def _rounds(argv, prog):
 
 @program(PROG)
 def main(argv: list[str] | None = None) -> int:
-    """Run the benchmark a subcommand names; without one, accuracy (the earlier spelling)."""
+    """Run the benchmark the first argument names: 0, 1 or 2 as that benchmark ends."""
     argv = list(sys.argv[1:] if argv is None else argv)
     if argv and argv[0] in ('-h', '--help'):
         print(f'usage: {PROG} {{{",".join(COMMANDS)}}} [options]\n\n{__doc__.strip()}\n\n'
@@ -117,30 +116,14 @@ def main(argv: list[str] | None = None) -> int:
         return 0
     if argv and argv[0] in COMMANDS:
         return COMMANDS[argv[0]](argv[1:])
-    if argv and not argv[0].startswith('-'):
-        return fail(PROG, f'error: unknown benchmark {argv[0]!r}: choose one of '
-                          f'{", ".join(COMMANDS)} (see {PROG} --help)')
-    return _old(PROG, f'{PROG} without a subcommand', 'accuracy', argv)
-
-
-def _old(prog, old, command, argv):
-    """Run an earlier spelling of linkage-bench COMMAND; after it, note the new spelling."""
-    run = COMMANDS[command]
-    # --help and a mistake exit here, without the note; their lines name the old program
-    status = run(argv, prog=prog)
-    if status not in (MISTAKE, READER_GONE):   # a reader gone: quiet, as cat
-        deprecated(prog, old, f'{PROG} {command}')
-    return status
-
-
-def node_bench() -> int:
-    """Run linkage-node-bench, the earlier spelling of linkage-bench node."""
-    return _old('linkage-node-bench', 'linkage-node-bench', 'node', sys.argv[1:])
-
-
-def soak() -> int:
-    """Run linkage-soak, the earlier spelling of linkage-bench soak."""
-    return _old('linkage-soak', 'linkage-soak', 'soak', sys.argv[1:])
+    if not argv:
+        return fail(PROG, f'error: choose a benchmark: {", ".join(COMMANDS)} (see {PROG} '
+                          '--help)')
+    if argv[0].startswith('-'):
+        return fail(PROG, f'error: unrecognized arguments: {argv[0]}: the benchmark comes '
+                          f'first, one of {", ".join(COMMANDS)} (see {PROG} --help)')
+    return fail(PROG, f'error: unknown benchmark {argv[0]!r}: choose one of '
+                      f'{", ".join(COMMANDS)} (see {PROG} --help)')
 
 
 if __name__ == '__main__':

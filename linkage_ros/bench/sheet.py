@@ -6,6 +6,8 @@ linkage-bench vehicle: the time of a vehicle's setup sheet at 1x, 10x and 100x i
 
     linkage-bench vehicle VEHICLE [--rounds N]
 
+The options are linkage-vehicle's (its parse_args and request read them).
+
 The setup sheet (core/vehicle/sheet.py) of a four-corner vehicle solves each axle at design
 and over its heave, roll and (if it steers) rack tables, and computes every rate, stiffness
 and balance quantity from them. Timed here with the tables' positions multiplied by 1, 10 and
@@ -17,6 +19,12 @@ import sys
 import time
 
 import numpy as np
+
+from ..cli import fail, warn
+from ..core.base import LinkageError
+from ..core.vehicle import setup_sheet
+from ..core.warmup import compile_if_cold
+from ..tools.vehicle import parse_args, PROG, request
 
 SCALES = (1, 10, 100)
 
@@ -37,3 +45,16 @@ def benchmark(vehicle, setup_sheet, rounds, scales=SCALES):
         print(f'{scale:>6}{positions:>11}{median * 1e3:>11.1f}{median / positions * 1e6:>17.2f}',
               flush=True)
         print(f'linkage-bench vehicle: {scale}x done', file=sys.stderr)
+
+
+def main(argv: list[str], rounds: int) -> int:
+    """Time the sheet of the vehicle linkage-vehicle's arguments name: 0, or 2 for a mistake."""
+    args = parse_args(argv)
+    try:
+        vehicle = request(args)
+    except LinkageError as exc:
+        return fail(PROG, exc)
+    warn(PROG, vehicle.warnings)
+    compile_if_cold(PROG)
+    benchmark(vehicle, setup_sheet, rounds)
+    return 0

@@ -2,9 +2,9 @@
 # SPDX-License-Identifier: Apache-2.0
 
 """
-linkage-soak: a long run of suspension_node in process, to show that it lasts.
+linkage-bench soak: a long run of suspension_node in process, to show that it lasts.
 
-    linkage-soak [--commands 1000000] [--scene five_link] [--batch 200] [--seed 0]
+    linkage-bench soak [--commands 1000000] [--scene five_link] [--batch 200] [--seed 0]
 
 One million commands (by default) go through a SuspensionNode over real DDS in one process
 (a private context, discovery off, on the user's ROS domain: ROS_DOMAIN_ID, 0 if unset; no
@@ -37,6 +37,8 @@ from ..outputs import write_table
 from ..ros.isolation import init_context
 from ..ros.messages import status_values
 from ..ros.node import QOS, SuspensionNode
+
+PROG = 'linkage-bench soak'
 
 BAD_VALUES_M = (math.nan, math.inf, -math.inf, 1e308, 10.0)   # 10 m: beyond any limit
 
@@ -103,7 +105,7 @@ def run(args):
     from geometry_msgs.msg import PoseStamped
     from std_msgs.msg import Float64
     scene = load_scene(args.scene)
-    compile_if_cold('linkage-soak')   # here, not at the first command: its answer is awaited
+    compile_if_cold(PROG)   # here, not at the first command: its answer is awaited
     context = init_context(args.domain_id, 'OFF')
     executor = EventsExecutor(context=context)
     node = SuspensionNode(context=context, parameter_overrides=[
@@ -136,7 +138,7 @@ def run(args):
                 start, rss = (time.perf_counter(), done), [(done, rss_mb())]
             if done % args.progress < args.batch:
                 rss.append((done, rss_mb()))
-                print(f'linkage-soak: {done}/{args.commands} commands, RSS {rss[-1][1]:.1f} MB',
+                print(f'{PROG}: {done}/{args.commands} commands, RSS {rss[-1][1]:.1f} MB',
                       file=sys.stderr, flush=True)
         end = time.perf_counter()
         executor.spin_once(timeout_sec=args.period_wait)   # the last diagnostics report
@@ -167,8 +169,8 @@ EPILOG = f"""examples:
 exit status: 0 no pose was non-finite; 1 a non-finite pose was published; {EXIT_STATUS}"""
 
 
-def parse_args(argv, prog='linkage-soak'):
-    parser = Parser(prog, __doc__, EPILOG)
+def parse_args(argv):
+    parser = Parser(PROG, __doc__, EPILOG)
     parser.add_argument('--commands', type=int, default=1_000_000,
                         help='commands to send (default 1000000)')
     parser.add_argument('--scene', default='five_link', help='bundled scene or YAML path')
@@ -192,9 +194,9 @@ def parse_args(argv, prog='linkage-soak'):
     return args
 
 
-@program('linkage-soak')
-def main(argv=None, prog='linkage-soak'):
-    return run(parse_args(argv, prog))
+@program(PROG)
+def main(argv=None):
+    return run(parse_args(argv))
 
 
 if __name__ == '__main__':

@@ -32,8 +32,7 @@ Hardpoints are named <constraint>.base, <constraint>.axis0, <constraint>.axis1,
 <constraint>.carrier, wheel_center and spin_axis_point; quantities as linkage-sweep's columns
 (camber_deg, toe_deg, wheel_center_x_mm, ..., the alignment set, <element>_length_mm, ...).
 Tables go to stdout as CSV, or to -o (CSV, or Parquet for a name ending in .parquet).
---travel takes travels and ranges FROM:TO:STEP (TO included), in any mix. Old spelling kept
-for one release, with a note: --out.
+--travel takes travels and ranges FROM:TO:STEP (TO included), in any mix.
 
 exit status: 0 done; 1 done, but a travel or a variant is out of reach, or a fit leaves a
 target with a tolerance unmet (said on stderr); """ + EXIT_STATUS
@@ -57,7 +56,6 @@ def parser() -> Parser:
                        help='travels, mm (+ = bump): values, ranges, or both')
         p.add_argument('-o', '--output', dest='out', metavar='FILE',
                        help='write the table here (.csv, or .parquet); default stdout')
-        p.old('--out', dest='out', metavar='FILE', new='-o/--output')
     one.add_argument('--rack', type=millimetres, default=0.0,
                      help='steering rack travel, mm (default 0)')
     one.add_argument('--quantity', nargs='+', metavar='Q',

@@ -13,16 +13,15 @@ and with a rack the steer angles and Ackermann (definitions and sources: doc/axl
 
 import math
 import sys
-import time
 
 import numpy as np
 
 from ..cli import (check_table, EXIT_STATUS, fail, Parser, program, SPAN, span, table_status,
                    warn)
-from ..core.axle import ACKERMANN_MIN_STEER, solve_axle, wheel_travels
+from ..core.axle import ACKERMANN_MIN_STEER, axle_of, solve_axle
 from ..core.base import LinkageError, positions_needed
-from ..core.model import load_target, SceneError
-from ..core.solve import sweep, travel_range
+from ..core.model import load_target
+from ..core.solve import travel_range
 from ..core.warmup import compile_if_cold
 from ..outputs import check_output, write_table
 
@@ -53,8 +52,7 @@ examples:
   linkage-axle demo_vehicle --axle front --rack -30:30:10 --heave 0
 
 --heave, --roll and --rack take one value or a range FROM:TO:STEP (TO included). Timing:
-linkage-bench axle. Old spellings kept for one release, each with a note: --rack-grid,
---csv, --benchmark.
+linkage-bench axle.
 
 exit status: 0 every position solved; 1 a position is out of reach of a wheel or beyond a
 corner's travel limits (its scene's travel block; the rows solved before it are written, the
@@ -62,7 +60,8 @@ message names the limit) or out of reach of the anti-roll bar's drop links (its 
 NaN there); """ + EXIT_STATUS
 
 
-def parse_args(argv, rounds=0):
+def parse_args(argv):
+    """Read the command line; a mistake exits with one line and status 2."""
     parser = Parser(PROG, __doc__, EPILOG.replace(
         'MIN_STEER', f'{math.degrees(ACKERMANN_MIN_STEER):g}'))
     parser.add_argument('vehicle', nargs='?', default='demo_vehicle',
@@ -78,24 +77,32 @@ def parse_args(argv, rounds=0):
     parser.add_argument('--rack', type=span, metavar=SPAN,
                         help='steering rack travel, mm, + = to the left; adds the steer and '
                         'Ackermann columns; a range solves every heave and roll at each rack')
-    parser.old('--rack-grid', dest='rack', type=span, metavar=SPAN,
-               new='--rack FROM:TO:STEP')
     parser.add_argument('-o', '--output', metavar='FILE',
                         help='write the table to this file (default: stdout)')
-    parser.old('--csv', dest='output', metavar='FILE', new='-o/--output')
-    parser.old('--benchmark', type=int, metavar='ROUNDS', default=0,
-               new='linkage-bench axle --rounds ROUNDS')
-    args = parser.parse_args(argv)
-    args.benchmark = rounds or args.benchmark
-    if args.benchmark < 0:
-        parser.error(f'--benchmark: expected a number of rounds >= 0, got {args.benchmark}')
-    return args
+    return parser.parse_args(argv)
 
 
 def values(option, given):
     """Return the values of a Span (mm or deg), or raise LinkageError naming option."""
     positions_needed(*given, option)   # before a range too long is made
     return travel_range(*given)
+
+
+def request(args):
+    """
+    Return what parsed arguments ask to solve: (target, axle, (heave mm, roll deg, rack mm)).
+
+    Raises SceneError for a vehicle that does not load and LinkageError for a request that
+    cannot be carried out (no such axle, a bad position, a rack on an axle that does not
+    steer), before anything is solved.
+    """
+    target = load_target(args.vehicle, 'vehicle')
+    axle = axle_of(target.vehicle, args.axle)
+    heave, roll, rack = positions(args, axle)
+    if args.rack is not None and not axle.steered:
+        raise LinkageError(f'{target.vehicle.name} {axle.name} axle', 'no corner has a steer: '
+                           'rack link, so a rack input moves nothing')
+    return target, axle, (heave, roll, rack)
 
 
 def positions(args, axle):
@@ -163,44 +170,6 @@ def bar_columns(bar, values):
     return columns
 
 
-def benchmark(axle, heave, roll, rack, rounds):
-    """
-    Print the median time per position (us) of an axle and of its corners, side by side.
-
-    At 1x, 10x and 100x the positions (the heaves repeated, each copy shifted by a small
-    fraction of a millimetre so that no two positions are the same). The time is this
-    process's CPU time: the work, which other processes on a shared machine disturb less
-    than they disturb the wall-clock time.
-    """
-    print(f'{axle.name} axle of {axle.left.name} and {axle.right.name}: {len(heave)} '
-          'positions (1x)')
-    print(f'{"positions":>10}{"one_corner_us":>15}{"two_corners_us":>16}{"axle_us":>10}'
-          f'{"axle/one_corner":>17}{"axle/two_corners":>18}')
-    left, right = wheel_travels(axle, heave, np.radians(roll))
-    for scale in (1, 10, 100):
-        # each copy shifted towards the middle of the travel block, never past its limits
-        # (solve_axle would stop there, and the time be of fewer positions)
-        h = np.tile(heave, scale)
-        shift = np.repeat(np.arange(scale) * 1e-3, len(heave)) * np.where(
-            h > 0.5 * (axle.left.travel[0] + axle.left.travel[1]), -1.0, 1.0)
-        h, r, k = h + shift, np.tile(roll, scale), np.tile(rack, scale)
-        tl, tr = np.tile(left, scale) + shift, np.tile(right, scale) + shift
-        runs = {'one': lambda: sweep(axle.left, tl, rack=k[0]),
-                'two': lambda: (sweep(axle.left, tl, rack=k[0]),
-                                sweep(axle.right, tr, rack=k[0])),
-                'axle': lambda: solve_axle(axle, h, np.radians(r), k)}
-        times = {name: [] for name in runs}
-        for _ in range(rounds):
-            for name, run in runs.items():
-                start = time.process_time()
-                run()
-                times[name].append((time.process_time() - start) / len(h) * 1e6)
-        one, two, both = (float(np.median(times[name])) for name in runs)
-        print(f'{len(h):>10}{one:>15.2f}{two:>16.2f}{both:>10.2f}{both / one:>17.2f}'
-              f'{both / two:>18.2f}', flush=True)
-        print(f'{PROG}: benchmark {scale}x done', file=sys.stderr)
-
-
 def stop_lines(axle, result) -> tuple[str, ...]:
     """Say over which wheel travel each corner's stops carry a force (measure.stop_notes)."""
     from ..core.measure import element_values, stop_notes
@@ -214,35 +183,19 @@ def stop_lines(axle, result) -> tuple[str, ...]:
 
 
 @program(PROG)
-def main(argv: list[str] | None = None, rounds: int = 0) -> int:
-    """
-    Run linkage-axle: 0 when done, 1 if a position is out of reach, 2 for a mistake.
-
-    rounds > 0 times the axle instead (linkage-bench axle) over that many rounds.
-    """
-    args = parse_args(argv, rounds)
+def main(argv: list[str] | None = None) -> int:
+    """Run linkage-axle: 0 when done, 1 if a position is out of reach, 2 for a mistake."""
+    args = parse_args(argv)
     try:
-        from ..core.axle import axle_of
-        target = load_target(args.vehicle, 'vehicle')
+        target, axle, (heave, roll, rack) = request(args)   # SceneError is a LinkageError
         vehicle = target.vehicle
-        axle = axle_of(vehicle, args.axle)
-        heave, roll, rack = positions(args, axle)
-    except (SceneError, LinkageError) as exc:
-        return fail(PROG, exc)
-    warn(PROG, vehicle.warnings)
-    with_rack = args.rack is not None
-    if with_rack and not axle.steered:
-        return fail(PROG, f'{vehicle.name} {axle.name} axle: no corner has a steer: rack '
-                          'link, so a rack input moves nothing')
-    try:
+        warn(PROG, vehicle.warnings)
         check_output(args.output, '-o', target.files)
         check_table(args.output)
     except LinkageError as exc:
         return fail(PROG, exc)
+    with_rack = args.rack is not None
     compile_if_cold(PROG)
-    if args.benchmark:
-        benchmark(axle, heave, roll, rack, args.benchmark)
-        return 0
     print(f'{PROG}: {vehicle.name} {axle.name} axle ({axle.left.name}, {axle.right.name}): '
           f"{len(heave)} position{'' if len(heave) == 1 else 's'}", file=sys.stderr)
     result = solve_axle(axle, heave, np.radians(roll), rack)

@@ -21,7 +21,7 @@ from ..cli import (check_plot, check_table, counted, EXIT_STATUS, fail, Parser, 
                    span, table_status, warn)
 from ..core.base import check_position_count, FORCE_LIMIT_N, LinkageError, MOMENT_LIMIT_NM, \
     positions_needed, say_ranges, wrench_problem
-from ..core.model import load_scene, SceneError
+from ..core.model import load_scene
 from ..core.solve import travel_range
 from ..outputs import check_outputs, write_table
 
@@ -76,7 +76,7 @@ def vector(text: str) -> tuple:
     return values
 
 
-def parse_args(argv, rounds=0):
+def parse_args(argv):
     """Read the command line; a mistake exits with one line and status 2."""
     parser = Parser(PROG, __doc__, EPILOG)
     parser.add_argument('scene', help='bundled scene name (e.g. double_wishbone_bushings) or '
@@ -106,7 +106,6 @@ def parse_args(argv, rounds=0):
                         help='draw the rates against travel, or with a load the loaded '
                         'mechanism in front and side views with its forces (PNG)')
     args = parser.parse_args(argv)
-    args.rounds = rounds
     if args.load is not None and args.at is None:
         parser.error('--load needs --at cp or --at wc (where the force acts)')
     if args.at is not None and args.load is None:
@@ -120,6 +119,19 @@ def parse_args(argv, rounds=0):
     if args.loaded and args.matrix:
         parser.error('--matrix is the compliance at zero load: leave out --load and --moment')
     return args
+
+
+def request(args):
+    """
+    Return what parsed arguments ask to solve: (scene, travels, racks), mm.
+
+    Raises SceneError for a scene that does not load and LinkageError for a request that
+    cannot be carried out (positions(), check_request()), before anything is solved.
+    """
+    scene = load_scene(args.scene)
+    travels, racks = positions(args)
+    check_request(scene, args)
+    return scene, travels, racks
 
 
 def positions(args):
@@ -261,32 +273,21 @@ def announce(scene, args, count):
 
 
 @program(PROG)
-def main(argv: list[str] | None = None, rounds: int = 0) -> int:
-    """
-    Run linkage-kc: 0 when done, 1 if a position fails (out of reach, not carried), 2 mistake.
-
-    rounds > 0 times the rates and a loaded solve against a kinematic solve instead
-    (linkage-bench kc).
-    """
-    args = parse_args(argv, rounds)
+def main(argv: list[str] | None = None) -> int:
+    """Run linkage-kc: 0 done, 1 if a position fails (out of reach, not carried), 2 a mistake."""
+    args = parse_args(argv)
     try:
-        scene = load_scene(args.scene)
-        travels, racks = positions(args)
-        check_request(scene, args)
+        scene, travels, racks = request(args)   # SceneError is a LinkageError
         check_outputs((('-o', args.output), ('--matrix', args.matrix), ('--plot', args.plot)),
                       [scene.source])
         check_plot(args.plot)
         check_table(args.output)
         check_table(args.matrix, '--matrix')
-    except (SceneError, LinkageError) as exc:
+    except LinkageError as exc:
         return fail(PROG, exc)
     warn(PROG, scene.warnings)
     from ..core.warmup import compile_if_cold
     compile_if_cold(PROG, statics=True)   # every answer here is a statics solve
-    if args.rounds:
-        from .kc_bench import benchmark
-        return benchmark(scene, travels, racks, load_of(args) if args.loaded else None,
-                         args.rounds)
     try:
         header, rows, results, failure = solve(scene, args, travels, racks)
     except LinkageError as exc:   # an unknown column

@@ -64,13 +64,14 @@ examples:
   linkage-map demo_vehicle --axle front -o maps
 
 --travel and --rack take a range FROM:TO:STEP (TO included) or one value. Timing:
-linkage-bench map. Old spellings kept for one release, each with a note: --out, --benchmark.
+linkage-bench map.
 
 exit status: 0 every grid point solved; 1 done, but some points are out of reach (NaN, listed
 in out_of_reach.csv); """ + EXIT_STATUS
 
 
-def parse_args(argv, rounds=0):
+def parse_args(argv):
+    """Read the command line (-o is checked by main); a mistake exits with status 2."""
     parser = Parser(PROG, __doc__, EPILOG)
     parser.add_argument('target', metavar='SCENE_OR_VEHICLE',
                         help='bundled scene or vehicle name, or the path of either file')
@@ -85,18 +86,9 @@ def parse_args(argv, rounds=0):
                         "wheels' camber and toe")
     parser.add_argument('-o', '--output', dest='out', metavar='DIR',
                         help='folder for the map files (made if missing)')
-    parser.old('--out', dest='out', metavar='DIR', new='-o/--output')
     parser.add_argument('--format', default='csv,npz',
                         help=f'comma-separated, of {", ".join(FORMATS)} (default csv,npz)')
-    parser.old('--benchmark', type=int, metavar='ROUNDS', default=0,
-               new='linkage-bench map --rounds ROUNDS')
-    args = parser.parse_args(joined_grids(sys.argv[1:] if argv is None else argv))
-    args.benchmark = rounds or args.benchmark
-    if args.benchmark < 0:
-        parser.error(f'--benchmark: expected a number of rounds >= 0, got {args.benchmark}')
-    if not args.out and not args.benchmark:
-        parser.error('-o/--output DIR is required')
-    return args
+    return parser.parse_args(joined_grids(sys.argv[1:] if argv is None else argv))
 
 
 def joined_grids(argv):
@@ -228,23 +220,28 @@ def formats_option(text):
     return kinds
 
 
-@program(PROG)
-def main(argv: list[str] | None = None, rounds: int = 0) -> int:
+def request(args):
     """
-    Run linkage-map: 0 when done, 1 if points are out of reach, 2 for a mistake.
+    Return what parsed arguments ask to map: (target, {corner name: Scene}, [Job]).
 
-    rounds > 0 times the answers instead (linkage-bench map) over that many rounds.
+    Raises SceneError for a file that does not load and LinkageError for a grid or an axle
+    that cannot be mapped, before anything is solved.
     """
-    args = parse_args(argv, rounds)
+    target = load_target(args.target)
+    vehicle, corners = target.vehicle, map_corners(target)
+    jobs = [axle_job(vehicle, args)] if args.axle is not None else corner_jobs(corners, args)
+    return target, corners, jobs
+
+
+@program(PROG)
+def main(argv: list[str] | None = None) -> int:
+    """Run linkage-map: 0 when done, 1 if points are out of reach, 2 for a mistake."""
+    args = parse_args(argv)
+    if not args.out:
+        return fail(PROG, f'error: -o/--output DIR is required (see {PROG} --help)')
     try:
-        target = load_target(args.target)
-        vehicle, corners = target.vehicle, map_corners(target)
+        target, _, jobs = request(args)   # SceneError is a LinkageError
         warn(PROG, target.warnings)
-        jobs = [axle_job(vehicle, args)] if args.axle is not None else corner_jobs(corners, args)
-        if args.benchmark:
-            from .map_bench import benchmark
-            compile_if_cold(PROG)
-            return benchmark(corners, args.benchmark)
         formats = formats_option(args.format)   # pyarrow first: its memory is then in use
         check_memory(jobs, formats)
         folder = output_folder('-o', args.out, file_names(args.out, jobs, formats),

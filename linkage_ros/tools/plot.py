@@ -25,7 +25,7 @@ import sys
 
 import numpy as np
 
-from ..cli import counted, deprecated, EXIT_STATUS, fail, Parser, plot_problem, program, warn
+from ..cli import counted, EXIT_STATUS, fail, Parser, plot_problem, program, warn
 from ..core.model import load_scene, scene_dir, SceneError
 from ..core.solve import sweep, travel_range
 from ..core.warmup import compile_if_cold
@@ -145,7 +145,7 @@ def plot_alignment(scenes, path, results=None):
 
 def read_ladder(path: str) -> dict[str, list[tuple[float, float, float]]]:
     """
-    Read the rate table of a linkage-node-bench output (its CSV tables).
+    Read the rate table of a linkage-bench node output (its CSV tables).
 
     Returns {node name: [(rate Hz, median us, p99 us)]} for the rates where commands were
     answered.
@@ -202,8 +202,7 @@ def parse_args(argv: list[str] | None) -> argparse.Namespace:
     parser = Parser('linkage-plot', __doc__, 'examples:\n'
                     '  linkage-plot camber-toe -o bags/plots/camber_toe.png\n'
                     '  linkage-plot latency doc/bench/node_bench.csv -o bags/plots/'
-                    'node_latency.png\n\nThe old spelling, OUT.png as a PATH (the first; for '
-                    'latency the second), is kept\nfor one release, with a note.'
+                    'node_latency.png'
                     '\n\nexit status: 0 written; 1 written, but a scene is drawn only as far '
                     'as its travel block was solved (said on stderr); ' + EXIT_STATUS)
     parser.add_argument('what', choices=('camber-toe', 'alignment', 'latency', 'roll-centre'),
@@ -215,12 +214,10 @@ def parse_args(argv: list[str] | None) -> argparse.Namespace:
                         help='the picture to write (PNG, or another format by its suffix)')
     args = parser.parse_intermixed_args(argv)   # SCENE ... after -o OUT.png too
     if args.output is None:
-        if not args.paths:
-            parser.error('-o/--output OUT.png is required')
-        deprecated('linkage-plot', 'OUT.png as a PATH', '-o/--output OUT.png')
-    else:   # in the order of the old spelling, which the pictures read
-        args.paths = (args.paths + [args.output] if args.what == 'latency'
-                      else [args.output] + args.paths)
+        parser.error('-o/--output OUT.png is required')
+    # the pictures read their paths with the output among them: latency's last, others' first
+    args.paths = (args.paths + [args.output] if args.what == 'latency'
+                  else [args.output] + args.paths)
     return args
 
 
@@ -240,9 +237,9 @@ def main(argv: list[str] | None = None) -> int:
         try:
             ladder = read_ladder(source)
         except (OSError, KeyError, ValueError) as exc:
-            return fail(prog, f'{source}: not the output of linkage-node-bench ({exc})')
+            return fail(prog, f'{source}: not the output of linkage-bench node ({exc})')
         if not ladder:
-            return fail(prog, f'{source}: no rate table (run linkage-node-bench with latency)')
+            return fail(prog, f'{source}: no rate table (run linkage-bench node with latency)')
     else:
         out, names = args.paths[0], args.paths[1:] or DEFAULT_SCENES
         try:

@@ -8,7 +8,9 @@ linkage-replay: solve the wheel-travel commands of a recorded run, or republish 
     linkage-replay sweep -o OUT.mcap             the same for the commands of a travel sweep
     linkage-replay copy BAG -o OUT.mcap          copy every readable message into a complete file
     linkage-replay publish BAG --rate 2 --clock  republish the commands on ROS 2 (and /clock)
-    linkage-replay bench BAG                     time solving them, with and without recording
+
+(Timing them, with and without recording: linkage-bench replay, which reads its commands
+with request().)
 
 BAG is an MCAP file with the ROS 2 profile (ours, rosbag2's, Foxglove's) or a rosbag2 bag
 folder holding one. The commands are std_msgs/msg/Float64 wheel travel in m on --topic
@@ -30,9 +32,6 @@ level, and one after the last command. The new bag keeps the recorded timeline. 
 short (hard kill) or damaged gives a warning naming what was found (where the file is cut,
 which chunk fails its CRC, ...) and every readable message is used; copy writes those into
 a complete file. Progress goes to stderr.
-
-The spellings of earlier versions still work, with a note on stderr: BAG alone (solve),
---sweep, --copy, --publish, --benchmark.
 """
 
 from pathlib import Path
@@ -90,15 +89,14 @@ def copy_messages(bag, recorder, progress=None):
 
 # --- running -------------------------------------------------------------------------------
 
-def _imports(args):
-    """Import what this run needs; a missing optional package is a Mistake naming it."""
-    needs = [('reading and writing bags', 'linkage_ros.record.mcap_writer')]
-    if args.command != 'copy':
-        needs.append(('solving commands', 'linkage_ros.ros.messages'))
-    if args.command == 'publish':
-        needs.append(('publishing on ROS 2', 'rclpy'))
-    if args.command == 'bench':
-        needs.append(('timing RerunRecorder', 'linkage_ros.record.rerun_view'))
+BAGS = ('reading and writing bags', 'linkage_ros.record.mcap_writer')
+SOLVING = ('solving commands', 'linkage_ros.ros.messages')
+PUBLISHING = ('publishing on ROS 2', 'rclpy')
+VERBS = {'solve': 'solving', 'sweep': 'solving', 'publish': 'publishing'}
+
+
+def check_imports(*needs):
+    """Import each (feature, module) needed; a missing optional package: a Mistake naming it."""
     import importlib
     for feature, module in needs:
         try:
@@ -112,24 +110,19 @@ def main(argv=None):
     """Run linkage-replay; returns the exit status (0, 1 or 2; 130 if interrupted)."""
     args = parse_args(argv, __doc__)
     try:
-        status = run(args)
+        return run(args)
     except (cli.Mistake, LinkageError) as exc:   # SceneError, RecordingError, ReplayError
-        return cli.fail(PROG, exc)               # one line: no note after a mistake
-    if args.note:
-        print(args.note, file=sys.stderr)
-    return status
+        return cli.fail(PROG, exc)
 
 
 def run(args):
     """Carry out parsed arguments; raises Mistake or LinkageError for a user mistake."""
-    _imports(args)
+    check_imports(*{'copy': [BAGS], 'publish': [BAGS, SOLVING, PUBLISHING]}.get(
+        args.command, [BAGS, SOLVING]))
     bag_path = getattr(args, 'bag', None)
     if bag_path:
         cli.check_input(bag_path)
-    scene = None
-    if args.command != 'copy' and (args.scene or not bag_path):
-        from ..core.model import load_scene
-        scene = load_scene(args.scene or 'five_link')
+    scene = None if args.command == 'copy' else given_scene(args)
     output = None
     if args.command in ('solve', 'sweep', 'copy'):
         suffix = {'solve': '_solved.mcap', 'copy': '_copy.mcap'}.get(args.command)
@@ -138,46 +131,58 @@ def run(args):
         check_output(output, '-o' if args.output else 'output', _inputs(bag_path, scene))
     if args.command == 'copy':
         return _copy(args, output)
-    if bag_path:
-        read = read_commands(bag_path, args.topic)
-        commands, bag, stored = read.commands, read.bag, read.bag.metadata.get(METADATA)
-        status = _warn(read, {'solve': 'solving', 'publish': 'publishing',
-                              'bench': 'timing'}[args.command])
-        if scene is None and args.command != 'publish':   # publishing needs no scene
-            scene = stored_scene(bag, read.topic)
-            if scene is not None:
-                print(f'{PROG}: the scene stored in {bag_path}: {scene.name}', file=sys.stderr)
-            else:
-                from ..core.model import load_scene
-                scene = load_scene('five_link')
-    if scene is not None:
-        cli.warn(PROG, scene.warnings)
+    commands, scene, status, read = request(args, scene, VERBS[args.command],
+                                            scene_needed=args.command != 'publish')
+    stored = read.bag.metadata.get(METADATA) if read else None
     changes, scenes = [], {}
     if bag_path and args.command == 'solve':
         changes, scenes, commands, replayable = _changes(bag_path, read.bag, commands)
         status = max(status, replayable, _joint_states(bag_path, read.bag))
-    if not bag_path:
-        from .replay_commands import sweep_commands
-        commands = sweep_commands(scene, args.start, args.stop, args.step,
-                                  SWEEP_HZ if args.hz is None else args.hz)
-        status, stored = cli.DONE, None
     source = bag_path or 'sweep'
     if args.command == 'publish':   # the Float64 commands: travel and rack
         from .replay_commands import WRENCH
         return _publish(args, [c for c in commands if c.kind != WRENCH], source, status)
     # a corner of a scene with bushings answers loaded poses (protocol.statics_on)
     compile_if_cold(PROG, statics=any(wants_statics(s) for s in (scene, *scenes.values())))
-    if args.command == 'bench':
-        if not commands:
-            print(f'{PROG}: nothing to time: no commands', file=sys.stderr)
-            return status
-        print(f'{PROG}: {scene.name}: timing {counted(len(commands), "command")}, method '
-              f'{args.method}, '
-              'best of 3', file=sys.stderr)
-        from .replay_solve import benchmark
-        benchmark(commands, scene, args.method)
-        return status
     return _solve(args, commands, scene, source, output, stored, status, (changes, scenes))
+
+
+def given_scene(args):
+    """Return the Scene --scene names; without it five_link for a sweep, None for a BAG."""
+    if args.scene or not getattr(args, 'bag', None):
+        from ..core.model import load_scene
+        return load_scene(args.scene or 'five_link')
+    return None
+
+
+def request(args, scene, verb, prog=PROG, scene_needed=True):
+    """
+    Return the commands parsed arguments name: (commands, scene, status, read).
+
+    BAG's commands (read: its Commands; what a damaged bag or undecodable commands lost is
+    said on stderr, status 1) or, without BAG, a sweep's over --travel at --hz (read None,
+    status 0). scene: given_scene(args); for a BAG without --scene, the scene the recording
+    stores, else five_link (left None unless scene_needed). Its warnings are said; verb (as
+    'solving') is what is done with the commands, prog the program that says it. Raises
+    LinkageError (RecordingError, ReplayError) for a bag or a sweep that cannot be had.
+    """
+    if not getattr(args, 'bag', None):
+        cli.warn(prog, scene.warnings)
+        from .replay_commands import sweep_commands
+        return sweep_commands(scene, args.start, args.stop, args.step,
+                              SWEEP_HZ if args.hz is None else args.hz), scene, cli.DONE, None
+    read = read_commands(args.bag, args.topic)
+    status = _warn(read, verb, prog)
+    if scene is None and scene_needed:
+        scene = stored_scene(read.bag, read.topic)
+        if scene is not None:
+            print(f'{prog}: the scene stored in {args.bag}: {scene.name}', file=sys.stderr)
+        else:
+            from ..core.model import load_scene
+            scene = load_scene('five_link')
+    if scene is not None:
+        cli.warn(prog, scene.warnings)
+    return read.commands, scene, status, read
 
 
 def _changes(bag_path, bag, commands):
@@ -227,17 +232,17 @@ def _inputs(bag_path, scene):
     return inputs
 
 
-def _warn(read, verb):
+def _warn(read, verb, prog=PROG):
     """Print what a damaged bag or undecodable commands lost; return the exit status."""
     bag, status = read.bag, cli.DONE
     if bag.truncated:
         missing = (f'; no {read.topic} among what could be read'
                    if read.topic not in bag.topics else '')
-        print(f'{PROG}: warning: {bag.path}: {bag.describe()}{missing}; {verb} the '
+        print(f'{prog}: warning: {bag.path}: {bag.describe()}{missing}; {verb} the '
               f'{counted(len(read.commands), "command")} read', file=sys.stderr)
         status = cli.DAMAGED
     for line in read.warnings():
-        print(f'{PROG}: warning: {line}', file=sys.stderr)
+        print(f'{prog}: warning: {line}', file=sys.stderr)
     return cli.DAMAGED if read.lost else status
 
 

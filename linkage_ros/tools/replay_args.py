@@ -2,19 +2,21 @@
 # SPDX-License-Identifier: Apache-2.0
 
 """
-The command line of linkage-replay: its subcommands, their options, and the earlier spellings.
+The command line of linkage-replay: its subcommands and their options.
 
-    parse_args(argv, description)  -> argparse Namespace (args.command: solve, sweep, copy,
-                                      publish or bench; args.note: the line naming the new
-                                      spelling of an earlier one, else None)
+    parse_args(argv, description)  -> argparse Namespace (args.command: solve, sweep, copy or
+                                      publish)
+    parse_source(argv, prog, description, epilog)
+                                   -> the options that name commands to solve and how, alone
+                                      (a BAG or a sweep; --topic, --scene, --method), for a
+                                      program that answers them its own way (linkage-bench
+                                      replay)
 
 Each subcommand has its own parser, --help, examples and exit statuses; an option given to a
-subcommand that does not take it is named with the subcommands that do (in the earlier
-spelling: '--rate needs --publish').
+subcommand that does not take it is named with the subcommands that do.
 """
 
 import argparse
-import shlex
 import sys
 import textwrap
 
@@ -52,10 +54,8 @@ COMMANDS = {
                 'solving them',
                 [('run.mcap --rate 2 --clock', 'twice as fast, with /clock'),
                  ('--scene macpherson --hz 100', 'the commands of a sweep')]),
-    'bench': ('time solving the commands with no recording, McapRecorder, RerunRecorder and '
-              'both; print a CSV table on stdout (us per command)',
-              [('run.mcap', ''), ('--travel -80:80:0.1', 'the commands of a sweep')]),
 }
+SOURCE = 'source'   # not a subcommand: the options of parse_source
 
 
 def examples(*commands):
@@ -68,8 +68,7 @@ def examples(*commands):
     return '\n'.join(lines)
 
 
-LEGACY = {'--publish': 'publish', '--copy': 'copy', '--benchmark': 'bench', '--sweep': 'sweep'}
-SWEEP_OPTIONS = ('--travel', '--from', '--to', '--step', '--hz')
+SWEEP_OPTIONS = ('--travel', '--hz')
 
 
 class Parser(cli.Parser):
@@ -80,21 +79,13 @@ class Parser(cli.Parser):
         sys.exit(cli.fail(PROG, f'error: {message} (see {self.prog} --help)'))
 
 
-def _number(minimum=None, strict=False, millimetres=False):
-    """
-    Return an argparse type: a finite number above (strict) or at least minimum (None: any).
-
-    millimetres: read as linkage-sweep reads a length (cli.millimetres), so that a unit after
-    the number (--from -80mm) is refused saying how to give it.
-    """
+def _number(minimum=None, strict=False):
+    """Return an argparse type: a finite number above (strict) or at least minimum (None: any)."""
     def parse(text):
-        if millimetres:
-            value = cli.millimetres(text)
-        else:
-            try:
-                value = float(text)
-            except ValueError:
-                raise argparse.ArgumentTypeError(f'expected a number, got {text!r}') from None
+        try:
+            value = float(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f'expected a number, got {text!r}') from None
         if minimum is None:
             if not is_finite_number(value):
                 raise argparse.ArgumentTypeError(f'must be a finite number, got {text}')
@@ -107,8 +98,8 @@ def _number(minimum=None, strict=False, millimetres=False):
 
 
 def _options(parser, command):
-    """Add the options of a subcommand to its parser; return their option strings."""
-    source = command in ('publish', 'bench')   # a BAG, or without one a sweep
+    """Add the options of a subcommand (or SOURCE) to its parser; return their option strings."""
+    source = command in ('publish', SOURCE)   # a BAG, or without one a sweep
     known = set()
 
     def option(*names, **kwargs):
@@ -129,10 +120,10 @@ def _options(parser, command):
         option('--topic', default=DEFAULT_TOPIC, help='wheel-travel topic, '
                f'std_msgs/msg/Float64 in m (default {DEFAULT_TOPIC})')
         stored = (' (default: the scene the recording stores, else five_link)'
-                  if command in ('solve', 'bench') else ' (default five_link)')
+                  if command in ('solve', SOURCE) else ' (default five_link)')
         option('--scene', help=('sweep: ' if command == 'publish' else '') +
                'bundled scene name or scene YAML path' + stored)
-    if command in ('solve', 'sweep', 'bench'):
+    if command in ('solve', 'sweep', SOURCE):
         option('--method', choices=METHODS, default='fast', help='solver (default fast)')
     if command in ('solve', 'sweep'):
         option('--frame-id', default=FRAME_ID,
@@ -144,16 +135,11 @@ def _options(parser, command):
                "at the commands' recorded times, for nodes with use_sim_time:=true")
         option('--wait', type=_number(0.0, False), default=10.0,
                help='s to wait for a subscriber, >= 0 (default 10)')
-    if command in ('sweep', 'publish', 'bench'):
+    if command in ('sweep', 'publish', SOURCE):
         which = 'sweep: ' if source else ''
         option('--travel', type=cli.span, metavar=cli.SPAN,
                help=f'{which}travels, mm: FROM:TO:STEP (TO included) or one value (default: '
                "the scene's travel block)")
-        for name, dest, number in (('--from', 'start', _number(millimetres=True)),
-                                   ('--to', 'stop', _number(millimetres=True)),
-                                   ('--step', 'step', _number(0.0, True, millimetres=True))):
-            known.add(name)
-            parser.old(name, dest=dest, type=number, new='--travel FROM:TO:STEP')
         option('--hz', type=_number(0.0, True),
                help=f'{which}command rate, Hz, > 0 (default {SWEEP_HZ:g})')
     return known
@@ -180,69 +166,54 @@ def make_parser(description):
     return parser
 
 
-def translate(argv):
-    """
-    Return (argv in the subcommand spelling, the note to print or None).
-
-    The earlier spellings: BAG alone solves; --sweep, --copy, --publish and --benchmark
-    chose the others (--publish and --benchmark with --sweep: of a sweep's commands). Taken
-    as such when a mode flag or a word that can be a BAG is among the arguments.
-    """
-    if not argv or argv[0] in COMMANDS or argv[0] in ('-h', '--help') or not any(
-            a in LEGACY or not a.startswith('-') for a in argv):
-        return list(argv), None
-    modes = [a for a in argv if a in LEGACY]
-    rest = [a for a in argv if a not in LEGACY]
-    chosen = [m for m in dict.fromkeys(modes) if m != '--sweep']
-    if len(chosen) > 1:
-        raise cli.Mistake(f'error: {chosen[0]} and {chosen[1]}: choose one (see {PROG} --help)')
-    if chosen == ['--copy'] and '--sweep' in modes:
-        raise cli.Mistake(f'error: --copy needs a BAG (see {PROG} --help)')
-    command = LEGACY[chosen[0]] if chosen else 'sweep' if '--sweep' in modes else 'solve'
-    new = [command, *rest]
-    return new, f'{PROG}: note: {shlex.join([PROG, *argv])} is now spelled ' \
-                f'{shlex.join([PROG, *new])}'
-
-
 def parse_args(argv, description):
-    """
-    Parse linkage-replay's arguments (either spelling); a mistake exits with status 2.
-
-    args.note: for an earlier spelling, the line that names the new one, else None.
-    """
+    """Parse linkage-replay's arguments; a mistake exits with one line and status 2."""
     parser = make_parser(description)
-    try:
-        argv, note = translate(list(sys.argv[1:] if argv is None else argv))
-        argv = _joined_values(argv, parser)
-    except cli.Mistake as exc:
-        sys.exit(cli.fail(PROG, exc))
+    known = set().union(*(options for _, options in parser.commands.values()))
+    argv = _joined_values(list(sys.argv[1:] if argv is None else argv), known)
     args, extras = parser.parse_known_args(argv)
     if args.command is None:
         parser.error(f'unrecognized arguments: {" ".join(extras)}' if extras else
                      f'choose what to do: {", ".join(COMMANDS)}')
     sub = parser.commands[args.command][0]
     if extras:
-        sub.error(_misplaced(parser, args.command, extras, note))
-    args.note = note
-    if args.command in ('publish', 'bench') and args.bag:
-        given = [o for o, dest in zip(SWEEP_OPTIONS, ('travel', 'start', 'stop', 'step', 'hz'))
-                 if getattr(args, dest) is not None]
-        if given or (args.command == 'publish' and args.scene):
-            sub.error(f'{(given or ["--scene"])[0]} makes a sweep: give it without BAG')
-    if getattr(args, 'travel', None) is not None:
-        args.start, args.stop, args.step = args.travel
+        sub.error(_misplaced(parser, args.command, extras))
+    return _sweep_checked(args, args.command, sub)
+
+
+def parse_source(argv, prog, description, epilog):
+    """
+    Parse the options that name commands to solve (SOURCE's), with prog's own --help.
+
+    BAG, or without it a sweep (--travel, --hz); --topic, --scene, --method, as linkage-replay
+    reads them (args.bag, args.start, args.stop, args.step as for its subcommands). A mistake
+    exits with one line, prog first, and status 2.
+    """
+    parser = cli.Parser(prog, description, epilog)
+    known = _options(parser, SOURCE)
+    args = parser.parse_args(_joined_values(list(argv), known))
+    return _sweep_checked(args, SOURCE, parser)
+
+
+def _sweep_checked(args, command, parser):
+    """Refuse a sweep's option given with BAG (parser.error); set the sweep's range; args."""
+    if command in ('publish', SOURCE) and args.bag:
+        given = [o for o in SWEEP_OPTIONS if getattr(args, o[2:]) is not None]
+        if given or (command == 'publish' and args.scene):
+            parser.error(f'{(given or ["--scene"])[0]} makes a sweep: give it without BAG')
+    if 'travel' in args:   # a sweep's range: None, the scene's travel block
+        args.start, args.stop, args.step = args.travel or (None, None, None)
     return args
 
 
-def _joined_values(argv, parser):
+def _joined_values(argv, known):
     """
-    Join a number option and a value that starts with '-' ('--from', '-1e300': --from=-1e300).
+    Join a number option and a value that starts with '-' ('--hz', '-1e300': --hz=-1e300).
 
     argparse takes '-1e300' or '-80mm' for an option of its own ('expected one argument');
     joined, the value is checked as a number, and a mistake is said as such.
     """
-    numeric = {'--travel', '--from', '--to', '--step', '--hz', '--rate', '--wait'}
-    known = set().union(*(options for _, options in parser.commands.values()))
+    numeric = {'--travel', '--hz', '--rate', '--wait'}
     joined, i = [], 0
     while i < len(argv):
         if argv[i] in numeric and i + 1 < len(argv) and argv[i + 1].startswith('-') \
@@ -255,7 +226,7 @@ def _joined_values(argv, parser):
     return joined
 
 
-def _misplaced(parser, command, extras, note):
+def _misplaced(parser, command, extras):
     """Say what is wrong with arguments a subcommand does not take."""
     option = next((e.split('=')[0] for e in extras if e.startswith('-')), None)
     if option is None and command == 'sweep':
@@ -263,12 +234,5 @@ def _misplaced(parser, command, extras, note):
     owners = [name for name, (_, known) in parser.commands.items() if option in known]
     if not owners:
         return f'unrecognized arguments: {" ".join(extras)}'
-    if note is None:
-        return f'{option} is not an option of {PROG} {command} (it is one of: ' \
-               f'{", ".join(owners)})'
-    flags = {command: flag for flag, command in LEGACY.items()}
-    if owners == ['publish']:
-        return f'{option} needs --publish'
-    if 'sweep' in owners and set(owners) <= {'sweep', 'publish', 'bench'}:
-        return f'{option} needs --sweep'
-    return f'{option} is not used with {flags.get(command, "a BAG alone")}'
+    return f'{option} is not an option of {PROG} {command} (it is one of: ' \
+           f'{", ".join(owners)})'

@@ -5,7 +5,6 @@
 Solve a stream of wheel-travel commands as suspension_node answers them, into sinks.
 
     solve_commands(commands, scene, method, sinks, topic)   the answers and /diagnostics
-    benchmark(commands, scene, method)                     us per command, with each sink
 
 The answering is the node's own (linkage_ros.answer.protocol.Responder, with the node's
 parameter defaults); time is the recording's: each command at its receive time, a diagnostics
@@ -18,14 +17,9 @@ order, as the node took them. What a solved command publishes is the Responder's
 the node (protocol.OUTPUTS).
 """
 
-import math
-from pathlib import Path
-import sys
-import time
-
 from .replay_commands import DEFAULT_TOPIC, FLOAT64, stamp_of
 from ..answer.protocol import Responder
-from ..core.base import LinkageError, MM_PER_M
+from ..core.base import MM_PER_M
 
 DIAGNOSTIC_ARRAY = 'diagnostic_msgs/msg/DiagnosticArray'
 DIAGNOSTICS_TOPIC = '/diagnostics'
@@ -274,42 +268,3 @@ def solve_commands(commands, scene, method, sinks, topic=DEFAULT_TOPIC, progress
         report(t)
         apply_changes(pending[-1].log_time if pending else t)   # those after the last command
     return failures
-
-
-def benchmark(commands, scene, method, repeat=3, stream=None):
-    """
-    Time solving the commands alone and with each sink; print a table (us per command).
-
-    'no recording' solves and builds the messages (as the node does to publish them); the
-    other rows add McapRecorder, RerunRecorder or both, file closing included. Best of repeat.
-    """
-    import tempfile
-
-    from ..record.mcap_writer import McapRecorder
-    from ..record.rerun_view import RerunRecorder
-    if not commands:
-        raise LinkageError('bench', 'no commands to time')
-    stream = stream or sys.stdout
-    modes = {'no recording': lambda d: [],
-             'McapRecorder': lambda d: [McapRecorder(d / 'bench.mcap', qos=latched_topics())],
-             'RerunRecorder': lambda d: [RerunRecorder(d / 'bench.rrd', scene)],
-             'both': lambda d: [McapRecorder(d / 'bench.mcap', qos=latched_topics()),
-                                RerunRecorder(d / 'bench.rrd', scene)]}
-    messages = 5 * len(commands)   # the command, pose, camber, toe, tf (diagnostics: a few)
-    print('mode,commands,us_per_command,ratio,extra_us_per_message', file=stream)
-    base = None
-    for mode, make in modes.items():
-        best = math.inf
-        for _ in range(repeat):
-            with tempfile.TemporaryDirectory() as folder:
-                start = time.perf_counter()
-                sinks = make(Path(folder))
-                solve_commands(commands, scene, method, sinks)
-                for sink in sinks:
-                    sink.close()
-                best = min(best, time.perf_counter() - start)
-        per_command = 1e6 * best / len(commands)
-        base = per_command if base is None else base
-        extra = 1e6 * best / messages - base * len(commands) / messages
-        print(f'{mode},{len(commands)},{per_command:.1f},{per_command / base:.3f},{extra:.1f}',
-              file=stream)

@@ -9,17 +9,16 @@ to the scene's own travel block (for the bundled scenes -80 to +80 mm in 1 mm st
 """
 
 import sys
-import time
 
 import numpy as np
 
-from ..cli import (check_table, counted, EXIT_STATUS, fail, millimetres, Parser, program, SPAN,
-                   span, table_status, warn)
+from ..cli import (check_table, counted, EXIT_STATUS, fail, Parser, program, SPAN, span,
+                   table_status, warn)
 from ..core.base import (check_position_count, LinkageError, lost_cells, positions_needed,
                          say_ranges)
 from ..core.measure import columns
-from ..core.model import load_scene, SceneError
-from ..core.solve import Continuation, METHODS, sweep, travel_range
+from ..core.model import load_scene
+from ..core.solve import METHODS, sweep, travel_range
 from ..core.warmup import compile_if_cold
 from ..outputs import check_output, write_table
 
@@ -131,129 +130,72 @@ ranges (doc/scenes.md#ranges; outside them a scene is refused in one line, statu
 """ + \
     say_ranges('coordinate', 'spring_rate', 'force_table_force', 'force_table_slope') + """
 
-Old spellings kept for one release, each with a note: --from/--to/--step, --grid, --csv,
---benchmark.
-
 exit status: 0 every travel solved; 1 a travel is out of reach (the rows solved before it
 are written, the message names the limit), or a value is not finite where its quantity is
 defined (written as nan, the message names the columns); """ + EXIT_STATUS
 
 
-def parse_args(argv, rounds=0):
+def parse_args(argv):
+    """Read the command line; a mistake exits with one line and status 2."""
     parser = Parser('linkage-sweep', __doc__, EPILOG)
     parser.add_argument('scene', help='bundled scene name (e.g. five_link) or path to a YAML file')
     parser.add_argument('--travel', type=span, metavar=SPAN,
                         help='wheel travel, mm, + = bump: one value or a range (default: the '
                         "scene's travel block)")
-    parser.old('--from', dest='start', type=millimetres, new='--travel FROM:TO:STEP')
-    parser.old('--to', dest='stop', type=millimetres, new='--travel FROM:TO:STEP')
-    parser.old('--step', type=millimetres, new='--travel FROM:TO:STEP')
     parser.add_argument('--method', choices=METHODS, default='fast',
                         help='fast (pose Newton, compiled) or paper (Alexandru 2018); '
                         'default fast')
     parser.add_argument('-o', '--output', metavar='FILE',
                         help='write the table to this file (default: stdout)')
-    parser.old('--csv', dest='output', new='-o/--output')
     parser.add_argument('--rack', type=span, metavar=SPAN,
                         help='steering rack travel, mm (+ = rack to the left); adds rack_mm; '
                         'a range solves a travel x rack grid')
-    parser.old('--grid', dest='rack', type=span, metavar=SPAN, new='--rack FROM:TO:STEP')
     parser.add_argument('--alignment', action='store_true',
                         help='add the alignment columns (gains, steer axis, scrub, trail, '
                         'instant centres, screw axis)')
     parser.add_argument('--elements', action='store_true',
                         help="add the columns of the scene's springs, dampers and lengths")
-    parser.old('--benchmark', type=int, metavar='ROUNDS', default=0,
-               new='linkage-bench sweep --rounds ROUNDS')
-    args = parser.parse_args(argv)
-    args.benchmark = rounds or args.benchmark
-    if args.benchmark < 0:
-        parser.error(f'--benchmark: expected a number of rounds >= 0, got {args.benchmark}')
-    return args
+    return parser.parse_args(argv)
 
 
-def benchmark(scene, travels, rounds):
+def request(args):
     """
-    Return the median time per solved position (us) of each way of solving.
+    Return what parsed arguments ask to solve: (scene, travels, racks), mm.
 
-    Timed side by side: paper and fast sweeps, and the fast method one command at a time (the
-    node's path). Returns the exit status: 1, with the line, if a travel is out of reach
-    (nothing is timed: a sweep that stops early is no measure of one that does not).
+    Raises SceneError for a scene that does not load and LinkageError for a request that
+    cannot be carried out (too many positions, a rack on a scene that does not steer,
+    --elements of a scene without elements), before anything is solved.
     """
-    solved = sweep(scene, travels)
-    if not solved.success:
-        print(f'linkage-sweep: nothing to time: {solved.message}', file=sys.stderr)
-        return 1
-
-    def one_by_one():
-        cont = Continuation(scene)
-        for travel in travels:
-            cont.solve(travel)
-
-    entries = {'paper sweep': lambda: sweep(scene, travels, method='paper'),
-               'fast sweep': lambda: sweep(scene, travels, method='fast'),
-               'fast, one command at a time': one_by_one}
-    repeats = {'paper sweep': 1, 'fast sweep': 20, 'fast, one command at a time': 2}
-    times = {name: [] for name in entries}
-    for r in range(rounds):
-        for name, run in entries.items():
-            for _ in range(repeats[name]):
-                start = time.perf_counter()
-                run()
-                times[name].append((time.perf_counter() - start) / len(travels) * 1e6)
-        print(f'linkage-sweep: benchmark round {r + 1}/{rounds}', file=sys.stderr)
-    worst = max(sweep(scene, travels, method=m).residual.max() for m in METHODS)
-    fast = np.median(times['fast sweep'])
-    print(f'{scene.name}: {counted(len(travels), "position")} from {travels[0]:g} to '
-          f'{travels[-1]:g} mm, '
-          f'largest residual {worst:.2g} mm')
-    print(f'{"method":<30}{"median_us_per_position":>24}{"p95_us":>10}{"ratio_to_fast":>15}')
-    for name, values in times.items():
-        print(f'{name:<30}{np.median(values):>24.1f}{np.percentile(values, 95):>10.1f}'
-              f'{np.median(values) / fast:>15.1f}')
-    return 0
+    scene = load_scene(args.scene)
+    start, stop, step = args.travel or scene.travel
+    count = positions_needed(start, stop, step, '--travel')
+    racks = [0.0]
+    if args.rack is not None:
+        positions_needed(*args.rack, '--rack')   # before a range too long is made
+        racks = list(travel_range(*args.rack))
+    check_position_count(count * len(racks), '--rack', f'{counted(count, "travel")} x '
+                         f'{counted(len(racks), "rack")}')
+    if racks != [0.0] and not scene.steered:
+        raise LinkageError(scene.name, 'no constraint is marked steer: rack, so a rack input '
+                           'moves nothing')
+    if args.elements and not scene.elements:
+        raise LinkageError('--elements', f'{scene.name} lists no elements (doc/elements.md)')
+    return scene, travel_range(start, stop, step), racks
 
 
 @program(PROG)
-def main(argv: list[str] | None = None, rounds: int = 0) -> int:
-    """
-    Run linkage-sweep: 0 when done, 1 if a travel is out of reach, 2 for a mistake.
-
-    rounds > 0 times the sweep instead (linkage-bench sweep) over that many rounds.
-    """
-    args = parse_args(argv, rounds)
+def main(argv: list[str] | None = None) -> int:
+    """Run linkage-sweep: 0 when done, 1 if a travel is out of reach, 2 for a mistake."""
+    args = parse_args(argv)
     try:
-        scene = load_scene(args.scene)
-    except SceneError as exc:
-        return fail(PROG, exc)
-    warn(PROG, scene.warnings)
-    try:
+        scene, travels, racks = request(args)   # SceneError is a LinkageError
+        warn(PROG, scene.warnings)
         check_output(args.output, '-o', [scene.source])
         check_table(args.output)
     except LinkageError as exc:
         return fail(PROG, exc)
-    start, stop, step = args.travel or (
-        given if given is not None else default
-        for given, default in zip((args.start, args.stop, args.step), scene.travel))
-    try:
-        count = positions_needed(start, stop, step, '--travel')
-        racks = [0.0]
-        if args.rack is not None:
-            positions_needed(*args.rack, '--rack')   # before a range too long is made
-            racks = list(travel_range(*args.rack))
-        check_position_count(count * len(racks), '--rack', f'{counted(count, "travel")} x '
-                             f'{counted(len(racks), "rack")}')
-    except LinkageError as exc:
-        return fail(PROG, exc)
-    travels = travel_range(start, stop, step)
-    if racks != [0.0] and not scene.steered:
-        return fail(PROG, f'{scene.name}: no constraint is marked steer: rack, so a rack input '
-                          'moves nothing')
-    if args.elements and not scene.elements:
-        return fail(PROG, f'--elements: {scene.name} lists no elements (doc/elements.md)')
+    start, stop, _ = args.travel or scene.travel
     compile_if_cold(PROG)
-    if args.benchmark:
-        return benchmark(scene, travels, args.benchmark)
     print(f'linkage-sweep: {scene.name}: {counted(len(travels), "position")} from {start:g} to '
           f'{stop:g} mm, method {args.method}', file=sys.stderr)
     results = []

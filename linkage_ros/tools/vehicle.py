@@ -21,7 +21,7 @@ import numpy as np
 from ..cli import (check_plot, check_table, EXIT_STATUS, fail, Parser, program, table_status,
                    warn)
 from ..core.base import LinkageError, lost_cells, say_ranges
-from ..core.model import load_vehicle, SceneError, Target
+from ..core.model import load_vehicle, Target
 from ..core.warmup import compile_if_cold
 from ..outputs import check_outputs, output_folder, write_table
 
@@ -52,6 +52,7 @@ gradient); """ + EXIT_STATUS
 
 
 def parse_args(argv):
+    """Read the command line; a mistake exits with one line and status 2."""
     parser = Parser(PROG, __doc__, EPILOG)
     parser.add_argument('vehicle', help='bundled vehicle name or path to a vehicle YAML file '
                         'with mass and tyre_rate')
@@ -98,36 +99,36 @@ def lost(header, rows, inputs=()):
     return lost_cells(columns, undefined)
 
 
-def problem_of(vehicle):
-    """Say in a few words why a loaded vehicle has no setup sheet; '' if it has one."""
+def request(args):
+    """
+    Return the vehicle parsed arguments name, loaded, once it is known to have a setup sheet.
+
+    Raises SceneError for a file that does not load and LinkageError, in a few words, for a
+    vehicle without a setup sheet: no mass block, or a corner without a spring with a rate.
+    """
+    vehicle = load_vehicle(args.vehicle)
     if vehicle.mass is None:
-        return (f'{vehicle.name} ({vehicle.source}) has no setup sheet: its file has no mass '
-                'block (mass: sprung, front_share or cg_x, unsprung; tyre_rate: '
-                'doc/vehicle.md)')
+        raise LinkageError(f'{vehicle.name} ({vehicle.source}) has no setup sheet', 'its file '
+                           'has no mass block (mass: sprung, front_share or cg_x, unsprung; '
+                           'tyre_rate: doc/vehicle.md)')
     for name in ('front', 'rear'):
         spec = vehicle.axles.axles[name]
         for corner in (spec.left, spec.right):
             if not any(e.has_rate for e in vehicle.corners[corner].elements):
-                return (f'{vehicle.source}: corners.{corner}: its scene has no spring with a '
-                        'rate and free_length: the wheel rate, ride rate and roll stiffness '
-                        'need one')
-    return ''
+                raise LinkageError(f'{vehicle.source}: corners.{corner}', 'its scene has no '
+                                   'spring with a rate and free_length: the wheel rate, ride '
+                                   'rate and roll stiffness need one')
+    return vehicle
 
 
 @program(PROG)
-def main(argv=None, rounds=0):
+def main(argv=None):
     """Run linkage-vehicle: 0 when done, 1 if a table stopped early, 2 for a mistake."""
     args = parse_args(argv)
     try:
-        vehicle = load_vehicle(args.vehicle)
-    except SceneError as exc:
-        return fail(PROG, exc)
-    target = Target(vehicle, vehicle.corners)   # its files: the vehicle's and every scene's
-    warn(PROG, vehicle.warnings)
-    problem = problem_of(vehicle)
-    if problem:
-        return fail(PROG, problem)
-    try:
+        vehicle = request(args)   # SceneError is a LinkageError
+        warn(PROG, vehicle.warnings)
+        target = Target(vehicle, vehicle.corners)   # its files: the vehicle's and every scene's
         check_outputs((('-o', args.output), ('--plot', args.plot)), target.files)
         check_plot(args.plot)
         check_table(args.output)
@@ -138,10 +139,6 @@ def main(argv=None, rounds=0):
         return fail(PROG, exc)
     compile_if_cold(PROG)
     from ..core.vehicle import setup_sheet
-    if rounds:
-        from ..bench.sheet import benchmark
-        benchmark(vehicle, setup_sheet, rounds)
-        return 0
     sheet = setup_sheet(vehicle)
     for note in sheet.notes:
         print(f'{PROG}: {note}', file=sys.stderr)

@@ -4,8 +4,9 @@
 """
 The package's import graph, read from its sources with ast.
 
-No circle, and core's layers import only downwards (base < model < solve < measure < axle <
-vehicle; core/__init__ and warmup above them).
+No circle; every module of the package imports only from its own room and the rooms above it
+in README's layout table (core's layers, cli, answer, record, chrono, ros, tools, study,
+bench), and core's layers more strictly, each from the layers ALLOWED names.
 
 Every import counts, also those under TYPE_CHECKING and those inside a function: a type or a
 late import still ties two files together for a reader.
@@ -13,12 +14,14 @@ late import still ties two files together for a reader.
 
 import ast
 from pathlib import Path
+import re
 import subprocess
 import sys
 
 import pytest
 
 PACKAGE = Path(__file__).resolve().parents[2] / 'linkage_ros'
+README = PACKAGE.parent / 'README.md'
 # each layer of core/ and the layers below it that it may import from
 ALLOWED = {
     'base': {'base'},
@@ -118,6 +121,33 @@ def _circles(graph):
         if v not in index:
             visit(v)
     return found
+
+
+def _rooms():
+    """Return the rooms of README's layout table, in its order: 'core/base', ..., 'bench'."""
+    return [name.rstrip('/').removesuffix('.py') for name in
+            re.findall(r'^\| `linkage_ros/([\w/.]*)` \|', README.read_text(), re.MULTILINE)]
+
+
+def _room(module, rooms):
+    """Return the room of README's table that holds module (the longest that matches)."""
+    path = module.split('.')[1:]
+    found = [r for r in rooms if r.split('/') == path[:len(r.split('/'))]]
+    return max(found, key=len) if found else None
+
+
+def test_readme_s_layout_table_has_a_room_for_every_module_of_the_package():
+    rooms = _rooms()
+    assert len(rooms) == len(set(rooms)) >= 10
+    assert sorted(m for m in GRAPH if m != 'linkage_ros' and _room(m, rooms) is None) == []
+
+
+def test_every_module_imports_only_from_its_room_and_the_rooms_above_it_in_readme():
+    rooms = _rooms()
+    rank = {room: i for i, room in enumerate(rooms)}
+    upward = sorted((m, t) for m, targets in GRAPH.items() if m != 'linkage_ros'
+                    for t in targets if rank[_room(t, rooms)] > rank[_room(m, rooms)])
+    assert upward == []
 
 
 def test_the_graph_reads_the_core_layers_it_checks():

@@ -5,7 +5,7 @@
 What a bag holds beyond our own recordings: schemas of any encoding, malformed messages.
 
 The bags are written with the mcap library's own Writer (as rosbag2, Foxglove or an attacker
-would write them), never with McapRecorder; what linkage-replay --copy writes is read back by
+would write them), never with McapRecorder; what linkage-replay copy writes is read back by
 mcap's reader and by rosbags' AnyReader.
 """
 
@@ -62,7 +62,7 @@ def test_copy_keeps_a_ros2idl_topic_and_everything_after_it_as_stored(tmp_path, 
               ('/wheel_travel', cdr.float64_cdr(0.02)), ('/reading', reading_cdr(-2.0, 'x'))]
     write(source, {'/wheel_travel': (FLOAT64, 'ros2msg', 'float64 data\n'),
                    '/reading': (READING, 'ros2idl', READING_IDL)}, stored)
-    assert replay.main([str(source), '--copy', '-o', str(out)]) == 0
+    assert replay.main(['copy', str(source), '-o', str(out)]) == 0
     assert 'wrote 4 messages' in capsys.readouterr().err
     with open(out, 'rb') as stream:        # mcap's reader: schema and bytes as they were
         reader = make_reader(stream)
@@ -96,7 +96,7 @@ def test_copy_keeps_a_topic_that_a_bag_holds_in_two_types(tmp_path):
         for i, (name, data) in enumerate(stored):
             writer.add_message(ids[name], log_time=i, data=data, publish_time=i)
         writer.finish()
-    assert replay.main([str(source), '--copy', '-o', str(out)]) == 0
+    assert replay.main(['copy', str(source), '-o', str(out)]) == 0
     with open(out, 'rb') as stream:
         copied = [(channel.topic, schema.name, message.data) for schema, channel, message in
                   make_reader(stream).iter_messages(log_time_order=False)]

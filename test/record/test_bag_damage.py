@@ -116,9 +116,9 @@ def read_independently(path):
 
 
 def copied(tmp_path, path, capsys):
-    """linkage-replay BAG --copy -o OUT: (exit status, stderr, messages read back)."""
+    """linkage-replay copy BAG -o OUT: (exit status, stderr, messages read back)."""
     out = tmp_path / 'recovered.mcap'
-    status = replay.main([str(path), '--copy', '-o', str(out)])
+    status = replay.main(['copy', str(path), '-o', str(out)])
     err = capsys.readouterr().err
     return status, err, read_independently(out)
 
@@ -336,10 +336,10 @@ def test_a_file_that_is_not_mcap_is_refused_by_reader_and_commands(tmp_path, cap
     with pytest.raises(RecordingError) as raised:
         read_bag(path)
     assert str(raised.value) == f'{path}: {problem}'
-    for main, extra in ((replay.main, ['--copy', '-o', str(tmp_path / 'out.mcap')]),
-                        (replay.main, ['-o', str(tmp_path / 'out.mcap')]),
-                        (rerun_convert.main, ['-o', str(tmp_path / 'out.rrd')])):
-        assert main([str(path), *extra]) == 2
+    for main, first, extra in ((replay.main, ['copy'], ['-o', str(tmp_path / 'out.mcap')]),
+                               (replay.main, ['solve'], ['-o', str(tmp_path / 'out.mcap')]),
+                               (rerun_convert.main, [], ['-o', str(tmp_path / 'out.rrd')])):
+        assert main([*first, str(path), *extra]) == 2
         err = capsys.readouterr().err
         assert err.count('\n') == 1 and err.endswith(f'{path}: {problem}\n')
     assert not (tmp_path / 'out.mcap').exists() and not (tmp_path / 'out.rrd').exists()
@@ -353,7 +353,7 @@ def test_a_bag_folder_with_two_mcap_files_is_refused(layout, tmp_path, capsys):
     with pytest.raises(RecordingError, match=r'exactly one \.mcap file \(found: run_0.mcap, '
                        r'run_1.mcap\)'):
         read_bag(folder)
-    assert replay.main([str(folder), '--copy', '-o', str(tmp_path / 'out.mcap')]) == 2
+    assert replay.main(['copy', str(folder), '-o', str(tmp_path / 'out.mcap')]) == 2
     err = capsys.readouterr().err
     assert err == (f'linkage-replay: {folder}: a bag folder must hold exactly one .mcap file '
                    '(found: run_0.mcap, run_1.mcap)\n')
@@ -369,7 +369,7 @@ def test_replay_and_rerun_solve_and_convert_what_a_damaged_bag_holds_with_status
     commands = sum(1 for m in expected if m[0] == '/wheel_travel')
     lost = len(layout.chunks[CHUNK][3])
     out = tmp_path / 'solved.mcap'
-    assert replay.main([str(path), '-o', str(out)]) == 1
+    assert replay.main(['solve', str(path), '-o', str(out)]) == 1
     err = capsys.readouterr().err
     assert (f'linkage-replay: warning: {path}: bag damaged: {len(expected)} messages read, '
             f'{lost} lost ({problem}); solving the {commands} commands read\n') in err
@@ -380,7 +380,7 @@ def test_replay_and_rerun_solve_and_convert_what_a_damaged_bag_holds_with_status
     err = capsys.readouterr().err
     assert (f'linkage-rerun: warning: {path}: bag damaged: {len(expected)} messages read, '
             f'{lost} lost ({problem}); converting those\n') in err
-    assert replay.main([str(layout_path(tmp_path, layout)), '-o', str(out)]) == 0
+    assert replay.main(['solve', str(layout_path(tmp_path, layout)), '-o', str(out)]) == 0
 
 
 def layout_path(tmp_path, layout):

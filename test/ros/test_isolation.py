@@ -184,7 +184,7 @@ def test_nothing_crosses_between_cross_process_tests_and_another_ros_process_on_
         localhost_executor):
     # The outsiders run outside the private network, on the same domain (the user's), beside
     # the user's own suspension_node; inside run what the cross-process tests run:
-    # suspension_node in its own process answering a probe, and linkage-replay --publish
+    # suspension_node in its own process answering a probe, and linkage-replay publish
     # --clock, which publishes /wheel_travel and /clock.
     assert outsiders_outside.wait_until_they_meet(), 'the outsiders did not hear each other'
     # Each node of the test has a name of its own, so that another's of the same program
@@ -201,7 +201,7 @@ def test_nothing_crosses_between_cross_process_tests_and_another_ros_process_on_
     # linkage-replay's main, its node renamed by the ROS arguments rclpy.init reads (sys.argv)
     replay = subprocess.Popen(
         [sys.executable, '-c', 'import sys; from linkage_ros.tools.replay import main; '
-         f'sys.exit(main([{str(BAG)!r}, "--publish", "--clock", "--rate", "4", "--wait", "20"]))',
+         f'sys.exit(main(["publish", {str(BAG)!r}, "--clock", "--rate", "4", "--wait", "20"]))',
          '--ros-args', '-r', f'__node:={ours["linkage_replay"]}'],
         env=dict(os.environ, ROS_AUTOMATIC_DISCOVERY_RANGE='LOCALHOST'),
         stderr=subprocess.PIPE, text=True)

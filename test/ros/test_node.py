@@ -408,9 +408,9 @@ def test_bad_scene_exits_non_zero_with_the_loader_message(node_process, tmp_path
 
 
 def test_node_bench_quick_run_prints_every_section_with_nothing_lost(domain_id):
-    # A smoke run of linkage-node-bench: the tables' structure, not their (machine) timings.
+    # A smoke run of linkage-bench node: the tables' structure, not their (machine) timings.
     result = subprocess.run(
-        [str(Path(sys.executable).parent / 'linkage-node-bench'), '--quick',
+        [str(Path(sys.executable).parent / 'linkage-bench'), 'node', '--quick',
          '--only', 'core,sweep,latency,vehicle,callback'],
         capture_output=True, text=True, timeout=300)
     assert result.returncode == 0, result.stderr

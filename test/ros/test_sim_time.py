@@ -5,7 +5,7 @@
 use_sim_time: with a /clock publisher every stamp suspension_node writes is simulated time.
 
 In process over real DDS: a test node publishes rosgraph_msgs/Clock on /clock and jumps it
-from 100 s to 5000 s; cross process: linkage-replay --publish --clock drives the node's clock
+from 100 s to 5000 s; cross process: linkage-replay publish --clock drives the node's clock
 from a bag's recorded times.
 """
 
@@ -133,8 +133,8 @@ def test_replay_publish_clock_makes_a_sim_time_node_stamp_with_the_recorded_time
     probe = Probe(localhost_context, localhost_executor)
     env = dict(os.environ, ROS_DOMAIN_ID=str(domain_id),
                ROS_AUTOMATIC_DISCOVERY_RANGE='LOCALHOST')
-    replay = subprocess.Popen([sys.executable, '-m', 'linkage_ros.tools.replay', str(bag),
-                               '--publish', '--clock', '--wait', '20'],
+    replay = subprocess.Popen([sys.executable, '-m', 'linkage_ros.tools.replay', 'publish',
+                               str(bag), '--clock', '--wait', '20'],
                               env=env, stderr=subprocess.PIPE, text=True)
     try:
         assert spin_until(localhost_executor, lambda: len(probe.poses) == len(travels), 30.0)
@@ -157,6 +157,7 @@ def test_replay_publish_clock_makes_a_sim_time_node_stamp_with_the_recorded_time
 def test_replay_clock_without_publish_is_refused(capsys):
     from linkage_ros.tools.replay import main
     with pytest.raises(SystemExit) as exited:
-        main(['--sweep', '--clock'])
+        main(['sweep', '--clock'])
     assert exited.value.code == 2
-    assert '--clock needs --publish' in capsys.readouterr().err
+    assert '--clock is not an option of linkage-replay sweep (it is one of: publish)' in \
+        capsys.readouterr().err

@@ -138,8 +138,8 @@ def test_without_the_interface_package_the_node_serves_no_solve_and_says_why_onc
 def test_node_bench_quick_run_prints_the_service_and_lifecycle_tables(domain_id):
     # A smoke run of the two sections: the tables' structure, not their (machine) timings.
     result = subprocess.run(
-        [str(Path(sys.executable).parent / 'linkage-node-bench'), '--quick', '--starts', '1',
-         '--only', 'service,lifecycle'], capture_output=True, text=True, timeout=300)
+        [str(Path(sys.executable).parent / 'linkage-bench'), 'node', '--quick', '--starts',
+         '1', '--only', 'service,lifecycle'], capture_output=True, text=True, timeout=300)
     assert result.returncode == 0, result.stderr
     tables = {}
     for block in result.stdout.strip().split('\n\n'):

@@ -76,10 +76,9 @@ def test_replay_help_names_each_subcommand_with_examples_and_the_statuses(capsys
     assert text.startswith('usage: linkage-replay ')
     assert 'linkage-replay: solve the wheel-travel' in text
     assert all(status in text for status in STATUSES)
-    for command in ('solve', 'sweep', 'copy', 'publish', 'bench'):
+    for command in ('solve', 'sweep', 'copy', 'publish'):
         assert f'\n    {command} ' in text                          # listed with its summary
         assert f'\n  linkage-replay {command} ' in text             # and an example
-    assert 'BAG alone (solve),\n--sweep, --copy, --publish, --benchmark' in text   # old spellings
 
 
 def test_replay_help_names_every_topic_a_solved_run_holds_with_its_type(capsys, tmp_path):
@@ -114,7 +113,6 @@ SUBCOMMAND_HELP = {
     'publish': (('--topic', '--rate', '--clock', '--wait', '--travel', '--hz'),
                 ('> 0 (default 1;', 's to wait for a subscriber, >= 0 (default 10)',
                  'without it, the commands of a sweep', 'sweep: travels, mm')),
-    'bench': (('--topic', '--scene', '--method', '--travel'), ('CSV table on stdout',)),
 }
 
 
@@ -175,8 +173,7 @@ def replay_mistakes(tmp_path, foreign_bag):
     missing = tmp_path / 'missing'
     return [
         (['--bogus'], 'error: unrecognized arguments: --bogus (see linkage-replay --help)'),
-        ([], 'error: choose what to do: solve, sweep, copy, publish, bench (see linkage-replay '
-         '--help)'),
+        ([], 'error: choose what to do: solve, sweep, copy, publish (see linkage-replay --help)'),
         (['solve'], 'error: the following arguments are required: BAG (see linkage-replay '
          'solve --help)'),
         (['sweep', bag], f'error: a sweep takes no BAG (unrecognized arguments: {bag})'),
@@ -198,25 +195,21 @@ def replay_mistakes(tmp_path, foreign_bag):
          "numbers with STEP > 0, got 'inf'"),
         (['sweep', '--travel', '-80mm'], "argument --travel: '-80mm': give FROM[:TO:STEP] as "
          'plain numbers, without a unit'),
-        (['bench', '--travel', '0:1:0.5 mm'], "argument --travel: '0:1:0.5 mm': give "
-         'FROM[:TO:STEP] as plain numbers, without a unit'),
         (['solve', bag, '--rate', '2'], 'error: --rate is not an option of linkage-replay solve '
          '(it is one of: publish) (see linkage-replay solve --help)'),
         (['sweep', '--clock'], 'error: --clock is not an option of linkage-replay sweep (it is '
          'one of: publish)'),
         (['solve', bag, '--travel', '3'], 'error: --travel is not an option of linkage-replay '
          'solve '
-         '(it is one of: sweep, publish, bench)'),
+         '(it is one of: sweep, publish)'),
         (['publish', bag, '--hz', '3'], 'error: --hz makes a sweep: give it without BAG'),
-        (['bench', bag, '--travel', '3'], 'error: --travel makes a sweep: give it without BAG'),
         (['publish', bag, '--scene', 'macpherson'], 'error: --scene makes a sweep: give it '
          'without BAG'),
         (['copy', bag, '--scene', 'macpherson'], 'error: --scene is not an option of '
          'linkage-replay copy'),
         (['publish', bag, '--method', 'paper'], 'error: --method is not an option of '
-         'linkage-replay publish (it is one of: solve, sweep, bench)'),
+         'linkage-replay publish (it is one of: solve, sweep)'),
         (['publish', bag, '-o', out], 'error: -o is not an option of linkage-replay publish'),
-        (['bench', bag, '-o', out], 'error: -o is not an option of linkage-replay bench'),
         (['solve', bag, '--method', 'quick'], 'error: argument --method: invalid choice: '
          "'quick'"),
         (['solve', bag, '--scene', 'nowhere'], 'nowhere: scene: no such file, and not a bundled '
@@ -236,27 +229,6 @@ def replay_mistakes(tmp_path, foreign_bag):
     ]
 
 
-def old_spelling_mistakes(tmp_path):
-    """(argv, the line's expected end) of mistakes in the spelling of earlier versions."""
-    bag = str(EXAMPLE)
-    return [
-        ([bag, '--rate', '2'], 'error: --rate needs --publish'),
-        ([bag, '--wait', '2'], 'error: --wait needs --publish'),
-        (['--sweep', '--clock'], 'error: --clock needs --publish'),
-        ([bag, '--from', '3'], 'error: --from needs --sweep'),
-        ([bag, '--hz', '3'], 'error: --hz needs --sweep'),
-        ([bag, '--copy', '--scene', 'macpherson'], 'error: --scene is not used with --copy'),
-        ([bag, '--copy', '--topic', '/x'], 'error: --topic is not used with --copy'),
-        ([bag, '--publish', '--method', 'paper'], 'error: --method is not used with --publish'),
-        ([bag, '--publish', '-o', 'x.mcap'], 'error: -o is not used with --publish'),
-        ([bag, '--benchmark', '-o', 'x.mcap'], 'error: -o is not used with --benchmark'),
-        ([bag, '--copy', '--publish'], 'error: --copy and --publish: choose one'),
-        (['--sweep', '--copy'], 'error: --copy needs a BAG'),
-        ([bag, '--sweep'], 'error: a sweep takes no BAG'),
-        ([bag, '--copy', '-o', bag], f'-o: {bag} is the input {bag}; give another file name'),
-    ]
-
-
 def test_every_replay_mistake_is_one_line_and_status_2_and_writes_nothing(
         tmp_path, capsys, foreign_bag):
     for argv, expected in replay_mistakes(tmp_path, foreign_bag):
@@ -266,13 +238,22 @@ def test_every_replay_mistake_is_one_line_and_status_2_and_writes_nothing(
         assert not (tmp_path / 'out.mcap').exists()
 
 
-def test_every_old_spelling_mistake_is_one_line_in_the_old_terms_and_status_2(
-        tmp_path, capsys, monkeypatch):
+@pytest.mark.parametrize('argv, expected', [
+    (['--travel', '0:1:0.5 mm'], "argument --travel: '0:1:0.5 mm': give FROM[:TO:STEP] as "
+     'plain numbers, without a unit (see linkage-bench replay --help)'),
+    ([str(EXAMPLE), '--travel', '3'], 'error: --travel makes a sweep: give it without BAG'),
+    ([str(EXAMPLE), '-o', 'out.mcap'], 'error: unrecognized arguments: -o out.mcap'),
+    (['bench', str(EXAMPLE)], 'error: unrecognized arguments: ' + str(EXAMPLE)),   # 0.1.0's
+    (['--scene', 'nowhere'], 'nowhere: scene: no such file, and not a bundled scene'),
+    (['none.mcap'], 'BAG none.mcap: no such file or folder'),
+])
+def test_every_linkage_bench_replay_mistake_is_one_line_and_status_2(
+        argv, expected, tmp_path, capsys, monkeypatch):
+    from linkage_ros.bench.replay import main
     monkeypatch.chdir(tmp_path)
-    for argv, expected in old_spelling_mistakes(tmp_path):
-        assert status_of(replay.main, argv) == 2, argv
-        line = one_line(capsys, 'linkage-replay')
-        assert expected in line, (argv, line)
+    assert status_of(main, argv) == 2, argv
+    line = one_line(capsys, 'linkage-bench replay')
+    assert expected in line, (argv, line)
     assert list(tmp_path.iterdir()) == []
 
 
@@ -311,7 +292,7 @@ def test_every_rerun_mistake_is_one_line_and_status_2_and_writes_nothing(
 
 
 @pytest.mark.parametrize('module, argv, expected', [
-    ('mcap', ['linkage_ros.tools.replay', str(EXAMPLE), '--copy'],
+    ('mcap', ['linkage_ros.tools.replay', 'copy', str(EXAMPLE)],
      'linkage-replay: reading and writing bags needs the Python package mcap, which is not '
      "installed: pip install -e '.[record]' (in a linkage_ros checkout) or pip install mcap"),
     ('rclpy', ['linkage_ros.tools.replay', 'publish', str(EXAMPLE)],

@@ -5,13 +5,14 @@
 One command-line vocabulary: --travel/--rack FROM[:TO:STEP], -o/--output, linkage-bench.
 
 Every program reads a range with one parser (cli.span); a bad range is one line naming the
-option, status 2. The spellings of the release before still work, each with a one-line note
-on stderr naming the new one (kept for one release).
+option, status 2. The spellings kept for a release before 0.1.0 (which never was) are gone:
+each is now an unknown option, one line, status 2 (CHANGELOG.rst, 0.2.0).
 """
 
 import argparse
 import csv
 import io
+from pathlib import Path
 import subprocess
 import sys
 
@@ -26,6 +27,7 @@ import pytest
 PROGRAMS = {'linkage-sweep': sweep.main, 'linkage-axle': axle.main,
             'linkage-map': kinematic_map.main, 'linkage-study': study_cli.main,
             'linkage-replay': replay.main}
+BAG = 'bags/five_link_sweep.mcap'
 
 
 def outcome(main, argv, capsys):
@@ -124,69 +126,41 @@ def test_a_bad_range_is_one_line_naming_the_option_with_status_2(
     assert list(tmp_path.iterdir()) == []
 
 
-def note(prog, old, new):
-    return f'{prog}: {old} is deprecated, use {new} (kept for one release)\n'
-
-
-@pytest.mark.parametrize('prog, old, new, notes', [
+@pytest.mark.parametrize('prog, argv, says', [
     ('linkage-sweep', ['five_link', '--from', '-10', '--to', '10', '--step', '10'],
-     ['five_link', '--travel', '-10:10:10'],
-     [('--from', '--travel FROM:TO:STEP'), ('--to', '--travel FROM:TO:STEP'),
-      ('--step', '--travel FROM:TO:STEP')]),
-    ('linkage-sweep', ['double_wishbone', '--from', '0', '--to', '0', '--grid=-10:10:10'],
-     ['double_wishbone', '--travel', '0', '--rack', '-10:10:10'],
-     [('--from', '--travel FROM:TO:STEP'), ('--to', '--travel FROM:TO:STEP'),
-      ('--grid', '--rack FROM:TO:STEP')]),
+     'unrecognized arguments: --from -10 --to 10 --step 10'),
+    ('linkage-sweep', ['double_wishbone', '--travel', '0', '--grid=-10:10:10'],
+     'unrecognized arguments: --grid=-10:10:10'),
+    ('linkage-sweep', ['five_link', '--csv', 'x.csv'], 'unrecognized arguments: --csv '),
+    ('linkage-sweep', ['five_link', '--benchmark', '1'], 'unrecognized arguments: --benchmark 1'),
     ('linkage-axle', ['demo_vehicle', '--heave', '0', '--rack-grid=-20:20:20'],
-     ['demo_vehicle', '--heave', '0', '--rack', '-20:20:20'],
-     [('--rack-grid', '--rack FROM:TO:STEP')]),
-    ('linkage-replay', ['bench', '--from', '0', '--to', '2', '--step', '2'],
-     ['bench', '--travel', '0:2:2'],
-     [('--from', '--travel FROM:TO:STEP'), ('--to', '--travel FROM:TO:STEP'),
-      ('--step', '--travel FROM:TO:STEP')]),
+     'unrecognized arguments: --rack-grid=-20:20:20'),
+    ('linkage-axle', ['demo_vehicle', '--csv', 'x.csv'], 'unrecognized arguments: --csv '),
+    ('linkage-axle', ['demo_vehicle', '--benchmark', '1'], 'unrecognized arguments: --benchmark'),
+    ('linkage-map', ['double_wishbone', '-o', 'maps', '--benchmark', '1'],
+     'unrecognized arguments: --benchmark 1'),
+    ('linkage-replay', ['sweep', '--from', '0', '--step', '2', '-o', 'x.mcap'],
+     'unrecognized arguments: --from 0 --step 2'),
+    ('linkage-replay', ['--sweep'], 'unrecognized arguments: --sweep'),
+    ('linkage-replay', [BAG, '--copy', '-o', 'x.mcap'], f"invalid choice: '{BAG}'"),
+    ('linkage-replay', [BAG, '-o', 'x.mcap'], f"invalid choice: '{BAG}'"),
+    # its timing is linkage-bench replay's (bench/ owns all timing)
+    ('linkage-replay', ['bench', BAG], "invalid choice: 'bench'"),
 ])
-def test_an_old_range_spelling_still_works_and_notes_the_new_one(prog, old, new, notes, capsys):
-    status, out, err = outcome(PROGRAMS[prog], old, capsys)
-    new_status, new_out, new_err = outcome(PROGRAMS[prog], new, capsys)
-    assert status == new_status == 0
-    if prog != 'linkage-replay':   # replay bench prints times: compare the commands' count
-        assert out == new_out
-    else:
-        assert [r.split(',')[1] for r in out.splitlines()] == \
-            [r.split(',')[1] for r in new_out.splitlines()]
-    where = f'{prog} bench' if prog == 'linkage-replay' else prog
-    assert err.startswith(''.join(note(where, o, n) for o, n in notes)), err
-    assert 'deprecated' not in new_err
-
-
-@pytest.mark.parametrize('prog, argv, old, file', [
-    ('linkage-sweep', ['five_link', '--travel', '0'], '--csv', 'x.csv'),
-    ('linkage-axle', ['demo_vehicle', '--heave', '0'], '--csv', 'x.csv'),
-    ('linkage-map', ['double_wishbone', '--travel', '0'], '--out', 'maps'),
-    ('linkage-study', ['sensitivity', 'five_link', '--travel', '0', '--quantity', 'toe_deg'],
-     '--out', 'x.csv')])
-def test_an_old_output_spelling_still_writes_there_and_notes_o(
-        prog, argv, old, file, capsys, tmp_path):
-    status, out, err = outcome(PROGRAMS[prog], argv + [old, str(tmp_path / file)], capsys)
-    assert (status, out) == (0, '') and (tmp_path / file).exists()
-    where = f'{prog} sensitivity' if prog == 'linkage-study' else prog
-    assert err.startswith(note(where, old, '-o/--output')), err
-
-
-@pytest.mark.parametrize('prog, argv, bench', [
-    ('linkage-sweep', ['five_link', '--travel', '0:10:10', '--benchmark', '1'], 'sweep'),
-    ('linkage-axle', ['demo_vehicle', '--heave', '0', '--benchmark', '1'], 'axle'),
-])
-def test_an_old_benchmark_option_still_times_and_notes_linkage_bench(prog, argv, bench, capsys):
-    status, out, err = outcome(PROGRAMS[prog], argv, capsys)
-    assert status == 0 and out.strip(), out   # the table of times
-    assert err.startswith(note(prog, '--benchmark', f'linkage-bench {bench} --rounds ROUNDS'))
+def test_an_old_spelling_is_now_an_unknown_option_in_one_line_with_status_2(
+        prog, argv, says, capsys, tmp_path, monkeypatch):
+    monkeypatch.chdir(Path(__file__).resolve().parents[2])   # BAG, relative as a user gives it
+    status, out, err = outcome(PROGRAMS[prog], [str(tmp_path / a) if a in (
+        'x.csv', 'maps', 'x.mcap') else a for a in argv], capsys)
+    assert (status, out) == (2, '') and err.count('\n') == 1, err
+    assert err.startswith(f'{prog}: error: ') and says in err, err
+    assert list(tmp_path.iterdir()) == []
 
 
 def test_linkage_bench_sweep_times_the_sweep_of_linkage_sweep(capsys):
     status, out, err = outcome(bench_cli.main, ['sweep', 'five_link', '--travel', '0:10:10',
                                                 '--rounds', '1'], capsys)
-    assert status == 0 and 'deprecated' not in err
+    assert status == 0
     assert out.startswith('five_link: 2 positions from 0 to 10 mm')
     assert [line.split()[0] for line in out.splitlines()[2:]] == ['paper', 'fast', 'fast,']
 
@@ -196,7 +170,10 @@ def test_linkage_bench_sweep_times_the_sweep_of_linkage_sweep(capsys):
      "rounds >= 1, got '0'"),
     (['axle', '--rounds'], "argument --rounds: expected a whole number of rounds >= 1, got ''"),
     (['magic'], "unknown benchmark 'magic': choose one of accuracy, node, soak, sweep, axle, "
-     'map, vehicle, study, replay, kc')])
+     'map, vehicle, study, replay, kc'),
+    # without a subcommand it ran accuracy, for one release that never was
+    ([], 'error: choose a benchmark: accuracy, node, soak, sweep, axle, map'),
+    (['--quick'], 'error: unrecognized arguments: --quick: the benchmark comes first')])
 def test_a_linkage_bench_mistake_is_one_line_with_status_2(argv, says, capsys):
     status, out, err = outcome(bench_cli.main, argv, capsys)
     assert (status, out) == (2, '') and err.count('\n') == 1 and says in err, err
@@ -207,28 +184,6 @@ def test_linkage_bench_help_names_every_subcommand(capsys):
     assert status == 0
     for command in bench_cli.COMMANDS:
         assert f'linkage-bench {command} ' in out, command
-
-
-@pytest.mark.parametrize('entry, prog, old, command', [
-    (bench_cli.soak, 'linkage-soak', 'linkage-soak', 'soak'),
-    (bench_cli.node_bench, 'linkage-node-bench', 'linkage-node-bench', 'node')])
-def test_an_old_benchmark_program_runs_its_subcommand_and_notes_the_new_one(
-        entry, prog, old, command, capsys, monkeypatch):
-    given = []
-    monkeypatch.setitem(bench_cli.COMMANDS, command,
-                        lambda argv, prog: given.append((argv, prog)) or 0)
-    monkeypatch.setattr('sys.argv', [prog, '--seed', '3'])
-    assert entry() == 0 and given == [(['--seed', '3'], prog)]
-    assert capsys.readouterr().err == note(prog, old, f'linkage-bench {command}')
-
-
-def test_linkage_bench_without_a_subcommand_runs_accuracy_and_notes_it(capsys, monkeypatch):
-    given = []
-    monkeypatch.setitem(bench_cli.COMMANDS, 'accuracy',
-                        lambda argv, prog: given.append((argv, prog)) or 0)
-    assert bench_cli.main(['--quick']) == 0 and given == [(['--quick'], 'linkage-bench')]
-    assert capsys.readouterr().err == note('linkage-bench', 'linkage-bench without a '
-                                           'subcommand', 'linkage-bench accuracy')
 
 
 def test_plot_writes_to_output_with_scenes_on_either_side(tmp_path, capsys):
@@ -245,11 +200,20 @@ def test_plot_without_an_output_is_one_line_naming_o(capsys):
                    '--help)\n')
 
 
-def test_plot_output_as_the_old_path_still_writes_and_notes_o(tmp_path, capsys):
-    status, _, err = outcome(plot.main, ['camber-toe', str(tmp_path / 'b.png'), 'five_link'],
-                             capsys)
-    assert status == 0 and (tmp_path / 'b.png').stat().st_size > 0
-    assert err.startswith(note('linkage-plot', 'OUT.png as a PATH', '-o/--output OUT.png'))
+def test_plot_output_as_a_path_is_refused_naming_o(tmp_path, capsys):
+    # the spelling of a release before 0.1.0: OUT.png as the first PATH
+    status, out, err = outcome(plot.main, ['camber-toe', str(tmp_path / 'b.png'), 'five_link'],
+                               capsys)
+    assert (status, out, list(tmp_path.iterdir())) == (2, '', [])
+    assert err == ('linkage-plot: error: -o/--output OUT.png is required (see linkage-plot '
+                   '--help)\n')
+
+
+def test_the_old_benchmark_programs_are_no_console_scripts():
+    from importlib.metadata import distribution
+    scripts = {e.name for e in distribution('linkage_ros').entry_points}
+    assert scripts & {'linkage-node-bench', 'linkage-soak'} == set()
+    assert 'linkage-bench' in scripts
 
 
 def test_linkage_bench_help_into_a_closed_pipe_ends_quietly_as_cat_does():

@@ -21,8 +21,8 @@ import pytest
 SCRIPTS = sorted(e.name for e in distribution('linkage_ros').entry_points
                  if e.group == 'console_scripts')
 # Positional arguments a script requires, so that the unknown option is the only mistake.
-REQUIRED = {'linkage-sweep': ['five_link'], 'linkage-plot': ['camber-toe', 'out.png'],
-            'linkage-rerun': ['run.mcap'], 'linkage-replay': ['run.mcap'],
+REQUIRED = {'linkage-sweep': ['five_link'], 'linkage-plot': ['camber-toe', '-o', 'out.png'],
+            'linkage-rerun': ['run.mcap'], 'linkage-replay': ['solve', 'run.mcap'],
             'linkage-map': ['five_link']}
 
 
@@ -31,13 +31,13 @@ TABLES = {'linkage-sweep': ['five_link'], 'linkage-axle': [],
           'linkage-vehicle': ['demo_vehicle'],
           'linkage-kc': ['double_wishbone_bushings', '--travel', '0'],
           'linkage-study': ['sensitivity', 'five_link', '--travel', '0'],
-          'linkage-replay': ['bench', str(Path(__file__).resolve().parents[2] / 'bags'
+          'linkage-bench': ['replay', str(Path(__file__).resolve().parents[2] / 'bags'
                                           / 'five_link_sweep.mcap')],
           'linkage-urdf': ['five_link', '-o', '-'], 'linkage-foxglove': ['five_link', '-o', '-']}
 # Programs with subcommands: each subcommand's --help too.
 SUBCOMMANDS = {'linkage-bench': ['accuracy', 'node', 'soak', 'sweep', 'axle', 'map', 'vehicle',
                                  'study', 'replay', 'kc', 'chrono'],
-               'linkage-replay': ['solve', 'sweep', 'copy', 'publish', 'bench'],
+               'linkage-replay': ['solve', 'sweep', 'copy', 'publish'],
                'linkage-study': ['sensitivity', 'tolerance', 'fit'],
                'linkage-chrono': ['import', 'export']}
 
@@ -51,8 +51,7 @@ def run(name, *args, cwd=None):
 
 def test_every_documented_program_is_a_console_script():
     assert {'suspension_node', 'linkage-sweep', 'linkage-replay', 'linkage-rerun',
-            'linkage-plot', 'linkage-bench', 'linkage-node-bench', 'linkage-soak',
-            'linkage-kc'} <= set(SCRIPTS)
+            'linkage-plot', 'linkage-bench', 'linkage-kc'} <= set(SCRIPTS)
 
 
 @pytest.mark.parametrize('name', SCRIPTS)
@@ -74,25 +73,26 @@ def test_an_unknown_option_is_one_line_naming_it_with_status_2(name, tmp_path):
 
 
 @pytest.mark.parametrize('name, args, says', [
-    ('linkage-node-bench', ['--plot', '/no/such/folder/x.png'],
+    ('node', ['--plot', '/no/such/folder/x.png'],
      '--plot: cannot write /no/such/folder/x.png: no folder /no/such/folder'),
-    ('linkage-node-bench', ['--scene', 'nowhere'], 'nowhere: scene: no such file'),
-    ('linkage-node-bench', ['--only', 'core,speed'], "--only: unknown section 'speed'"),
+    ('node', ['--scene', 'nowhere'], 'nowhere: scene: no such file'),
+    ('node', ['--only', 'core,speed'], "--only: unknown section 'speed'"),
     # it wrote nothing and said nothing: the plot is of the latency section
-    ('linkage-node-bench', ['--plot', 'x.png', '--only', 'core,sweep'],
+    ('node', ['--plot', 'x.png', '--only', 'core,sweep'],
      '--plot draws the latency section: add latency to --only'),
-    ('linkage-bench', ['-o', 'setup.py'], '-o: setup.py is a file, not a folder'),
-    ('linkage-bench', ['--scenes', 'nowhere'], 'nowhere: scene: no such file'),
-    ('linkage-bench', ['--entries', 'magic'], "--entries: unknown ['magic']"),
-    ('linkage-soak', ['--scene', 'nowhere'], 'nowhere: scene: no such file'),
-    ('linkage-soak', ['--commands', '10'], '--commands must exceed --warmup'),
+    ('accuracy', ['-o', 'setup.py'], '-o: setup.py is a file, not a folder'),
+    ('accuracy', ['--scenes', 'nowhere'], 'nowhere: scene: no such file'),
+    ('accuracy', ['--entries', 'magic'], "--entries: unknown ['magic']"),
+    ('soak', ['--scene', 'nowhere'], 'nowhere: scene: no such file'),
+    ('soak', ['--commands', '10'], '--commands must exceed --warmup'),
 ])
 def test_a_benchmark_given_a_mistake_says_it_in_one_line_before_it_runs(
         name, args, says, tmp_path):
     (tmp_path / 'setup.py').write_text('')
-    status, out, err = run(name, *args, cwd=tmp_path)
+    status, out, err = run('linkage-bench', name, *args, cwd=tmp_path)
     assert status == 2 and out == '', (out, err)
-    assert err.count('\n') == 1 and err.startswith(f'{name}: ') and says in err, err
+    assert err.count('\n') == 1 and err.startswith(f'linkage-bench {name}: ') and says in err, \
+        err
     assert sorted(p.name for p in tmp_path.iterdir()) == ['setup.py']
 
 

@@ -34,7 +34,7 @@ PROGRAMS = [
                                        'fitted.yaml', '--plot', 'PIC'], '--plot'),
     ('linkage-plot', plot.main, ['camber-toe', '-o', 'PIC', 'five_link'], ''),
     ('linkage-plot', plot.main, ['roll-centre', '-o', 'PIC'], ''),
-    ('linkage-node-bench', node_bench.main, ['--plot', 'PIC'], 'error: --plot'),
+    ('linkage-bench node', node_bench.main, ['--plot', 'PIC'], 'error: --plot'),
 ]
 
 

@@ -96,5 +96,5 @@ def test_a_scene_not_solved_whole_is_drawn_in_part_said_in_one_line_and_status_1
 
 def test_the_alignment_picture_says_the_same(tmp_path, capsys):
     singular = ROOT / 'test' / 'data' / 'five_link_singular.yaml'
-    assert main(['alignment', str(tmp_path / 'a.png'), str(singular)]) == 1
+    assert main(['alignment', '-o', str(tmp_path / 'a.png'), str(singular)]) == 1
     assert 'five_link_singular: travel -80 mm is out of reach' in capsys.readouterr().err

@@ -11,7 +11,6 @@ Expected values: the scene file's reference rows (refdata) and the recorded outp
 import math
 import os
 from pathlib import Path
-import re
 import subprocess
 import sys
 import time
@@ -271,49 +270,6 @@ def test_publish_republishes_the_commands_in_order_at_the_recorded_pace(tmp_path
     # rate 0.5: the 0.19 s of the recording take 0.38 s (a lower bound: never faster)
     assert received[-1][0] - received[0][0] >= 0.9 * 0.38
     assert '20/20 commands published' in err
-
-
-def test_benchmark_prints_one_row_per_recording_mode(capsys):
-    assert main(['bench', '--travel', '0:3:1']) == 0
-    lines = capsys.readouterr().out.strip().splitlines()
-    assert lines[0] == 'mode,commands,us_per_command,ratio,extra_us_per_message'
-    assert [line.split(',')[:2] for line in lines[1:]] == [
-        ['no recording', '4'], ['McapRecorder', '4'], ['RerunRecorder', '4'], ['both', '4']]
-    assert lines[1].split(',')[3] == '1.000'
-
-
-# --- the earlier spellings -----------------------------------------------------------------
-
-def without_times(messages):
-    """Return [(topic, the message's text without its stamp)]: a sweep's start is now."""
-    return [(topic, re.sub(r'stamp=Time\([^)]*\)', '', repr(msg))) for topic, _, msg in messages]
-
-
-@pytest.mark.parametrize('old, new', [
-    ([str(EXAMPLE), '-o', 'OUT'], ['solve', str(EXAMPLE), '-o', 'OUT']),
-    ([str(EXAMPLE), '--copy', '-o', 'OUT'], ['copy', str(EXAMPLE), '-o', 'OUT']),
-    (['--sweep', '--from', '0', '--to', '2', '-o', 'OUT'],
-     ['sweep', '--from', '0', '--to', '2', '-o', 'OUT']),
-])
-def test_an_earlier_spelling_does_the_same_and_names_the_new_one(tmp_path, capsys, old, new):
-    outputs = []
-    for argv in (old, new):
-        outputs.append(tmp_path / f'{len(outputs)}.mcap')
-        assert main([str(outputs[-1]) if a == 'OUT' else a for a in argv]) == 0
-    err = capsys.readouterr().err
-    written = [a if a != 'OUT' else str(outputs[0]) for a in new]
-    typed = [a if a != 'OUT' else str(outputs[0]) for a in old]
-    note = (f'linkage-replay: note: linkage-replay {" ".join(typed)} is now spelled '
-            f'linkage-replay {" ".join(written)}\n')
-    assert err.count('note:') == 1 and note in err
-    assert without_times(decoded(outputs[0])) == without_times(decoded(outputs[1]))
-
-
-def test_benchmark_in_the_earlier_spelling_prints_the_table_and_names_bench(capsys):
-    assert main(['--sweep', '--from', '0', '--to', '3', '--benchmark']) == 0
-    captured = capsys.readouterr()
-    assert captured.out.startswith('mode,commands,us_per_command,ratio,extra_us_per_message\n')
-    assert captured.err.endswith('is now spelled linkage-replay bench --from 0 --to 3\n')
 
 
 # --- the scene a recording stores ----------------------------------------------------------

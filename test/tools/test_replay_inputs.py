@@ -15,6 +15,7 @@ from pathlib import Path
 import shutil
 import struct
 
+from linkage_ros.bench.replay import main as bench
 from linkage_ros.core.model import load_scene
 from linkage_ros.tools.replay import main
 from mcap.reader import make_reader
@@ -134,7 +135,7 @@ def test_a_channel_of_another_type_on_the_command_topic_is_skipped_with_a_line(
 
 
 def test_bench_counts_the_same_loss(malformed_bag, capsys):
-    assert main(['bench', str(malformed_bag)]) == 1
+    assert bench([str(malformed_bag)]) == 1
     captured = capsys.readouterr()
     assert '2 of the 5 commands on /wheel_travel do not decode' in captured.err
     assert captured.out.splitlines()[1].startswith('no recording,3,')
@@ -163,7 +164,7 @@ def test_a_damaged_file_that_yields_nothing_is_status_1_naming_the_damage(
     assert damage in err and 'no /wheel_travel among what could be read' in err
     assert decoded(out) == []                          # a complete file, with nothing in it
     assert main(['copy', str(bag), '-o', str(tmp_path / 'copy.mcap')]) == 1
-    assert main(['bench', str(bag)]) == 1
+    assert bench([str(bag)]) == 1
     assert 'nothing to time' in capsys.readouterr().err
     assert main(['publish', str(bag), '--wait', '60']) == 1      # at once: no ROS started
     assert 'nothing to publish' in capsys.readouterr().err
@@ -174,8 +175,9 @@ def test_a_path_that_is_not_a_bag_is_a_mistake(tmp_path, capsys, content):
     bag = tmp_path / 'run.mcap'
     if content is not None:
         bag.write_bytes(content)
-    for command in ('solve', 'copy', 'bench'):
-        assert main([command, str(bag)]) == 2
+    for run in (lambda: main(['solve', str(bag)]), lambda: main(['copy', str(bag)]),
+                lambda: bench([str(bag)])):
+        assert run() == 2
         assert capsys.readouterr().err.count('\n') == 1
     assert sorted(p.name for p in tmp_path.iterdir()) == ([] if content is None
                                                           else ['run.mcap'])
@@ -196,7 +198,6 @@ def test_a_path_that_is_not_a_bag_is_a_mistake(tmp_path, capsys, content):
     (['sweep', '--travel=-1e300:1e300:1'], '--travel: 1 mm from -1e+300 to 1e+300 mm makes '
      '2e+300 commands'),
     (['sweep', '--travel=-1.7e308:1.7e308:1'], 'makes inf commands'),
-    (['bench', '--hz', '1e-300'], '--hz: 1e-300 Hz spreads'),
     (['publish', '--travel=-80:80:1e-300'], 'makes 1.6e+302 commands'),
     (['publish', str(EXAMPLE), '--rate', '1e-300'], '--rate: 1e-300: the 3.2 s of recorded '
      'commands would take 3.2e+300 s to publish, longer than the 292 years a wait can last '
@@ -208,6 +209,16 @@ def test_a_request_no_run_can_carry_out_is_one_line_saying_what_it_needs_and_sta
     assert main(argv) == 2
     err = capsys.readouterr().err
     assert err.count('\n') == 1 and err.startswith('linkage-replay: ') and line in err, err
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_linkage_bench_replay_refuses_a_sweep_no_run_can_carry_out_as_replay_does(
+        tmp_path, monkeypatch, capsys):
+    monkeypatch.chdir(tmp_path)
+    assert bench(['--hz', '1e-300']) == 2
+    err = capsys.readouterr().err
+    assert err.count('\n') == 1, err
+    assert err.startswith('linkage-bench replay: --hz: 1e-300 Hz spreads the 161 commands'), err
     assert list(tmp_path.iterdir()) == []
 
 

@@ -68,7 +68,7 @@ def test_solve_replays_rack_commands_and_a_scene_change_as_the_node_answered_the
     recorded = tmp_path / 'run.mcap'
     record_changed_run(suspension_node, probe, recorded)
     out = tmp_path / 'replayed.mcap'
-    assert main([str(recorded), '-o', str(out)]) == 0
+    assert main(['solve', str(recorded), '-o', str(out)]) == 0
     assert 'not replayed' not in capsys.readouterr().err
     expected, got = decoded(recorded), decoded(out)
     (poses, cambers, toes), (poses2, cambers2, toes2) = answers(expected), answers(got)
@@ -109,7 +109,7 @@ def test_a_scene_change_that_does_not_load_here_is_named_and_the_run_ends_there_
     missing = tmp_path / 'gone' / 'scene.yaml'
     write_run_with_change(bag, 'scene', str(missing), [0.01, 0.02], [0.03, 0.04, 0.05])
     out = tmp_path / 'replayed.mcap'
-    assert main([str(bag), '-o', str(out)]) == 1
+    assert main(['solve', str(bag), '-o', str(out)]) == 1
     err = capsys.readouterr().err
     assert (f"the node changed its scene to '{missing}' at 1700000000.030000000 s, which "
             'does not load here') in err
@@ -124,7 +124,7 @@ def test_a_change_of_solver_method_is_replayed_and_reported_as_the_node_reports_
     bag = tmp_path / 'run.mcap'
     write_run_with_change(bag, 'method', 'paper', [0.04, 0.05], [0.055])
     out = tmp_path / 'replayed.mcap'
-    assert main([str(bag), '-o', str(out)]) == 0
+    assert main(['solve', str(bag), '-o', str(out)]) == 0
     got = decoded(out)
     assert len(by_topic(got, '/wheel_carrier_pose')) == 3
     statuses = [s for m in by_topic(got, '/diagnostics') for s in m.status]
@@ -141,7 +141,7 @@ def test_joint_states_commands_that_solve_does_not_replay_are_named_and_give_sta
         rec.record('/wheel_travel', 'std_msgs/msg/Float64', Float64(data=0.01), T0, T0)
         rec.record('/joint_states', 'sensor_msgs/msg/JointState',
                    JointState(name=['travel'], position=[0.02]), T0 + 1, T0 + 1)
-    assert main([str(bag), '-o', str(tmp_path / 'out.mcap')]) == 1
+    assert main(['solve', str(bag), '-o', str(tmp_path / 'out.mcap')]) == 1
     assert (f'{bag}: 1 joint_states message (sensor_msgs/JointState commands) not replayed'
             in capsys.readouterr().err)
 
@@ -164,7 +164,7 @@ def test_a_scene_change_after_the_last_command_is_replayed_too(tmp_path):
     bag = tmp_path / 'run.mcap'
     write_run_with_change(bag, 'scene', 'double_wishbone', [0.01, 0.02], [])
     out = tmp_path / 'replayed.mcap'
-    assert main([str(bag), '-o', str(out)]) == 0
+    assert main(['solve', str(bag), '-o', str(out)]) == 0
     got = decoded(out)
     names = [m.data.split('name="', 2)[1].split('"')[0]
              for m in by_topic(got, '/robot_description')]

@@ -79,7 +79,7 @@ def test_solve_applies_the_recorded_wrenches_and_gives_the_node_s_answers_bit_fo
     recorded = tmp_path / 'run.mcap'
     record_statics_run(suspension_node, probe, recorded)
     out = tmp_path / 'replayed.mcap'
-    assert main([str(recorded), '-o', str(out), '--scene', SCENE]) == 0
+    assert main(['solve', str(recorded), '-o', str(out), '--scene', SCENE]) == 0
     expected, got = answers(recorded), answers(out)
     assert len(expected['/wheel_carrier_pose']) == 7
     assert any(t.startswith('/pickup/') for t in expected)
@@ -92,7 +92,7 @@ def test_a_refused_wrench_is_an_error_in_the_replay_s_diagnostics_as_on_the_node
     recorded = tmp_path / 'run.mcap'
     record_statics_run(suspension_node, probe, recorded)
     out = tmp_path / 'replayed.mcap'
-    assert main([str(recorded), '-o', str(out), '--scene', SCENE]) == 0
+    assert main(['solve', str(recorded), '-o', str(out), '--scene', SCENE]) == 0
     errors = [s.message for t, _, m in decoded(out) if t == '/diagnostics'
               for s in m.status if s.level == ERROR]
     assert len(errors) == 2

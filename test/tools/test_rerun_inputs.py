@@ -149,7 +149,8 @@ def test_an_output_that_is_the_mcap_inside_an_input_bag_folder_is_refused(tmp_pa
     inside = folder / 'run.mcap'
     inside.write_bytes(EXAMPLE.read_bytes())
     (tmp_path / 'alias.mcap').symlink_to(inside)
-    for program, out in ((rerun_convert.main, inside), (replay.main, inside),
+    for program, out in ((rerun_convert.main, inside),
+                         (lambda argv: replay.main(['solve', *argv]), inside),
                          (rerun_convert.main, tmp_path / 'alias.mcap'),
                          (rerun_convert.main, folder / '..' / 'bagdir' / 'run.mcap')):
         assert program([str(folder), '-o', str(out)]) == 2

@@ -46,7 +46,7 @@ def changed_run(tmp_path):
             t += 10**8
             rec.record('/wheel_travel', 'std_msgs/msg/Float64', Float64(data=value), t, t)
     run = tmp_path / 'run.mcap'
-    assert replay([str(commands), '-o', str(run), '--scene', 'five_link']) == 0
+    assert replay(['solve', str(commands), '-o', str(run), '--scene', 'five_link']) == 0
     return run
 
 

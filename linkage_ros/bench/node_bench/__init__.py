@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: Apache-2.0
 
 """
-linkage-node-bench: speed on the paths users take, side by side with what it must beat.
+linkage-bench node: speed on the paths users take, side by side with what it must beat.
 
 cli (the program: its help, options and sections), the sections (solver: core and sweep;
 start; latency; vehicle; callback), the bare references (echo), the driver that sends

@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: Apache-2.0
 
 """
-Section callback of linkage-node-bench: the node's travel callback in process.
+Section callback of linkage-bench node: the node's travel callback in process.
 
 With statics (issue 29), each command is a contact wrench then a travel, both callbacks
 timed together: statics:=true on the scene as it is (rigid: the loaded solve gives the

@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: Apache-2.0
 
 """
-linkage-node-bench: speed on the paths users take, side by side with what it must beat.
+linkage-bench node: speed on the paths users take, side by side with what it must beat.
 
 Sections (all by default; --only picks some), sizes multiplied by --scale (run 1, 10, 100):
 
@@ -62,6 +62,8 @@ from ...core.model import load_scene
 from ...core.warmup import compile_if_cold
 from ...ros.isolation import environment_domain_id
 
+PROG = 'linkage-bench node'
+
 SECTIONS = ('core', 'sweep', 'start', 'latency', 'service', 'lifecycle', 'vehicle', 'callback')
 DEFAULT_RATES = (250, 500, 1000, 2000, 4000)
 
@@ -73,8 +75,8 @@ EPILOG = f"""examples:
 exit status: 0 the tables were written; {EXIT_STATUS}"""
 
 
-def parse_args(argv, prog='linkage-node-bench'):
-    parser = Parser(prog, __doc__, EPILOG)
+def parse_args(argv):
+    parser = Parser(PROG, __doc__, EPILOG)
     parser.add_argument('--only', default=','.join(SECTIONS),
                         help=f'sections to run, comma separated (default: all: '
                         f'{",".join(SECTIONS)})')
@@ -130,10 +132,10 @@ def parse_args(argv, prog='linkage-node-bench'):
     return args, ros_args
 
 
-@program('linkage-node-bench')
-def main(argv: list[str] | None = None, prog: str = 'linkage-node-bench') -> int:
+@program(PROG)
+def main(argv: list[str] | None = None) -> int:
     """Run linkage-bench node, or one of the processes it starts (--echo, --start-once)."""
-    args, ros_args = parse_args(sys.argv[1:] if argv is None else argv, prog)
+    args, ros_args = parse_args(sys.argv[1:] if argv is None else argv)
     os.environ.setdefault('ROS_AUTOMATIC_DISCOVERY_RANGE', 'LOCALHOST')   # for its children too
     if args.domain_id is None:
         args.domain_id = environment_domain_id()
@@ -145,8 +147,8 @@ def main(argv: list[str] | None = None, prog: str = 'linkage-node-bench') -> int
              f'{",".join(args.only)}, scale {args.scale}; ROS domain {args.domain_id}, '
              f'discovery {os.environ["ROS_AUTOMATIC_DISCOVERY_RANGE"]}, topics under '
              f'/linkage_node_bench_{os.getpid()}')
-    compile_if_cold('linkage-node-bench')   # not within a timed section
-    with tempfile.TemporaryDirectory(prefix='linkage-node-bench-') as log_dir:
+    compile_if_cold(PROG)   # not within a timed section
+    with tempfile.TemporaryDirectory(prefix='linkage-bench-node-') as log_dir:
         if 'core' in args.only:
             bench_core(args)
         if 'sweep' in args.only:

@@ -1,7 +1,7 @@
 # SPDX-FileCopyrightText: 2026 linkage_ros authors
 # SPDX-License-Identifier: Apache-2.0
 
-"""The driver of linkage-node-bench: sends commands to a node process, times its answers."""
+"""The driver of linkage-bench node: sends commands to a node process, times its answers."""
 
 import time
 

@@ -1,7 +1,7 @@
 # SPDX-FileCopyrightText: 2026 linkage_ros authors
 # SPDX-License-Identifier: Apache-2.0
 
-"""The bare reference of linkage-node-bench: an rclpy node that only echoes, one process."""
+"""The bare reference of linkage-bench node: an rclpy node that only echoes, one process."""
 
 from geometry_msgs.msg import PoseStamped
 import rclpy

@@ -1,7 +1,7 @@
 # SPDX-FileCopyrightText: 2026 linkage_ros authors
 # SPDX-License-Identifier: Apache-2.0
 
-"""Section latency of linkage-node-bench: suspension_node against the echo node, one corner."""
+"""Section latency of linkage-bench node: suspension_node against the echo node, one corner."""
 
 import sys
 

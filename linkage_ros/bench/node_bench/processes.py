@@ -1,7 +1,7 @@
 # SPDX-FileCopyrightText: 2026 linkage_ros authors
 # SPDX-License-Identifier: Apache-2.0
 
-"""The node processes linkage-node-bench measures: started in a namespace, stopped, found."""
+"""The node processes linkage-bench node measures: started in a namespace, stopped, found."""
 
 import os
 from pathlib import Path

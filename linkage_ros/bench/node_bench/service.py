@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: Apache-2.0
 
 """
-Sections service and lifecycle of linkage-node-bench: the solve service, configure's time.
+Sections service and lifecycle of linkage-bench node: the solve service, configure's time.
 
 service    one suspension_node process, asked alternately by topic (wheel_travel in,
            wheel_carrier_pose back) and by its solve service (linkage_ros_interfaces/srv/

@@ -1,7 +1,7 @@
 # SPDX-FileCopyrightText: 2026 linkage_ros authors
 # SPDX-License-Identifier: Apache-2.0
 
-"""Sections core and sweep of linkage-node-bench: the solver alone, no ROS."""
+"""Sections core and sweep of linkage-bench node: the solver alone, no ROS."""
 
 import contextlib
 import io
@@ -54,19 +54,21 @@ def bench_core(args):
 
 
 def bench_sweep(args):
-    """linkage-sweep to a CSV file at 161, 1601, 16001 positions (x scale)."""
+    """linkage-sweep to a CSV file over the scene's travel block in steps of 1, 0.1, 0.01 mm."""
+    from ...core.model import load_scene
     from ...tools import sweep
+    low, high, _ = load_scene(args.scene).travel   # -80, 80 mm: 161, 1601, 16001 positions
     rows, base = [], None
     with tempfile.TemporaryDirectory() as folder:
         with contextlib.redirect_stderr(io.StringIO()):   # untimed: loads the kernels
-            sweep.main([args.scene, '--csv', str(Path(folder) / 'warmup.csv')])
+            sweep.main([args.scene, '-o', str(Path(folder) / 'warmup.csv')])
         for step in (1.0, 0.1, 0.01):
             step /= args.scale
-            positions = int(round(160 / step)) + 1
+            positions = int(round((high - low) / step)) + 1
             out = Path(folder) / 'sweep.csv'
             with contextlib.redirect_stderr(io.StringIO()):
                 start = time.perf_counter()
-                sweep.main([args.scene, '--step', repr(step), '--csv', str(out)])
+                sweep.main([args.scene, f'--travel={low!r}:{high!r}:{step!r}', '-o', str(out)])
                 seconds = time.perf_counter() - start
             base = base or (positions, seconds)
             over = ((seconds - base[1]) / (positions - base[0]) * 1e6

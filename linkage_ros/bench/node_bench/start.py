@@ -1,7 +1,7 @@
 # SPDX-FileCopyrightText: 2026 linkage_ros authors
 # SPDX-License-Identifier: Apache-2.0
 
-"""Section start of linkage-node-bench: from a process's launch to its first answer."""
+"""Section start of linkage-bench node: from a process's launch to its first answer."""
 
 import os
 import subprocess

@@ -1,7 +1,7 @@
 # SPDX-FileCopyrightText: 2026 linkage_ros authors
 # SPDX-License-Identifier: Apache-2.0
 
-"""What linkage-node-bench prints: progress on stderr, CSV tables on stdout."""
+"""What linkage-bench node prints: progress on stderr, CSV tables on stdout."""
 
 import sys
 
@@ -11,7 +11,7 @@ from ...outputs import write_table
 
 
 def progress(text):
-    print(f'linkage-node-bench: {text}', file=sys.stderr, flush=True)
+    print(f'linkage-bench node: {text}', file=sys.stderr, flush=True)
 
 
 def table(header, rows):

@@ -1,7 +1,7 @@
 # SPDX-FileCopyrightText: 2026 linkage_ros authors
 # SPDX-License-Identifier: Apache-2.0
 
-"""Section vehicle of linkage-node-bench: four corners against a four-corner echo node."""
+"""Section vehicle of linkage-bench node: four corners against a four-corner echo node."""
 
 import sys
 

@@ -4,6 +4,11 @@
 """
 linkage-bench kc: the compliance rates and a loaded solve against a kinematic solve.
 
+    linkage-bench kc SCENE --travel FROM[:TO:STEP] [--rack ...] [--load ... --at ...]
+                     [--rounds N]
+
+The options are linkage-kc's (its parse_args and request read them); the load timed is
+--load and --moment, else 1 kN lateral at the contact patch.
 Per position, side by side in one run: one kinematic solve (core.solve.sweep of that one
 travel, from the design pose, as the statics start from it), all the compliance rates
 (core.statics.compliance) and one loaded solve (core.statics.solve_loaded). At 1x, 10x and
@@ -16,7 +21,11 @@ import time
 
 import numpy as np
 
+from ..cli import fail, warn
+from ..core.base import LinkageError
 from ..core.solve import sweep
+from ..core.warmup import compile_if_cold
+from ..tools import kc
 
 PROG = 'linkage-bench kc'
 SCALES = (1, 10, 100)
@@ -78,3 +87,15 @@ def benchmark(scene, travels, racks, load, rounds):
               f'{rates / kinematic:>17.2f}{loaded / kinematic:>18.2f}', flush=True)
         print(f'{PROG}: {scale}x done', file=sys.stderr)
     return 0
+
+
+def main(argv: list[str], rounds: int) -> int:
+    """Time the positions linkage-kc's arguments ask for over rounds: 0, 1 if one fails, 2."""
+    args = kc.parse_args(argv)
+    try:
+        scene, travels, racks = kc.request(args)
+    except LinkageError as exc:
+        return fail(kc.PROG, exc)
+    warn(kc.PROG, scene.warnings)
+    compile_if_cold(kc.PROG, statics=True)   # every answer timed here is a statics solve
+    return benchmark(scene, travels, racks, kc.load_of(args) if args.loaded else None, rounds)

@@ -2,7 +2,12 @@
 # SPDX-License-Identifier: Apache-2.0
 
 """
-linkage-map --benchmark: the cost per answer of the elements' quantities, against without.
+linkage-bench map: the cost per answer of the elements' quantities, against without.
+
+    linkage-bench map SCENE_OR_VEHICLE [--rounds N]
+
+The options are linkage-map's (its parse_args and request read them; -o is not needed); the
+first corner with elements is timed (else the first corner), over its travel block.
 
 Two paths, each at 1x, 10x and 100x positions (161, 1 610, 16 100 over the scene's travel
 block): one command at a time (Continuation.solve, the node's path; then values_at, the elements
@@ -16,8 +21,12 @@ import time
 
 import numpy as np
 
+from ..cli import fail, warn
+from ..core.base import LinkageError
 from ..core.measure import element_values, prepare, values_at
 from ..core.solve import Continuation, sweep
+from ..core.warmup import compile_if_cold
+from ..tools.kinematic_map import parse_args, PROG, request
 
 SIZES = (161, 1610, 16100)
 
@@ -81,3 +90,15 @@ def benchmark(corners, rounds):
         print(f'{path:<14}{n // SIZES[0]:>5}x{n:>10}{without:>12.2f}{extra:>13.2f}'
               f'{without + extra:>10.2f}{(without + extra) / without:>7.2f}')
     return 0
+
+
+def main(argv: list[str], rounds: int) -> int:
+    """Time the corners linkage-map's arguments name over rounds: 0, 1 out of reach, 2."""
+    args = parse_args(argv)
+    try:
+        target, corners, _ = request(args)   # the grid and axle checked, as linkage-map does
+    except LinkageError as exc:
+        return fail(PROG, exc)
+    warn(PROG, target.warnings)
+    compile_if_cold(PROG)
+    return benchmark(corners, rounds)
