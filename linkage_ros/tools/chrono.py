@@ -14,6 +14,7 @@ template of the scene's topology (GenericWheeledSuspension where no named templa
 import math
 import sys
 
+from .target import write_text
 from .. import cli
 from ..core.base import LENGTH_LIMIT_MM, LinkageError, MM_PER_M
 from ..outputs import check_outputs, whole_file
@@ -78,7 +79,8 @@ def _main(argv):
     two.add_argument('scene', metavar='SCENE',
                      help='a bundled scene name (five_link, ...) or a scene YAML file')
     two.add_argument('-o', '--output', metavar='FILE.json', required=True,
-                     help='the Chrono JSON file to write, whole or not at all. Required')
+                     help="the Chrono JSON file to write, whole or not at all ('-': "
+                     'stdout). Required')
     two.add_argument('--like', metavar='ORIGINAL.json', default=None,
                      help='a Chrono suspension file of the same template whose every other '
                      'field (masses, inertias, radii, curves) is kept; default: the bundled '
@@ -96,6 +98,9 @@ def _import(args):
     from ..chrono import import_file, inputs_of
     wheel_radius = radius(args.wheel_radius) if args.wheel_radius is not None else None
     inputs = inputs_of(args.source)   # the file and, for a vehicle, its suspension files
+    if args.output == '-':
+        raise cli.Mistake('-o -: import writes a scene file (a vehicle: several), not '
+                          'stdout; give a FILE.yaml')
     check_outputs([('-o', args.output)], inputs)
     texts, summary = import_file(args.source, args.output, wheel_radius)
     check_outputs([('-o', path) for path in texts], inputs)
@@ -110,10 +115,10 @@ def _export(args):
     from ..chrono import export_file
     from ..core.model import resolve_scene_path
     inputs = [str(resolve_scene_path(args.scene))] + [p for p in (args.like,) if p]
-    check_outputs([('-o', args.output)], inputs)
+    if args.output != '-':
+        check_outputs([('-o', args.output)], inputs)
     text, summary = export_file(args.scene, args.like)
-    with whole_file(args.output, encoding='utf-8') as out:
-        out.write(text)
+    write_text(args.output, text)
     print(f'{PROG}: {summary} -> {args.output}', file=sys.stderr)
     return cli.DONE
 

@@ -8,6 +8,7 @@ Its --help examples and doc/chrono.md's commands run as written from a checkout'
 help describes every argument with its range and default (issue 36 item 17).
 """
 
+import json
 import os
 from pathlib import Path
 import re
@@ -98,3 +99,22 @@ def test_a_vehicle_import_never_writes_over_a_suspension_file_it_reads(tmp_path)
                          capture_output=True, text=True)
     assert run.returncode == 2 and 'is the input' in run.stderr, run.stderr
     assert front.read_bytes() == before
+
+
+def test_export_to_dash_writes_the_json_on_stdout_and_no_file_named_dash(tmp_path):
+    # '-' is stdout, as for linkage-urdf and linkage-foxglove: the text equals the file export
+    run = subprocess.run([str(PROGRAM), 'export', 'double_wishbone', '-o', '-'],
+                         capture_output=True, text=True, cwd=tmp_path)
+    assert run.returncode == 0, run.stderr
+    assert not (tmp_path / '-').exists()
+    subprocess.run([str(PROGRAM), 'export', 'double_wishbone', '-o', str(tmp_path / 'f.json')],
+                   check=True, capture_output=True)
+    assert json.loads(run.stdout) == json.loads((tmp_path / 'f.json').read_text())
+
+
+def test_import_to_dash_is_one_line_and_writes_nothing(tmp_path):
+    run = subprocess.run([str(PROGRAM), 'import',
+                          str(ROOT / 'config/chrono/generic/suspension/DoubleWishbone.json'),
+                          '-o', '-'], capture_output=True, text=True, cwd=tmp_path)
+    assert run.returncode == 2 and len(run.stderr.splitlines()) == 1, run.stderr
+    assert '-o -' in run.stderr and not list(tmp_path.iterdir())
