@@ -56,6 +56,7 @@ from .health import Health
 from ..core.base import LinkageError, M_PER_MM, Status
 from ..core.base import wrench_problem as bounded_wrench_problem
 from ..core.solve import Continuation, Solution
+from ..core.warmup import wants_statics
 
 if TYPE_CHECKING:
     from .frames import CornerFrames
@@ -119,7 +120,7 @@ def wrench_problem(frame_id: str, force: tuple, torque: tuple, vehicle_frame: st
 
 def statics_on(scene: Scene, switch: bool) -> bool:
     """Tell whether a corner answers loaded poses: a scene with bushings, or statics:=true."""
-    return bool(switch) or bool(getattr(scene, 'has_bushings', False))
+    return wants_statics(scene, switch)   # the rule every program follows (core/warmup.py)
 
 
 def statics_problem(scene: Scene, switch: bool) -> str:
