@@ -15,8 +15,14 @@ def progress(text):
 
 
 def table(header, rows):
-    """Print a CSV table with the table writer (doc/tables.md), the section its first cell."""
-    write_table(None, header, rows)
+    """
+    Print a CSV table with the table writer (doc/tables.md), the section its first cell.
+
+    Measured floats are printed to 4 significant digits: a timing's run-to-run spread is
+    percents, so the writer's shortest round-trip digits would only print noise.
+    """
+    write_table(None, header, [[float(f'{cell:.4g}') if isinstance(cell, float) else cell
+                                for cell in row] for row in rows])
     print()
 
 
