@@ -17,12 +17,10 @@ import time
 
 import numpy as np
 
-from ..cli import fail, warn
+from .asked import asked
 from ..core.axle import solve_axle, wheel_travels
-from ..core.base import LinkageError
 from ..core.solve import sweep
-from ..core.warmup import compile_if_cold
-from ..tools.axle import parse_args, PROG, request
+from ..tools import axle as program
 
 
 def benchmark(axle, heave, roll, rack, rounds):
@@ -60,17 +58,14 @@ def benchmark(axle, heave, roll, rack, rounds):
         one, two, both = (float(np.median(times[name])) for name in runs)
         print(f'{len(h):>10}{one:>15.2f}{two:>16.2f}{both:>10.2f}{both / one:>17.2f}'
               f'{both / two:>18.2f}', flush=True)
-        print(f'{PROG}: benchmark {scale}x done', file=sys.stderr)
+        print(f'{program.PROG}: benchmark {scale}x done', file=sys.stderr)
 
 
 def main(argv: list[str], rounds: int) -> int:
     """Time the axle linkage-axle's arguments ask for over rounds: 0, or 2 for a mistake."""
-    args = parse_args(argv)
-    try:
-        target, axle, (heave, roll, rack) = request(args)
-    except LinkageError as exc:
-        return fail(PROG, exc)
-    warn(PROG, target.vehicle.warnings)
-    compile_if_cold(PROG)
+    request = asked(program, argv, lambda request: request[0].vehicle.warnings)
+    if isinstance(request, int):
+        return request
+    _, axle, (heave, roll, rack) = request
     benchmark(axle, heave, roll, rack, rounds)
     return 0

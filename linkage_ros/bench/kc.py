@@ -21,10 +21,8 @@ import time
 
 import numpy as np
 
-from ..cli import fail, warn
-from ..core.base import LinkageError
+from .asked import asked
 from ..core.solve import sweep
-from ..core.warmup import compile_if_cold
 from ..tools import kc
 
 PROG = 'linkage-bench kc'
@@ -92,10 +90,9 @@ def benchmark(scene, travels, racks, load, rounds):
 def main(argv: list[str], rounds: int) -> int:
     """Time the positions linkage-kc's arguments ask for over rounds: 0, 1 if one fails, 2."""
     args = kc.parse_args(argv)
-    try:
-        scene, travels, racks = kc.request(args)
-    except LinkageError as exc:
-        return fail(kc.PROG, exc)
-    warn(kc.PROG, scene.warnings)
-    compile_if_cold(kc.PROG, statics=True)   # every answer timed here is a statics solve
+    # every answer timed here is a statics solve
+    request = asked(kc, argv, lambda request: request[0].warnings, statics=True)
+    if isinstance(request, int):
+        return request
+    scene, travels, racks = request
     return benchmark(scene, travels, racks, kc.load_of(args) if args.loaded else None, rounds)

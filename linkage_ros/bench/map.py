@@ -21,12 +21,10 @@ import time
 
 import numpy as np
 
-from ..cli import fail, warn
-from ..core.base import LinkageError
+from .asked import asked
 from ..core.measure import element_values, prepare, values_at
 from ..core.solve import Continuation, sweep
-from ..core.warmup import compile_if_cold
-from ..tools.kinematic_map import parse_args, PROG, request
+from ..tools import kinematic_map as program
 
 SIZES = (161, 1610, 16100)
 
@@ -94,11 +92,8 @@ def benchmark(corners, rounds):
 
 def main(argv: list[str], rounds: int) -> int:
     """Time the corners linkage-map's arguments name over rounds: 0, 1 out of reach, 2."""
-    args = parse_args(argv)
-    try:
-        target, corners, _ = request(args)   # the grid and axle checked, as linkage-map does
-    except LinkageError as exc:
-        return fail(PROG, exc)
-    warn(PROG, target.warnings)
-    compile_if_cold(PROG)
-    return benchmark(corners, rounds)
+    # the grid and axle checked, as linkage-map does
+    request = asked(program, argv, lambda request: request[0].warnings)
+    if isinstance(request, int):
+        return request
+    return benchmark(request[1], rounds)

@@ -20,11 +20,9 @@ import time
 
 import numpy as np
 
-from ..cli import fail, warn
-from ..core.base import LinkageError
+from .asked import asked
 from ..core.vehicle import setup_sheet
-from ..core.warmup import compile_if_cold
-from ..tools.vehicle import parse_args, PROG, request
+from ..tools import vehicle as program
 
 SCALES = (1, 10, 100)
 
@@ -49,12 +47,8 @@ def benchmark(vehicle, setup_sheet, rounds, scales=SCALES):
 
 def main(argv: list[str], rounds: int) -> int:
     """Time the sheet of the vehicle linkage-vehicle's arguments name: 0, or 2 for a mistake."""
-    args = parse_args(argv)
-    try:
-        vehicle = request(args)
-    except LinkageError as exc:
-        return fail(PROG, exc)
-    warn(PROG, vehicle.warnings)
-    compile_if_cold(PROG)
+    vehicle = asked(program, argv, lambda vehicle: vehicle.warnings)
+    if isinstance(vehicle, int):
+        return vehicle
     benchmark(vehicle, setup_sheet, rounds)
     return 0

@@ -16,11 +16,10 @@ import time
 
 import numpy as np
 
-from ..cli import counted, fail, warn
-from ..core.base import LinkageError
+from .asked import asked
+from ..cli import counted
 from ..core.solve import Continuation, METHODS, sweep
-from ..core.warmup import compile_if_cold
-from ..tools.sweep import parse_args, PROG, request
+from ..tools import sweep as program
 
 
 def benchmark(scene, travels, rounds):
@@ -67,11 +66,8 @@ def benchmark(scene, travels, rounds):
 
 def main(argv: list[str], rounds: int) -> int:
     """Time the sweep linkage-sweep's arguments ask for over rounds: 0, 1 out of reach, 2."""
-    args = parse_args(argv)
-    try:
-        scene, travels, _ = request(args)
-    except LinkageError as exc:
-        return fail(PROG, exc)
-    warn(PROG, scene.warnings)
-    compile_if_cold(PROG)
+    request = asked(program, argv, lambda request: request[0].warnings)
+    if isinstance(request, int):
+        return request
+    scene, travels, _ = request
     return benchmark(scene, travels, rounds)
