@@ -2,134 +2,163 @@
 # SPDX-License-Identifier: Apache-2.0
 
 """
-Newton on the Lagrange (KKT) system of a corner's statics, from the kinematic pose.
+Newton on the Lagrange (KKT) system of a corner's statics, compiled, with the exact matrix.
 
-    [ H   J^T ] [ dq     ]     [ grad V - Q ]
+    [ A   J^T ] [ dq     ]     [ grad L - M ]
     [ J    0  ] [ lambda ] = - [ c          ]
 
-H the Hessian of L = V - work + lambda . c (exact: system.py), J = dc/dq. The step is taken
-in the bodies' coordinates (system.moved). A load too large for one Newton solve is applied
-in increments (halved on failure), each solve continuing from the last. newton() runs the
-compiled kernel (kernel.py, on the System packed by pack.py); newton_python() is the same in
-numpy, kept as its check.
+A the derivative of the residual grad L - M at the pose (kernel.assemble, exact: with the
+load's own stiffness and the moment fixed in space), J = dc/dq; the step is taken in the
+bodies' coordinates (kernel.move), and the system is solved reduced and along its structure
+(kkt.py). So Newton converges quadratically from anywhere near an equilibrium, a loaded one
+too (test_statics_newton). A load too large for one Newton solve is applied in increments
+(loaded: halved on failure), each solve continuing from the last. Nothing here raises: a
+solve returns ok False, and its last finite residual (N; inf if none).
+
+numba's disk cache follows each file alone: kernel.py and kkt.py are compiled in here, their
+digests below (test_statics_kernel says the values to set after an edit there).
 """
 
-from __future__ import annotations
-
-import math
 from typing import NamedTuple
 
+from numba import njit
 import numpy as np
 
-from . import kernel
-from .system import assemble, moved, Pose, System
+from . import kernel, kkt
 
+KERNEL_DIGEST = 'e5ff0fb8efa959ef2e3b5f2009faf1931c9ded81016bac2d633c81d6a85e84f0'
+KKT_DIGEST = 'd3d12e75f6d1f2b5c080b7cec2ca788eb028cbb9006dbf7774ffd86a948fcd9b'
 TOL_STEP = 1e-11       # mm (rotations times the lever): a step this small has converged
 MAX_ITER = 30          # Newton iterations per load increment
 MAX_HALVINGS = 6       # a load is split into at most 2**6 increments
+# a Newton step predicted (quadratic convergence) below this fraction of the tolerance is not
+# taken (converged()): it would move the pose by round-off
+PREDICTED = 1e-3
+jit = njit(cache=True, nogil=True, error_model='numpy')
 
 
-class Equilibrium(NamedTuple):
-    """A solved equilibrium: pose, multipliers, the factorised-system inputs, convergence."""
+class Work(NamedTuple):
+    """What a Newton solve writes: at its end, grad, hess (symmetric) and rows of the pose."""
 
-    ok: bool
-    pose: Pose
-    multipliers: np.ndarray
-    hess: np.ndarray
-    rows: np.ndarray
-    residual: float        # N: largest unbalanced generalized force (moments / lever)
-    iterations: int
-
-
-def kkt(hess: np.ndarray, rows: np.ndarray) -> np.ndarray:
-    """Return the KKT matrix [[H, J^T], [J, 0]] (n + m, n + m)."""
-    n, m = hess.shape[0], rows.shape[0]
-    out = np.zeros((n + m, n + m))
-    out[:n, :n], out[:n, n:], out[n:, :n] = hess, rows.T, rows
-    return out
+    grad: np.ndarray       # (n,)
+    hess: np.ndarray       # (n, n)
+    values: np.ndarray     # (m,)
+    rows: np.ndarray       # (m, n)
+    a: np.ndarray          # (K, K) the reduced KKT matrix, factorised
+    piv: np.ndarray        # (2 K,) int64
+    b: np.ndarray          # (K,)
+    rhs: np.ndarray        # (n + m,)
+    sol: np.ndarray        # (n + m,)
+    dense: np.ndarray      # kkt.dense_bounds(K)
+    steps: np.ndarray      # (MAX_ITER,) the scaled step of each iteration (NaN: not taken)
+    scratch: kernel.Scratch
 
 
-def imbalance(system: System, grad: np.ndarray, lever: float) -> float:
-    """Return the largest unbalanced generalized force (N), rotation rows divided by lever."""
-    scaled = grad.copy()
-    for body in system.bodies:
-        if body.kind in ('carrier', 'arm'):
-            scaled[body.start + 3:body.start + 6] /= lever
-        elif body.kind == 'hinge':
-            scaled[body.start] /= lever
-    return float(np.max(np.abs(scaled))) if scaled.size else 0.0
+@jit
+def work(model):
+    """Return a Work for the Model's sizes."""
+    n, m, size = model.n, model.m, len(model.perm)
+    return Work(np.empty(n), np.empty((n, n)), np.empty(m), np.empty((m, n)),
+                np.empty((size, size)), np.empty(2 * size, dtype=np.int64), np.empty(size),
+                np.empty(n + m), np.empty(n + m), kkt.dense_bounds(size),
+                np.full(MAX_ITER, np.nan), kernel.scratch())
 
 
-def newton(system: System, model: kernel.Model, pose: Pose, multipliers: np.ndarray,
-           force: np.ndarray, moment: np.ndarray, lever: float) -> Equilibrium:
-    """Solve one equilibrium by Newton (compiled) from pose and multipliers."""
-    c, r, lam = pose.c.copy(), pose.r.copy(), np.array(multipliers, dtype=float)
-    hess, rows = np.empty((model.n, model.n)), np.empty((model.m, model.n))
-    ok, iterations, residual = kernel.newton(
-        tuple(model), c, r, lam, np.asarray(force, dtype=float),
-        np.asarray(moment, dtype=float), lever, TOL_STEP, MAX_ITER, hess, rows)
-    return Equilibrium(bool(ok), Pose(c, r), lam, hess, rows,
-                       residual if math.isfinite(residual) else math.inf, int(iterations))
+@jit
+def converged(size, last, tol):
+    """
+    Tell whether Newton has converged: its step (scaled) is below tol, or the next one will be.
+
+    Newton converges quadratically: the next step is about size^3 / last^2 (last: the step
+    before). Below PREDICTED * tol it is round-off: the step after it is not taken.
+    """
+    return size < tol or size * size * size < PREDICTED * tol * last * last
 
 
-def newton_python(system: System, pose: Pose, multipliers: np.ndarray, force: np.ndarray,
-                  moment: np.ndarray, lever: float) -> Equilibrium:
-    """Solve one equilibrium by Newton (numpy) from pose and multipliers; ok False if not."""
-    n, last = system.size, 0.0   # no step before the first
-    for iteration in range(1, MAX_ITER + 1):
-        grad, hess, values, rows, _ = assemble(system, pose, multipliers, force, moment)
-        rhs = -np.concatenate((grad - rows.T @ multipliers, values))
-        try:
-            sol = np.linalg.solve(kkt(hess, rows), rhs)
-        except np.linalg.LinAlgError:
+@jit
+def factorise(hess, rows, perm, bounds, a, piv, dense):
+    """
+    Factorise the KKT matrix of hess and rows into a and piv; return (kkt mode, bounds used).
+
+    Along bounds (the Model's), or, should a cluster be singular, densely (dense).
+    """
+    kkt.gather(hess, rows, perm, hess.shape[0], a)
+    mode = kkt.factor(a, piv, bounds)
+    if mode != kkt.FAILED:
+        return mode, bounds
+    kkt.gather(hess, rows, perm, hess.shape[0], a)
+    return kkt.factor(a, piv, dense), dense
+
+
+@jit
+def newton(model, c, r, lam, inputs, max_iter, w):
+    """
+    Solve the equilibrium from (c, r, lam) in place; return (ok, iterations, residual N).
+
+    At the end w.hess (the symmetric Hessian) and w.rows hold the pose's, w.steps the scaled
+    step of each iteration. A step that is not finite, or would move a point farther than
+    a thousand levers, is not taken: the residual is the last finite pose's.
+    """
+    n = model.n
+    lever = model.consts[kernel.LEVER]
+    tol = TOL_STEP * max(1.0, lever)
+    w.steps[:] = np.nan
+    last = 0.0   # no step before the first
+    for iteration in range(1, max_iter + 1):
+        kernel.assemble(model, c, r, lam, inputs, True, w.grad, w.hess, w.values, w.rows,
+                        w.scratch)
+        for i in range(n):
+            total = w.grad[i]
+            for k in range(model.m):
+                total -= w.rows[k, i] * lam[k]
+            w.rhs[i] = -total
+        for k in range(model.m):
+            w.rhs[n + k] = -w.values[k]
+        mode, bounds = factorise(w.hess, w.rows, model.perm, model.bounds, w.a, w.piv,
+                                 w.dense)
+        if mode == kkt.FAILED:
             break
-        if not np.isfinite(sol).all():
+        kkt.solve_full(w.a, w.piv, bounds, mode, model.perm, w.hess, w.rows, w.rhs, w.sol,
+                       w.b)
+        step = w.sol[:n]
+        size = kernel.scaled_max(model.b_kind, model.b_start, step, lever, False)
+        if iteration <= len(w.steps):
+            w.steps[iteration - 1] = size
+        if not size < 1e3 * lever or not np.all(np.isfinite(w.sol)):   # diverging, or NaN
             break
-        step, multipliers = sol[:n], sol[n:]
-        pose = moved(system, pose, step)
-        size = _step_size(system, step, lever)
-        if kernel.converged(size, last, TOL_STEP * max(1.0, lever)):
-            grad, hess, values, rows, _ = assemble(system, pose, multipliers, force, moment)
-            return Equilibrium(True, pose, multipliers, hess, rows,
-                               imbalance(system, grad, lever), iteration)
-        if not size < 1e3 * lever:   # diverging (or NaN)
-            break
+        lam[:] = w.sol[n:]
+        kernel.move(model.b_kind, model.b_start, model.b_axis, c, r, step)
+        if converged(size, last, tol):
+            kernel.assemble(model, c, r, lam, inputs, False, w.grad, w.hess, w.values,
+                            w.rows, w.scratch)
+            return True, iteration, kernel.scaled_max(model.b_kind, model.b_start, w.grad, lever,
+                                                      True)
         last = size
-    grad, hess, values, rows, _ = assemble(system, pose, multipliers, force, moment)
-    residual = imbalance(system, grad, lever)
-    return Equilibrium(False, pose, multipliers, hess, rows,
-                       residual if math.isfinite(residual) else math.inf, MAX_ITER)
+    kernel.assemble(model, c, r, lam, inputs, False, w.grad, w.hess, w.values, w.rows,
+                    w.scratch)
+    residual = kernel.scaled_max(model.b_kind, model.b_start, w.grad, lever, True)
+    return False, max_iter, residual if np.isfinite(residual) else np.inf
 
 
-def _step_size(system, step, lever):
-    scaled = step.copy()
-    for body in system.bodies:
-        if body.kind in ('carrier', 'arm'):
-            scaled[body.start + 3:body.start + 6] *= lever
-        elif body.kind == 'hinge':
-            scaled[body.start] *= lever
-    return float(np.max(np.abs(scaled))) if scaled.size else 0.0
-
-
-def loaded(system: System, model: kernel.Model | None, start: Equilibrium, force: np.ndarray,
-           moment: np.ndarray, lever: float) -> Equilibrium:
+@jit
+def loaded(model, c, r, lam, inputs, w):
     """
-    Solve the equilibrium under force (N) and moment (N mm) from the zero-load one.
+    Solve the equilibrium under inputs' load from the one in (c, r, lam), in place.
 
-    In one Newton solve if it converges, else in 2, 4, ... 2**MAX_HALVINGS equal increments.
-    model None: by newton_python.
+    In one Newton solve if it converges, else in 2, 4, ... 2**MAX_HALVINGS equal increments
+    of the load from the start. Returns (ok, iterations, residual N) of the last solve.
     """
-    last = start
+    c0, r0, lam0 = c.copy(), r.copy(), lam.copy()
+    ok, iterations, residual = False, 0, np.inf
     for halvings in range(MAX_HALVINGS + 1):
         parts = 2 ** halvings
-        here = start
+        c[:], r[:], lam[:] = c0, r0, lam0
         for k in range(1, parts + 1):
-            args = (here.pose, here.multipliers, force * k / parts, moment * k / parts, lever)
-            here = (newton_python(system, *args) if model is None
-                    else newton(system, model, *args))
-            if not here.ok:
-                last = here
+            part = kernel.Inputs(inputs.z, inputs.rack, inputs.x_load,
+                                 inputs.force * (k / parts), inputs.moment * (k / parts))
+            ok, iterations, residual = newton(model, c, r, lam, part, MAX_ITER, w)
+            if not ok:
                 break
-        else:
-            return here
-    return last
+        if ok:
+            return ok, iterations, residual
+    return ok, iterations, residual

@@ -1,0 +1,29 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
+"""
+The contact patch of a wheel: the one formula, for Python and for the compiled statics.
+
+patch_offset is a plain Python function (floats or arrays (n,), as measure.alignment and the
+roll centre call it) that numba also compiles into the statics kernel (register_jitable):
+core/statics/command.py names this file's digest (PATCH_DIGEST), because numba's on-disk
+cache follows each function's own file only.
+"""
+
+from numba.extending import register_jitable
+
+
+@register_jitable
+def patch_offset(axis_x, axis_y, axis_z, radius):
+    """
+    Return the contact patch less the wheel centre, (x, y, z) mm: the one contact-patch formula.
+
+    The lowest point of a wheel of radius (mm) with the unit spin axis (axis_x, axis_y,
+    axis_z): radius along minus the up direction made square to the axis. Each component a
+    float or an array (n,): contact_patch gives arrays of positions, and suspension_node's
+    roll centre (core.axle.roll_centre.roll_centre_of_poses) floats, which cost a fraction of
+    numpy's per-call overhead on arrays of one.
+    """
+    up_x, up_y, up_z = -axis_z * axis_x, -axis_z * axis_y, 1.0 - axis_z * axis_z
+    norm = (up_x * up_x + up_y * up_y + up_z * up_z) ** 0.5
+    return -(radius * up_x / norm), -(radius * up_y / norm), -(radius * up_z / norm)

@@ -1,0 +1,241 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
+"""
+A corner's statics, one command after another: Statics(scene).
+
+Statics is for the statics what Continuation is for the kinematics:
+
+    statics = Statics(scene)
+    statics.solve(travel_mm, load, rack_mm) -> Loaded        the loaded pose and forces
+    statics.rates(travel_mm, rack_mm) -> Compliance          the compliance rates there
+    solve_loaded(scene, ...), compliance(scene, ...)          one command, a Statics each
+
+A Statics owns its last zero-load and its last loaded equilibrium (nothing is kept in the
+frozen Scene). Each command is one compiled call (command.py): the loaded equilibrium by
+Newton from the last loaded one (and, for a load at the contact patch, whose point the
+unloaded pose sets, the zero-load one from the last zero-load one). Where there is no last
+equilibrium near enough (WARM_MM), or a solve from it fails, the command falls back to the
+long way: the kinematic pose (the Continuation), the zero-load equilibrium from it, then the
+load in increments. Both ways solve the same equations to the same tolerance: the answers
+agree to round-off (test_statics_object).
+
+Nothing here raises for numerics: a command that is not carried, not finite or out of reach
+is a Loaded (Compliance) with its Status and a message. Bad input (a load at the contact
+patch without a wheel radius, a load that is not finite) raises LinkageError.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from . import command, forces
+from .compliance import Compliance, failed, RATE_COLUMNS
+from .loaded import check_load, Load, Loaded
+from .pack import pack
+from .pickups import Pickups
+from .system import build, initial_pose
+from ..base.finite import is_finite_number
+from ..base.status import Status
+from ..solve.continuation import Continuation
+from ..solve.mechanism import compile_scene
+
+if TYPE_CHECKING:
+    from ..model.scene import Scene
+
+# a last equilibrium at most this far in travel and in rack (mm) starts the next Newton (a
+# node at 1 kHz, a sweep); farther, the kinematic pose does
+WARM_MM = 5.0
+NO_LOAD = Load()
+
+
+class Statics:
+    """
+    Solves a scene's statics command after command, each from its last equilibrium.
+
+    continuation: the solve.Continuation to take kinematic poses from (the node's own, which
+    has solved each command's travel already); by default one of its own.
+    """
+
+    def __init__(self, scene: Scene, continuation: Continuation | None = None) -> None:
+        self.scene = scene
+        self.continuation = continuation or Continuation(scene)
+        mech = compile_scene(scene)
+        self.system = build(scene)
+        self.packed = packed = pack(self.system, scene, mech)
+        self._z0 = float(mech.design_center[2])
+        bodies, m = len(self.system.bodies), len(self.system.constraints)
+        self._state = np.zeros(command.state_offset(bodies, m, 2))
+        # the heads (z, rack, valid) of the zero-load and the loaded equilibrium in the state
+        self._heads = [command.state_offset(bodies, m, k) for k in (0, 1)]
+        names = packed.names
+        size = forces.answer_offsets(len(names.pickups), len(names.balls), len(names.links),
+                                     len(names.springs))[-1]
+        self._io = np.zeros(command.ANSWER + max(size, command.RATES_SIZE))
+        self._answer_size = size
+        self._load, self._checked = None, None
+
+    def reset(self) -> None:
+        """Forget the last equilibria: the next command starts from the kinematic pose."""
+        self._state[:] = 0.0
+
+    def solve(self, travel_mm: float, load: Load = NO_LOAD, rack_mm: float = 0.0) -> Loaded:
+        """
+        Solve the loaded equilibrium at travel and rack (mm); returns a Loaded.
+
+        Bad input raises LinkageError (check_load); numerics never raise: a load not carried
+        is Status.NOT_CARRIED, naming the load and the last residual, with no pose.
+        """
+        if load is not self._load:   # a node keeps one Load for many commands
+            force, moment = check_load(self.scene, load)
+            self._checked = (force, moment, 1.0 if load.at == 'cp' else 0.0)
+            self._load = load
+        problem = self._position(travel_mm, rack_mm)
+        if problem:
+            return Loaded(Status.NOT_FINITE, problem, travel_mm)
+        travel, rack = float(travel_mm), float(rack_mm)
+        io = self._io
+        force, moment, io[command.AT_CP] = self._checked
+        io[command.FORCE:command.FORCE + 3] = force
+        io[command.MOMENT:command.MOMENT + 3] = moment
+        code = self._warm(travel, rack, command.solve)
+        if code is None or code in (command.ZERO_FAILED, command.LOADED_FAILED):
+            kin = self._kinematic(travel, rack)
+            if kin is not None:
+                return Loaded(kin.status, kin.message, travel, rack_mm=rack)
+            io[command.LOADED_FROM] = command.ZERO
+            code = command.solve(self.packed.ints, self.packed.reals, self._state, io)
+        return self._loaded(code, load, travel, rack)
+
+    def rates(self, travel_mm: float, rack_mm: float = 0.0) -> Compliance:
+        """Return the Compliance (the rates and the 6x6 matrix) at travel and rack (mm)."""
+        problem = self._position(travel_mm, rack_mm)
+        if problem:
+            return failed(Status.NOT_FINITE, problem, travel_mm)
+        travel, rack = float(travel_mm), float(rack_mm)
+        io = self._io
+        code = self._warm(travel, rack, command.rates)
+        if code is None or code != command.OK:
+            kin = self._kinematic(travel, rack)
+            if kin is not None:
+                return failed(kin.status, kin.message, travel)
+            code = command.rates(self.packed.ints, self.packed.reals, self._state, io)
+        if code != command.OK:
+            return failed(Status.NOT_CARRIED, self._zero_message(travel), travel)
+        out = io[command.ANSWER:command.ANSWER + command.RATES_SIZE]
+        values = out[:len(RATE_COLUMNS)].tolist()
+        rates = {k: v for k, v in zip(RATE_COLUMNS, values) if not math.isnan(v)}
+        return Compliance(Status.OK, 'ok', travel, rates,
+                          out[command.MATRIX:command.MATRIX_SI].reshape(6, 6).copy(),
+                          out[command.MATRIX_SI:command.RATES_SIZE].reshape(6, 6).copy())
+
+    @staticmethod
+    def _position(travel_mm, rack_mm) -> str:
+        """Say what is wrong with a travel and rack (mm), '' if they are finite numbers."""
+        if is_finite_number(travel_mm) and is_finite_number(rack_mm):
+            return ''
+        return f'travel {travel_mm!r} and rack {rack_mm!r} must be finite numbers'
+
+    def _warm(self, travel, rack, run):
+        """
+        Run a command (command.solve or rates) from the last equilibria; its code.
+
+        None if there is no zero-load equilibrium near enough (WARM_MM) to start from. A
+        loaded one near enough starts the loaded solve, else the zero-load one does.
+        """
+        io, state = self._io, self._state
+        z = self._z0 + travel
+        io[command.Z], io[command.RACK] = z, rack
+        if not self._near(0, z, rack):
+            return None
+        near = self._near(1, z, rack)
+        io[command.ZERO_FROM] = command.WARM
+        io[command.LOADED_FROM] = command.WARM if near else command.ZERO
+        return run(self.packed.ints, self.packed.reals, state, io)
+
+    def _near(self, which, z, rack) -> bool:
+        """Tell whether equilibrium which (0 zero-load, 1 loaded) is kept, within WARM_MM."""
+        o = self._heads[which]
+        z0, rack0, valid = self._state[o:o + 3].tolist()
+        return valid == 1.0 and abs(z0 - z) <= WARM_MM and abs(rack0 - rack) <= WARM_MM
+
+    def _kinematic(self, travel, rack):
+        """
+        Write the kinematic pose at travel and rack into the zero-load state (the long way).
+
+        Returns None, or the failed kinematic Solution (out of reach, not finite).
+        """
+        scene = self.scene
+        kin = self.continuation.solve(travel, rack if scene.steered else None)
+        if not kin.success:
+            return kin
+        pose = initial_pose(self.system, scene, np.asarray(kin.wheel_center),
+                            np.asarray(kin.rotation))
+        bodies, m = len(self.system.bodies), len(self.system.constraints)
+        o = self._heads[0]   # the zero-load equilibrium's place: head, c, r, lambda
+        self._state[o:o + 3] = 0.0
+        self._state[o + 3:o + 3 + 3 * bodies] = pose.c.ravel()
+        self._state[o + 3 + 3 * bodies:o + 3 + 12 * bodies] = pose.r.ravel()
+        self._state[o + 3 + 12 * bodies:o + 3 + 12 * bodies + m] = 0.0
+        io = self._io
+        io[command.Z], io[command.RACK] = self._z0 + travel, rack
+        io[command.ZERO_FROM] = command.KINEMATIC
+        return None
+
+    def _zero_message(self, travel) -> str:
+        return (f'the zero load is not carried at travel {travel:g} mm: no convergence '
+                f'(residual {self._io[command.RESIDUAL]:.3g} N)')
+
+    def _loaded(self, code, load, travel, rack) -> Loaded:
+        """Return the Loaded of a command's code and answer (io)."""
+        io = self._io
+        if code == command.OK:
+            answer = io[command.ANSWER:command.ANSWER + self._answer_size].copy()
+            return Loaded(Status.OK, 'ok', travel, math.degrees(answer[forces.CAMBER]),
+                          math.degrees(answer[forces.TOE]),
+                          answer[forces.CENTER:forces.CENTER + 3],
+                          answer[forces.ROTATION:forces.ROTATION + 9].reshape(3, 3),
+                          float(answer[forces.HOLDING]),
+                          answer[forces.LOAD_POINT:forces.LOAD_POINT + 3],
+                          float(answer[forces.RESIDUAL]), int(answer[forces.ITERATIONS]),
+                          rack, Pickups(self.packed.names, answer))
+        residual = float(io[command.RESIDUAL])
+        if code == command.ZERO_FAILED:
+            return Loaded(Status.NOT_CARRIED, self._zero_message(travel), travel,
+                          residual=residual, rack_mm=rack)
+        if code == command.BEYOND:
+            answer = io[command.ANSWER:]
+            key = self.system.bushings[int(answer[forces.VALIDITY_BUSHING])].key
+            value = answer[forces.VALIDITY_VALUE]
+            why = (f"bushing {key} deflects {value:.3g} mm, beyond the model's "
+                   f'{forces.MAX_DEFLECTION_MM:g} mm'
+                   if answer[forces.VALIDITY] == forces.DEFLECTS else
+                   f"bushing {key} turns {value:.3g} deg conically, beyond the model's "
+                   f'{forces.MAX_CONICAL_DEG:g} deg')
+            why += f' (residual {residual:.3g} N)'
+        else:
+            why = f'no convergence (last residual {residual:.3g} N)'
+        return Loaded(Status.NOT_CARRIED, f'{load.said()} is not carried at travel '
+                      f'{travel:g} mm: {why}', travel, residual=residual,
+                      iterations=int(io[command.ITERATIONS]), rack_mm=rack)
+
+
+def solve_loaded(scene: Scene, travel_mm: float = 0.0, load: Load = NO_LOAD,
+                 rack_mm: float = 0.0, continuation: Continuation | None = None) -> Loaded:
+    """
+    Solve the loaded equilibrium of a scene at travel and rack (mm); returns a Loaded.
+
+    One solve, the long way (a Statics made for it; continuation: a solve.Continuation of
+    the scene to take the kinematic pose from). A caller with many commands keeps a Statics.
+    Bad input raises LinkageError; a load not carried is Status.NOT_CARRIED with no pose.
+    """
+    return Statics(scene, continuation).solve(travel_mm, load, rack_mm)
+
+
+def compliance(scene: Scene, travel_mm: float = 0.0, rack_mm: float = 0.0,
+               continuation: Continuation | None = None) -> Compliance:
+    """Return the Compliance of a scene at travel and rack (mm): one Statics.rates."""
+    return Statics(scene, continuation).rates(travel_mm, rack_mm)
