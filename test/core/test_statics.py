@@ -113,13 +113,13 @@ def test_stiff_bushings_scale_the_rates_as_one_over_k(travel):
                                                         abs=1e-3 * biggest), key
 
 
-LOADS = [('toe_per_fy_cp_deg_per_kn', 'toe_deg', (0, 1, 0), 'cp', (0, 0, 0)),
-         ('camber_per_fy_cp_deg_per_kn', 'camber_deg', (0, 1, 0), 'cp', (0, 0, 0)),
-         ('wc_dy_per_fy_cp_mm_per_kn', 'wc_y', (0, 1, 0), 'cp', (0, 0, 0)),
+LOADS = [('toe_per_fy_cp_deg_per_kN', 'toe_deg', (0, 1, 0), 'cp', (0, 0, 0)),
+         ('camber_per_fy_cp_deg_per_kN', 'camber_deg', (0, 1, 0), 'cp', (0, 0, 0)),
+         ('wc_dy_per_fy_cp_mm_per_kN', 'wc_y', (0, 1, 0), 'cp', (0, 0, 0)),
          ('jacking_per_fy_cp', 'holding_force_n', (0, 1, 0), 'cp', (0, 0, 0)),
-         ('toe_per_fx_cp_deg_per_kn', 'toe_deg', (1, 0, 0), 'cp', (0, 0, 0)),
-         ('wc_dx_per_fx_wc_mm_per_kn', 'wc_x', (1, 0, 0), 'wc', (0, 0, 0)),
-         ('toe_per_mz_deg_per_knm', 'toe_deg', (0, 0, 0), 'wc', (0, 0, 1))]
+         ('toe_per_fx_cp_deg_per_kN', 'toe_deg', (1, 0, 0), 'cp', (0, 0, 0)),
+         ('wc_dx_per_fx_wc_mm_per_kN', 'wc_x', (1, 0, 0), 'wc', (0, 0, 0)),
+         ('toe_per_mz_deg_per_kNm', 'toe_deg', (0, 0, 0), 'wc', (0, 0, 1))]
 
 
 def _read(res, what):

@@ -75,11 +75,11 @@ def test_the_compiled_rates_equal_the_numpy_ones():
     gradient = np.array([(angles(h * e) - angles(-h * e)) / (2 * h) for e in np.eye(3)])
     d_camber, d_toe = gradient[:, 0], gradient[:, 1]
     deg = 180.0 / np.pi
-    want = {'toe_per_fy_cp_deg_per_kn': d_toe @ w[:, 6] * deg * 1e3,
-            'camber_per_fy_cp_deg_per_kn': d_camber @ w[:, 6] * deg * 1e3,
-            'cp_dy_per_fy_cp_mm_per_kn': reference.patch_move(dm[:, 6], w[:, 6], patch)[1] * 1e3,
+    want = {'toe_per_fy_cp_deg_per_kN': d_toe @ w[:, 6] * deg * 1e3,
+            'camber_per_fy_cp_deg_per_kN': d_camber @ w[:, 6] * deg * 1e3,
+            'cp_dy_per_fy_cp_mm_per_kN': reference.patch_move(dm[:, 6], w[:, 6], patch)[1] * 1e3,
             'jacking_per_fy_cp': held[6],
-            'toe_per_mz_deg_per_knm': d_toe @ w[:, 5] * deg * 1e6}
+            'toe_per_mz_deg_per_kNm': d_toe @ w[:, 5] * deg * 1e6}
     for key, value in want.items():
         assert fast.rates[key] == pytest.approx(value, rel=1e-9), key
 

@@ -96,7 +96,7 @@ def test_rates_continued_from_the_last_equilibrium_equal_fresh_ones():
 def test_rates_asked_again_at_the_same_travel_solve_nothing_and_are_a_copy():
     statics = Statics(load_scene(BUSHED))
     first = statics.rates(15.0)
-    first.rates['toe_per_fx_wc_deg_per_kn'] = 99.0   # the caller's to change
+    first.rates['toe_per_fx_wc_deg_per_kN'] = 99.0   # the caller's to change
     first.matrix[0, 0] = 99.0
     again = statics.rates(15.0)
     assert statics._io[command.ZERO_ITERATIONS] == 0   # the zero-load state kept as it was
