@@ -53,10 +53,9 @@ def perturbed(statics, c, r, seed):
 
 def residual(model, c, r, lam, inputs):
     """Return F = grad L - M (n,) at a pose (kernel.assemble) and the exact matrix (n, n)."""
-    n, m = model.n, model.m
-    grad, hess, values, rows = np.empty(n), np.empty((n, n)), np.empty(m), np.empty((m, n))
-    kernel.assemble(model, c, r, lam, inputs, True, grad, hess, values, rows, kernel.scratch())
-    return grad, hess
+    work = newton.work(model)
+    kernel.assemble(model, c, r, lam, inputs, kernel.EXACT, work)
+    return work.grad.copy(), work.hess.copy()
 
 
 def moved(model, c, r, k, h):
@@ -64,7 +63,7 @@ def moved(model, c, r, k, h):
     step = np.zeros(model.n)
     step[k] = h
     c, r = c.copy(), r.copy()
-    kernel.move(model.b_kind, model.b_start, model.b_axis, c, r, step)
+    kernel.move(model, c, r, step)
     return c, r
 
 

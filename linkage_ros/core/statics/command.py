@@ -28,20 +28,24 @@ from ..base.patch import patch_offset
 
 jit = njit(cache=True, nogil=True, error_model='numpy')
 
-KERNEL_DIGEST = 'e5ff0fb8efa959ef2e3b5f2009faf1931c9ded81016bac2d633c81d6a85e84f0'
-KKT_DIGEST = 'd3d12e75f6d1f2b5c080b7cec2ca788eb028cbb9006dbf7774ffd86a948fcd9b'
-NEWTON_DIGEST = '7475adadbbd683ecf60f04ca7716b59bc04f32c11487c90f9cd2d4604a815712'
-FORCES_DIGEST = 'fa6bd2f179484c36a1db6b6f0a541d6ad6b8670137660327a6745fa9f3207336'
+KERNEL_DIGEST = 'd0e2bf0272eb26daf1d28f5fca917d3d3c0d8422ef11880918e0774c60a7935b'
+KKT_DIGEST = '8d77f1fc62b641c427f621461e3c351e160e81a1cd949b2c22c9d12ef726ac9f'
+NEWTON_DIGEST = '45fa5c7d8f72570b84e8d967f8dd853c24fa2f45d80fbfa851f798b72631963b'
+FORCES_DIGEST = 'c46f6dec07e1c7d983ee304f63179e89f9bcce895eb04d4b75bd78e61c9bef1f'
 PATCH_DIGEST = '7617b861f96a597dfc1031314dfdee925963b63a94e3df13fe24e73a28863499'
 # io: the command, then what it gives
 Z, RACK, AT_CP, FORCE, MOMENT, ZERO_FROM, LOADED_FROM = 0, 1, 2, 3, 6, 9, 10
 CODE, ITERATIONS, RESIDUAL, ZERO_ITERATIONS, ZERO_RESIDUAL, ANSWER = 11, 12, 13, 14, 15, 16
-# where a solve starts: WARM the last equilibrium (zero-load: the same one if at the same
-# travel and rack), KINEMATIC the pose written into the zero-load state (statics.py), ZERO
-# the zero-load equilibrium of this command, the load in increments
+# where a solve starts: WARM the last equilibrium if it is kept and within WARM_MM of the
+# command (zero-load: the same one if at the same travel and rack), KINEMATIC the pose
+# written into the zero-load state (statics.py), ZERO the zero-load equilibrium of this
+# command, the load in increments
 WARM, KINEMATIC, ZERO = 0, 1, 2
-# what a command gives (io[CODE])
-OK, ZERO_FAILED, LOADED_FAILED, BEYOND = 0, 1, 2, 3
+# a last equilibrium at most this far in travel and in rack (mm) starts the next Newton (a
+# node at 1 kHz, a sweep); farther, the kinematic pose does
+WARM_MM = 5.0
+# what a command gives (io[CODE]): COLD no zero-load equilibrium near enough to start from
+OK, ZERO_FAILED, LOADED_FAILED, BEYOND, COLD = 0, 1, 2, 3, 4
 # the rates in io from ANSWER: RATES values (RATE_COLUMNS' order), the 6x6 matrix in the
 # table's units, then in SI
 RATES, MATRIX, MATRIX_SI, RATES_SIZE = 0, 12, 48, 84
@@ -60,27 +64,56 @@ class Equilibrium(NamedTuple):
 
 
 @register_jitable
-def state_offset(bodies, m, which):
-    """Return where equilibrium which (0 zero-load, 1 loaded; 2: the state's size) starts."""
-    return which * (3 + 12 * bodies + m)
+def state_offset(bodies, n, m, size, which):
+    """
+    Return where part which of a state starts (4: the state's size).
+
+    The parts: the zero-load equilibrium (0) and the loaded one (1), each its head (z, rack,
+    valid), c, r and lambda; then the factorisation each was last solved with (2, 3:
+    newton.Factor: head, a (K, K), piv (2 K,), column, row (n,), rows (m,)). bodies, n, m,
+    size: the Model's bodies, coordinates, rows and reduced KKT size K.
+    """
+    equilibrium = 3 + 12 * bodies + m
+    factor = 3 + size * size + 2 * size + 2 * n + m
+    return which * equilibrium if which <= 2 else 2 * equilibrium + (which - 2) * factor
 
 
 @jit
 def views(state, bodies, m, which):
     """Return the Equilibrium views of a state: which 0 the zero-load one, 1 the loaded one."""
-    o = state_offset(bodies, m, which)
+    o = state_offset(bodies, 0, m, 0, which)
     c = state[o + 3:o + 3 + 3 * bodies].reshape((bodies, 3))
     r = state[o + 3 + 3 * bodies:o + 3 + 12 * bodies].reshape((bodies, 3, 3))
     return Equilibrium(state[o:o + 3], c, r, state[o + 3 + 12 * bodies:o + 3 + 12 * bodies + m])
 
 
 @jit
-def _zero_load(model, state, io, w):
+def factor_views(state, model, which):
+    """Return the newton.Factor views of a state's factorisation which (0 zero-load, 1 loaded)."""
+    n, m, size = model.n, model.m, len(model.perm)
+    o = state_offset(len(model.b_kind), n, m, size, 2 + which)
+    a = state[o + 3:o + 3 + size * size].reshape((size, size))
+    o += 3 + size * size
+    return newton.Factor(state[o - 3 - size * size:o - size * size], a,
+                         state[o:o + 2 * size], state[o + 2 * size:o + 2 * size + n],
+                         state[o + 2 * size + n:o + 2 * size + 2 * n],
+                         state[o + 2 * size + 2 * n:o + 2 * size + 2 * n + m])
+
+
+@jit
+def _near(head, z, rack):
+    """Tell whether an equilibrium (its head: z, rack, valid) is kept and within WARM_MM."""
+    return head[2] == 1.0 and abs(head[0] - z) <= WARM_MM and abs(head[1] - rack) <= WARM_MM
+
+
+@jit
+def _zero_load(model, state, io, w, finish):
     """
     Make the zero-load state the equilibrium at io's travel and rack; return ok.
 
     Taken as it is at the same travel and rack (WARM), else solved from it (WARM: the last
-    one; KINEMATIC: the pose statics.py wrote there) and kept if it converges.
+    one; KINEMATIC: the pose statics.py wrote there) and kept if it converges; finish: what
+    w holds of it then (newton.newton's).
     """
     z, rack = io[Z], io[RACK]
     zero = views(state, len(model.b_kind), model.m, 0)
@@ -90,13 +123,19 @@ def _zero_load(model, state, io, w):
         return True
     c, r, lam = zero.c.copy(), zero.r.copy(), zero.lam.copy()
     center = model.consts[kernel.CENTER:kernel.CENTER + 3]
-    ok, iterations, residual = newton.newton(
-        model, c, r, lam, kernel.Inputs(z, rack, center, np.zeros(3), np.zeros(3)),
-        newton.MAX_ITER, w)
+    inputs = kernel.Inputs(z, rack, center, np.zeros(3), np.zeros(3))
+    kept = factor_views(state, model, 0)
+    last = 0.0
+    if io[ZERO_FROM] == WARM and kept.head[0] == 1.0:   # the tangent, then Newton
+        last = newton.chord(model, c, r, lam, inputs, kept, w)
+    ok, iterations, residual = newton.newton(model, c, r, lam, inputs, newton.MAX_ITER, w,
+                                             finish, last)
     io[ZERO_ITERATIONS], io[ZERO_RESIDUAL] = iterations, residual
     if ok:
         zero.head[0], zero.head[1], zero.head[2] = z, rack, 1.0
         zero.c[:], zero.r[:], zero.lam[:] = c, r, lam
+        if finish != kernel.SYMMETRIC:   # (the rates keep their own, at the equilibrium)
+            newton.keep(w, kept)
     return ok
 
 
@@ -113,8 +152,10 @@ def load_point(model, r0, at_cp, out):
     if not at_cp:
         return
     spin = model.consts[kernel.SPIN:kernel.SPIN + 3]
-    a = r0 @ spin
-    px, py, pz = patch_offset(a[0], a[1], a[2], model.consts[kernel.RADIUS])
+    a0 = r0[0, 0] * spin[0] + r0[0, 1] * spin[1] + r0[0, 2] * spin[2]
+    a1 = r0[1, 0] * spin[0] + r0[1, 1] * spin[1] + r0[1, 2] * spin[2]
+    a2 = r0[2, 0] * spin[0] + r0[2, 1] * spin[1] + r0[2, 2] * spin[2]
+    px, py, pz = patch_offset(a0, a1, a2, model.consts[kernel.RADIUS])
     for i in range(3):
         out[i] += r0[0, i] * px + r0[1, i] * py + r0[2, i] * pz
 
@@ -126,23 +167,35 @@ def solve(ints, reals, state, io):
 
     OK: the answer in io from ANSWER (forces.answer_offsets), the loaded state kept.
     ZERO_FAILED, LOADED_FAILED: no convergence from the start asked (residual in io);
-    BEYOND: converged, but a bushing beyond the model (the answer's validity says which).
+    BEYOND: converged, but a bushing beyond the model (the answer's validity says which);
+    COLD: asked to start WARM with no zero-load equilibrium near enough (none solved).
     """
     model = kernel.unpack(ints, reals)
+    bodies = len(model.b_kind)
+    if io[ZERO_FROM] == WARM and not _near(views(state, bodies, model.m, 0).head, io[Z],
+                                           io[RACK]):
+        io[CODE] = COLD
+        return COLD
+    if io[LOADED_FROM] == WARM and not _near(views(state, bodies, model.m, 1).head, io[Z],
+                                             io[RACK]):
+        io[LOADED_FROM] = ZERO
     w = newton.work(model)
     io[CODE] = ZERO_FAILED
-    if (io[AT_CP] != 0.0 or io[LOADED_FROM] != WARM) and not _zero_load(model, state, io, w):
+    if (io[AT_CP] != 0.0 or io[LOADED_FROM] != WARM) and not _zero_load(
+            model, state, io, w, newton.POSE_ONLY):
         io[RESIDUAL] = io[ZERO_RESIDUAL]
         return ZERO_FAILED
-    bodies = len(model.b_kind)
     start = views(state, bodies, model.m, 0 if io[LOADED_FROM] != WARM else 1)
     c, r, lam = start.c.copy(), start.r.copy(), start.lam.copy()
     x_load = np.empty(3)
     load_point(model, views(state, bodies, model.m, 0).r[0], io[AT_CP] != 0.0, x_load)
     inputs = kernel.Inputs(io[Z], io[RACK], x_load, io[FORCE:FORCE + 3].copy(),
                            io[MOMENT:MOMENT + 3].copy())
+    kept = factor_views(state, model, 1)
     if io[LOADED_FROM] == WARM:
-        ok, iterations, residual = newton.newton(model, c, r, lam, inputs, newton.MAX_ITER, w)
+        last = newton.chord(model, c, r, lam, inputs, kept, w) if kept.head[0] == 1.0 else 0.0
+        ok, iterations, residual = newton.newton(model, c, r, lam, inputs, newton.MAX_ITER, w,
+                                                 kernel.RESIDUAL, last)
     else:
         ok, iterations, residual = newton.loaded(model, c, r, lam, inputs, w)
     io[ITERATIONS], io[RESIDUAL] = iterations, residual
@@ -158,24 +211,25 @@ def solve(ints, reals, state, io):
     done = views(state, bodies, model.m, 1)
     done.head[0], done.head[1], done.head[2] = io[Z], io[RACK], 1.0
     done.c[:], done.r[:], done.lam[:] = c, r, lam
+    newton.keep(w, kept)
     io[CODE] = OK
     return OK
 
 
 @jit
-def angle_gradients(spin, side_sign):
+def angle_gradients(ax, ay, az, side_sign):
     """
-    Return d camber / d w and d toe / d w (3,) rad/rad of a spin axis a turned by w.
+    Return d camber / d w and d toe / d w (3 each) rad/rad of a spin axis a turned by w.
 
     camber = -atan2(a_z, |a_xy|), toe = atan2(a_x, s a_y) (so3.camber_toe); a moves by
     w x a, so d/dw = a x d/da.
     """
-    ax, ay, az = spin[0], spin[1], spin[2]
     flat = math.hypot(ax, ay)
     tilt, turn = az * az + flat * flat, ax * ax + ay * ay
-    cam = np.array([az * ax / flat / tilt, az * ay / flat / tilt, -flat / tilt])
-    toe = np.array([side_sign * ay / turn, side_sign * -ax / turn, 0.0])
-    return np.cross(spin, cam), np.cross(spin, toe)
+    c0, c1, c2 = az * ax / flat / tilt, az * ay / flat / tilt, -flat / tilt
+    t0, t1 = side_sign * ay / turn, side_sign * -ax / turn
+    return ((ay * c2 - az * c1, az * c0 - ax * c2, ax * c1 - ay * c0),
+            (-az * t1, az * t0, ax * t1 - ay * t0))
 
 
 @jit
@@ -190,53 +244,68 @@ def rates(ints, reals, state, io):
     its move dM (mm) and turn w (rad); the holding force changes by -dlambda of the travel.
     """
     model = kernel.unpack(ints, reals)
+    zero = views(state, len(model.b_kind), model.m, 0)
+    if io[ZERO_FROM] == WARM and not _near(zero.head, io[Z], io[RACK]):
+        io[CODE] = COLD
+        return COLD
     w = newton.work(model)
     io[CODE] = ZERO_FAILED
-    zero = views(state, len(model.b_kind), model.m, 0)
-    if not _zero_load(model, state, io, w):
+    if not _zero_load(model, state, io, w, kernel.SYMMETRIC):
         io[RESIDUAL] = io[ZERO_RESIDUAL]
         return ZERO_FAILED
     n, m = model.n, model.m
     center = model.consts[kernel.CENTER:kernel.CENTER + 3]
     if io[ZERO_ITERATIONS] == 0.0:   # kept as it was: its matrix again
         kernel.assemble(model, zero.c, zero.r, zero.lam, kernel.Inputs(
-            io[Z], io[RACK], center, np.zeros(3), np.zeros(3)), False, w.grad, w.hess,
-            w.values, w.rows, w.scratch)
-    mode, bounds = newton.factorise(w.hess, w.rows, model.perm, model.bounds, w.a, w.piv,
-                                    w.dense)
+            io[Z], io[RACK], center, np.zeros(3), np.zeros(3)), kernel.SYMMETRIC, w)
+    mode, dense = newton.factorise(model, w)
     if mode == kkt.FAILED:
         return ZERO_FAILED
-    rot = zero.r[0]
-    d_camber, d_toe = angle_gradients(rot @ model.consts[kernel.SPIN:kernel.SPIN + 3],
-                                      model.consts[kernel.SIDE])
+    bounds = w.dense if dense else model.bounds
+    newton.keep(w, factor_views(state, model, 0))   # the next command's tangent
+    rot, spin, rhs, sol = zero.r[0], model.consts[kernel.SPIN:kernel.SPIN + 3], w.rhs, w.sol
+    axis = np.empty(3)
+    for i in range(3):
+        axis[i] = rot[i, 0] * spin[0] + rot[i, 1] * spin[1] + rot[i, 2] * spin[2]
+    d_camber, d_toe = angle_gradients(axis[0], axis[1], axis[2], model.consts[kernel.SIDE])
     radius = model.consts[kernel.RADIUS]
-    patch = np.zeros(3)
+    p0 = p1 = p2 = 0.0   # the patch less the wheel centre, turned: a carrier point's offset
     if radius > 0:
         x_cp = np.empty(3)
         load_point(model, rot, True, x_cp)
-        patch = rot @ (x_cp - center)
+        p0, p1, p2 = (rot[0, 0] * (x_cp[0] - center[0]) + rot[0, 1] * (x_cp[1] - center[1])
+                      + rot[0, 2] * (x_cp[2] - center[2]),
+                      rot[1, 0] * (x_cp[0] - center[0]) + rot[1, 1] * (x_cp[1] - center[1])
+                      + rot[1, 2] * (x_cp[2] - center[2]),
+                      rot[2, 0] * (x_cp[0] - center[0]) + rot[2, 1] * (x_cp[1] - center[1])
+                      + rot[2, 2] * (x_cp[2] - center[2]))
     dm, turn, held = np.empty((3, 8)), np.empty((3, 8)), np.empty(8)
+    toe, camber = np.empty(8), np.empty(8)
     for j in range(8):   # the loads as generalized forces (columns)
-        w.rhs[:] = 0.0
+        for i in range(n + m):
+            rhs[i] = 0.0
         if j < 6:
-            w.rhs[j] = 1.0
-        else:
-            e = np.zeros(3)
-            e[1 if j == 6 else 0] = 1.0
-            w.rhs[0:3] = e
-            w.rhs[3:6] = np.cross(patch, e)
-        kkt.solve_full(w.a, w.piv, bounds, mode, model.perm, w.hess, w.rows, w.rhs, w.sol,
-                       w.b)
-        dm[:, j], turn[:, j], held[j] = w.sol[0:3], w.sol[3:6], -w.sol[n + m - 1]
+            rhs[j] = 1.0
+        else:   # Fy (6) or Fx (7) at the patch: the force and its moment p x e
+            e0, e1 = (0.0, 1.0) if j == 6 else (1.0, 0.0)
+            rhs[0], rhs[1] = e0, e1
+            rhs[3], rhs[4], rhs[5] = -p2 * e1, p2 * e0, p0 * e1 - p1 * e0
+        kkt.solve_full(w, model.perm, bounds, mode)
+        for i in range(3):
+            dm[i, j], turn[i, j] = sol[i], sol[3 + i]
+        held[j] = -sol[n + m - 1]
+        toe[j] = d_toe[0] * sol[3] + d_toe[1] * sol[4] + d_toe[2] * sol[5]
+        camber[j] = d_camber[0] * sol[3] + d_camber[1] * sol[4] + d_camber[2] * sol[5]
     out = io[ANSWER:ANSWER + RATES_SIZE]
-    toe, camber = d_toe @ turn, d_camber @ turn
-    out[:] = np.nan
+    for i in range(RATES_SIZE):
+        out[i] = np.nan
     if radius > 0:
-        patch_move = dm[:, 6] + np.cross(turn[:, 6], patch)   # the patch as a carrier point
+        # the patch as a carrier point moves by dM + w x p
+        patch_dy = dm[1, 6] + turn[2, 6] * p0 - turn[0, 6] * p2
         out[0] = toe[6] * DEG * PER_KN
         out[1] = camber[6] * DEG * PER_KN
         out[2] = dm[1, 6] * PER_KN
-        out[3] = patch_move[1] * PER_KN
+        out[3] = patch_dy * PER_KN
         out[4] = held[6]
         out[5] = toe[7] * DEG * PER_KN
         out[6] = camber[7] * DEG * PER_KN

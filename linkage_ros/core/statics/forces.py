@@ -33,8 +33,8 @@ from . import kernel
 from .rotation import energy_into, log_into
 from ..base.so3 import camber_toe
 
-KERNEL_DIGEST = 'e5ff0fb8efa959ef2e3b5f2009faf1931c9ded81016bac2d633c81d6a85e84f0'
-ROTATION_DIGEST = 'a943b94226a3af68b18e3f29fb67e257828e2359a1615fd7a7adb51f037ca8b3'
+KERNEL_DIGEST = 'd0e2bf0272eb26daf1d28f5fca917d3d3c0d8422ef11880918e0774c60a7935b'
+ROTATION_DIGEST = 'fc35c0e1e6a28eae945025510fa2d9c6593693a9315427806e24f6de83cf28df'
 SO3_DIGEST = '862efb847a68465a5f68ec100893bccc4658d8a7278ad25575f0da1dc9d158aa'
 # The model's validity (doc/kc.md): beyond these a load is not carried
 MAX_DEFLECTION_MM = 10.0
@@ -47,6 +47,11 @@ CENTER, ROTATION, CAMBER, TOE, HOLDING, LOAD_POINT, RESIDUAL, ITERATIONS = \
     0, 3, 12, 13, 14, 15, 18, 19
 VALIDITY, VALIDITY_BUSHING, VALIDITY_VALUE, HEAD = 20, 21, 22, 24
 jit = njit(cache=True, nogil=True, error_model='numpy')
+# The kernels that allocate nothing and return no array are compiled without numba's
+# reference counting (its private _nrt flag): its atomic counts on every array passed or
+# named took a third of a command's time (perf). Such a kernel must never return an array
+# nor allocate one; its callers hand it scratch.
+bare = njit(cache=True, nogil=True, error_model='numpy', _nrt=False)
 
 
 @register_jitable
@@ -68,31 +73,55 @@ def answer_offsets(pickups, balls, links, springs):
     return force, moment, point, ball, link, end, spring, spring + springs
 
 
-@jit
+@bare
 def counts(model):
     """Return the numbers of body pickups, ball joints, links and springs of a Model."""
-    balls = 0
-    for i in range(len(model.c_ball)):
-        balls = max(balls, model.c_ball[i] + 1)
+    balls, c_ball = 0, model.c_ball
+    for i in range(len(c_ball)):
+        balls = max(balls, c_ball[i] + 1)
     return len(model.p_rack), balls, len(model.l_row), len(model.s_body)
 
 
-@jit
-def _cross_add(a0, a1, a2, b0, b1, b2, out, scale):
-    out[0] += scale * (a1 * b2 - a2 * b1)
-    out[1] += scale * (a2 * b0 - a0 * b2)
-    out[2] += scale * (a0 * b1 - a1 * b0)
+@bare
+def _cross(a0, a1, a2, b0, b1, b2):
+    """Return a x b as three numbers."""
+    return a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0
 
 
-@jit
-def _place(model_arrays, c, r, rack, t, a, x, v):
-    """Write item a of term t at its place (kernel.place): x[a], v[a]."""
-    ref0, it_body, it_x0, it_trans, it_rack = model_arrays
-    kernel.place(ref0, c, r, rack, it_body[t, a], it_x0[t, a, 0], it_x0[t, a, 1],
-                 it_x0[t, a, 2], it_trans[t, a], it_rack[t, a], x, v, a)
+@bare
+def places(model, c, r, inputs, out):
+    """
+    Write where every item of every term is at a pose into out (T, 3, 3), mm; unused: NaN.
+
+    In one function (kernel.place's arithmetic): a call per item taking the arrays would cost
+    more in reference counts (numba) than the arithmetic.
+    """
+    b_ref0, it_body, it_x0 = model.b_ref0, model.it_body, model.it_x0
+    it_trans, it_rack, rack, load = model.it_trans, model.it_rack, inputs.rack, inputs.x_load
+    last = len(model.t_kind) - 1
+    for t in range(len(model.t_kind)):
+        for a in range(3):
+            body = it_body[t, a]
+            if body == -2:
+                out[t, a, 0] = out[t, a, 1] = out[t, a, 2] = np.nan
+                continue
+            if t == last:
+                x0x, x0y, x0z = load[0], load[1], load[2]
+            else:
+                x0x, x0y, x0z = it_x0[t, a, 0], it_x0[t, a, 1], it_x0[t, a, 2]
+            if body < 0:
+                out[t, a, 0], out[t, a, 1], out[t, a, 2] = x0x, x0y + rack * it_rack[t, a], x0z
+                continue
+            trans = it_trans[t, a]
+            d0 = x0x - b_ref0[body, 0] * trans
+            d1 = x0y - b_ref0[body, 1] * trans
+            d2 = x0z - b_ref0[body, 2] * trans
+            for i in range(3):
+                out[t, a, i] = (r[body, i, 0] * d0 + r[body, i, 1] * d1 + r[body, i, 2] * d2
+                                + c[body, i] * trans)
 
 
-@jit
+@bare
 def pickups(model, c, r, lam, inputs, out, work):
     """
     Write the answer of the equilibrium (c, r, lam) under inputs into out (answer_offsets).
@@ -103,29 +132,39 @@ def pickups(model, c, r, lam, inputs, out, work):
     p_count, q_count, l_count, s_count = counts(model)
     o_force, o_moment, o_point, o_ball, o_link, o_end, o_spring, size = answer_offsets(
         p_count, q_count, l_count, s_count)
-    out[:size] = 0.0
+    for i in range(size):
+        out[i] = 0.0
     force = out[o_force:o_moment].reshape((p_count, 3))
     moment = out[o_moment:o_point].reshape((p_count, 3))
     point = out[o_point:o_ball].reshape((p_count, 3))
     ball = out[o_ball:o_link].reshape((q_count, 3))
-    rigid = np.zeros((len(model.h_slot), 6))   # per rigid arm: force, moment about axis[0]
-    x, v, g3, phi = work.x, work.v, work.g3, work.phi
+    rigid, at = work.rigid, work.at   # per rigid arm: force, moment about axis[0]; places
+    for h in range(rigid.shape[0]):
+        for k in range(6):
+            rigid[h, k] = 0.0
+    places(model, c, r, inputs, at)
+    g3, phi = work.g3, work.phi
     rack, m = inputs.rack, model.m
-    items = (model.b_ref0, model.it_body, model.it_x0, model.it_trans, model.it_rack)
     t_kind, t_data, c_ball, c_body, c_hinge = (model.t_kind, model.t_data, model.c_ball,
                                                model.c_body, model.c_hinge)
-    h_axis = model.h_axis
+    h_axis, it_w, it_body = model.h_axis, model.it_w, model.it_body
+    # (fields read into names first: numba counts a reference to a tuple's field at each
+    # read in a loop)
+    p_point, p_rack, t_table, table = model.p_point, model.p_rack, model.t_table, model.table
+    s_body, s_move, t_vec, t_rack = model.s_body, model.s_move, model.t_vec, model.t_rack
+    t_stiff, u_body, u_rot, r_turn = model.t_stiff, model.u_body, model.u_rot, model.r_turn
+    u_share, b_kind, u_axis, h_slot = model.u_share, model.b_kind, model.u_axis, model.h_slot
+    l_row, l_slot, h3, rot = model.l_row, model.l_slot, work.h3, work.rot
     for p in range(p_count):
-        point[p] = model.p_point[p]
-        point[p, 1] += rack * model.p_rack[p]
+        for i in range(3):
+            point[p, i] = p_point[p, i]
+        point[p, 1] += rack * p_rack[p]
     for i in range(m - 1):
         kind, q = t_kind[i], c_ball[i]
         if kind == kernel.LINK:
-            _place(items, c, r, rack, i, 0, x, v)
-            _place(items, c, r, rack, i, 1, x, v)
             scale = lam[i] / t_data[i, 0]
             for k in range(3):
-                d = x[0, k] - x[1, k]
+                d = at[i, 0, k] - at[i, 1, k]
                 ball[q, k] = -scale * d
                 if c_body[i] >= 0:
                     force[c_body[i], k] += scale * d
@@ -133,100 +172,104 @@ def pickups(model, c, r, lam, inputs, out, work):
             ball[q, int(t_data[i, 0])] = lam[i]
             h = c_hinge[i]
             if h >= 0:   # the carrier pulls the rigid arm at its ball joint
-                _place(items, c, r, rack, i, 0, x, v)
                 for k in range(3):
                     rigid[h, k] -= lam[i + k]
-                _cross_add(x[0, 0] - h_axis[h, 0, 0], x[0, 1] - h_axis[h, 0, 1],
-                           x[0, 2] - h_axis[h, 0, 2], lam[i], lam[i + 1], lam[i + 2],
-                           rigid[h, 3:], -1.0)
+                m0, m1, m2 = _cross(at[i, 0, 0] - h_axis[h, 0, 0], at[i, 0, 1] - h_axis[h, 0, 1],
+                                    at[i, 0, 2] - h_axis[h, 0, 2], lam[i], lam[i + 1],
+                                    lam[i + 2])
+                rigid[h, 3] -= m0
+                rigid[h, 4] -= m1
+                rigid[h, 5] -= m2
         elif kind == kernel.LINE:
-            _place(items, c, r, rack, i, 1, x, v)
             for k in range(3):
-                ball[q, k] += lam[i] * x[1, k]
-                force[c_body[i], k] -= lam[i] * x[1, k]
+                ball[q, k] += lam[i] * at[i, 1, k]
+                force[c_body[i], k] -= lam[i] * at[i, 1, k]
     pushed = out[o_spring:size]
     for s in range(s_count):   # each spring's pulls on the body, ball joints and rigid arms
         t = m + s
         g0 = g1 = g2 = 0.0
         for a in range(1, 3):
-            if model.it_body[t, a] == -2:
-                continue
-            _place(items, c, r, rack, t, a, x, v)
-            w = model.it_w[t, a]
-            g0, g1, g2 = g0 + w * x[a, 0], g1 + w * x[a, 1], g2 + w * x[a, 2]
-        g0 -= model.it_x0[t, 0, 0]
-        g1 -= model.it_x0[t, 0, 1]
-        g2 -= model.it_x0[t, 0, 2]
+            if it_body[t, a] != -2:
+                w = it_w[t, a]
+                g0, g1, g2 = g0 + w * at[t, a, 0], g1 + w * at[t, a, 1], g2 + w * at[t, a, 2]
+        g0, g1, g2 = g0 - at[t, 0, 0], g1 - at[t, 0, 1], g2 - at[t, 0, 2]
         length = math.sqrt(g0 * g0 + g1 * g1 + g2 * g2)
-        tension, _ = kernel.spring_at(t_data[t, 0], t_data[t, 1], model.t_table[t, 0],
-                                      model.t_table[t, 1], model.table, length)
+        tension, _ = kernel.spring_at(t_data[t, 0], t_data[t, 1], t_table[t, 0],
+                                      t_table[t, 1], table, length)
         pushed[s] = -tension
         u0, u1, u2 = g0 / length, g1 / length, g2 / length
-        slot = model.s_body[s]
+        slot = s_body[s]
         force[slot, 0] += tension * u0
         force[slot, 1] += tension * u1
         force[slot, 2] += tension * u2
         for a in range(1, 3):
-            if model.it_body[t, a] == -2:
+            if it_body[t, a] == -2:
                 continue
-            share = -model.it_w[t, a] * tension   # the spring's push on the moving end
-            kind, target = model.s_move[s, a - 1, 0], model.s_move[s, a - 1, 1]
-            if kind == kernel.PICKUP or kind == kernel.BALL_JOINT:
-                into = force[target] if kind == kernel.PICKUP else ball[target]
-                into[0] += share * u0
-                into[1] += share * u1
-                into[2] += share * u2
+            share = -it_w[t, a] * tension   # the spring's push on the moving end
+            kind, target = s_move[s, a - 1, 0], s_move[s, a - 1, 1]
+            if kind == kernel.PICKUP:
+                force[target, 0] += share * u0
+                force[target, 1] += share * u1
+                force[target, 2] += share * u2
+            elif kind == kernel.BALL_JOINT:
+                ball[target, 0] += share * u0
+                ball[target, 1] += share * u1
+                ball[target, 2] += share * u2
             elif kind == kernel.RIGID_ARM:
                 rigid[target, 0] += share * u0
                 rigid[target, 1] += share * u1
                 rigid[target, 2] += share * u2
-                _cross_add(x[a, 0] - h_axis[target, 0, 0], x[a, 1] - h_axis[target, 0, 1],
-                           x[a, 2] - h_axis[target, 0, 2], share * u0, share * u1,
-                           share * u2, rigid[target, 3:], 1.0)
-    for b in range(len(model.u_body)):
+                m0, m1, m2 = _cross(at[t, a, 0] - h_axis[target, 0, 0],
+                                    at[t, a, 1] - h_axis[target, 0, 1],
+                                    at[t, a, 2] - h_axis[target, 0, 2], share * u0, share * u1,
+                                    share * u2)
+                rigid[target, 3] += m0
+                rigid[target, 4] += m1
+                rigid[target, 5] += m2
+    for b in range(len(u_body)):
         t = m + s_count + b
-        _place(items, c, r, rack, t, 0, x, v)
-        k = model.t_stiff[t]
-        d0 = x[0, 0] - model.t_vec[t, 0]
-        d1 = x[0, 1] - model.t_vec[t, 1] - rack * model.t_rack[t]
-        d2 = x[0, 2] - model.t_vec[t, 2]
+        d0 = at[t, 0, 0] - t_vec[t, 0]
+        d1 = at[t, 0, 1] - t_vec[t, 1] - rack * t_rack[t]
+        d2 = at[t, 0, 2] - t_vec[t, 2]
+        k = t_stiff[t]
         f0 = k[0, 0] * d0 + k[0, 1] * d1 + k[0, 2] * d2
         f1 = k[1, 0] * d0 + k[1, 1] * d1 + k[1, 2] * d2
         f2 = k[2, 0] * d0 + k[2, 1] * d1 + k[2, 2] * d2
-        slot = model.u_body[b]
+        slot = u_body[b]
         force[slot, 0] += f0
         force[slot, 1] += f1
         force[slot, 2] += f2
-        g3[:] = 0.0
-        turn = model.u_rot[b]
-        body = model.it_body[t, 0]
+        g3[0] = g3[1] = g3[2] = 0.0
+        turn = u_rot[b]
+        body = it_body[t, 0]
         if turn >= 0:   # the arm's bushings share its rotational torque
             log_into(r[body], phi)
-            energy_into(phi, model.r_turn[turn], g3, work.h3, work.rot)
-            share = model.u_share[b]
-            g3[0], g3[1], g3[2] = share * g3[0], share * g3[1], share * g3[2]
-        _cross_add(d0, d1, d2, f0, f1, f2, g3, 1.0)   # the couple of B's offset, d x K d
-        for i in range(3):
-            moment[slot, i] += g3[i] / 1000.0
+            energy_into(phi, r_turn[turn], g3, h3, rot)
+        share = u_share[b] if turn >= 0 else 0.0
+        m0, m1, m2 = _cross(d0, d1, d2, f0, f1, f2)   # the couple of B's offset, d x K d
+        moment[slot, 0] += (m0 + share * g3[0]) / 1000.0
+        moment[slot, 1] += (m1 + share * g3[1]) / 1000.0
+        moment[slot, 2] += (m2 + share * g3[2]) / 1000.0
         if out[VALIDITY] == VALID:
-            _validity(model.b_kind[body] == kernel.ARM, r[body], model.u_axis[b], b, d0, d1,
+            _validity(b_kind[body] == kernel.ARM, r[body], u_axis[b], b, d0, d1,
                       d2, out, phi)
-    for h in range(len(model.h_slot)):
-        _rigid_arm(h_axis[h], rigid[h], force[model.h_slot[h, 0]], force[model.h_slot[h, 1]])
+    for h in range(len(h_slot)):
+        _rigid_arm(h_axis[h], rigid[h], force[h_slot[h, 0]], force[h_slot[h, 1]])
     for j in range(l_count):
-        i = model.l_row[j]
-        _place(items, c, r, rack, i, 0, x, v)
-        _place(items, c, r, rack, i, 1, x, v)
-        d0, d1, d2 = x[0, 0] - x[1, 0], x[0, 1] - x[1, 1], x[0, 2] - x[1, 2]
+        i = l_row[j]
+        d0, d1, d2 = at[i, 0, 0] - at[i, 1, 0], at[i, 0, 1] - at[i, 1, 1], at[i, 0, 2] - at[
+            i, 1, 2]
         length = math.sqrt(d0 * d0 + d1 * d1 + d2 * d2)
         out[o_link + j] = lam[i] / t_data[i, 0] * length
-        base, joint = force[model.l_slot[j, 0]], ball[model.l_slot[j, 1]]
-        out[o_end + 2 * j] = (base[0] * d0 + base[1] * d1 + base[2] * d2) / length
-        out[o_end + 2 * j + 1] = -(joint[0] * d0 + joint[1] * d1 + joint[2] * d2) / length
-    _head(model, c, r, lam, inputs, out, x, v)
+        base, joint = l_slot[j, 0], l_slot[j, 1]
+        out[o_end + 2 * j] = (force[base, 0] * d0 + force[base, 1] * d1
+                              + force[base, 2] * d2) / length
+        out[o_end + 2 * j + 1] = -(ball[joint, 0] * d0 + ball[joint, 1] * d1
+                                   + ball[joint, 2] * d2) / length
+    _head(model, c, r, lam, inputs, out, at[len(model.t_kind) - 1, 0])
 
 
-@jit
+@bare
 def _rigid_arm(axis, loads, p0, p1):
     """
     Add to p0, p1 the forces (3,) N a rigid revolute's pivots exert on the body.
@@ -253,7 +296,7 @@ def _rigid_arm(axis, loads, p0, p1):
     p1[2] -= q2
 
 
-@jit
+@bare
 def _validity(arm, rotation, axis, b, d0, d1, d2, out, phi):
     """Note bushing b if deflected (d, mm) or, on an arm, turned conically beyond the model."""
     size = math.sqrt(d0 * d0 + d1 * d1 + d2 * d2)
@@ -270,20 +313,18 @@ def _validity(arm, rotation, axis, b, d0, d1, d2, out, phi):
         out[VALIDITY], out[VALIDITY_BUSHING], out[VALIDITY_VALUE] = TURNS, b, conical
 
 
-@jit
-def _head(model, c, r, lam, inputs, out, x, v):
-    """Write the pose, the holding force and the load's point into out's head."""
+@bare
+def _head(model, c, r, lam, inputs, out, load_point):
+    """Write the pose, the holding force and the load's point (3,) into out's head."""
     for i in range(3):
         out[CENTER + i] = c[0, i]
         for j in range(3):
             out[ROTATION + 3 * i + j] = r[0, i, j]
     spin = model.consts[kernel.SPIN:kernel.SPIN + 3]
-    a = np.empty(3)
-    for i in range(3):
-        a[i] = r[0, i, 0] * spin[0] + r[0, i, 1] * spin[1] + r[0, i, 2] * spin[2]
-    out[CAMBER], out[TOE] = camber_toe(a[0], a[1], a[2], model.consts[kernel.SIDE])
+    a0 = r[0, 0, 0] * spin[0] + r[0, 0, 1] * spin[1] + r[0, 0, 2] * spin[2]
+    a1 = r[0, 1, 0] * spin[0] + r[0, 1, 1] * spin[1] + r[0, 1, 2] * spin[2]
+    a2 = r[0, 2, 0] * spin[0] + r[0, 2, 1] * spin[1] + r[0, 2, 2] * spin[2]
+    out[CAMBER], out[TOE] = camber_toe(a0, a1, a2, model.consts[kernel.SIDE])
     out[HOLDING] = -lam[model.m - 1]
-    load = inputs.x_load
-    kernel.place(model.b_ref0, c, r, inputs.rack, 0, load[0], load[1], load[2], 1.0, 0.0, x,
-                 v, 0)
-    out[LOAD_POINT:LOAD_POINT + 3] = x[0]
+    for i in range(3):
+        out[LOAD_POINT + i] = load_point[i]

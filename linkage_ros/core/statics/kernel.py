@@ -38,15 +38,23 @@ from ..base.force_table import table_force
 from ..base.so3 import turn
 
 SO3_DIGEST = '862efb847a68465a5f68ec100893bccc4658d8a7278ad25575f0da1dc9d158aa'
-ROTATION_DIGEST = 'a943b94226a3af68b18e3f29fb67e257828e2359a1615fd7a7adb51f037ca8b3'
+ROTATION_DIGEST = 'fc35c0e1e6a28eae945025510fa2d9c6593693a9315427806e24f6de83cf28df'
 FORCE_TABLE_DIGEST = '346feb4092ce978e6e4a4404d799b759c6b543b914b5a7b17b6adb98596648da'
 CARRIER, ARM, HINGE, BASE = 0, 1, 2, 3
 LINK, BALL, LINE, TRAVEL, SPRING, BUSH, LOAD = 0, 1, 2, 3, 4, 5, 6
+# what assemble writes: the residual alone (grad, values, rows), with the symmetric Hessian
+# of L, or with the residual's exact derivative (module docstring)
+RESIDUAL, SYMMETRIC, EXACT = 0, 1, 2
 # what a spring's moving item passes its share of the spring force on to (Model.s_move)
 NOTHING, PICKUP, BALL_JOINT, RIGID_ARM = 0, 1, 2, 3
 # ints begins with these scalars, then a header of 4 per field (offset, shape of up to 3)
 N, M, N_SCALARS = 0, 1, 8
 jit = njit(cache=True, nogil=True, error_model='numpy')
+# The kernels that allocate nothing and return no array are compiled without numba's
+# reference counting (its private _nrt flag): its atomic counts on every array passed or
+# named took a third of a command's time (perf). Such a kernel must never return an array
+# nor allocate one; its callers hand it scratch.
+bare = njit(cache=True, nogil=True, error_model='numpy', _nrt=False)
 
 
 class Model(NamedTuple):
@@ -189,86 +197,26 @@ class Scratch(NamedTuple):
     g3: np.ndarray         # (3,)
     h3: np.ndarray         # (3, 3)
     rot: np.ndarray        # (5, 3, 3) energy_into's
+    at: np.ndarray         # (T, 3, 3) every item's place (forces.places)
+    rigid: np.ndarray      # (H, 6) the loads on each rigid arm (forces.pickups)
 
 
 @jit
-def scratch():
-    """Return a Scratch for assemble."""
+def scratch(model):
+    """Return a Scratch for assemble and forces.pickups."""
     return Scratch(np.empty((3, 3)), np.empty((3, 3)), np.zeros((3, 3, 6)), np.empty((2, 3)),
                    np.zeros((2, 3)), np.zeros((2, 2, 3, 3)), np.empty((3, 6)), np.empty(3),
-                   np.empty(3), np.empty((3, 3)), np.empty((5, 3, 3)))
+                   np.empty(3), np.empty((3, 3)), np.empty((5, 3, 3)),
+                   np.empty((len(model.t_kind), 3, 3)), np.empty((len(model.h_slot), 6)))
 
 
-@jit
+@bare
 def size_of(kind):
     """Return how many coordinates a body of this kind has."""
     return 6 if kind <= ARM else (1 if kind == HINGE else 3)
 
 
-# The helpers below take arrays and numbers, never the Model: numba passes a named tuple by
-# value, with a reference count taken and given back on each of its arrays, which in these
-# calls (tens per assembly) cost more than the arithmetic.
-
-@jit
-def place(ref0, c, r, rack, body, x0x, x0y, x0z, trans, on_rack, x, v, a):
-    """
-    Write an item's place x[a] (3,) and v[a] = R (x0 - ref0) (R x0: a direction).
-
-    ref0: the bodies' (B, 3); body -1 a fixed point (on_rack 1.0: moved by the rack along y);
-    x0: the item's design point; trans 1.0 a point, 0.0 a direction.
-    """
-    if body < 0:
-        x[a, 0], x[a, 1], x[a, 2] = x0x, x0y + rack * on_rack, x0z
-        v[a, 0] = v[a, 1] = v[a, 2] = 0.0
-        return
-    d0 = x0x - ref0[body, 0] * trans
-    d1 = x0y - ref0[body, 1] * trans
-    d2 = x0z - ref0[body, 2] * trans
-    for i in range(3):
-        v[a, i] = r[body, i, 0] * d0 + r[body, i, 1] * d1 + r[body, i, 2] * d2
-        x[a, i] = v[a, i] + c[body, i] * trans
-
-
-@jit
-def _jac(kind, axis, body, v, trans, out, a):
-    """Write d x / d q_body (3, size) of item a into out[a, :, :size]; axis: the bodies'."""
-    if kind == CARRIER or kind == ARM:
-        for i in range(3):
-            for j in range(3):
-                out[a, i, j] = trans if i == j else 0.0
-        out[a, 0, 3], out[a, 1, 3], out[a, 2, 3] = 0.0, -v[a, 2], v[a, 1]    # e_x x v
-        out[a, 0, 4], out[a, 1, 4], out[a, 2, 4] = v[a, 2], 0.0, -v[a, 0]    # e_y x v
-        out[a, 0, 5], out[a, 1, 5], out[a, 2, 5] = -v[a, 1], v[a, 0], 0.0    # e_z x v
-    elif kind == HINGE:
-        a0, a1, a2 = axis[body, 0], axis[body, 1], axis[body, 2]
-        out[a, 0, 0] = a1 * v[a, 2] - a2 * v[a, 1]
-        out[a, 1, 0] = a2 * v[a, 0] - a0 * v[a, 2]
-        out[a, 2, 0] = a0 * v[a, 1] - a1 * v[a, 0]
-    else:
-        for i in range(3):
-            for j in range(3):
-                out[a, i, j] = trans if i == j else 0.0
-
-
-@jit
-def _second(kind, start, axis, body, v, a, g, p, factor, hess):
-    """Add factor W^T ((v g^T + g v^T) / 2 - (g.v) I) W of item a (g[p]) to hess (exact)."""
-    if kind == BASE:
-        return
-    gv = g[p, 0] * v[a, 0] + g[p, 1] * v[a, 1] + g[p, 2] * v[a, 2]
-    if kind == HINGE:
-        a0, a1, a2 = axis[body, 0], axis[body, 1], axis[body, 2]
-        av = a0 * v[a, 0] + a1 * v[a, 1] + a2 * v[a, 2]
-        ag = a0 * g[p, 0] + a1 * g[p, 1] + a2 * g[p, 2]
-        hess[start, start] += factor * (av * ag - gv * (a0 * a0 + a1 * a1 + a2 * a2))
-        return
-    for i in range(3):
-        for j in range(3):
-            hess[start + 3 + i, start + 3 + j] += factor * (
-                0.5 * (v[a, i] * g[p, j] + g[p, i] * v[a, j]) - (gv if i == j else 0.0))
-
-
-@jit
+@bare
 def spring_at(rate, free, start, stop, table, length):
     """
     Return a spring's (tension N, stiffness d tension / d length N/mm) at length (mm).
@@ -281,126 +229,172 @@ def spring_at(rate, free, start, stop, table, length):
     return -pushed, slope
 
 
-@jit
-def _term(kind, data, vec, stiff, on_rack, rows, table, xs, z, rack, force, g, h):
-    """
-    Return a term's value at points xs; write d/dx_p g (2, 3), d2/dx_p dx_q h (2, 2, 3, 3).
-
-    data (2,), vec (3,), stiff (3, 3), on_rack, rows (2,): the term's (Model's t_ fields).
-    """
-    value = 0.0
-    if kind == LINK:
-        length = data[0]
-        dd = 0.0
-        for i in range(3):
-            d = xs[0, i] - xs[1, i]
-            dd += d * d
-            g[0, i], g[1, i] = d / length, -d / length
-            h[0, 0, i, i], h[1, 1, i, i] = 1.0 / length, 1.0 / length
-            h[0, 1, i, i], h[1, 0, i, i] = -1.0 / length, -1.0 / length
-        value = (dd - length * length) / (2.0 * length)
-    elif kind == BALL:
-        k = int(data[0])
-        value = xs[0, k] - xs[1, k]
-        g[0, k], g[1, k] = 1.0, -1.0
-    elif kind == LINE:
-        for i in range(3):
-            gap = vec[i] - xs[0, i]
-            value += gap * xs[1, i]
-            g[0, i], g[1, i] = -xs[1, i], gap
-            h[0, 1, i, i], h[1, 0, i, i] = -1.0, -1.0
-    elif kind == TRAVEL:
-        value = xs[0, 2] - z
-        g[0, 2] = 1.0
-    elif kind == SPRING:
-        d0, d1, d2 = xs[1, 0] - xs[0, 0], xs[1, 1] - xs[0, 1], xs[1, 2] - xs[0, 2]
-        length = math.sqrt(d0 * d0 + d1 * d1 + d2 * d2)
-        u0, u1, u2 = d0 / length, d1 / length, d2 / length
-        f, stiffness = spring_at(data[0], data[1], rows[0], rows[1], table, length)
-        across = f / length
-        for i in range(3):
-            ui = u0 if i == 0 else (u1 if i == 1 else u2)
-            g[0, i], g[1, i] = -f * ui, f * ui
-            for j in range(3):
-                uj = u0 if j == 0 else (u1 if j == 1 else u2)
-                k = (stiffness - across) * ui * uj + (across if i == j else 0.0)
-                h[0, 0, i, j], h[1, 1, i, j] = k, k
-                h[0, 1, i, j], h[1, 0, i, j] = -k, -k
-    elif kind == BUSH:
-        d0 = xs[0, 0] - vec[0]
-        d1 = xs[0, 1] - vec[1] - rack * on_rack
-        d2 = xs[0, 2] - vec[2]
-        for i in range(3):
-            g[0, i] = stiff[i, 0] * d0 + stiff[i, 1] * d1 + stiff[i, 2] * d2
-            for j in range(3):
-                h[0, 0, i, j] = stiff[i, j]
-        value = 0.5 * (d0 * g[0, 0] + d1 * g[0, 1] + d2 * g[0, 2])
-    else:   # LOAD
-        for i in range(3):
-            value -= force[i] * xs[0, i]
-            g[0, i] = -force[i]
-    return value
-
-
-@jit
-def assemble(model, c, r, lam, inputs, exact, grad, hess, values, rows, work):
+@bare
+def assemble(model, c, r, lam, inputs, what, w):
     """
     Write r = (grad L - M (n,), c (m,)), its derivative (hess (n, n), rows = dc/dq (m, n)).
 
-    exact: the derivative of the residual at this pose (module docstring), else the
-    symmetric Hessian of L. The load's point is a carrier point (inputs.x_load, design).
+    Into w (a newton.Work): w.grad, w.values, w.hess, w.rows, with w.scratch.
+
+    what: EXACT the derivative of the residual at this pose (module docstring), SYMMETRIC
+    the symmetric Hessian of L, RESIDUAL no Hessian (hess left as it is). The load's point
+    is a carrier point (inputs.x_load, design).
+
+    One loop over the terms, each written out here: a helper that took arrays would cost a
+    reference count taken and given back per array per call (numba), more than the
+    arithmetic of a term. Per term: its items' places x, v = R (x0 - ref0) and d x / d q
+    (jacs), the term's value, gradient g in its points and second derivative h; then
+    grad += factor J^T g, the rotation's own second derivative (v g^T + g v^T) / 2 - (g.v) I
+    (exact) and J_a^T h J_b, factor the multiplier of a constraint row, 1 for an energy.
     """
-    grad[:] = 0.0
-    hess[:] = 0.0
-    rows[:] = 0.0
+    n, m = model.n, model.m
+    grad, hess, values, rows, work = w.grad, w.hess, w.values, w.rows, w.scratch
+    second = what != RESIDUAL
+    for i in range(n):
+        grad[i] = 0.0
+        if second:
+            for j in range(n):
+                hess[i, j] = 0.0
+    for k in range(m):
+        for j in range(n):
+            rows[k, j] = 0.0
     x, v, jacs, xs, g, h, hj = work.x, work.v, work.jacs, work.xs, work.g, work.h, work.hj
-    m, rack = model.m, inputs.rack
+    rack, z, load, force = inputs.rack, inputs.z, inputs.x_load, inputs.force
     b_kind, b_start, b_ref0, b_axis = model.b_kind, model.b_start, model.b_ref0, model.b_axis
     t_kind, it_body, it_point, it_w = model.t_kind, model.it_body, model.it_point, model.it_w
     it_x0, it_trans, it_rack = model.it_x0, model.it_trans, model.it_rack
     t_data, t_vec, t_stiff, t_rack, t_table = (model.t_data, model.t_vec, model.t_stiff,
                                                model.t_rack, model.t_table)
-    table, load = model.table, inputs.x_load
+    table = model.table
     last = len(t_kind) - 1
     for t in range(len(t_kind)):
         kind = t_kind[t]
-        xs[:] = 0.0
-        for a in range(3):
+        for i in range(3):
+            xs[0, i] = xs[1, i] = g[0, i] = g[1, i] = 0.0
+        for a in range(3):   # the items: places, v, d x / d q
             body = it_body[t, a]
             if body == -2:
                 continue
             if t == last:   # the load: its point is an input
-                place(b_ref0, c, r, rack, body, load[0], load[1], load[2], it_trans[t, a],
-                      it_rack[t, a], x, v, a)
+                x0x, x0y, x0z = load[0], load[1], load[2]
             else:
-                place(b_ref0, c, r, rack, body, it_x0[t, a, 0], it_x0[t, a, 1],
-                      it_x0[t, a, 2], it_trans[t, a], it_rack[t, a], x, v, a)
+                x0x, x0y, x0z = it_x0[t, a, 0], it_x0[t, a, 1], it_x0[t, a, 2]
+            if body < 0:
+                x[a, 0], x[a, 1], x[a, 2] = x0x, x0y + rack * it_rack[t, a], x0z
+            else:
+                trans = it_trans[t, a]
+                d0 = x0x - b_ref0[body, 0] * trans
+                d1 = x0y - b_ref0[body, 1] * trans
+                d2 = x0z - b_ref0[body, 2] * trans
+                for i in range(3):
+                    v[a, i] = r[body, i, 0] * d0 + r[body, i, 1] * d1 + r[body, i, 2] * d2
+                    x[a, i] = v[a, i] + c[body, i] * trans
+                bk = b_kind[body]
+                if bk == HINGE:
+                    a0, a1, a2 = b_axis[body, 0], b_axis[body, 1], b_axis[body, 2]
+                    jacs[a, 0, 0] = a1 * v[a, 2] - a2 * v[a, 1]
+                    jacs[a, 1, 0] = a2 * v[a, 0] - a0 * v[a, 2]
+                    jacs[a, 2, 0] = a0 * v[a, 1] - a1 * v[a, 0]
+                else:   # the translation, then (6-DOF) e_k x v
+                    for i in range(3):
+                        for j in range(3):
+                            jacs[a, i, j] = trans if i == j else 0.0
+                    if bk <= ARM:
+                        jacs[a, 0, 3], jacs[a, 1, 3], jacs[a, 2, 3] = 0.0, -v[a, 2], v[a, 1]
+                        jacs[a, 0, 4], jacs[a, 1, 4], jacs[a, 2, 4] = v[a, 2], 0.0, -v[a, 0]
+                        jacs[a, 0, 5], jacs[a, 1, 5], jacs[a, 2, 5] = -v[a, 1], v[a, 0], 0.0
             p, w = it_point[t, a], it_w[t, a]
             for i in range(3):
                 xs[p, i] += w * x[a, i]
-            if body >= 0:
-                _jac(b_kind[body], b_axis, body, v, it_trans[t, a], jacs, a)
-        g[:] = 0.0
-        h[:] = 0.0
-        value = _term(kind, t_data[t], t_vec[t], t_stiff[t], t_rack[t], t_table[t], table, xs,
-                      inputs.z, rack, inputs.force, g, h)
+        curved = second and (kind == LINK or kind == SPRING or kind == BUSH or kind == LINE)
+        if curved:
+            for p in range(2):
+                for q in range(2):
+                    for i in range(3):
+                        for j in range(3):
+                            h[p, q, i, j] = 0.0
+        value = 0.0   # the term at xs: its value, g = d/dx_p, h = d2/dx_p dx_q
+        if kind == LINK:
+            length = t_data[t, 0]
+            dd = 0.0
+            for i in range(3):
+                d = xs[0, i] - xs[1, i]
+                dd += d * d
+                g[0, i], g[1, i] = d / length, -d / length
+                h[0, 0, i, i], h[1, 1, i, i] = 1.0 / length, 1.0 / length
+                h[0, 1, i, i], h[1, 0, i, i] = -1.0 / length, -1.0 / length
+            value = (dd - length * length) / (2.0 * length)
+        elif kind == BALL:
+            k = int(t_data[t, 0])
+            value = xs[0, k] - xs[1, k]
+            g[0, k], g[1, k] = 1.0, -1.0
+        elif kind == LINE:
+            for i in range(3):
+                gap = t_vec[t, i] - xs[0, i]
+                value += gap * xs[1, i]
+                g[0, i], g[1, i] = -xs[1, i], gap
+                h[0, 1, i, i], h[1, 0, i, i] = -1.0, -1.0
+        elif kind == TRAVEL:
+            value = xs[0, 2] - z
+            g[0, 2] = 1.0
+        elif kind == SPRING:
+            d0, d1, d2 = xs[1, 0] - xs[0, 0], xs[1, 1] - xs[0, 1], xs[1, 2] - xs[0, 2]
+            length = math.sqrt(d0 * d0 + d1 * d1 + d2 * d2)
+            u0, u1, u2 = d0 / length, d1 / length, d2 / length
+            f, stiffness = spring_at(t_data[t, 0], t_data[t, 1], t_table[t, 0], t_table[t, 1],
+                                     table, length)
+            across = f / length
+            for i in range(3):
+                ui = u0 if i == 0 else (u1 if i == 1 else u2)
+                g[0, i], g[1, i] = -f * ui, f * ui
+                for j in range(3):
+                    uj = u0 if j == 0 else (u1 if j == 1 else u2)
+                    k = (stiffness - across) * ui * uj + (across if i == j else 0.0)
+                    h[0, 0, i, j], h[1, 1, i, j] = k, k
+                    h[0, 1, i, j], h[1, 0, i, j] = -k, -k
+        elif kind == BUSH:
+            d0 = xs[0, 0] - t_vec[t, 0]
+            d1 = xs[0, 1] - t_vec[t, 1] - rack * t_rack[t]
+            d2 = xs[0, 2] - t_vec[t, 2]
+            for i in range(3):
+                g[0, i] = t_stiff[t, i, 0] * d0 + t_stiff[t, i, 1] * d1 + t_stiff[t, i, 2] * d2
+                for j in range(3):
+                    h[0, 0, i, j] = t_stiff[t, i, j]
+            value = 0.5 * (d0 * g[0, 0] + d1 * g[0, 1] + d2 * g[0, 2])
+        else:   # LOAD
+            for i in range(3):
+                value -= force[i] * xs[0, i]
+                g[0, i] = -force[i]
         factor = lam[t] if t < m else 1.0
         if t < m:
             values[t] = value
-        curved = kind == LINK or kind == SPRING or kind == BUSH or kind == LINE
-        for a in range(3):
+        for a in range(3):   # into grad, rows and hess
             body = it_body[t, a]
             if body < 0:
                 continue
             p, w = it_point[t, a], it_w[t, a]
-            sa, na = b_start[body], size_of(b_kind[body])
+            bk, sa = b_kind[body], b_start[body]
+            na = size_of(bk)
             for j in range(na):
                 part = w * (g[p, 0] * jacs[a, 0, j] + g[p, 1] * jacs[a, 1, j]
                             + g[p, 2] * jacs[a, 2, j])
                 grad[sa + j] += factor * part
                 if t < m:
                     rows[t, sa + j] += part
-            _second(b_kind[body], sa, b_axis, body, v, a, g, p, factor * w, hess)
+            if second and bk != BASE:   # the rotation's own second derivative, exact
+                fw = factor * w
+                gv = g[p, 0] * v[a, 0] + g[p, 1] * v[a, 1] + g[p, 2] * v[a, 2]
+                if bk == HINGE:
+                    a0, a1, a2 = b_axis[body, 0], b_axis[body, 1], b_axis[body, 2]
+                    av = a0 * v[a, 0] + a1 * v[a, 1] + a2 * v[a, 2]
+                    ag = a0 * g[p, 0] + a1 * g[p, 1] + a2 * g[p, 2]
+                    hess[sa, sa] += fw * (av * ag - gv * (a0 * a0 + a1 * a1 + a2 * a2))
+                else:
+                    for i in range(3):
+                        for j in range(3):
+                            hess[sa + 3 + i, sa + 3 + j] += fw * (
+                                0.5 * (v[a, i] * g[p, j] + g[p, i] * v[a, j])
+                                - (gv if i == j else 0.0))
             if not curved:
                 continue
             for b in range(3):
@@ -421,21 +415,24 @@ def assemble(model, c, r, lam, inputs, exact, grad, hess, values, rows, work):
                         hess[sa + i, sb + j] += scale * (jacs[a, 0, i] * hj[0, j]
                                                          + jacs[a, 1, i] * hj[1, j]
                                                          + jacs[a, 2, i] * hj[2, j])
-    for k in range(len(model.r_body)):
-        body = model.r_body[k]
-        log_into(r[body], work.phi)
-        energy_into(work.phi, model.r_turn[k], work.g3, work.h3, work.rot)
+    r_body, r_turn, phi, g3, h3, rot = (model.r_body, model.r_turn, work.phi, work.g3,
+                                        work.h3, work.rot)
+    for k in range(len(r_body)):
+        body = r_body[k]
+        log_into(r[body], phi)
+        energy_into(phi, r_turn[k], g3, h3, rot)
         s = b_start[body] + 3
         for i in range(3):
-            grad[s + i] += work.g3[i]
-            for j in range(3):
-                hess[s + i, s + j] += work.h3[i, j]
-    n = model.n
-    for i in range(n):   # the terms add both triangles alike: the mean clears the round-off
-        for j in range(i):
-            mean = 0.5 * (hess[i, j] + hess[j, i])
-            hess[i, j], hess[j, i] = mean, mean
-    if exact:
+            grad[s + i] += g3[i]
+            if second:
+                for j in range(3):
+                    hess[s + i, s + j] += h3[i, j]
+    if second:   # the terms add both triangles alike: the mean clears the round-off
+        for i in range(n):
+            for j in range(i):
+                mean = 0.5 * (hess[i, j] + hess[j, i])
+                hess[i, j], hess[j, i] = mean, mean
+    if what == EXACT:
         for k in range(len(b_kind)):
             if b_kind[k] > ARM:
                 continue
@@ -447,19 +444,20 @@ def assemble(model, c, r, lam, inputs, exact, grad, hess, values, rows, work):
             hess[s + 1, s + 2] += g0
             hess[s + 2, s] += g1
             hess[s + 2, s + 1] -= g0
+    moment = inputs.moment
     for i in range(3):
-        grad[3 + i] -= inputs.moment[i]
+        grad[3 + i] -= moment[i]
 
 
-@jit
-def scaled_max(b_kind, b_start, vec, lever, divide):
+@bare
+def scaled_max(model, vec, lever, divide):
     """
-    Return max |vec| with rotation coordinates divided (or multiplied) by lever.
+    Return max |vec[:n]| with rotation coordinates divided (or multiplied) by lever.
 
-    b_kind, b_start: the Model's. A NaN anywhere gives NaN (a residual that is not finite is
-    said so, never hidden).
+    A NaN anywhere gives NaN (a residual that is not finite is said so, never hidden).
     """
     out = 0.0
+    b_kind, b_start = model.b_kind, model.b_start
     for k in range(len(b_kind)):
         kind, s = b_kind[k], b_start[k]
         for i in range(size_of(kind)):
@@ -474,9 +472,10 @@ def scaled_max(b_kind, b_start, vec, lever, divide):
     return out
 
 
-@jit
-def move(b_kind, b_start, b_axis, c, r, step):
-    """Move every body by a coordinate step: c += T dq, R <- exp(W dq) R (the Model's b_)."""
+@bare
+def move(model, c, r, step):
+    """Move every body by a coordinate step (step[:n]): c += T dq, R <- exp(W dq) R."""
+    b_kind, b_start, b_axis = model.b_kind, model.b_start, model.b_axis
     for k in range(len(b_kind)):
         kind, s = b_kind[k], b_start[k]
         if kind <= ARM:

@@ -33,6 +33,11 @@ import numpy as np
 
 FAILED, GENERAL, SQUARE = 0, 1, 2
 jit = njit(cache=True, nogil=True, error_model='numpy')
+# The kernels that allocate nothing and return no array are compiled without numba's
+# reference counting (its private _nrt flag): its atomic counts on every array passed or
+# named took a third of a command's time (perf). Such a kernel must never return an array
+# nor allocate one; its callers hand it scratch.
+bare = njit(cache=True, nogil=True, error_model='numpy', _nrt=False)
 
 
 @jit
@@ -43,7 +48,7 @@ def dense_bounds(size):
     return out
 
 
-@jit
+@bare
 def gather(hess, rows, perm, n, a):
     """Write the reduced KKT matrix a (K, K) in perm's order from hess (n, n), rows (m, n)."""
     size = len(perm)
@@ -57,143 +62,127 @@ def gather(hess, rows, perm, n, a):
                 a[i, j] = rows[p - n, q] if q < n else 0.0
 
 
-@jit
-def _swap_rows(a, i, k, lo, hi):
-    for j in range(lo, hi):
-        a[i, j], a[k, j] = a[k, j], a[i, j]
-
-
-@jit
-def _eliminate(a, k, lo, hi, root, size):
-    """Eliminate column k below its pivot from rows (k, hi) and [root, size)."""
-    d = a[k, k]
-    for part in range(2):
-        first, last = (k + 1, hi) if part == 0 else (root, size)
-        for i in range(first, last):
-            f = a[i, k]
-            if f == 0.0:
-                continue
-            f /= d
-            a[i, k] = f
-            for j in range(k + 1, hi):
-                a[i, j] -= f * a[k, j]
-            for j in range(max(root, hi), size):
-                a[i, j] -= f * a[k, j]
-
-
-@jit
-def _pivot(a, k, hi):
-    """Return the row in [k, hi) of the largest |a[., k]|, and that value."""
-    p, big = k, abs(a[k, k])
-    for i in range(k + 1, hi):
-        if abs(a[i, k]) > big:
-            p, big = i, abs(a[i, k])
-    return p, big
-
-
-@jit
+@bare
 def factor(a, piv, bounds):
     """
     Factorise a (K, K) in place along bounds; return GENERAL, SQUARE or FAILED.
 
     bounds: the clusters' starts, the root's start, K, the root's coordinate count (-1: never
-    SQUARE). piv (2 K,): the row swaps (piv[:K]), a SQUARE root's own (piv[K:]).
+    SQUARE). piv (2 K,): the row swaps (piv[:K]), a SQUARE root's own (piv[K:]). Written
+    out in one function: a helper taking the arrays would cost more per column (reference
+    counts, numba) than the arithmetic.
     """
     clusters = len(bounds) - 3
     root, size, coords = bounds[clusters], bounds[clusters + 1], bounds[clusters + 2]
     for k in range(size):
         piv[k] = k
-    for c in range(clusters):
-        lo, hi = bounds[c], bounds[c + 1]
+    for c in range(clusters + 1):   # each cluster, then the root (as one more, to the end)
+        lo, hi = (bounds[c], bounds[c + 1]) if c < clusters else (root, size)
+        square = c == clusters and coords > 0 and 2 * coords == size - root
+        if square:
+            break
+        tail = max(root, hi)   # the root's columns beyond the cluster's
         for k in range(lo, hi):
-            p, big = _pivot(a, k, hi)
+            p, big = k, abs(a[k, k])   # the pivot: the largest in the column, in the cluster
+            for i in range(k + 1, hi):
+                if abs(a[i, k]) > big:
+                    p, big = i, abs(a[i, k])
             if not big > 0.0 or big == np.inf:   # zero, NaN or inf
                 return FAILED
             if p != k:
                 piv[k] = p
-                _swap_rows(a, k, p, lo, hi)
-                _swap_rows(a, k, p, root, size)
-            _eliminate(a, k, lo, hi, root, size)
-    if coords >= 0 and 2 * coords == size - root and coords > 0:
-        first = root + coords   # the rows: J_root (coords, coords) at a[first:, root:first]
-        for k in range(coords):
-            p, big = _pivot(a[first:, root:first], k, coords)
-            if not big > 0.0 or big == np.inf:
-                return FAILED
-            piv[size + k] = p
-            if p != k:
-                _swap_rows(a, first + k, first + p, root, first)
-            d = a[first + k, root + k]
-            for i in range(k + 1, coords):
-                f = a[first + i, root + k] / d
-                a[first + i, root + k] = f
-                for j in range(k + 1, coords):
-                    a[first + i, root + j] -= f * a[first + k, root + j]
-        return SQUARE
-    for k in range(root, size):
-        p, big = _pivot(a, k, size)
+                first = 0 if c == clusters else lo   # a root row carries the clusters' L
+                for j in range(first, hi):
+                    a[k, j], a[p, j] = a[p, j], a[k, j]
+                for j in range(tail, size):
+                    a[k, j], a[p, j] = a[p, j], a[k, j]
+            d = a[k, k]
+            i = k + 1
+            while i < size:   # the cluster's rows below, then the root's
+                if i == hi and hi < root:
+                    i = root
+                    continue
+                f = a[i, k]
+                if f != 0.0:
+                    f /= d
+                    a[i, k] = f
+                    for j in range(k + 1, hi):
+                        a[i, j] -= f * a[k, j]
+                    for j in range(tail, size):
+                        a[i, j] -= f * a[k, j]
+                i += 1
+    else:
+        return GENERAL
+    first = root + coords   # a SQUARE root: J_root (coords, coords) at a[first:, root:first]
+    for k in range(coords):
+        p, big = k, abs(a[first + k, root + k])
+        for i in range(k + 1, coords):
+            if abs(a[first + i, root + k]) > big:
+                p, big = i, abs(a[first + i, root + k])
         if not big > 0.0 or big == np.inf:
             return FAILED
+        piv[size + k] = p
         if p != k:
-            piv[k] = p
-            _swap_rows(a, k, p, 0, size)
-        _eliminate(a, k, size, size, size, size)
-    return GENERAL
+            for j in range(root, first):
+                a[first + k, j], a[first + p, j] = a[first + p, j], a[first + k, j]
+        d = a[first + k, root + k]
+        for i in range(k + 1, coords):
+            f = a[first + i, root + k] / d
+            a[first + i, root + k] = f
+            for j in range(k + 1, coords):
+                a[first + i, root + j] -= f * a[first + k, root + j]
+    return SQUARE
 
 
-@jit
-def solve(a, piv, bounds, mode, b):
-    """Solve in place a x = b (K,) with factor's a, piv and mode."""
+@bare
+def solve(a, piv, bounds, mode, b, spare):
+    """Solve in place a x = b (K,) with factor's a, piv and mode; spare (K,): scratch."""
     clusters = len(bounds) - 3
     root, size, coords = bounds[clusters], bounds[clusters + 1], bounds[clusters + 2]
     for k in range(size):   # P b: the row swaps, in their order
         p = piv[k]
         if p != k:
             b[k], b[p] = b[p], b[k]
-    for c in range(clusters):   # L of the clusters
-        lo, hi = bounds[c], bounds[c + 1]
+    for c in range(clusters + 1):   # L: the clusters', then the root's
+        lo, hi = (bounds[c], bounds[c + 1]) if c < clusters else (root, size)
+        if c == clusters and mode == SQUARE:
+            break
         for k in range(lo, hi):
             bk = b[k]
             if bk == 0.0:
                 continue
             for i in range(k + 1, hi):
                 b[i] -= a[i, k] * bk
-            for i in range(root, size):
+            for i in range(max(root, hi), size):
                 b[i] -= a[i, k] * bk
     if mode == SQUARE:
-        _solve_square(a, piv, root, coords, size, b)
-    else:
-        for k in range(root, size):   # L, U of the root
-            bk = b[k]
-            for i in range(k + 1, size):
-                b[i] -= a[i, k] * bk
-        _back(a, b, root, size, root, size)
-    for c in range(clusters - 1, -1, -1):   # U of the clusters
-        _back(a, b, bounds[c], bounds[c + 1], root, size)
+        _solve_square(a, piv, root, coords, size, b, spare)
+    for c in range(clusters, -1, -1):   # U: the root's, then the clusters'
+        lo, hi = (bounds[c], bounds[c + 1]) if c < clusters else (root, size)
+        if c == clusters and mode == SQUARE:
+            continue
+        tail = max(root, hi)
+        for k in range(hi - 1, lo - 1, -1):
+            total = b[k]
+            for j in range(k + 1, hi):
+                total -= a[k, j] * b[j]
+            for j in range(tail, size):
+                total -= a[k, j] * b[j]
+            b[k] = total / a[k, k]
 
 
-@jit
-def _back(a, b, lo, hi, root, size):
-    """Back-substitute rows [lo, hi) of U; the root's unknowns (from root on) are known."""
-    for k in range(hi - 1, lo - 1, -1):
-        total = b[k]
-        for j in range(k + 1, hi):
-            total -= a[k, j] * b[j]
-        for j in range(max(root, hi), size):
-            total -= a[k, j] * b[j]
-        b[k] = total / a[k, k]
-
-
-@jit
-def _solve_square(a, piv, root, coords, size, b):
+@bare
+def _solve_square(a, piv, root, coords, size, b, spare):
     """
     Solve a SQUARE root: dq = J^-1 r_rows, then lambda = J^-T (r_coords - H dq).
 
     J = P^T L U (factor's LU of J_root, swaps piv[size:]); H: the root's coordinate block.
-    A zero r_rows gives dq exactly zero.
+    A zero r_rows gives dq exactly zero. spare (2 coords,): scratch.
     """
     first = root + coords
-    dq = b[first:size].copy()
+    dq, rest = spare[:coords], spare[coords:2 * coords]
+    for k in range(coords):
+        dq[k] = b[first + k]
     for k in range(coords):
         p = piv[size + k]
         if p != k:
@@ -206,7 +195,8 @@ def _solve_square(a, piv, root, coords, size, b):
         for j in range(k + 1, coords):
             total -= a[first + k, root + j] * dq[j]
         dq[k] = total / a[first + k, root + k]
-    rest = b[root:first].copy()
+    for k in range(coords):
+        rest[k] = b[root + k]
     for i in range(coords):
         for j in range(coords):
             rest[i] -= a[root + i, root + j] * dq[j]
@@ -222,30 +212,33 @@ def _solve_square(a, piv, root, coords, size, b):
         p = piv[size + k]
         if p != k:
             rest[k], rest[p] = rest[p], rest[k]
-    b[root:first] = dq
-    b[first:size] = rest
+    for k in range(coords):
+        b[root + k], b[first + k] = dq[k], rest[k]
 
 
-@jit
-def solve_full(a, piv, bounds, mode, perm, hess, rows, rhs, out, b):
+@bare
+def solve_full(w, perm, bounds, mode):
     """
-    Solve the full KKT system [[H, J^T], [J, 0]] out = rhs (n + m,) with the reduced factors.
+    Solve the full KKT system [[H, J^T], [J, 0]] sol = rhs (n + m,) with the reduced factors.
 
-    The carrier's z (coordinate 2) moves by the travel row's right-hand side, rhs[n + m - 1];
-    the travel's multiplier (last) follows from the z row. b (K,): scratch.
+    w (a newton.Work): its a, piv (factor's), column = H[:, 2] (n,), row = H[2, :] (n,), jcol
+    = J[:, 2] (m,): what of the full system the reduction leaves out; rhs in, sol out, b
+    scratch. The carrier's z (coordinate 2) moves by the travel row's right-hand side,
+    rhs[n + m - 1]; the travel's multiplier (last) follows from the z row.
     """
-    n, m = hess.shape[0], rows.shape[0]
+    column, row, jcol, rhs, out, b = w.column, w.row, w.jcol, w.rhs, w.sol, w.b
+    n, m = len(column), len(jcol)
     dz = rhs[n + m - 1]
     for i in range(len(perm)):
         p = perm[i]
-        b[i] = rhs[p] - (hess[p, 2] if p < n else rows[p - n, 2]) * dz
-    solve(a, piv, bounds, mode, b)
+        b[i] = rhs[p] - (column[p] if p < n else jcol[p - n]) * dz
+    solve(w.a, w.piv, bounds, mode, b, w.spare)
     for i in range(len(perm)):
         out[perm[i]] = b[i]
     out[2] = dz
     total = rhs[2]
     for j in range(n):
-        total -= hess[2, j] * out[j]
+        total -= row[j] * out[j]
     for k in range(m - 1):
-        total -= rows[k, 2] * out[n + k]
-    out[n + m - 1] = total / rows[m - 1, 2]
+        total -= jcol[k] * out[n + k]
+    out[n + m - 1] = total / jcol[m - 1]

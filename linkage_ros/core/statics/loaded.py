@@ -54,24 +54,48 @@ class Loaded(NamedTuple):
     """
     A loaded equilibrium (mm, deg, N, vehicle frame); pose fields None (NaN) unless OK.
 
-    A NamedTuple (cheap to make: one per command). The forces are held as the solve wrote
-    them (pickups) and given as dicts, by pickup name, when read (forces.Pickups): each
-    read makes the dict anew.
+    A NamedTuple (cheap to make: one per command) over the solve's answer (pickups: the
+    array the compiled solve wrote, and its slots' names): the pose, the holding force and
+    the forces are read from it when asked for, the force dicts made anew at each read.
     """
 
     status: Status
     message: str
     travel_mm: float
-    camber_deg: float = math.nan
-    toe_deg: float = math.nan
-    wheel_center_mm: np.ndarray | None = None
-    rotation: np.ndarray | None = None
-    holding_force_n: float = math.nan
-    load_point_mm: np.ndarray | None = None
+    rack_mm: float = 0.0
     residual: float = math.nan
     iterations: int = 0
-    rack_mm: float = 0.0
     pickups: Pickups | None = None
+
+    @property
+    def camber_deg(self) -> float:
+        """Camber of the loaded wheel to the body, deg, + = top outboard."""
+        return self.pickups.camber_deg() if self.pickups else math.nan
+
+    @property
+    def toe_deg(self) -> float:
+        """Toe of the loaded wheel to the body, deg, + = toe-in."""
+        return self.pickups.toe_deg() if self.pickups else math.nan
+
+    @property
+    def wheel_center_mm(self) -> np.ndarray | None:
+        """Return the loaded wheel centre (3,) mm, vehicle frame (z: the held height)."""
+        return self.pickups.wheel_center() if self.pickups else None
+
+    @property
+    def rotation(self) -> np.ndarray | None:
+        """Return the carrier's turn (3, 3) from its design orientation."""
+        return self.pickups.rotation() if self.pickups else None
+
+    @property
+    def holding_force_n(self) -> float:
+        """Return the vertical force at the wheel centre holding the travel, N, + = up."""
+        return self.pickups.holding_force() if self.pickups else math.nan
+
+    @property
+    def load_point_mm(self) -> np.ndarray | None:
+        """Where the load acts, (3,) mm: the wheel centre, or the patch as a carrier point."""
+        return self.pickups.load_point() if self.pickups else None
 
     @property
     def link_forces_n(self) -> dict:

@@ -26,15 +26,21 @@ import numpy as np
 
 from . import kernel, kkt
 
-KERNEL_DIGEST = 'e5ff0fb8efa959ef2e3b5f2009faf1931c9ded81016bac2d633c81d6a85e84f0'
-KKT_DIGEST = 'd3d12e75f6d1f2b5c080b7cec2ca788eb028cbb9006dbf7774ffd86a948fcd9b'
+KERNEL_DIGEST = 'd0e2bf0272eb26daf1d28f5fca917d3d3c0d8422ef11880918e0774c60a7935b'
+KKT_DIGEST = '8d77f1fc62b641c427f621461e3c351e160e81a1cd949b2c22c9d12ef726ac9f'
 TOL_STEP = 1e-11       # mm (rotations times the lever): a step this small has converged
 MAX_ITER = 30          # Newton iterations per load increment
 MAX_HALVINGS = 6       # a load is split into at most 2**6 increments
 # a Newton step predicted (quadratic convergence) below this fraction of the tolerance is not
 # taken (converged()): it would move the pose by round-off
 PREDICTED = 1e-3
+POSE_ONLY = -1   # newton's finish: nothing assembled at the solution (its residual NaN)
 jit = njit(cache=True, nogil=True, error_model='numpy')
+# The kernels that allocate nothing and return no array are compiled without numba's
+# reference counting (its private _nrt flag): its atomic counts on every array passed or
+# named took a third of a command's time (perf). Such a kernel must never return an array
+# nor allocate one; its callers hand it scratch.
+bare = njit(cache=True, nogil=True, error_model='numpy', _nrt=False)
 
 
 class Work(NamedTuple):
@@ -46,12 +52,33 @@ class Work(NamedTuple):
     rows: np.ndarray       # (m, n)
     a: np.ndarray          # (K, K) the reduced KKT matrix, factorised
     piv: np.ndarray        # (2 K,) int64
+    column: np.ndarray     # (n,) H[:, 2] of the factorised matrix (kkt.solve_full)
+    row: np.ndarray        # (n,) H[2, :]
+    jcol: np.ndarray       # (m,) J[:, 2]
     b: np.ndarray          # (K,)
+    spare: np.ndarray      # (K,) kkt.solve's
     rhs: np.ndarray        # (n + m,)
     sol: np.ndarray        # (n + m,)
     dense: np.ndarray      # kkt.dense_bounds(K)
     steps: np.ndarray      # (MAX_ITER,) the scaled step of each iteration (NaN: not taken)
+    info: np.ndarray       # (2,) int64: the last factorisation's kkt mode, 1 if dense
     scratch: kernel.Scratch
+
+
+class Factor(NamedTuple):
+    """
+    A kept factorisation of the KKT system (views into a state: command.py).
+
+    head (3,): valid (1.0), kkt mode, dense (1.0); a (K, K) and piv (2 K,) as kkt.factor
+    wrote them; column, row (n,) and rows (m,): kkt.solve_full's H[:, 2], H[2, :], J[:, 2].
+    """
+
+    head: np.ndarray
+    a: np.ndarray
+    piv: np.ndarray
+    column: np.ndarray
+    row: np.ndarray
+    rows: np.ndarray
 
 
 @jit
@@ -59,12 +86,13 @@ def work(model):
     """Return a Work for the Model's sizes."""
     n, m, size = model.n, model.m, len(model.perm)
     return Work(np.empty(n), np.empty((n, n)), np.empty(m), np.empty((m, n)),
-                np.empty((size, size)), np.empty(2 * size, dtype=np.int64), np.empty(size),
-                np.empty(n + m), np.empty(n + m), kkt.dense_bounds(size),
-                np.full(MAX_ITER, np.nan), kernel.scratch())
+                np.empty((size, size)), np.empty(2 * size, dtype=np.int64), np.empty(n),
+                np.empty(n), np.empty(m), np.empty(size), np.empty(size), np.empty(n + m),
+                np.empty(n + m), kkt.dense_bounds(size), np.full(MAX_ITER, np.nan),
+                np.zeros(2, dtype=np.int64), kernel.scratch(model))
 
 
-@jit
+@bare
 def converged(size, last, tol):
     """
     Tell whether Newton has converged: its step (scaled) is below tol, or the next one will be.
@@ -75,68 +103,144 @@ def converged(size, last, tol):
     return size < tol or size * size * size < PREDICTED * tol * last * last
 
 
-@jit
-def factorise(hess, rows, perm, bounds, a, piv, dense):
+@bare
+def factorise(model, w):
     """
-    Factorise the KKT matrix of hess and rows into a and piv; return (kkt mode, bounds used).
+    Factorise the KKT matrix of w.hess and w.rows into w (a, piv, column, row, jcol, info).
 
-    Along bounds (the Model's), or, should a cluster be singular, densely (dense).
+    Along the Model's bounds, or, should a cluster be singular, densely (w.dense). Returns
+    the kkt mode and whether it was dense (the bounds to solve with: w.dense, else the
+    Model's).
     """
-    kkt.gather(hess, rows, perm, hess.shape[0], a)
-    mode = kkt.factor(a, piv, bounds)
-    if mode != kkt.FAILED:
-        return mode, bounds
-    kkt.gather(hess, rows, perm, hess.shape[0], a)
-    return kkt.factor(a, piv, dense), dense
+    n, hess, rows, column, row, jcol = model.n, w.hess, w.rows, w.column, w.row, w.jcol
+    for i in range(n):   # (fields read into names first: numba counts a reference to a
+        column[i], row[i] = hess[i, 2], hess[2, i]   # tuple's field at each read in a loop)
+    for k in range(model.m):
+        jcol[k] = rows[k, 2]
+    kkt.gather(w.hess, w.rows, model.perm, n, w.a)
+    mode = kkt.factor(w.a, w.piv, model.bounds)
+    dense = mode == kkt.FAILED
+    if dense:
+        kkt.gather(w.hess, w.rows, model.perm, n, w.a)
+        mode = kkt.factor(w.a, w.piv, w.dense)
+    w.info[0], w.info[1] = mode, 1 if dense else 0
+    return mode, dense
 
 
-@jit
-def newton(model, c, r, lam, inputs, max_iter, w):
+@bare
+def _rhs(model, lam, w):
+    """Write the Newton right-hand side -(grad - J^T lam, c) into w.rhs."""
+    n, m, grad, rows, values, rhs = model.n, model.m, w.grad, w.rows, w.values, w.rhs
+    for i in range(n):
+        total = grad[i]
+        for k in range(m):
+            total -= rows[k, i] * lam[k]
+        rhs[i] = -total
+    for k in range(m):
+        rhs[n + k] = -values[k]
+
+
+@bare
+def _take(model, c, r, lam, w):
+    """
+    Take w.sol as the step (c, r) and the new multipliers; return its scaled size, mm.
+
+    A step that is not finite (NaN returned), or longer than a thousand levers, is not taken.
+    """
+    n, lever, sol = model.n, model.consts[kernel.LEVER], w.sol
+    size = kernel.scaled_max(model, sol, lever, False)
+    for k in range(model.m):
+        if not np.isfinite(sol[n + k]):
+            size = np.nan
+    if not size < 1e3 * lever:
+        return size
+    for k in range(model.m):
+        lam[k] = sol[n + k]
+    kernel.move(model, c, r, sol)
+    return size
+
+
+@bare
+def keep(w, factor):
+    """Keep w's last factorisation (a, piv, column, row, jcol, info) in factor."""
+    factor.head[0], factor.head[1], factor.head[2] = 1.0, w.info[0], w.info[1]
+    _copy(w.a, w.piv, w.column, w.row, w.jcol, factor.a, factor.piv, factor.column,
+          factor.row, factor.rows)
+
+
+@bare
+def _copy(a, piv, column, row, jcol, to_a, to_piv, to_column, to_row, to_jcol):
+    """Copy a factorisation (a, piv, column, row, jcol) to another's arrays."""
+    size = a.shape[0]
+    for i in range(size):
+        for j in range(size):
+            to_a[i, j] = a[i, j]
+    for k in range(len(piv)):
+        to_piv[k] = piv[k]
+    for i in range(len(column)):
+        to_column[i], to_row[i] = column[i], row[i]
+    for k in range(len(jcol)):
+        to_jcol[k] = jcol[k]
+
+
+@bare
+def chord(model, c, r, lam, inputs, factor, w):
+    """
+    Take one step from (c, r, lam) with a kept factorisation (a chord step); its size, mm.
+
+    From the last command's equilibrium, with that command's matrix, this is the tangent
+    prediction of the new one: the next Newton step is of second order in the change. A step
+    that is not finite or longer than a thousand levers is not taken (0.0).
+    """
+    kernel.assemble(model, c, r, lam, inputs, kernel.RESIDUAL, w)
+    _rhs(model, lam, w)
+    _copy(factor.a, factor.piv, factor.column, factor.row, factor.rows, w.a, w.piv, w.column,
+          w.row, w.jcol)
+    kkt.solve_full(w, model.perm, w.dense if factor.head[2] == 1.0 else model.bounds,
+                   int(factor.head[1]))
+    step = _take(model, c, r, lam, w)
+    return step if step < 1e3 * model.consts[kernel.LEVER] else 0.0
+
+
+@bare
+def newton(model, c, r, lam, inputs, max_iter, w, finish=kernel.SYMMETRIC, last=0.0):
     """
     Solve the equilibrium from (c, r, lam) in place; return (ok, iterations, residual N).
 
-    At the end w.hess (the symmetric Hessian) and w.rows hold the pose's, w.steps the scaled
-    step of each iteration. A step that is not finite, or would move a point farther than
-    a thousand levers, is not taken: the residual is the last finite pose's.
+    finish: what of the solution's pose w.grad, w.hess and w.rows hold at the end
+    (kernel.assemble's: SYMMETRIC the Hessian of L too, the rates' matrix; RESIDUAL the
+    residual alone; POSE_ONLY: a solve that converges leaves them at the last iterate, its
+    residual NaN, for a caller that wants the pose alone). w.steps holds the scaled step of
+    each iteration, w.a and w.info the last factorisation (keep). last: the step before the
+    first (a chord step's), for the stop rule. A step that is not finite, or would move a
+    point farther than a thousand levers, is not taken: the residual is the last finite
+    pose's.
     """
-    n = model.n
     lever = model.consts[kernel.LEVER]
     tol = TOL_STEP * max(1.0, lever)
-    w.steps[:] = np.nan
-    last = 0.0   # no step before the first
+    steps = w.steps
+    for k in range(len(steps)):
+        steps[k] = np.nan
     for iteration in range(1, max_iter + 1):
-        kernel.assemble(model, c, r, lam, inputs, True, w.grad, w.hess, w.values, w.rows,
-                        w.scratch)
-        for i in range(n):
-            total = w.grad[i]
-            for k in range(model.m):
-                total -= w.rows[k, i] * lam[k]
-            w.rhs[i] = -total
-        for k in range(model.m):
-            w.rhs[n + k] = -w.values[k]
-        mode, bounds = factorise(w.hess, w.rows, model.perm, model.bounds, w.a, w.piv,
-                                 w.dense)
+        kernel.assemble(model, c, r, lam, inputs, kernel.EXACT, w)
+        _rhs(model, lam, w)
+        mode, dense = factorise(model, w)
         if mode == kkt.FAILED:
             break
-        kkt.solve_full(w.a, w.piv, bounds, mode, model.perm, w.hess, w.rows, w.rhs, w.sol,
-                       w.b)
-        step = w.sol[:n]
-        size = kernel.scaled_max(model.b_kind, model.b_start, step, lever, False)
-        if iteration <= len(w.steps):
-            w.steps[iteration - 1] = size
-        if not size < 1e3 * lever or not np.all(np.isfinite(w.sol)):   # diverging, or NaN
+        kkt.solve_full(w, model.perm, w.dense if dense else model.bounds, mode)
+        size = _take(model, c, r, lam, w)
+        if iteration <= len(steps):
+            steps[iteration - 1] = size
+        if not size < 1e3 * lever:   # diverging, or NaN: not taken
             break
-        lam[:] = w.sol[n:]
-        kernel.move(model.b_kind, model.b_start, model.b_axis, c, r, step)
         if converged(size, last, tol):
-            kernel.assemble(model, c, r, lam, inputs, False, w.grad, w.hess, w.values,
-                            w.rows, w.scratch)
-            return True, iteration, kernel.scaled_max(model.b_kind, model.b_start, w.grad, lever,
-                                                      True)
+            if finish == POSE_ONLY:
+                return True, iteration, np.nan
+            kernel.assemble(model, c, r, lam, inputs, finish, w)
+            return True, iteration, kernel.scaled_max(model, w.grad, lever, True)
         last = size
-    kernel.assemble(model, c, r, lam, inputs, False, w.grad, w.hess, w.values, w.rows,
-                    w.scratch)
-    residual = kernel.scaled_max(model.b_kind, model.b_start, w.grad, lever, True)
+    kernel.assemble(model, c, r, lam, inputs, kernel.SYMMETRIC, w)
+    residual = kernel.scaled_max(model, w.grad, lever, True)
     return False, max_iter, residual if np.isfinite(residual) else np.inf
 
 
@@ -146,7 +250,8 @@ def loaded(model, c, r, lam, inputs, w):
     Solve the equilibrium under inputs' load from the one in (c, r, lam), in place.
 
     In one Newton solve if it converges, else in 2, 4, ... 2**MAX_HALVINGS equal increments
-    of the load from the start. Returns (ok, iterations, residual N) of the last solve.
+    of the load from the start. Returns (ok, iterations, residual N) of the last solve; w
+    holds its residual (kernel.RESIDUAL).
     """
     c0, r0, lam0 = c.copy(), r.copy(), lam.copy()
     ok, iterations, residual = False, 0, np.inf
@@ -156,7 +261,8 @@ def loaded(model, c, r, lam, inputs, w):
         for k in range(1, parts + 1):
             part = kernel.Inputs(inputs.z, inputs.rack, inputs.x_load,
                                  inputs.force * (k / parts), inputs.moment * (k / parts))
-            ok, iterations, residual = newton(model, c, r, lam, part, MAX_ITER, w)
+            ok, iterations, residual = newton(model, c, r, lam, part, MAX_ITER, w,
+                                              kernel.RESIDUAL)
             if not ok:
                 break
         if ok:

@@ -10,10 +10,12 @@ that array and pack.Names, and makes the dicts a Loaded gives when they are read
 
 from __future__ import annotations
 
+import math
 from typing import NamedTuple
 
 import numpy as np
 
+from . import forces
 from .forces import answer_offsets
 from .pack import Names
 
@@ -23,6 +25,30 @@ class Pickups(NamedTuple):
 
     names: Names
     answer: np.ndarray
+
+    def camber_deg(self) -> float:
+        """Camber, deg (+ = top outboard)."""
+        return math.degrees(self.answer[forces.CAMBER])
+
+    def toe_deg(self) -> float:
+        """Toe, deg (+ = toe-in)."""
+        return math.degrees(self.answer[forces.TOE])
+
+    def wheel_center(self) -> np.ndarray:
+        """Return the wheel centre (3,) mm."""
+        return self.answer[forces.CENTER:forces.CENTER + 3]
+
+    def rotation(self) -> np.ndarray:
+        """Return the carrier's turn (3, 3) from design."""
+        return self.answer[forces.ROTATION:forces.ROTATION + 9].reshape(3, 3)
+
+    def holding_force(self) -> float:
+        """Return the holding force, N, + = up."""
+        return float(self.answer[forces.HOLDING])
+
+    def load_point(self) -> np.ndarray:
+        """Where the load acts (3,) mm."""
+        return self.answer[forces.LOAD_POINT:forces.LOAD_POINT + 3]
 
     def _parts(self):
         """Return the answer's views: forces, moments, points, balls, links, ends, springs."""

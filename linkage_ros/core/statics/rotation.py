@@ -21,17 +21,22 @@ Python.
 
 import math
 
+from numba import njit
 import numpy as np
 
-from ..base.compiled import jit
-
+jit = njit(cache=True, nogil=True, error_model='numpy')
+# The kernels that allocate nothing and return no array are compiled without numba's
+# reference counting (its private _nrt flag): its atomic counts on every array passed or
+# named took a third of a command's time (perf). Such a kernel must never return an array
+# nor allocate one; its callers hand it scratch.
+bare = njit(cache=True, nogil=True, error_model='numpy', _nrt=False)
 
 # Below this angle (rad) c and c'/theta come from their Taylor series (sympy, to theta^10):
 # the closed forms lose digits to cancellation there (c' as eps / theta^3).
 SERIES_BELOW = 0.1
 
 
-@jit
+@bare
 def log_into(rotation, out):
     """Write the rotation vector (3,) rad of a rotation matrix (angle below pi) into out."""
     cos = min(1.0, max(-1.0, 0.5 * (rotation[0, 0] + rotation[1, 1] + rotation[2, 2] - 1.0)))
@@ -51,7 +56,7 @@ def log_so3(rotation):
     return out
 
 
-@jit
+@bare
 def coefficients(theta):
     """Return c(theta) and c'(theta) / theta of A (module docstring)."""
     t2 = theta * theta
@@ -67,14 +72,14 @@ def coefficients(theta):
     return c, dc / theta
 
 
-@jit
+@bare
 def _skew_into(x, y, z, out):
     out[0, 0], out[0, 1], out[0, 2] = 0.0, -z, y
     out[1, 0], out[1, 1], out[1, 2] = z, 0.0, -x
     out[2, 0], out[2, 1], out[2, 2] = -y, x, 0.0
 
 
-@jit
+@bare
 def energy_into(phi, stiffness, grad, hess, work):
     """
     Write the gradient (3,) and Hessian (3, 3) in w of E = phi.K phi / 2; return E (N mm).

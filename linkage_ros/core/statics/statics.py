@@ -15,10 +15,10 @@ A Statics owns its last zero-load and its last loaded equilibrium (nothing is ke
 frozen Scene). Each command is one compiled call (command.py): the loaded equilibrium by
 Newton from the last loaded one (and, for a load at the contact patch, whose point the
 unloaded pose sets, the zero-load one from the last zero-load one). Where there is no last
-equilibrium near enough (WARM_MM), or a solve from it fails, the command falls back to the
-long way: the kinematic pose (the Continuation), the zero-load equilibrium from it, then the
-load in increments. Both ways solve the same equations to the same tolerance: the answers
-agree to round-off (test_statics_object).
+equilibrium near enough (command.WARM_MM), or a solve from it fails, the command falls back
+to the long way: the kinematic pose (the Continuation), the zero-load equilibrium from it,
+then the load in increments. Both ways solve the same equations to the same tolerance: the
+answers agree to round-off (test_statics_speed).
 
 Nothing here raises for numerics: a command that is not carried, not finite or out of reach
 is a Loaded (Compliance) with its Status and a message. Bad input (a load at the contact
@@ -46,9 +46,6 @@ from ..solve.mechanism import compile_scene
 if TYPE_CHECKING:
     from ..model.scene import Scene
 
-# a last equilibrium at most this far in travel and in rack (mm) starts the next Newton (a
-# node at 1 kHz, a sweep); farther, the kinematic pose does
-WARM_MM = 5.0
 NO_LOAD = Load()
 
 
@@ -68,15 +65,17 @@ class Statics:
         self.packed = packed = pack(self.system, scene, mech)
         self._z0 = float(mech.design_center[2])
         bodies, m = len(self.system.bodies), len(self.system.constraints)
-        self._state = np.zeros(command.state_offset(bodies, m, 2))
-        # the heads (z, rack, valid) of the zero-load and the loaded equilibrium in the state
-        self._heads = [command.state_offset(bodies, m, k) for k in (0, 1)]
+        n = self.system.size   # the reduced KKT system leaves out z and the travel's row
+        parts = (bodies, n, m, n + m - 2)
+        self._state = np.zeros(command.state_offset(*parts, 4))
+        self._zero = command.state_offset(*parts, 0)   # where the zero-load equilibrium is
         names = packed.names
         size = forces.answer_offsets(len(names.pickups), len(names.balls), len(names.links),
                                      len(names.springs))[-1]
         self._io = np.zeros(command.ANSWER + max(size, command.RATES_SIZE))
         self._answer_size = size
-        self._load, self._checked = None, None
+        self._ints, self._reals, self._names = packed.ints, packed.reals, packed.names
+        self._load = None   # the last Load given: its numbers are in io
 
     def reset(self) -> None:
         """Forget the last equilibria: the next command starts from the kinematic pose."""
@@ -89,40 +88,45 @@ class Statics:
         Bad input raises LinkageError (check_load); numerics never raise: a load not carried
         is Status.NOT_CARRIED, naming the load and the last residual, with no pose.
         """
+        io = self._io
         if load is not self._load:   # a node keeps one Load for many commands
             force, moment = check_load(self.scene, load)
-            self._checked = (force, moment, 1.0 if load.at == 'cp' else 0.0)
+            io[command.FORCE:command.FORCE + 3] = force
+            io[command.MOMENT:command.MOMENT + 3] = moment
+            io[command.AT_CP] = 1.0 if load.at == 'cp' else 0.0
             self._load = load
-        problem = self._position(travel_mm, rack_mm)
-        if problem:
-            return Loaded(Status.NOT_FINITE, problem, travel_mm)
+        if not (is_finite_number(travel_mm) and is_finite_number(rack_mm)):
+            return Loaded(Status.NOT_FINITE, self._not_finite(travel_mm, rack_mm), travel_mm)
         travel, rack = float(travel_mm), float(rack_mm)
-        io = self._io
-        force, moment, io[command.AT_CP] = self._checked
-        io[command.FORCE:command.FORCE + 3] = force
-        io[command.MOMENT:command.MOMENT + 3] = moment
-        code = self._warm(travel, rack, command.solve)
-        if code is None or code in (command.ZERO_FAILED, command.LOADED_FAILED):
-            kin = self._kinematic(travel, rack)
+        io[command.Z], io[command.RACK] = self._z0 + travel, rack
+        io[command.ZERO_FROM] = io[command.LOADED_FROM] = command.WARM
+        code = command.solve(self._ints, self._reals, self._state, io)
+        if code == command.COLD or code == command.ZERO_FAILED or code == command.LOADED_FAILED:
+            kin = self._kinematic(travel, rack)   # the long way
             if kin is not None:
-                return Loaded(kin.status, kin.message, travel, rack_mm=rack)
+                return Loaded(kin.status, kin.message, travel, rack)
             io[command.LOADED_FROM] = command.ZERO
-            code = command.solve(self.packed.ints, self.packed.reals, self._state, io)
-        return self._loaded(code, load, travel, rack)
+            code = command.solve(self._ints, self._reals, self._state, io)
+        if code == command.OK:
+            answer = io[command.ANSWER:command.ANSWER + self._answer_size].copy()
+            return Loaded(Status.OK, 'ok', travel, rack, float(answer[forces.RESIDUAL]),
+                          int(answer[forces.ITERATIONS]), Pickups(self._names, answer))
+        return self._not_carried(code, load, travel, rack)
 
     def rates(self, travel_mm: float, rack_mm: float = 0.0) -> Compliance:
         """Return the Compliance (the rates and the 6x6 matrix) at travel and rack (mm)."""
-        problem = self._position(travel_mm, rack_mm)
-        if problem:
-            return failed(Status.NOT_FINITE, problem, travel_mm)
+        if not (is_finite_number(travel_mm) and is_finite_number(rack_mm)):
+            return failed(Status.NOT_FINITE, self._not_finite(travel_mm, rack_mm), travel_mm)
         travel, rack = float(travel_mm), float(rack_mm)
         io = self._io
-        code = self._warm(travel, rack, command.rates)
-        if code is None or code != command.OK:
+        io[command.Z], io[command.RACK] = self._z0 + travel, rack
+        io[command.ZERO_FROM] = command.WARM
+        code = command.rates(self._ints, self._reals, self._state, io)
+        if code != command.OK:
             kin = self._kinematic(travel, rack)
             if kin is not None:
                 return failed(kin.status, kin.message, travel)
-            code = command.rates(self.packed.ints, self.packed.reals, self._state, io)
+            code = command.rates(self._ints, self._reals, self._state, io)
         if code != command.OK:
             return failed(Status.NOT_CARRIED, self._zero_message(travel), travel)
         out = io[command.ANSWER:command.ANSWER + command.RATES_SIZE]
@@ -133,34 +137,9 @@ class Statics:
                           out[command.MATRIX_SI:command.RATES_SIZE].reshape(6, 6).copy())
 
     @staticmethod
-    def _position(travel_mm, rack_mm) -> str:
-        """Say what is wrong with a travel and rack (mm), '' if they are finite numbers."""
-        if is_finite_number(travel_mm) and is_finite_number(rack_mm):
-            return ''
+    def _not_finite(travel_mm, rack_mm) -> str:
+        """Say what is wrong with a travel and rack (mm) that are not both finite numbers."""
         return f'travel {travel_mm!r} and rack {rack_mm!r} must be finite numbers'
-
-    def _warm(self, travel, rack, run):
-        """
-        Run a command (command.solve or rates) from the last equilibria; its code.
-
-        None if there is no zero-load equilibrium near enough (WARM_MM) to start from. A
-        loaded one near enough starts the loaded solve, else the zero-load one does.
-        """
-        io, state = self._io, self._state
-        z = self._z0 + travel
-        io[command.Z], io[command.RACK] = z, rack
-        if not self._near(0, z, rack):
-            return None
-        near = self._near(1, z, rack)
-        io[command.ZERO_FROM] = command.WARM
-        io[command.LOADED_FROM] = command.WARM if near else command.ZERO
-        return run(self.packed.ints, self.packed.reals, state, io)
-
-    def _near(self, which, z, rack) -> bool:
-        """Tell whether equilibrium which (0 zero-load, 1 loaded) is kept, within WARM_MM."""
-        o = self._heads[which]
-        z0, rack0, valid = self._state[o:o + 3].tolist()
-        return valid == 1.0 and abs(z0 - z) <= WARM_MM and abs(rack0 - rack) <= WARM_MM
 
     def _kinematic(self, travel, rack):
         """
@@ -175,37 +154,25 @@ class Statics:
         pose = initial_pose(self.system, scene, np.asarray(kin.wheel_center),
                             np.asarray(kin.rotation))
         bodies, m = len(self.system.bodies), len(self.system.constraints)
-        o = self._heads[0]   # the zero-load equilibrium's place: head, c, r, lambda
+        o = self._zero   # the zero-load equilibrium's place: head, c, r, lambda
         self._state[o:o + 3] = 0.0
         self._state[o + 3:o + 3 + 3 * bodies] = pose.c.ravel()
         self._state[o + 3 + 3 * bodies:o + 3 + 12 * bodies] = pose.r.ravel()
         self._state[o + 3 + 12 * bodies:o + 3 + 12 * bodies + m] = 0.0
-        io = self._io
-        io[command.Z], io[command.RACK] = self._z0 + travel, rack
-        io[command.ZERO_FROM] = command.KINEMATIC
+        self._io[command.ZERO_FROM] = command.KINEMATIC
         return None
 
     def _zero_message(self, travel) -> str:
         return (f'the zero load is not carried at travel {travel:g} mm: no convergence '
                 f'(residual {self._io[command.RESIDUAL]:.3g} N)')
 
-    def _loaded(self, code, load, travel, rack) -> Loaded:
-        """Return the Loaded of a command's code and answer (io)."""
+    def _not_carried(self, code, load, travel, rack) -> Loaded:
+        """Return the NOT_CARRIED Loaded of a command's code (io), naming load and residual."""
         io = self._io
-        if code == command.OK:
-            answer = io[command.ANSWER:command.ANSWER + self._answer_size].copy()
-            return Loaded(Status.OK, 'ok', travel, math.degrees(answer[forces.CAMBER]),
-                          math.degrees(answer[forces.TOE]),
-                          answer[forces.CENTER:forces.CENTER + 3],
-                          answer[forces.ROTATION:forces.ROTATION + 9].reshape(3, 3),
-                          float(answer[forces.HOLDING]),
-                          answer[forces.LOAD_POINT:forces.LOAD_POINT + 3],
-                          float(answer[forces.RESIDUAL]), int(answer[forces.ITERATIONS]),
-                          rack, Pickups(self.packed.names, answer))
         residual = float(io[command.RESIDUAL])
         if code == command.ZERO_FAILED:
-            return Loaded(Status.NOT_CARRIED, self._zero_message(travel), travel,
-                          residual=residual, rack_mm=rack)
+            return Loaded(Status.NOT_CARRIED, self._zero_message(travel), travel, rack,
+                          residual)
         if code == command.BEYOND:
             answer = io[command.ANSWER:]
             key = self.system.bushings[int(answer[forces.VALIDITY_BUSHING])].key
@@ -219,8 +186,8 @@ class Statics:
         else:
             why = f'no convergence (last residual {residual:.3g} N)'
         return Loaded(Status.NOT_CARRIED, f'{load.said()} is not carried at travel '
-                      f'{travel:g} mm: {why}', travel, residual=residual,
-                      iterations=int(io[command.ITERATIONS]), rack_mm=rack)
+                      f'{travel:g} mm: {why}', travel, rack, residual,
+                      int(io[command.ITERATIONS]))
 
 
 def solve_loaded(scene: Scene, travel_mm: float = 0.0, load: Load = NO_LOAD,
