@@ -62,11 +62,11 @@ def test_a_failed_warm_step_falls_back_to_the_kinematic_pose_and_gives_the_same(
     warm = [Statics(scene).solve(t, l) for t, l in zip(travels, loads)]
     run = command.solve
 
-    def failing(ints, reals, state, io):
+    def failing(ints, reals, state, io, *work):
         if io[command.LOADED_FROM] == command.WARM:
             io[command.CODE] = command.LOADED_FAILED
             return command.LOADED_FAILED
-        return run(ints, reals, state, io)
+        return run(ints, reals, state, io, *work)
 
     monkeypatch.setattr(command, 'solve', failing)
     statics, kinematic = Statics(scene), []

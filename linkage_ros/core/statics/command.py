@@ -27,11 +27,16 @@ from . import forces, kernel, kkt, newton
 from ..base.patch import patch_offset
 
 jit = njit(cache=True, nogil=True, error_model='numpy')
+# the kernels that allocate nothing and return no array: compiled without numba's reference
+# counting (kernel.py says why). solve and rates themselves make the views of the Model,
+# the work and the state (numba returns no new array from such a kernel), but allocate
+# nothing: their work is the caller's.
+bare = njit(cache=True, nogil=True, error_model='numpy', _nrt=False)
 
-KERNEL_DIGEST = 'd0e2bf0272eb26daf1d28f5fca917d3d3c0d8422ef11880918e0774c60a7935b'
-KKT_DIGEST = '8d77f1fc62b641c427f621461e3c351e160e81a1cd949b2c22c9d12ef726ac9f'
-NEWTON_DIGEST = '45fa5c7d8f72570b84e8d967f8dd853c24fa2f45d80fbfa851f798b72631963b'
-FORCES_DIGEST = 'c46f6dec07e1c7d983ee304f63179e89f9bcce895eb04d4b75bd78e61c9bef1f'
+KERNEL_DIGEST = '5af228e5f8d3a4cb9a23c009a2443c761a851ba0a28b6fb43c01de6ab92ade39'
+KKT_DIGEST = 'e379e220e94e27bd9c8d43ae797186666885e63e9869a021eea6a7257c6f403a'
+NEWTON_DIGEST = '2cb37f26a10463b9a6d3e4146d3385310118dd7e602fca73b807d8ba16ca4df0'
+FORCES_DIGEST = '83bdf4dfb372dc6d207f606c8d7b6e879d891aca3f1b98a3467999d83376257e'
 PATCH_DIGEST = '7617b861f96a597dfc1031314dfdee925963b63a94e3df13fe24e73a28863499'
 # io: the command, then what it gives
 Z, RACK, AT_CP, FORCE, MOMENT, ZERO_FROM, LOADED_FROM = 0, 1, 2, 3, 6, 9, 10
@@ -63,6 +68,22 @@ class Equilibrium(NamedTuple):
     lam: np.ndarray        # (m,)
 
 
+class Extra(NamedTuple):
+    """A command's own scratch, after the newton.Work in its float work array (extra_of)."""
+
+    c: np.ndarray          # (B, 3) the pose being solved
+    r: np.ndarray          # (B, 3, 3)
+    lam: np.ndarray        # (m,)
+    c0: np.ndarray         # (B, 3) newton.loaded's start
+    r0: np.ndarray         # (B, 3, 3)
+    lam0: np.ndarray       # (m,)
+    x_load: np.ndarray     # (3,) the load's carrier point
+    zero: np.ndarray       # (3,) zeros: the zero load
+    force: np.ndarray      # (3,) newton.loaded's increments
+    moment: np.ndarray     # (3,)
+    rates: np.ndarray      # (9, 8): dm, turn (3 each), held, toe, camber per load
+
+
 @register_jitable
 def state_offset(bodies, n, m, size, which):
     """
@@ -78,9 +99,36 @@ def state_offset(bodies, n, m, size, which):
     return which * equilibrium if which <= 2 else 2 * equilibrium + (which - 2) * factor
 
 
-@jit
-def views(state, bodies, m, which):
-    """Return the Equilibrium views of a state: which 0 the zero-load one, 1 the loaded one."""
+@register_jitable
+def sizes(model):
+    """Return (state, work floats, work ints) sizes: the arrays a Statics keeps for a Model."""
+    bodies, n, m, size = len(model.b_kind), model.n, model.m, len(model.perm)
+    floats, ints = newton.work_size(model)
+    return (state_offset(bodies, n, m, size, 4), floats + 2 * (12 * bodies + m) + 12 + 72,
+            ints)
+
+
+@register_jitable(inline='always')
+def extra_of(model, floats):
+    """Return the Extra whose arrays are views into floats (what follows the Work)."""
+    bodies, m = len(model.b_kind), model.m
+    c = floats[0:3 * bodies].reshape((bodies, 3))
+    r = floats[3 * bodies:12 * bodies].reshape((bodies, 3, 3))
+    lam = floats[12 * bodies:12 * bodies + m]
+    p = 12 * bodies + m
+    c0 = floats[p:p + 3 * bodies].reshape((bodies, 3))
+    r0 = floats[p + 3 * bodies:p + 12 * bodies].reshape((bodies, 3, 3))
+    lam0 = floats[p + 12 * bodies:p + 12 * bodies + m]
+    q = 2 * p
+    zero = floats[q + 3:q + 6]
+    for i in range(3):
+        zero[i] = 0.0
+    return Extra(c, r, lam, c0, r0, lam0, floats[q:q + 3], zero, floats[q + 6:q + 9],
+                 floats[q + 9:q + 12], floats[q + 12:q + 84].reshape((9, 8)))
+
+
+@register_jitable(inline='always')
+def _views(state, bodies, m, which):
     o = state_offset(bodies, 0, m, 0, which)
     c = state[o + 3:o + 3 + 3 * bodies].reshape((bodies, 3))
     r = state[o + 3 + 3 * bodies:o + 3 + 12 * bodies].reshape((bodies, 3, 3))
@@ -88,26 +136,37 @@ def views(state, bodies, m, which):
 
 
 @jit
-def factor_views(state, model, which):
-    """Return the newton.Factor views of a state's factorisation which (0 zero-load, 1 loaded)."""
+def views(state, bodies, m, which):
+    """Return the Equilibrium views of a state: which 0 the zero-load one, 1 the loaded one."""
+    return _views(state, bodies, m, which)
+
+
+@register_jitable(inline='always')
+def _factor_views(state, model, which):
     n, m, size = model.n, model.m, len(model.perm)
     o = state_offset(len(model.b_kind), n, m, size, 2 + which)
     a = state[o + 3:o + 3 + size * size].reshape((size, size))
+    head = state[o:o + 3]
     o += 3 + size * size
-    return newton.Factor(state[o - 3 - size * size:o - size * size], a,
-                         state[o:o + 2 * size], state[o + 2 * size:o + 2 * size + n],
+    return newton.Factor(head, a, state[o:o + 2 * size], state[o + 2 * size:o + 2 * size + n],
                          state[o + 2 * size + n:o + 2 * size + 2 * n],
                          state[o + 2 * size + 2 * n:o + 2 * size + 2 * n + m])
 
 
 @jit
+def factor_views(state, model, which):
+    """Return the newton.Factor views of a state's factorisation which (0 zero, 1 loaded)."""
+    return _factor_views(state, model, which)
+
+
+@bare
 def _near(head, z, rack):
     """Tell whether an equilibrium (its head: z, rack, valid) is kept and within WARM_MM."""
     return head[2] == 1.0 and abs(head[0] - z) <= WARM_MM and abs(head[1] - rack) <= WARM_MM
 
 
-@jit
-def _zero_load(model, state, io, w, finish):
+@bare
+def _zero_load(model, state, io, w, extra, finish):
     """
     Make the zero-load state the equilibrium at io's travel and rack; return ok.
 
@@ -116,15 +175,16 @@ def _zero_load(model, state, io, w, finish):
     w holds of it then (newton.newton's).
     """
     z, rack = io[Z], io[RACK]
-    zero = views(state, len(model.b_kind), model.m, 0)
+    zero = _views(state, len(model.b_kind), model.m, 0)
     same = zero.head[2] == 1.0 and zero.head[0] == z and zero.head[1] == rack
     if same and io[ZERO_FROM] == WARM:
         io[ZERO_ITERATIONS] = 0.0
         return True
-    c, r, lam = zero.c.copy(), zero.r.copy(), zero.lam.copy()
+    c, r, lam = extra.c, extra.r, extra.lam
+    newton.copy_pose(zero.c, zero.r, zero.lam, c, r, lam)
     center = model.consts[kernel.CENTER:kernel.CENTER + 3]
-    inputs = kernel.Inputs(z, rack, center, np.zeros(3), np.zeros(3))
-    kept = factor_views(state, model, 0)
+    inputs = kernel.Inputs(z, rack, center, extra.zero, extra.zero)
+    kept = _factor_views(state, model, 0)
     last = 0.0
     if io[ZERO_FROM] == WARM and kept.head[0] == 1.0:   # the tangent, then Newton
         last = newton.chord(model, c, r, lam, inputs, kept, w)
@@ -133,13 +193,13 @@ def _zero_load(model, state, io, w, finish):
     io[ZERO_ITERATIONS], io[ZERO_RESIDUAL] = iterations, residual
     if ok:
         zero.head[0], zero.head[1], zero.head[2] = z, rack, 1.0
-        zero.c[:], zero.r[:], zero.lam[:] = c, r, lam
+        newton.copy_pose(c, r, lam, zero.c, zero.r, zero.lam)
         if finish != kernel.SYMMETRIC:   # (the rates keep their own, at the equilibrium)
             newton.keep(w, kept)
     return ok
 
 
-@jit
+@bare
 def load_point(model, r0, at_cp, out):
     """
     Write the load's point (3,) on the carrier (design position) into out.
@@ -148,7 +208,8 @@ def load_point(model, r0, at_cp, out):
     the zero-load pose (rotation r0), taken as a carrier point.
     """
     center = model.consts[kernel.CENTER:kernel.CENTER + 3]
-    out[:] = center
+    for i in range(3):
+        out[i] = center[i]
     if not at_cp:
         return
     spin = model.consts[kernel.SPIN:kernel.SPIN + 3]
@@ -161,7 +222,7 @@ def load_point(model, r0, at_cp, out):
 
 
 @jit
-def solve(ints, reals, state, io):
+def solve(ints, reals, state, io, floats, integers):
     """
     Solve one loaded command (io's travel, rack and load); return and write its code.
 
@@ -169,35 +230,39 @@ def solve(ints, reals, state, io):
     ZERO_FAILED, LOADED_FAILED: no convergence from the start asked (residual in io);
     BEYOND: converged, but a bushing beyond the model (the answer's validity says which);
     COLD: asked to start WARM with no zero-load equilibrium near enough (none solved).
+    floats, integers: the work (sizes()), kept by the caller, so that nothing is allocated.
     """
-    model = kernel.unpack(ints, reals)
+    model = kernel.model_of(ints, reals)
     bodies = len(model.b_kind)
-    if io[ZERO_FROM] == WARM and not _near(views(state, bodies, model.m, 0).head, io[Z],
+    if io[ZERO_FROM] == WARM and not _near(_views(state, bodies, model.m, 0).head, io[Z],
                                            io[RACK]):
         io[CODE] = COLD
         return COLD
-    if io[LOADED_FROM] == WARM and not _near(views(state, bodies, model.m, 1).head, io[Z],
+    if io[LOADED_FROM] == WARM and not _near(_views(state, bodies, model.m, 1).head, io[Z],
                                              io[RACK]):
         io[LOADED_FROM] = ZERO
-    w = newton.work(model)
+    w = newton.work_of(model, floats, integers)
+    extra = extra_of(model, floats[newton.work_size(model)[0]:])
     io[CODE] = ZERO_FAILED
     if (io[AT_CP] != 0.0 or io[LOADED_FROM] != WARM) and not _zero_load(
-            model, state, io, w, newton.POSE_ONLY):
+            model, state, io, w, extra, newton.POSE_ONLY):
         io[RESIDUAL] = io[ZERO_RESIDUAL]
         return ZERO_FAILED
-    start = views(state, bodies, model.m, 0 if io[LOADED_FROM] != WARM else 1)
-    c, r, lam = start.c.copy(), start.r.copy(), start.lam.copy()
-    x_load = np.empty(3)
-    load_point(model, views(state, bodies, model.m, 0).r[0], io[AT_CP] != 0.0, x_load)
-    inputs = kernel.Inputs(io[Z], io[RACK], x_load, io[FORCE:FORCE + 3].copy(),
-                           io[MOMENT:MOMENT + 3].copy())
-    kept = factor_views(state, model, 1)
+    start = _views(state, bodies, model.m, 0 if io[LOADED_FROM] != WARM else 1)
+    c, r, lam = extra.c, extra.r, extra.lam
+    newton.copy_pose(start.c, start.r, start.lam, c, r, lam)
+    load_point(model, _views(state, bodies, model.m, 0).r[0], io[AT_CP] != 0.0, extra.x_load)
+    inputs = kernel.Inputs(io[Z], io[RACK], extra.x_load, io[FORCE:FORCE + 3],
+                           io[MOMENT:MOMENT + 3])
+    kept = _factor_views(state, model, 1)
     if io[LOADED_FROM] == WARM:
         last = newton.chord(model, c, r, lam, inputs, kept, w) if kept.head[0] == 1.0 else 0.0
         ok, iterations, residual = newton.newton(model, c, r, lam, inputs, newton.MAX_ITER, w,
                                                  kernel.RESIDUAL, last)
     else:
-        ok, iterations, residual = newton.loaded(model, c, r, lam, inputs, w)
+        ok, iterations, residual = newton.loaded(model, c, r, lam, inputs, w, extra.c0,
+                                                 extra.r0, extra.lam0, extra.force,
+                                                 extra.moment)
     io[ITERATIONS], io[RESIDUAL] = iterations, residual
     if not ok:
         io[CODE] = LOADED_FAILED
@@ -208,15 +273,15 @@ def solve(ints, reals, state, io):
     if answer[forces.VALIDITY] != forces.VALID:
         io[CODE] = BEYOND
         return BEYOND
-    done = views(state, bodies, model.m, 1)
+    done = _views(state, bodies, model.m, 1)
     done.head[0], done.head[1], done.head[2] = io[Z], io[RACK], 1.0
-    done.c[:], done.r[:], done.lam[:] = c, r, lam
+    newton.copy_pose(c, r, lam, done.c, done.r, done.lam)
     newton.keep(w, kept)
     io[CODE] = OK
     return OK
 
 
-@jit
+@bare
 def angle_gradients(ax, ay, az, side_sign):
     """
     Return d camber / d w and d toe / d w (3 each) rad/rad of a spin axis a turned by w.
@@ -233,7 +298,7 @@ def angle_gradients(ax, ay, az, side_sign):
 
 
 @jit
-def rates(ints, reals, state, io):
+def rates(ints, reals, state, io, floats, integers):
     """
     Write the rates and the 6x6 compliance at io's travel and rack (from RATES); return code.
 
@@ -242,36 +307,38 @@ def rates(ints, reals, state, io):
     generalized load Q, one factorisation for all. Columns: Fx, Fy, Fz, Mx, My, Mz at the
     wheel centre (per N, per N mm), then Fy and Fx at the contact patch. The carrier's dq is
     its move dM (mm) and turn w (rad); the holding force changes by -dlambda of the travel.
+    floats, integers: the work, as solve's.
     """
-    model = kernel.unpack(ints, reals)
-    zero = views(state, len(model.b_kind), model.m, 0)
+    model = kernel.model_of(ints, reals)
+    zero = _views(state, len(model.b_kind), model.m, 0)
     if io[ZERO_FROM] == WARM and not _near(zero.head, io[Z], io[RACK]):
         io[CODE] = COLD
         return COLD
-    w = newton.work(model)
+    w = newton.work_of(model, floats, integers)
+    extra = extra_of(model, floats[newton.work_size(model)[0]:])
     io[CODE] = ZERO_FAILED
-    if not _zero_load(model, state, io, w, kernel.SYMMETRIC):
+    if not _zero_load(model, state, io, w, extra, kernel.SYMMETRIC):
         io[RESIDUAL] = io[ZERO_RESIDUAL]
         return ZERO_FAILED
     n, m = model.n, model.m
     center = model.consts[kernel.CENTER:kernel.CENTER + 3]
     if io[ZERO_ITERATIONS] == 0.0:   # kept as it was: its matrix again
         kernel.assemble(model, zero.c, zero.r, zero.lam, kernel.Inputs(
-            io[Z], io[RACK], center, np.zeros(3), np.zeros(3)), kernel.SYMMETRIC, w)
+            io[Z], io[RACK], center, extra.zero, extra.zero), kernel.SYMMETRIC, w)
     mode, dense = newton.factorise(model, w)
     if mode == kkt.FAILED:
         return ZERO_FAILED
     bounds = w.dense if dense else model.bounds
-    newton.keep(w, factor_views(state, model, 0))   # the next command's tangent
+    newton.keep(w, _factor_views(state, model, 0))   # the next command's tangent
     rot, spin, rhs, sol = zero.r[0], model.consts[kernel.SPIN:kernel.SPIN + 3], w.rhs, w.sol
-    axis = np.empty(3)
-    for i in range(3):
-        axis[i] = rot[i, 0] * spin[0] + rot[i, 1] * spin[1] + rot[i, 2] * spin[2]
-    d_camber, d_toe = angle_gradients(axis[0], axis[1], axis[2], model.consts[kernel.SIDE])
+    ax = rot[0, 0] * spin[0] + rot[0, 1] * spin[1] + rot[0, 2] * spin[2]
+    ay = rot[1, 0] * spin[0] + rot[1, 1] * spin[1] + rot[1, 2] * spin[2]
+    az = rot[2, 0] * spin[0] + rot[2, 1] * spin[1] + rot[2, 2] * spin[2]
+    d_camber, d_toe = angle_gradients(ax, ay, az, model.consts[kernel.SIDE])
     radius = model.consts[kernel.RADIUS]
     p0 = p1 = p2 = 0.0   # the patch less the wheel centre, turned: a carrier point's offset
     if radius > 0:
-        x_cp = np.empty(3)
+        x_cp = extra.x_load
         load_point(model, rot, True, x_cp)
         p0, p1, p2 = (rot[0, 0] * (x_cp[0] - center[0]) + rot[0, 1] * (x_cp[1] - center[1])
                       + rot[0, 2] * (x_cp[2] - center[2]),
@@ -279,8 +346,8 @@ def rates(ints, reals, state, io):
                       + rot[1, 2] * (x_cp[2] - center[2]),
                       rot[2, 0] * (x_cp[0] - center[0]) + rot[2, 1] * (x_cp[1] - center[1])
                       + rot[2, 2] * (x_cp[2] - center[2]))
-    dm, turn, held = np.empty((3, 8)), np.empty((3, 8)), np.empty(8)
-    toe, camber = np.empty(8), np.empty(8)
+    dm, turn = extra.rates[0:3], extra.rates[3:6]   # (the rows of extra.rates: views)
+    held, toe, camber = extra.rates[6], extra.rates[7], extra.rates[8]
     for j in range(8):   # the loads as generalized forces (columns)
         for i in range(n + m):
             rhs[i] = 0.0

@@ -31,6 +31,7 @@ import math
 from typing import NamedTuple
 
 from numba import njit
+from numba.extending import register_jitable
 import numpy as np
 
 from .rotation import energy_into, log_into
@@ -119,39 +120,39 @@ FIELDS = (('i', 1), ('i', 1), ('f', 2), ('f', 2), ('i', 1), ('i', 2), ('i', 2), 
 CENTER, SPIN, SIDE, RADIUS, LEVER = 0, 3, 6, 7, 8   # consts
 
 
-@jit
+@register_jitable(inline='always')
 def _i1(ints, k):
     h = N_SCALARS + 4 * k
     return ints[ints[h]:ints[h] + ints[h + 1]]
 
 
-@jit
+@register_jitable(inline='always')
 def _i2(ints, k):
     h = N_SCALARS + 4 * k
     return ints[ints[h]:ints[h] + ints[h + 1] * ints[h + 2]].reshape((ints[h + 1], ints[h + 2]))
 
 
-@jit
+@register_jitable(inline='always')
 def _i3(ints, k):
     h = N_SCALARS + 4 * k
     size = ints[h + 1] * ints[h + 2] * ints[h + 3]
     return ints[ints[h]:ints[h] + size].reshape((ints[h + 1], ints[h + 2], ints[h + 3]))
 
 
-@jit
+@register_jitable(inline='always')
 def _f1(ints, reals, k):
     h = N_SCALARS + 4 * k
     return reals[ints[h]:ints[h] + ints[h + 1]]
 
 
-@jit
+@register_jitable(inline='always')
 def _f2(ints, reals, k):
     h = N_SCALARS + 4 * k
     size = ints[h + 1] * ints[h + 2]
     return reals[ints[h]:ints[h] + size].reshape((ints[h + 1], ints[h + 2]))
 
 
-@jit
+@register_jitable(inline='always')
 def _f3(ints, reals, k):
     h = N_SCALARS + 4 * k
     size = ints[h + 1] * ints[h + 2] * ints[h + 3]
@@ -160,6 +161,12 @@ def _f3(ints, reals, k):
 
 @jit
 def unpack(ints, reals):
+    """Return the Model whose fields are views into ints and reals (for Python: the tests)."""
+    return model_of(ints, reals)
+
+
+@register_jitable(inline='always')
+def model_of(ints, reals):
     """Return the Model whose fields are views into ints and reals (FIELDS' layout)."""
     return Model(
         _i1(ints, 0), _i1(ints, 1), _f2(ints, reals, 2), _f2(ints, reals, 3), _i1(ints, 4),
@@ -184,7 +191,7 @@ class Inputs(NamedTuple):
 
 
 class Scratch(NamedTuple):
-    """Work arrays of assemble, made once per solve (scratch())."""
+    """Work arrays of assemble and forces.pickups (views into a work array: scratch_of)."""
 
     x: np.ndarray          # (3, 3) item places
     v: np.ndarray          # (3, 3) item offsets R (x0 - ref0)
@@ -201,13 +208,27 @@ class Scratch(NamedTuple):
     rigid: np.ndarray      # (H, 6) the loads on each rigid arm (forces.pickups)
 
 
-@jit
-def scratch(model):
-    """Return a Scratch for assemble and forces.pickups."""
-    return Scratch(np.empty((3, 3)), np.empty((3, 3)), np.zeros((3, 3, 6)), np.empty((2, 3)),
-                   np.zeros((2, 3)), np.zeros((2, 2, 3, 3)), np.empty((3, 6)), np.empty(3),
-                   np.empty(3), np.empty((3, 3)), np.empty((5, 3, 3)),
-                   np.empty((len(model.t_kind), 3, 3)), np.empty((len(model.h_slot), 6)))
+@register_jitable
+def scratch_size(terms, rigid):
+    """Return the size of a Scratch for terms terms and rigid rigid arms (floats)."""
+    return 9 + 9 + 54 + 6 + 6 + 36 + 18 + 3 + 3 + 9 + 45 + 9 * terms + 6 * rigid
+
+
+@register_jitable(inline='always')
+def scratch_of(model, out):
+    """Return the Scratch whose arrays are views into out (scratch_size floats)."""
+    terms, rigid = len(model.t_kind), len(model.h_slot)
+    x, v, jacs = out[0:9].reshape((3, 3)), out[9:18].reshape((3, 3)), out[18:72].reshape(
+        (3, 3, 6))
+    xs, g, h = out[72:78].reshape((2, 3)), out[78:84].reshape((2, 3)), out[84:120].reshape(
+        (2, 2, 3, 3))
+    hj, phi, g3, h3 = out[120:138].reshape((3, 6)), out[138:141], out[141:144], out[
+        144:153].reshape((3, 3))
+    rot = out[153:198].reshape((5, 3, 3))
+    at = out[198:198 + 9 * terms].reshape((terms, 3, 3))
+    o = 198 + 9 * terms
+    return Scratch(x, v, jacs, xs, g, h, hj, phi, g3, h3, rot, at,
+                   out[o:o + 6 * rigid].reshape((rigid, 6)))
 
 
 @bare

@@ -29,6 +29,7 @@ Matrices in place: factor overwrites a with its factors and piv with the row swa
 """
 
 from numba import njit
+from numba.extending import register_jitable
 import numpy as np
 
 FAILED, GENERAL, SQUARE = 0, 1, 2
@@ -44,8 +45,14 @@ bare = njit(cache=True, nogil=True, error_model='numpy', _nrt=False)
 def dense_bounds(size):
     """Return the bounds of a system factorised densely: no clusters, all root, not square."""
     out = np.empty(3, dtype=np.int64)
-    out[0], out[1], out[2] = 0, size, -1
+    write_dense_bounds(out, size)
     return out
+
+
+@register_jitable
+def write_dense_bounds(out, size):
+    """Write the bounds of a dense factorisation of size unknowns into out (3,)."""
+    out[0], out[1], out[2] = 0, size, -1
 
 
 @bare

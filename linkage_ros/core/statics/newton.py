@@ -22,12 +22,13 @@ digests below (test_statics_kernel says the values to set after an edit there).
 from typing import NamedTuple
 
 from numba import njit
+from numba.extending import register_jitable
 import numpy as np
 
 from . import kernel, kkt
 
-KERNEL_DIGEST = 'd0e2bf0272eb26daf1d28f5fca917d3d3c0d8422ef11880918e0774c60a7935b'
-KKT_DIGEST = '8d77f1fc62b641c427f621461e3c351e160e81a1cd949b2c22c9d12ef726ac9f'
+KERNEL_DIGEST = '5af228e5f8d3a4cb9a23c009a2443c761a851ba0a28b6fb43c01de6ab92ade39'
+KKT_DIGEST = 'e379e220e94e27bd9c8d43ae797186666885e63e9869a021eea6a7257c6f403a'
 TOL_STEP = 1e-11       # mm (rotations times the lever): a step this small has converged
 MAX_ITER = 30          # Newton iterations per load increment
 MAX_HALVINGS = 6       # a load is split into at most 2**6 increments
@@ -81,15 +82,56 @@ class Factor(NamedTuple):
     rows: np.ndarray
 
 
+@register_jitable
+def work_size(model):
+    """Return the sizes (floats, ints) of a Work's two flat arrays (work_of)."""
+    n, m, size = model.n, model.m, len(model.perm)
+    floats = (n + n * n + m + m * n + size * size + 2 * n + m + 2 * size + 2 * (n + m)
+              + MAX_ITER + kernel.scratch_size(len(model.t_kind), len(model.h_slot)))
+    return floats, 2 * size + 3 + 2
+
+
+@register_jitable(inline='always')
+def work_of(model, floats, ints):
+    """
+    Return the Work whose arrays are views into floats and ints (work_size's).
+
+    A Statics keeps the two arrays, so a command allocates nothing; the views cost no
+    reference counts in the kernels compiled without them.
+    """
+    n, m, size = model.n, model.m, len(model.perm)
+    o = 0
+    grad = floats[o:o + n]
+    o += n
+    hess = floats[o:o + n * n].reshape((n, n))
+    o += n * n
+    values = floats[o:o + m]
+    o += m
+    rows = floats[o:o + m * n].reshape((m, n))
+    o += m * n
+    a = floats[o:o + size * size].reshape((size, size))
+    o += size * size
+    column, row = floats[o:o + n], floats[o + n:o + 2 * n]
+    jcol = floats[o + 2 * n:o + 2 * n + m]
+    o += 2 * n + m
+    b, spare = floats[o:o + size], floats[o + size:o + 2 * size]
+    o += 2 * size
+    rhs, sol = floats[o:o + n + m], floats[o + n + m:o + 2 * (n + m)]
+    o += 2 * (n + m)
+    steps = floats[o:o + MAX_ITER]
+    o += MAX_ITER
+    piv, dense = ints[:2 * size], ints[2 * size:2 * size + 3]
+    info = ints[2 * size + 3:2 * size + 5]
+    kkt.write_dense_bounds(dense, size)
+    return Work(grad, hess, values, rows, a, piv, column, row, jcol, b, spare, rhs, sol,
+                dense, steps, info, kernel.scratch_of(model, floats[o:]))
+
+
 @jit
 def work(model):
-    """Return a Work for the Model's sizes."""
-    n, m, size = model.n, model.m, len(model.perm)
-    return Work(np.empty(n), np.empty((n, n)), np.empty(m), np.empty((m, n)),
-                np.empty((size, size)), np.empty(2 * size, dtype=np.int64), np.empty(n),
-                np.empty(n), np.empty(m), np.empty(size), np.empty(size), np.empty(n + m),
-                np.empty(n + m), kkt.dense_bounds(size), np.full(MAX_ITER, np.nan),
-                np.zeros(2, dtype=np.int64), kernel.scratch(model))
+    """Return a Work for the Model's sizes, its own arrays (for Python: the tests)."""
+    floats, ints = work_size(model)
+    return work_of(model, np.empty(floats), np.zeros(ints, dtype=np.int64))
 
 
 @bare
@@ -244,23 +286,37 @@ def newton(model, c, r, lam, inputs, max_iter, w, finish=kernel.SYMMETRIC, last=
     return False, max_iter, residual if np.isfinite(residual) else np.inf
 
 
-@jit
-def loaded(model, c, r, lam, inputs, w):
+@bare
+def copy_pose(c, r, lam, to_c, to_r, to_lam):
+    """Copy a pose and its multipliers (c (B, 3), r (B, 3, 3), lam (m,)) to another's."""
+    for k in range(c.shape[0]):
+        for i in range(3):
+            to_c[k, i] = c[k, i]
+            for j in range(3):
+                to_r[k, i, j] = r[k, i, j]
+    for k in range(len(lam)):
+        to_lam[k] = lam[k]
+
+
+@bare
+def loaded(model, c, r, lam, inputs, w, c0, r0, lam0, force, moment):
     """
     Solve the equilibrium under inputs' load from the one in (c, r, lam), in place.
 
     In one Newton solve if it converges, else in 2, 4, ... 2**MAX_HALVINGS equal increments
     of the load from the start. Returns (ok, iterations, residual N) of the last solve; w
-    holds its residual (kernel.RESIDUAL).
+    holds its residual (kernel.RESIDUAL). c0, r0, lam0, force (3,), moment (3,): scratch.
     """
-    c0, r0, lam0 = c.copy(), r.copy(), lam.copy()
+    copy_pose(c, r, lam, c0, r0, lam0)
     ok, iterations, residual = False, 0, np.inf
     for halvings in range(MAX_HALVINGS + 1):
         parts = 2 ** halvings
-        c[:], r[:], lam[:] = c0, r0, lam0
+        copy_pose(c0, r0, lam0, c, r, lam)
         for k in range(1, parts + 1):
-            part = kernel.Inputs(inputs.z, inputs.rack, inputs.x_load,
-                                 inputs.force * (k / parts), inputs.moment * (k / parts))
+            for i in range(3):
+                force[i] = inputs.force[i] * (k / parts)
+                moment[i] = inputs.moment[i] * (k / parts)
+            part = kernel.Inputs(inputs.z, inputs.rack, inputs.x_load, force, moment)
             ok, iterations, residual = newton(model, c, r, lam, part, MAX_ITER, w,
                                               kernel.RESIDUAL)
             if not ok:

@@ -32,7 +32,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from . import command, forces
+from . import command, forces, kernel
 from .compliance import Compliance, failed, RATE_COLUMNS
 from .loaded import check_load, Load, Loaded
 from .pack import pack
@@ -65,10 +65,12 @@ class Statics:
         self.packed = packed = pack(self.system, scene, mech)
         self._z0 = float(mech.design_center[2])
         bodies, m = len(self.system.bodies), len(self.system.constraints)
-        n = self.system.size   # the reduced KKT system leaves out z and the travel's row
-        parts = (bodies, n, m, n + m - 2)
-        self._state = np.zeros(command.state_offset(*parts, 4))
-        self._zero = command.state_offset(*parts, 0)   # where the zero-load equilibrium is
+        model = kernel.unpack(packed.ints, packed.reals)
+        state, floats, ints = command.sizes(model)
+        # the state (the last equilibria and their factorisations) and the work of a command
+        self._state = np.zeros(state)
+        self._work = (np.zeros(floats), np.zeros(ints, dtype=np.int64))
+        self._zero = command.state_offset(bodies, model.n, m, len(model.perm), 0)
         names = packed.names
         size = forces.answer_offsets(len(names.pickups), len(names.balls), len(names.links),
                                      len(names.springs))[-1]
@@ -100,13 +102,13 @@ class Statics:
         travel, rack = float(travel_mm), float(rack_mm)
         io[command.Z], io[command.RACK] = self._z0 + travel, rack
         io[command.ZERO_FROM] = io[command.LOADED_FROM] = command.WARM
-        code = command.solve(self._ints, self._reals, self._state, io)
+        code = command.solve(self._ints, self._reals, self._state, io, *self._work)
         if code == command.COLD or code == command.ZERO_FAILED or code == command.LOADED_FAILED:
             kin = self._kinematic(travel, rack)   # the long way
             if kin is not None:
                 return Loaded(kin.status, kin.message, travel, rack)
             io[command.LOADED_FROM] = command.ZERO
-            code = command.solve(self._ints, self._reals, self._state, io)
+            code = command.solve(self._ints, self._reals, self._state, io, *self._work)
         if code == command.OK:
             answer = io[command.ANSWER:command.ANSWER + self._answer_size].copy()
             return Loaded(Status.OK, 'ok', travel, rack, float(answer[forces.RESIDUAL]),
@@ -121,12 +123,12 @@ class Statics:
         io = self._io
         io[command.Z], io[command.RACK] = self._z0 + travel, rack
         io[command.ZERO_FROM] = command.WARM
-        code = command.rates(self._ints, self._reals, self._state, io)
+        code = command.rates(self._ints, self._reals, self._state, io, *self._work)
         if code != command.OK:
             kin = self._kinematic(travel, rack)
             if kin is not None:
                 return failed(kin.status, kin.message, travel)
-            code = command.rates(self._ints, self._reals, self._state, io)
+            code = command.rates(self._ints, self._reals, self._state, io, *self._work)
         if code != command.OK:
             return failed(Status.NOT_CARRIED, self._zero_message(travel), travel)
         out = io[command.ANSWER:command.ANSWER + command.RATES_SIZE]
