@@ -28,6 +28,7 @@ patch without a wheel radius, a load that is not finite) raises LinkageError.
 from __future__ import annotations
 
 import math
+from math import isfinite
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -78,6 +79,7 @@ class Statics:
         self._answer_size = size
         self._ints, self._reals, self._names = packed.ints, packed.reals, packed.names
         self._load = None   # the last Load given: its numbers are in io
+        self._patch = scene.wheel_radius > 0   # a load at the contact patch is possible
 
     def reset(self) -> None:
         """Forget the last equilibria: the next command starts from the kinematic pose."""
@@ -92,11 +94,7 @@ class Statics:
         """
         io = self._io
         if load is not self._load:   # a node keeps one Load for many commands
-            force, moment = check_load(self.scene, load)
-            io[command.FORCE:command.FORCE + 3] = force
-            io[command.MOMENT:command.MOMENT + 3] = moment
-            io[command.AT_CP] = 1.0 if load.at == 'cp' else 0.0
-            self._load = load
+            self._take_load(load)
         if not (is_finite_number(travel_mm) and is_finite_number(rack_mm)):
             return Loaded(Status.NOT_FINITE, self._not_finite(travel_mm, rack_mm), travel_mm)
         travel, rack = float(travel_mm), float(rack_mm)
@@ -137,6 +135,37 @@ class Statics:
         return Compliance(Status.OK, 'ok', travel, rates,
                           out[command.MATRIX:command.MATRIX_SI].reshape(6, 6).copy(),
                           out[command.MATRIX_SI:command.RATES_SIZE].reshape(6, 6).copy())
+
+    def _take_load(self, load: Load) -> None:
+        """
+        Write a load into io: force N, moment N mm, where (check_load's; LinkageError).
+
+        A load of six finite floats (a node's, each command) is taken at once; anything
+        else is check_load's (it names what is wrong, or takes ints and numpy numbers).
+        """
+        io = self._io
+        try:
+            fx, fy, fz = load.force_n
+            mx, my, mz = load.moment_nm
+        except (TypeError, ValueError):
+            fx = None
+        at = load.at
+        if (type(fx) is float and type(fy) is float and type(fz) is float
+                and type(mx) is float and type(my) is float and type(mz) is float
+                and isfinite(fx) and isfinite(fy) and isfinite(fz) and isfinite(mx)
+                and isfinite(my) and isfinite(mz)
+                and (at == 'wc' or (at == 'cp' and self._patch))):
+            io[command.FORCE], io[command.FORCE + 1], io[command.FORCE + 2] = fx, fy, fz
+            # beyond 1.8e305 N m the moment is inf N mm: a numerical failure (NOT_CARRIED)
+            io[command.MOMENT] = mx * 1000.0
+            io[command.MOMENT + 1] = my * 1000.0
+            io[command.MOMENT + 2] = mz * 1000.0
+        else:
+            force, moment = check_load(self.scene, load)
+            io[command.FORCE:command.FORCE + 3] = force
+            io[command.MOMENT:command.MOMENT + 3] = moment
+        io[command.AT_CP] = 1.0 if at == 'cp' else 0.0
+        self._load = load
 
     @staticmethod
     def _not_finite(travel_mm, rack_mm) -> str:
