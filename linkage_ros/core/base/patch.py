@@ -2,10 +2,10 @@
 # SPDX-License-Identifier: Apache-2.0
 
 """
-The contact patch of a wheel: the one formula, for Python and for the compiled statics.
+A wheel's contact patch and a carrier point's velocity: one formula each, for all callers.
 
-patch_offset is a plain Python function (floats or arrays (n,), as measure.alignment and the
-roll centre call it) that numba also compiles into the statics kernel (register_jitable):
+Plain Python functions (floats or arrays (n,), as measure.alignment and the roll centre call
+them) that numba also compiles into the statics kernel (register_jitable):
 core/statics/command.py names this file's digest (PATCH_DIGEST), because numba's on-disk
 cache follows each function's own file only.
 """
@@ -27,3 +27,15 @@ def patch_offset(axis_x, axis_y, axis_z, radius):
     up_x, up_y, up_z = -axis_z * axis_x, -axis_z * axis_y, 1.0 - axis_z * axis_z
     norm = (up_x * up_x + up_y * up_y + up_z * up_z) ** 0.5
     return -(radius * up_x / norm), -(radius * up_y / norm), -(radius * up_z / norm)
+
+
+@register_jitable
+def point_velocity(v_center, omega, offset):
+    """
+    Return the velocity (x, y, z) of a carrier point: v_center + omega x offset.
+
+    v_center: the wheel centre's velocity, omega: the carrier's angular velocity, offset: the
+    point less the wheel centre (mm), each a triple of floats or of arrays (n,).
+    """
+    (vx, vy, vz), (wx, wy, wz), (dx, dy, dz) = v_center, omega, offset
+    return vx + (wy * dz - wz * dy), vy + (wz * dx - wx * dz), vz + (wx * dy - wy * dx)

@@ -24,7 +24,7 @@ from numba.extending import register_jitable
 import numpy as np
 
 from . import forces, kernel, kkt, newton
-from ..base.patch import patch_offset
+from ..base.patch import patch_offset, point_velocity
 
 jit = njit(cache=True, nogil=True, error_model='numpy')
 # the kernels that allocate nothing and return no array: compiled without numba's reference
@@ -37,7 +37,7 @@ KERNEL_DIGEST = '5af228e5f8d3a4cb9a23c009a2443c761a851ba0a28b6fb43c01de6ab92ade3
 KKT_DIGEST = 'e379e220e94e27bd9c8d43ae797186666885e63e9869a021eea6a7257c6f403a'
 NEWTON_DIGEST = '2cb37f26a10463b9a6d3e4146d3385310118dd7e602fca73b807d8ba16ca4df0'
 FORCES_DIGEST = '83bdf4dfb372dc6d207f606c8d7b6e879d891aca3f1b98a3467999d83376257e'
-PATCH_DIGEST = '7617b861f96a597dfc1031314dfdee925963b63a94e3df13fe24e73a28863499'
+PATCH_DIGEST = 'afd6888e795379b6617b1ea7ba19b5e74be91e1fc81b969f425d7e6a517b8095'
 # io: the command, then what it gives
 Z, RACK, AT_CP, FORCE, MOMENT, ZERO_FROM, LOADED_FROM = 0, 1, 2, 3, 6, 9, 10
 CODE, ITERATIONS, RESIDUAL, ZERO_ITERATIONS, ZERO_RESIDUAL, ANSWER = 11, 12, 13, 14, 15, 16
@@ -356,7 +356,7 @@ def rates(ints, reals, state, io, floats, integers):
         else:   # Fy (6) or Fx (7) at the patch: the force and its moment p x e
             e0, e1 = (0.0, 1.0) if j == 6 else (1.0, 0.0)
             rhs[0], rhs[1] = e0, e1
-            rhs[3], rhs[4], rhs[5] = -p2 * e1, p2 * e0, p0 * e1 - p1 * e0
+            rhs[3], rhs[4], rhs[5] = forces._cross(p0, p1, p2, e0, e1, 0.0)
         kkt.solve_full(w, model.perm, bounds, mode)
         for i in range(3):
             dm[i, j], turn[i, j] = sol[i], sol[3 + i]
@@ -367,8 +367,8 @@ def rates(ints, reals, state, io, floats, integers):
     for i in range(RATES_SIZE):
         out[i] = np.nan
     if radius > 0:
-        # the patch as a carrier point moves by dM + w x p
-        patch_dy = dm[1, 6] + turn[2, 6] * p0 - turn[0, 6] * p2
+        _, patch_dy, _ = point_velocity((dm[0, 6], dm[1, 6], dm[2, 6]),   # a carrier point
+                                        (turn[0, 6], turn[1, 6], turn[2, 6]), (p0, p1, p2))
         out[0] = toe[6] * DEG * PER_KN
         out[1] = camber[6] * DEG * PER_KN
         out[2] = dm[1, 6] * PER_KN
