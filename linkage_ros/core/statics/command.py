@@ -33,10 +33,10 @@ jit = njit(cache=True, nogil=True, error_model='numpy')
 # nothing: their work is the caller's.
 bare = njit(cache=True, nogil=True, error_model='numpy', _nrt=False)
 
-KERNEL_DIGEST = '5af228e5f8d3a4cb9a23c009a2443c761a851ba0a28b6fb43c01de6ab92ade39'
-KKT_DIGEST = 'e379e220e94e27bd9c8d43ae797186666885e63e9869a021eea6a7257c6f403a'
-NEWTON_DIGEST = '2cb37f26a10463b9a6d3e4146d3385310118dd7e602fca73b807d8ba16ca4df0'
-FORCES_DIGEST = '83bdf4dfb372dc6d207f606c8d7b6e879d891aca3f1b98a3467999d83376257e'
+KERNEL_DIGEST = '1be935af7cd40f464de3c9bbcd142022ad1410ba4a845f788174fe4be001abfd'
+KKT_DIGEST = 'a83a1afb5b1063cbf4e28996732dc92f11d7e06f7c1f8653e3790a618b573419'
+NEWTON_DIGEST = '1a59827259e6b527354201273b7199cf1b837135a53984553f3ce8c6f7d87ee5'
+FORCES_DIGEST = 'fb10b1f5b36c5651b2f6572da99a25a0fad597b7e37a3ebfb6034266df49b128'
 PATCH_DIGEST = 'afd6888e795379b6617b1ea7ba19b5e74be91e1fc81b969f425d7e6a517b8095'
 # io: the command, then what it gives
 Z, RACK, AT_CP, FORCE, MOMENT, ZERO_FROM, LOADED_FROM = 0, 1, 2, 3, 6, 9, 10
@@ -135,7 +135,6 @@ def _views(state, bodies, m, which):
     return Equilibrium(state[o:o + 3], c, r, state[o + 3 + 12 * bodies:o + 3 + 12 * bodies + m])
 
 
-@jit
 def views(state, bodies, m, which):
     """Return the Equilibrium views of a state: which 0 the zero-load one, 1 the loaded one."""
     return _views(state, bodies, m, which)
@@ -153,7 +152,6 @@ def _factor_views(state, model, which):
                          state[o + 2 * size + 2 * n:o + 2 * size + 2 * n + m])
 
 
-@jit
 def factor_views(state, model, which):
     """Return the newton.Factor views of a state's factorisation which (0 zero, 1 loaded)."""
     return _factor_views(state, model, which)

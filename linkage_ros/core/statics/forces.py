@@ -33,7 +33,7 @@ from . import kernel
 from .rotation import energy_into, log_into
 from ..base.so3 import camber_toe
 
-KERNEL_DIGEST = '5af228e5f8d3a4cb9a23c009a2443c761a851ba0a28b6fb43c01de6ab92ade39'
+KERNEL_DIGEST = '1be935af7cd40f464de3c9bbcd142022ad1410ba4a845f788174fe4be001abfd'
 ROTATION_DIGEST = 'fc35c0e1e6a28eae945025510fa2d9c6593693a9315427806e24f6de83cf28df'
 SO3_DIGEST = '862efb847a68465a5f68ec100893bccc4658d8a7278ad25575f0da1dc9d158aa'
 # The model's validity (doc/kc.md): beyond these a load is not carried

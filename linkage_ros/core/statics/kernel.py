@@ -159,9 +159,8 @@ def _f3(ints, reals, k):
     return reals[ints[h]:ints[h] + size].reshape((ints[h + 1], ints[h + 2], ints[h + 3]))
 
 
-@jit
 def unpack(ints, reals):
-    """Return the Model whose fields are views into ints and reals (for Python: the tests)."""
+    """Return the Model whose fields are views into ints and reals (Python's: model_of)."""
     return model_of(ints, reals)
 
 

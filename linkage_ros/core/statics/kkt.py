@@ -41,7 +41,6 @@ jit = njit(cache=True, nogil=True, error_model='numpy')
 bare = njit(cache=True, nogil=True, error_model='numpy', _nrt=False)
 
 
-@jit
 def dense_bounds(size):
     """Return the bounds of a system factorised densely: no clusters, all root, not square."""
     out = np.empty(3, dtype=np.int64)

@@ -27,8 +27,8 @@ import numpy as np
 
 from . import kernel, kkt
 
-KERNEL_DIGEST = '5af228e5f8d3a4cb9a23c009a2443c761a851ba0a28b6fb43c01de6ab92ade39'
-KKT_DIGEST = 'e379e220e94e27bd9c8d43ae797186666885e63e9869a021eea6a7257c6f403a'
+KERNEL_DIGEST = '1be935af7cd40f464de3c9bbcd142022ad1410ba4a845f788174fe4be001abfd'
+KKT_DIGEST = 'a83a1afb5b1063cbf4e28996732dc92f11d7e06f7c1f8653e3790a618b573419'
 TOL_STEP = 1e-11       # mm (rotations times the lever): a step this small has converged
 MAX_ITER = 30          # Newton iterations per load increment
 MAX_HALVINGS = 6       # a load is split into at most 2**6 increments
@@ -127,9 +127,8 @@ def work_of(model, floats, ints):
                 dense, steps, info, kernel.scratch_of(model, floats[o:]))
 
 
-@jit
 def work(model):
-    """Return a Work for the Model's sizes, its own arrays (for Python: the tests)."""
+    """Return a Work for the Model's sizes, its own arrays (Python's: work_of)."""
     floats, ints = work_size(model)
     return work_of(model, np.empty(floats), np.zeros(ints, dtype=np.int64))
 
