@@ -20,9 +20,12 @@ import time
 from numba import njit
 import numpy as np
 
-from ..core.statics import command, forces, kernel, kkt, newton
+from ..core.statics import kernels
 
-jit = njit(cache=True)
+command, forces, kernel = kernels.command, kernels.forces, kernels.kernel
+kkt, newton = kernels.kkt, kernels.newton
+
+jit = njit(cache=False)   # compiles in the core's kernels: cached apart, it could go stale
 REPEAT = 2000
 
 

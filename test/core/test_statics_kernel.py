@@ -3,13 +3,11 @@
 
 """The compiled statics (core/statics) against its numpy twin (statics_reference.py here)."""
 
-import hashlib
 from pathlib import Path
 
-from linkage_ros.core.base import camber_toe, exp_so3, so3, Status
+from linkage_ros.core.base import camber_toe, exp_so3, Status
 from linkage_ros.core.model import load_scene
-from linkage_ros.core.statics import (command, forces, kernel, kkt, Load, newton, rotation,
-                                      Statics)
+from linkage_ros.core.statics import command, kernel, kkt, Load, newton, rotation, Statics
 import numpy as np
 import pytest
 import statics_reference as reference   # beside this file (pytest's path)
@@ -136,33 +134,6 @@ def test_a_singular_cluster_is_factorised_densely_and_gives_the_same_solution():
     x = rhs.copy()
     kkt.solve(lu, piv, kkt.dense_bounds(6), mode, x, np.empty(6))
     assert np.abs(a @ x - rhs).max() < 1e-12 * np.abs(rhs).max() * np.linalg.cond(a)
-
-
-# numba's disk cache follows each file alone: each compiled statics file names the digest of
-# each file it compiles in, so that an edit there compiles it again
-SOURCES = {'SO3_DIGEST': 'base/so3.py', 'ROTATION_DIGEST': 'statics/rotation.py',
-           'FORCE_TABLE_DIGEST': 'base/force_table.py', 'KERNEL_DIGEST': 'statics/kernel.py',
-           'KKT_DIGEST': 'statics/kkt.py', 'NEWTON_DIGEST': 'statics/newton.py',
-           'FORCES_DIGEST': 'statics/forces.py', 'PATCH_DIGEST': 'base/patch.py'}
-COMPILED_IN = {kernel: ('SO3_DIGEST', 'ROTATION_DIGEST', 'FORCE_TABLE_DIGEST'),
-               newton: ('KERNEL_DIGEST', 'KKT_DIGEST'),
-               forces: ('KERNEL_DIGEST', 'ROTATION_DIGEST', 'SO3_DIGEST'),
-               command: ('KERNEL_DIGEST', 'KKT_DIGEST', 'NEWTON_DIGEST', 'FORCES_DIGEST',
-                         'PATCH_DIGEST')}
-
-
-@pytest.mark.parametrize('module, attribute', [(m, a) for m, names in COMPILED_IN.items()
-                                               for a in names],
-                         ids=[f'{m.__name__.rsplit(".", 1)[1]}-{a}'
-                              for m, names in COMPILED_IN.items() for a in names])
-def test_the_statics_kernels_name_the_digest_of_each_file_they_compile_in(module, attribute):
-    core = Path(so3.__file__).resolve().parents[1]
-    digest = hashlib.sha256((core / SOURCES[attribute]).read_bytes()).hexdigest()
-    name = Path(module.__file__).name
-    assert getattr(module, attribute) == digest, (
-        f'{SOURCES[attribute]} changed: set {attribute} = {digest!r} in core/statics/{name} '
-        '(then the digest of that file where it is named), so that numba compiles the '
-        'statics kernels again')
 
 
 def test_the_rotational_energy_has_exact_derivatives_in_the_left_increment():

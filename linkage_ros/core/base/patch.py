@@ -5,15 +5,13 @@
 A wheel's contact patch and a carrier point's velocity: one formula each, for all callers.
 
 Plain Python functions (floats or arrays (n,), as measure.alignment and the roll centre call
-them) that numba also compiles into the statics kernel (register_jitable):
-core/statics/command.py names this file's digest (PATCH_DIGEST), because numba's on-disk
-cache follows each function's own file only.
+them) that numba also compiles into the statics kernels (compiled.jitable).
 """
 
-from numba.extending import register_jitable
+from .compiled import jitable
 
 
-@register_jitable
+@jitable
 def patch_offset(axis_x, axis_y, axis_z, radius):
     """
     Return the contact patch less the wheel centre, (x, y, z) mm: the one contact-patch formula.
@@ -29,7 +27,7 @@ def patch_offset(axis_x, axis_y, axis_z, radius):
     return -(radius * up_x / norm), -(radius * up_y / norm), -(radius * up_z / norm)
 
 
-@register_jitable
+@jitable
 def point_velocity(v_center, omega, offset):
     """
     Return the velocity (x, y, z) of a carrier point: v_center + omega x offset.

@@ -18,10 +18,10 @@ solve where it has none (statics.py). Imports base, model, solve and measure; re
 scenes and programs that ask for statics.
 """
 
-from . import command, forces, kernel, kkt, newton   # the kernels: for tests and benchmarks
+from . import kernels   # the compiled kernels, by module, for the benchmarks
 from .compliance import Compliance, RATE_COLUMNS
 from .loaded import Load, Loaded
 from .statics import compliance, solve_loaded, Statics
 
-__all__ = ['command', 'Compliance', 'compliance', 'forces', 'kernel', 'kkt', 'Load', 'Loaded',
-           'newton', 'RATE_COLUMNS', 'solve_loaded', 'Statics']
+__all__ = ['Compliance', 'compliance', 'kernels', 'Load', 'Loaded', 'RATE_COLUMNS',
+           'solve_loaded', 'Statics']

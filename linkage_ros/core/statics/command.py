@@ -12,32 +12,19 @@ rates), it is solved from the last one (or taken as it is, at the same travel an
 the loaded one from the last loaded one (WARM) or from the zero-load one in increments
 (ZERO). A start that fails says so (code); statics.py then starts from the kinematic pose.
 
-numba's disk cache follows each file alone: kernel.py, kkt.py, newton.py, forces.py, so3.py
-and patch.py are compiled in here (their digests below; test_statics_kernel says the values).
+Compiled with base/compiled.py's decorators (one cache key over every kernel source).
 """
 
 import math
 from typing import NamedTuple
 
-from numba import njit
-from numba.extending import register_jitable
 import numpy as np
 
 from . import forces, kernel, kkt, newton
+from ..base.compiled import bare, jit, jitable
 from ..base.patch import patch_offset, point_velocity
 
-jit = njit(cache=True, nogil=True, error_model='numpy')
-# the kernels that allocate nothing and return no array: compiled without numba's reference
-# counting (kernel.py says why). solve and rates themselves make the views of the Model,
-# the work and the state (numba returns no new array from such a kernel), but allocate
-# nothing: their work is the caller's.
-bare = njit(cache=True, nogil=True, error_model='numpy', _nrt=False)
 
-KERNEL_DIGEST = '1be935af7cd40f464de3c9bbcd142022ad1410ba4a845f788174fe4be001abfd'
-KKT_DIGEST = 'a83a1afb5b1063cbf4e28996732dc92f11d7e06f7c1f8653e3790a618b573419'
-NEWTON_DIGEST = '1a59827259e6b527354201273b7199cf1b837135a53984553f3ce8c6f7d87ee5'
-FORCES_DIGEST = 'fb10b1f5b36c5651b2f6572da99a25a0fad597b7e37a3ebfb6034266df49b128'
-PATCH_DIGEST = 'afd6888e795379b6617b1ea7ba19b5e74be91e1fc81b969f425d7e6a517b8095'
 # io: the command, then what it gives
 Z, RACK, AT_CP, FORCE, MOMENT, ZERO_FROM, LOADED_FROM = 0, 1, 2, 3, 6, 9, 10
 CODE, ITERATIONS, RESIDUAL, ZERO_ITERATIONS, ZERO_RESIDUAL, ANSWER = 11, 12, 13, 14, 15, 16
@@ -84,7 +71,7 @@ class Extra(NamedTuple):
     rates: np.ndarray      # (9, 8): dm, turn (3 each), held, toe, camber per load
 
 
-@register_jitable
+@jitable
 def state_offset(bodies, n, m, size, which):
     """
     Return where part which of a state starts (4: the state's size).
@@ -99,7 +86,7 @@ def state_offset(bodies, n, m, size, which):
     return which * equilibrium if which <= 2 else 2 * equilibrium + (which - 2) * factor
 
 
-@register_jitable
+@jitable
 def sizes(model):
     """Return (state, work floats, work ints) sizes: the arrays a Statics keeps for a Model."""
     bodies, n, m, size = len(model.b_kind), model.n, model.m, len(model.perm)
@@ -108,7 +95,7 @@ def sizes(model):
             ints)
 
 
-@register_jitable(inline='always')
+@jitable(inline='always')
 def extra_of(model, floats):
     """Return the Extra whose arrays are views into floats (what follows the Work)."""
     bodies, m = len(model.b_kind), model.m
@@ -127,7 +114,7 @@ def extra_of(model, floats):
                  floats[q + 9:q + 12], floats[q + 12:q + 84].reshape((9, 8)))
 
 
-@register_jitable(inline='always')
+@jitable(inline='always')
 def _views(state, bodies, m, which):
     o = state_offset(bodies, 0, m, 0, which)
     c = state[o + 3:o + 3 + 3 * bodies].reshape((bodies, 3))
@@ -140,7 +127,7 @@ def views(state, bodies, m, which):
     return _views(state, bodies, m, which)
 
 
-@register_jitable(inline='always')
+@jitable(inline='always')
 def _factor_views(state, model, which):
     n, m, size = model.n, model.m, len(model.perm)
     o = state_offset(len(model.b_kind), n, m, size, 2 + which)

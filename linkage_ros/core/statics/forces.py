@@ -17,25 +17,20 @@ model) reads the same deflections.
 
 The answer of a solve is one float array (answer_offsets: the pose, then the pickups'
 forces); pack.Names says which slot is which pickup, and the dicts of a Loaded are built from
-it when they are read (forces_of). numba's disk cache follows each file alone: kernel.py,
-rotation.py, so3.py and patch.py are compiled in here (their digests below).
+it when they are read (pickups.Pickups).
 """
 
 from __future__ import annotations
 
 import math
 
-from numba import njit
-from numba.extending import register_jitable
 import numpy as np
 
 from . import kernel
 from .rotation import energy_into, log_into
+from ..base.compiled import bare, jitable
 from ..base.so3 import camber_toe
 
-KERNEL_DIGEST = '1be935af7cd40f464de3c9bbcd142022ad1410ba4a845f788174fe4be001abfd'
-ROTATION_DIGEST = 'fc35c0e1e6a28eae945025510fa2d9c6593693a9315427806e24f6de83cf28df'
-SO3_DIGEST = '862efb847a68465a5f68ec100893bccc4658d8a7278ad25575f0da1dc9d158aa'
 # The model's validity (doc/kc.md): beyond these a load is not carried
 MAX_DEFLECTION_MM = 10.0
 MAX_CONICAL_DEG = 5.0
@@ -46,15 +41,9 @@ VALID, DEFLECTS, TURNS = 0, 1, 2
 CENTER, ROTATION, CAMBER, TOE, HOLDING, LOAD_POINT, RESIDUAL, ITERATIONS = \
     0, 3, 12, 13, 14, 15, 18, 19
 VALIDITY, VALIDITY_BUSHING, VALIDITY_VALUE, HEAD = 20, 21, 22, 24
-jit = njit(cache=True, nogil=True, error_model='numpy')
-# The kernels that allocate nothing and return no array are compiled without numba's
-# reference counting (its private _nrt flag): its atomic counts on every array passed or
-# named took a third of a command's time (perf). Such a kernel must never return an array
-# nor allocate one; its callers hand it scratch.
-bare = njit(cache=True, nogil=True, error_model='numpy', _nrt=False)
 
 
-@register_jitable
+@jitable
 def answer_offsets(pickups, balls, links, springs):
     """
     Return the offsets of an answer's parts, and its size.

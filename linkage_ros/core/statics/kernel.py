@@ -23,24 +23,20 @@ body's rotation w is a left increment, R <- exp(w) R, and exp(w) exp(d) = exp(w 
 by (H - [g_w]x / 2) d, H its symmetric second derivative. The moment M fixed in space is no
 function of the pose (not conservative): its part of g_w has no H and no correction, and the
 matrix is not symmetric where g_w of the rest is not zero (under a moment, at equilibrium
-too). numba's disk cache follows each file alone: so3.py, rotation.py and force_table.py are
-compiled in here, and their digests are written below (test_statics_kernel says the values).
+too). Compiled with base/compiled.py's decorators (one cache key over every kernel source;
+bare: without numba's reference counting, for the kernels that allocate nothing).
 """
 
 import math
 from typing import NamedTuple
 
-from numba import njit
-from numba.extending import register_jitable
 import numpy as np
 
 from .rotation import energy_into, log_into
+from ..base.compiled import bare, jitable
 from ..base.force_table import table_force
 from ..base.so3 import turn
 
-SO3_DIGEST = '862efb847a68465a5f68ec100893bccc4658d8a7278ad25575f0da1dc9d158aa'
-ROTATION_DIGEST = 'fc35c0e1e6a28eae945025510fa2d9c6593693a9315427806e24f6de83cf28df'
-FORCE_TABLE_DIGEST = '346feb4092ce978e6e4a4404d799b759c6b543b914b5a7b17b6adb98596648da'
 CARRIER, ARM, HINGE, BASE = 0, 1, 2, 3
 LINK, BALL, LINE, TRAVEL, SPRING, BUSH, LOAD = 0, 1, 2, 3, 4, 5, 6
 # what assemble writes: the residual alone (grad, values, rows), with the symmetric Hessian
@@ -50,12 +46,6 @@ RESIDUAL, SYMMETRIC, EXACT = 0, 1, 2
 NOTHING, PICKUP, BALL_JOINT, RIGID_ARM = 0, 1, 2, 3
 # ints begins with these scalars, then a header of 4 per field (offset, shape of up to 3)
 N, M, N_SCALARS = 0, 1, 8
-jit = njit(cache=True, nogil=True, error_model='numpy')
-# The kernels that allocate nothing and return no array are compiled without numba's
-# reference counting (its private _nrt flag): its atomic counts on every array passed or
-# named took a third of a command's time (perf). Such a kernel must never return an array
-# nor allocate one; its callers hand it scratch.
-bare = njit(cache=True, nogil=True, error_model='numpy', _nrt=False)
 
 
 class Model(NamedTuple):
@@ -120,39 +110,39 @@ FIELDS = (('i', 1), ('i', 1), ('f', 2), ('f', 2), ('i', 1), ('i', 2), ('i', 2), 
 CENTER, SPIN, SIDE, RADIUS, LEVER = 0, 3, 6, 7, 8   # consts
 
 
-@register_jitable(inline='always')
+@jitable(inline='always')
 def _i1(ints, k):
     h = N_SCALARS + 4 * k
     return ints[ints[h]:ints[h] + ints[h + 1]]
 
 
-@register_jitable(inline='always')
+@jitable(inline='always')
 def _i2(ints, k):
     h = N_SCALARS + 4 * k
     return ints[ints[h]:ints[h] + ints[h + 1] * ints[h + 2]].reshape((ints[h + 1], ints[h + 2]))
 
 
-@register_jitable(inline='always')
+@jitable(inline='always')
 def _i3(ints, k):
     h = N_SCALARS + 4 * k
     size = ints[h + 1] * ints[h + 2] * ints[h + 3]
     return ints[ints[h]:ints[h] + size].reshape((ints[h + 1], ints[h + 2], ints[h + 3]))
 
 
-@register_jitable(inline='always')
+@jitable(inline='always')
 def _f1(ints, reals, k):
     h = N_SCALARS + 4 * k
     return reals[ints[h]:ints[h] + ints[h + 1]]
 
 
-@register_jitable(inline='always')
+@jitable(inline='always')
 def _f2(ints, reals, k):
     h = N_SCALARS + 4 * k
     size = ints[h + 1] * ints[h + 2]
     return reals[ints[h]:ints[h] + size].reshape((ints[h + 1], ints[h + 2]))
 
 
-@register_jitable(inline='always')
+@jitable(inline='always')
 def _f3(ints, reals, k):
     h = N_SCALARS + 4 * k
     size = ints[h + 1] * ints[h + 2] * ints[h + 3]
@@ -164,7 +154,7 @@ def unpack(ints, reals):
     return model_of(ints, reals)
 
 
-@register_jitable(inline='always')
+@jitable(inline='always')
 def model_of(ints, reals):
     """Return the Model whose fields are views into ints and reals (FIELDS' layout)."""
     return Model(
@@ -207,13 +197,13 @@ class Scratch(NamedTuple):
     rigid: np.ndarray      # (H, 6) the loads on each rigid arm (forces.pickups)
 
 
-@register_jitable
+@jitable
 def scratch_size(terms, rigid):
     """Return the size of a Scratch for terms terms and rigid rigid arms (floats)."""
     return 9 + 9 + 54 + 6 + 6 + 36 + 18 + 3 + 3 + 9 + 45 + 9 * terms + 6 * rigid
 
 
-@register_jitable(inline='always')
+@jitable(inline='always')
 def scratch_of(model, out):
     """Return the Scratch whose arrays are views into out (scratch_size floats)."""
     terms, rigid = len(model.t_kind), len(model.h_slot)

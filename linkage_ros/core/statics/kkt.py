@@ -28,17 +28,11 @@ model says, not by round-off.
 Matrices in place: factor overwrites a with its factors and piv with the row swaps.
 """
 
-from numba import njit
-from numba.extending import register_jitable
 import numpy as np
 
+from ..base.compiled import bare, jitable
+
 FAILED, GENERAL, SQUARE = 0, 1, 2
-jit = njit(cache=True, nogil=True, error_model='numpy')
-# The kernels that allocate nothing and return no array are compiled without numba's
-# reference counting (its private _nrt flag): its atomic counts on every array passed or
-# named took a third of a command's time (perf). Such a kernel must never return an array
-# nor allocate one; its callers hand it scratch.
-bare = njit(cache=True, nogil=True, error_model='numpy', _nrt=False)
 
 
 def dense_bounds(size):
@@ -48,7 +42,7 @@ def dense_bounds(size):
     return out
 
 
-@register_jitable
+@jitable
 def write_dense_bounds(out, size):
     """Write the bounds of a dense factorisation of size unknowns into out (3,)."""
     out[0], out[1], out[2] = 0, size, -1

@@ -14,21 +14,15 @@ bodies' coordinates (kernel.move), and the system is solved reduced and along it
 too (test_statics_newton). A load too large for one Newton solve is applied in increments
 (loaded: halved on failure), each solve continuing from the last. Nothing here raises: a
 solve returns ok False, and its last finite residual (N; inf if none).
-
-numba's disk cache follows each file alone: kernel.py and kkt.py are compiled in here, their
-digests below (test_statics_kernel says the values to set after an edit there).
 """
 
 from typing import NamedTuple
 
-from numba import njit
-from numba.extending import register_jitable
 import numpy as np
 
 from . import kernel, kkt
+from ..base.compiled import bare, jitable
 
-KERNEL_DIGEST = '1be935af7cd40f464de3c9bbcd142022ad1410ba4a845f788174fe4be001abfd'
-KKT_DIGEST = 'a83a1afb5b1063cbf4e28996732dc92f11d7e06f7c1f8653e3790a618b573419'
 TOL_STEP = 1e-11       # mm (rotations times the lever): a step this small has converged
 MAX_ITER = 30          # Newton iterations per load increment
 MAX_HALVINGS = 6       # a load is split into at most 2**6 increments
@@ -36,12 +30,6 @@ MAX_HALVINGS = 6       # a load is split into at most 2**6 increments
 # taken (converged()): it would move the pose by round-off
 PREDICTED = 1e-3
 POSE_ONLY = -1   # newton's finish: nothing assembled at the solution (its residual NaN)
-jit = njit(cache=True, nogil=True, error_model='numpy')
-# The kernels that allocate nothing and return no array are compiled without numba's
-# reference counting (its private _nrt flag): its atomic counts on every array passed or
-# named took a third of a command's time (perf). Such a kernel must never return an array
-# nor allocate one; its callers hand it scratch.
-bare = njit(cache=True, nogil=True, error_model='numpy', _nrt=False)
 
 
 class Work(NamedTuple):
@@ -82,7 +70,7 @@ class Factor(NamedTuple):
     rows: np.ndarray
 
 
-@register_jitable
+@jitable
 def work_size(model):
     """Return the sizes (floats, ints) of a Work's two flat arrays (work_of)."""
     n, m, size = model.n, model.m, len(model.perm)
@@ -91,7 +79,7 @@ def work_size(model):
     return floats, 2 * size + 3 + 2
 
 
-@register_jitable(inline='always')
+@jitable(inline='always')
 def work_of(model, floats, ints):
     """
     Return the Work whose arrays are views into floats and ints (work_size's).

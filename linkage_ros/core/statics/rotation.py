@@ -21,15 +21,10 @@ Python.
 
 import math
 
-from numba import njit
 import numpy as np
 
-jit = njit(cache=True, nogil=True, error_model='numpy')
-# The kernels that allocate nothing and return no array are compiled without numba's
-# reference counting (its private _nrt flag): its atomic counts on every array passed or
-# named took a third of a command's time (perf). Such a kernel must never return an array
-# nor allocate one; its callers hand it scratch.
-bare = njit(cache=True, nogil=True, error_model='numpy', _nrt=False)
+from ..base.compiled import bare
+
 
 # Below this angle (rad) c and c'/theta come from their Taylor series (sympy, to theta^10):
 # the closed forms lose digits to cancellation there (c' as eps / theta^3).
