@@ -126,6 +126,8 @@ step compliance and loaded solves '(doc/kc.md)'
 .venv/bin/linkage-kc double_wishbone_bushings --travel 0 --load 0,4000,0 --at cp --plot kc_loaded.png; echo "rc=$?"
 pyblock doc/kc.md 'solve_loaded(scene' > kc_snippet.py
 .venv/bin/python kc_snippet.py; echo "rc=$?"; rm kc_snippet.py
+pyblock doc/kc.md "load_vehicle('demo_vehicle_bushings')" > kc_vehicle.py
+.venv/bin/python kc_vehicle.py; echo "rc=$?"; rm kc_vehicle.py
 step studies
 .venv/bin/linkage-study sensitivity five_link --travel -50 0 50 -o five_link_sensitivity.csv; echo "rc=$?"
 .venv/bin/linkage-study tolerance five_link --sigma 0.05 --samples 100000 --travel -50 -25 0 25 50 --plot tolerance.png > tolerance.csv; echo "rc=$?"
@@ -145,7 +147,7 @@ if [ "${LONG:-0}" = 1 ]; then
     .venv/bin/linkage-bench axle demo_vehicle --axle rear --roll -3:3:0.5 --heave -40:40:10 --rounds 11 > /dev/null; echo "rc=$?"
     .venv/bin/linkage-bench vehicle demo_vehicle --rounds 3 > /dev/null; echo "rc=$?"
     .venv/bin/linkage-bench kc double_wishbone_bushings --travel -40:40:20 --rounds 3; echo "rc=$?"
-    .venv/bin/python -m linkage_ros.bench.statics double_wishbone_bushings --rounds 1 10 100; echo "rc=$?"
+    .venv/bin/linkage-bench statics --parts; echo "rc=$?"
     .venv/bin/linkage-bench accuracy --quick -o bench-report; echo "rc=$?"
     ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST .venv/bin/linkage-bench node --plot node_latency.png > node_bench.csv; echo "rc=$?"
     ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST .venv/bin/linkage-bench soak > soak.csv; echo "rc=$?"

@@ -16,6 +16,8 @@ linkage-bench: every benchmark of linkage_ros, one subcommand each.
                                        (replay.py)
     linkage-bench kc SCENE [...]       compliance rates and a loaded solve against a
                                        kinematic solve (kc.py)
+    linkage-bench statics [SCENE...]   a loaded solve and the rates per command against a
+                                       continuation step, along a sine (statics.py)
     linkage-bench chrono [FILE...]     import, solve and write Chrono files (chrono.py)
 
 Each subcommand takes the options of the program it times (sweep, axle, map, vehicle, kc:
@@ -38,6 +40,7 @@ EPILOG = """examples:
   linkage-bench map double_wishbone --rounds 20
   linkage-bench vehicle demo_vehicle --rounds 3
   linkage-bench kc double_wishbone_bushings --travel -40:40:20 --rounds 5
+  linkage-bench statics five_link_bushings --commands 200 --rounds 3
 
 exit status: as the program timed; """ + EXIT_STATUS
 
@@ -72,6 +75,11 @@ def _chrono(argv):
     return main(argv)
 
 
+def _statics(argv, prog=f'{PROG} statics'):
+    from .statics import main
+    return main(argv, prog=prog)
+
+
 def _timed(command, module):
     """Return the runner of bench/<module>.py: its main(argv, rounds), --rounds taken here."""
     def run(argv):
@@ -84,7 +92,8 @@ def _timed(command, module):
 COMMANDS = {'accuracy': _accuracy, 'node': _node, 'soak': _soak,
             'sweep': _timed('sweep', 'sweep'), 'axle': _timed('axle', 'axle'),
             'map': _timed('map', 'map'), 'vehicle': _timed('vehicle', 'sheet'),
-            'study': _study, 'replay': _replay, 'kc': _timed('kc', 'kc'), 'chrono': _chrono}
+            'study': _study, 'replay': _replay, 'kc': _timed('kc', 'kc'), 'chrono': _chrono,
+            'statics': _statics}
 
 
 def _rounds(argv, prog):

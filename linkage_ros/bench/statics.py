@@ -2,91 +2,140 @@
 # SPDX-License-Identifier: Apache-2.0
 
 """
-Timing of the statics (issue 29): rates and one loaded solve against one kinematic solve.
+linkage-bench statics: a loaded solve and the rates per command against a continuation step.
 
-    python -m linkage_ros.bench.statics SCENE [--travel T] [--rounds N ...]
-
-Each is timed in the same run, one call at a time, warm (numba compiled and loaded): the
-kinematic solve (Continuation.solve), compliance() and solve_loaded() of a lateral force at
-the contact patch (at the wheel centre without wheel_radius), each alternating between two
-travels so that each call solves anew; and the last two again at one travel, where the
-zero-load equilibrium is kept (a rig loading one position). timings() returns the numbers for other
-programs (linkage-kc's --benchmark); main() prints a table, microseconds per call, and the
-ratios to the kinematic solve (goals: rates <= 3x, loaded <= 10x).
+Along a slow sine, as a simulator steps a corner at 1 kHz (a 1 Hz travel sine of 30 mm,
+and a cornering wrench at the contact patch that follows it: 200 N longitudinal and 3 kN
+lateral as sines, 4 kN vertical, 50 N m aligning torque), each command is timed in one run,
+side by side: a continuation step (Continuation.solve, the kinematics), a loaded solve
+(Statics.solve, from the last loaded equilibrium) and the rates (Statics.rates, from the
+last zero-load one), at 1x, 10x and 100x the commands. CPU time of this process per command
+(the machine is shared: wall time moves with the others' load, which is printed), the median
+of rounds that alternate the three. The goal (issue 37): a loaded solve and the rates each
+at most 3 continuation steps. --parts also times the pieces of a loaded command: where the
+time goes.
 """
 
 from __future__ import annotations
 
-import argparse
+import math
+import os
+import statistics
 import sys
 import time
 
-from ..core.model import load_scene
-from ..core.solve import Continuation
-from ..core.statics import compliance, Load, solve_loaded
+from ..cli import counted, fail, Parser
 from ..outputs import write_table
 
-ROUNDS = (1, 10, 100)
+PROG = 'linkage-bench statics'
+SCENES = ('double_wishbone_bushings', 'five_link_bushings',
+          'chrono_sedan_doublewishbone_bushings')
+SCALES = (1, 10, 100)
+RATE_HZ, SINE_HZ, AMPLITUDE_MM = 1000.0, 1.0, 30.0
+COLUMNS = ('scene', 'commands', 'continuation_us', 'loaded_us', 'rates_us', 'loaded_ratio',
+           'rates_ratio')
+
+EPILOG = """examples:
+  linkage-bench statics
+  linkage-bench statics five_link_bushings --commands 200 --rounds 3 --parts
+
+columns: scene, commands, continuation_us (a continuation step), loaded_us (Statics.solve),
+  rates_us (Statics.rates), loaded_ratio and rates_ratio (to the continuation step); CPU
+  time per command, the median of the rounds. The load average is printed before and after.
+"""
 
 
-def _per_call(run, rounds: int) -> float:
-    """Return the best of 3 mean times (us) of rounds calls of run()."""
-    best = float('inf')
-    for _ in range(3):
-        start = time.perf_counter()
-        for _ in range(rounds):
-            run()
-        best = min(best, (time.perf_counter() - start) / rounds * 1e6)
-    return best
+def commands(count: int, first: int = 0):
+    """Return (travels mm, loads) of count commands along the sine (1 kHz, 1 Hz, 30 mm)."""
+    from ..core.statics import Load
+    travels, loads = [], []
+    for k in range(first, first + count):
+        phase = 2.0 * math.pi * SINE_HZ * k / RATE_HZ
+        travels.append(AMPLITUDE_MM * math.sin(phase))
+        loads.append(Load((200.0 * math.cos(phase), 3000.0 * math.sin(phase), 4000.0), 'cp',
+                          (0.0, 0.0, 50.0)))
+    return travels, loads
 
 
-def timings(scene, travel: float = 10.0, rounds=ROUNDS) -> list[dict]:
-    """Return one row per round count: microseconds per call and the ratios (dicts)."""
-    cont = Continuation(scene)
-    load = Load((0.0, 1000.0, 0.0), 'cp' if scene.wheel_radius > 0 else 'wc')
-    travels = [travel, travel + 1.0]
+def timings(scene, count: int, rounds: int) -> dict:
+    """Return the median CPU time per command (us) of each of the three, count commands each."""
+    from ..core.base import Status
+    from ..core.solve import Continuation
+    from ..core.statics import Statics
+    continuation, loaded, rates = Continuation(scene), Statics(scene), Statics(scene)
 
-    def turn():   # every other call at the other travel: each call solves anew
-        travels.reverse()
-        return travels[0]
+    def kinematic(travels, loads):
+        for travel in travels:
+            continuation.solve(travel)
 
-    calls = {'kinematic_us': lambda: cont.solve(turn()),
-             'rates_us': lambda: compliance(scene, turn(), continuation=cont),
-             'loaded_us': lambda: solve_loaded(scene, turn(), load, continuation=cont),
-             'rates_same_travel_us': lambda: compliance(scene, travel, continuation=cont),
-             'loaded_same_travel_us': lambda: solve_loaded(scene, travel, load,
-                                                           continuation=cont)}
-    for run in calls.values():   # compile or load the kernels, fill the caches
-        run()
-    rows = []
-    for count in rounds:
-        row = {'rounds': count}
-        row.update({name: _per_call(run, count) for name, run in calls.items()})
-        for name in ('rates', 'loaded', 'rates_same_travel', 'loaded_same_travel'):
-            row[f'{name}_ratio'] = row[f'{name}_us'] / row['kinematic_us']
-        rows.append(row)
-    return rows
+    def solve(travels, loads):
+        for travel, load in zip(travels, loads):
+            if loaded.solve(travel, load).status != Status.OK:
+                raise RuntimeError(f'{scene.name}: travel {travel:g} mm not solved')
+
+    def compliance(travels, loads):
+        for travel in travels:
+            rates.rates(travel)
+
+    runs = {'continuation_us': kinematic, 'loaded_us': solve, 'rates_us': compliance}
+    times = {name: [] for name in runs}
+    for k in range(rounds + 1):   # each round goes on along the sine; the first warms up
+        sine = commands(count, k * count)
+        for name, run in runs.items():
+            start = time.process_time()
+            run(*sine)
+            if k:
+                times[name].append((time.process_time() - start) / count * 1e6)
+    out = {name: statistics.median(values) for name, values in times.items()}
+    out['loaded_ratio'] = out['loaded_us'] / out['continuation_us']
+    out['rates_ratio'] = out['rates_us'] / out['continuation_us']
+    return out
 
 
-def main(argv=None) -> int:
-    """Print the timings of a scene's statics; returns the exit status."""
-    parser = argparse.ArgumentParser(prog='python -m linkage_ros.bench.statics',
-                                     description=__doc__.split('\n\n')[0].strip())
-    parser.add_argument('scene', help='bundled scene name or YAML path')
-    parser.add_argument('--travel', type=float, default=10.0, help='travel, mm (default 10)')
-    parser.add_argument('--rounds', type=int, nargs='+', default=list(ROUNDS),
-                        help='calls per timing (default 1 10 100)')
+def parts(scene, count: int) -> dict:
+    """Return CPU time (us) of the pieces of a loaded command (bench/statics_parts.py)."""
+    from .statics_parts import parts as measured
+    return measured(scene, commands(count), commands(count, count))
+
+
+def main(argv=None, prog=PROG) -> int:
+    """Run the benchmark; returns the exit status."""
+    parser = Parser(prog, __doc__.strip().splitlines()[0], EPILOG)
+    parser.add_argument('scenes', nargs='*', metavar='SCENE',
+                        help='bundled scene names or YAML paths with bushings (default: the '
+                        'three bundled bushed scenes)')
+    parser.add_argument('--commands', type=int, default=1000,
+                        help='commands at 1x (default 1000: one second at 1 kHz)')
+    parser.add_argument('--rounds', type=int, default=5,
+                        help='alternating rounds per scale (default 5)')
+    parser.add_argument('--parts', action='store_true',
+                        help='also time the pieces of a loaded command')
     args = parser.parse_args(argv)
+    if args.commands < 1 or args.rounds < 1:
+        parser.error('--commands and --rounds must be at least 1')
+    from ..core.model import load_scene
+    from ..core.warmup import compile_if_cold
     try:
-        scene = load_scene(args.scene)
+        scenes = [load_scene(name) for name in args.scenes or SCENES]
     except ValueError as exc:
-        print(exc, file=sys.stderr)
-        return 2
-    columns = ('rounds', 'kinematic_us', 'rates_us', 'loaded_us', 'rates_same_travel_us',
-               'loaded_same_travel_us', 'rates_ratio', 'loaded_ratio', 'rates_same_travel_ratio',
-               'loaded_same_travel_ratio')
-    write_table(None, columns, [[row[c] for c in columns]
-                                for row in timings(scene, args.travel, args.rounds)])
+        return fail(prog, exc)
+    compile_if_cold(prog, statics=True)
+    print(f'{prog}: load average {os.getloadavg()[0]:.2f} (1 min), {os.cpu_count()} cores; '
+          f'{counted(args.commands, "command")} at 1x, {args.rounds} rounds', file=sys.stderr)
+    rows = []
+    for scene in scenes:
+        for scale in SCALES:
+            row = timings(scene, args.commands * scale, args.rounds)
+            rows.append([scene.name, args.commands * scale] + [row[c] for c in COLUMNS[2:]])
+            print(f'{prog}: {scene.name}: {counted(rows[-1][1], "command")}: loaded '
+                  f'{row["loaded_ratio"]:.2f}x, rates {row["rates_ratio"]:.2f}x a continuation '
+                  'step', file=sys.stderr, flush=True)
+        if args.parts:
+            measured = parts(scene, args.commands)
+            print(f'{prog}: {scene.name}: a loaded command, us: ' + ', '.join(
+                f'{name} {value:.2f}' for name, value in measured.items()), file=sys.stderr)
+    print(f'{prog}: load average {os.getloadavg()[0]:.2f} (1 min) at the end', file=sys.stderr)
+    write_table(None, COLUMNS, rows)
     return 0
 
 

@@ -46,7 +46,8 @@ KERNEL_MODULES = ('linkage_ros.core.base.so3', 'linkage_ros.core.base.force_tabl
                   'linkage_ros.core.solve.kernel', 'linkage_ros.core.solve.element_kernel',
                   'linkage_ros.core.solve.body_kernel')
 # The statics' (only for a scene with bushings, or when statics is asked for).
-STATICS_MODULES = ('linkage_ros.core.statics.rotation', 'linkage_ros.core.statics.kernel')
+STATICS_MODULES = tuple(f'linkage_ros.core.statics.{name}' for name in (
+    'rotation', 'kernel', 'kkt', 'newton', 'forces', 'command'))
 MESSAGE = 'compiling the numerical kernels, once, about 20 s'
 # The statics kernels take about as long again (66 s after 83 s for the others, both measured
 # on one busy machine: python -m linkage_ros.core.warmup, then with --statics).

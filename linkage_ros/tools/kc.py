@@ -29,21 +29,24 @@ PROG = 'linkage-kc'
 # The 6x6 matrix's rows (the wheel centre's response) and columns (the load at the wheel
 # centre), units in the labels: entry [i, j] is response i per unit of load j.
 MATRIX_ROWS = ('dx_mm', 'dy_mm', 'dz_mm', 'rx_deg', 'ry_deg', 'rz_deg')
-MATRIX_COLUMNS = ('fx_kn', 'fy_kn', 'fz_kn', 'mx_knm', 'my_knm', 'mz_knm')
+MATRIX_COLUMNS = ('fx_kN', 'fy_kN', 'fz_kN', 'mx_kNm', 'my_kNm', 'mz_kNm')
 MATRIX_CORNER = 'response_per_load'
 ZERO = (0.0, 0.0, 0.0)
 
 EPILOG = """columns, without a load: travel_mm (+ = bump), rack_mm with --rack, then the
-  compliance rates (doc/kc.md): toe_ and camber_per_fy_cp_deg_per_kn, wc_dy_ and
-  cp_dy_per_fy_cp_mm_per_kn, jacking_per_fy_cp (N/N), toe_ and camber_per_fx_cp_deg_per_kn,
-  wc_dx_per_fx_cp_mm_per_kn, toe_per_fx_wc_deg_per_kn, wc_dx_per_fx_wc_mm_per_kn, toe_ and
-  camber_per_mz_deg_per_knm. Toe + = toe-in, camber + = top outboard, forces and moments in
+  compliance rates (doc/kc.md): toe_ and camber_per_fy_cp_deg_per_kN, wc_dy_ and
+  cp_dy_per_fy_cp_mm_per_kN, jacking_per_fy_cp (N/N), toe_ and camber_per_fx_cp_deg_per_kN,
+  wc_dx_per_fx_cp_mm_per_kN, toe_per_fx_wc_deg_per_kN, wc_dx_per_fx_wc_mm_per_kN, toe_ and
+  camber_per_mz_deg_per_kNm. Toe + = toe-in, camber + = top outboard, forces and moments in
   the vehicle frame (x forward, y left, z up); cp the contact patch, wc the wheel centre.
 columns, with --load or --moment: travel_mm, rack_mm with --rack, camber_deg, toe_deg,
-  wheel_center_x/y/z_mm, holding_force_n (the vertical force at the wheel centre that holds
-  the travel, + = up), <link>_force_n (+ = tension), <arm>_<pivot>_fx/fy/fz_n (the force of
-  the arm on the body at pivot axis0, axis1 or centre), <spring>_force_n
-  (+ = compressed) and <strut>_top_fx/fy/fz_n (a strut's force on the body at its top).
+  wheel_center_x/y/z_mm, holding_force_N (the vertical force at the wheel centre that holds
+  the travel, + = up), <link>_tension_N (+ = tension; a link that carries a spring has
+  <link>_body_end_ and <link>_carrier_end_tension_N), <spring>_force_N (+ = compressed),
+  <pickup>_fx/fy/fz_N (the force on the body at each pickup: <arm>_axis0, _axis1 or
+  _centre, <link>_base, <spring>_body, <strut>_top) and <bushing>_mx/my/mz_Nm (each
+  bushing's couple on the body at its pickup). The pickups' forces and couples balance the
+  load and the holding force (doc/kc.md).
 
 examples:
   linkage-kc double_wishbone_bushings --travel -40:40:20
@@ -168,32 +171,32 @@ def loaded_header(scene, result):
     """
     Return the columns of a loaded solve after travel and rack, from the registry's templates.
 
-    The wheel's columns, the holding force, each link's force, each pivot's force on the body
-    (x, y, z), each spring's force (the issue's order), then each strut's force on the body at
-    its top mount (x, y, z): the Loaded's names.
+    The wheel's columns, the holding force, each link's tension (both ends of a link that
+    carries a spring), each spring's force, each pickup's force on the body (x, y, z: pivots,
+    link bases, spring body ends, strut tops) and each bushing's couple on the body (x, y,
+    z): the Loaded's names. With the pickups' points (doc/kc.md) they balance the load.
     """
     from ..core.measure import quantities
     wheel = [n for n in quantities.columns('wheel') if n.startswith(('camber', 'toe', 'wheel'))]
-    holding, member, *pivot = quantities.names('kc_loaded')[:5]
-    top = quantities.names('kc_loaded')[5:]
-    return (wheel + [holding] + [member.format(member=n) for n in result.link_forces_n]
-            + [t.format(pivot=p) for p in result.pivot_forces_n for t in pivot]
-            + [member.format(member=n) for n in result.spring_forces_n]
-            + [t.format(strut=s) for s in struts(scene) for t in top])
+    loaded = quantities.names('kc_loaded')
+    holding = next(n for n in loaded if n.startswith('holding'))
+    tension = next(n for n in loaded if n.startswith('{link}_tension'))   # the ends: its form
+    force = [n for n in loaded if n.startswith('{pickup}')]
+    couple = [n for n in loaded if n.startswith('{bushing}')]
+    spring = next(n for n in quantities.names('element') if n.endswith('_force_N'))
+    return (wheel + [holding] + [tension.format(link=n) for n in result.link_forces_n]
+            + [spring.format(element=n) for n in result.spring_forces_n]
+            + [t.format(pickup=p) for p in result.body_forces_n for t in force]
+            + [t.format(bushing=b) for b in result.body_moments_nm for t in couple])
 
 
-def struts(scene):
-    """Return the names of the scene's line constraints (struts), in constraint order."""
-    return [c.name for c in scene.constraints if c.type == 'line']
-
-
-def loaded_row(scene, result):
-    """Return the values of loaded_header of a Loaded (mm, deg, N)."""
+def loaded_row(result):
+    """Return the values of loaded_header of a Loaded (mm, deg, N, N m)."""
     row = [result.camber_deg, result.toe_deg, *result.wheel_center_mm, result.holding_force_n]
     row += list(result.link_forces_n.values())
-    row += [v for force in result.pivot_forces_n.values() for v in force]
     row += list(result.spring_forces_n.values())
-    row += [v for name in struts(scene) for v in result.body_forces_n[f'{name}_top']]
+    row += [v for force in result.body_forces_n.values() for v in force]
+    row += [v for couple in result.body_moments_nm.values() for v in couple]
     return row
 
 
@@ -253,7 +256,7 @@ def solve(scene, args, travels, racks):
             if result.status != Status.OK:   # the message names the travel (and the load)
                 failure = f'ERROR {result.status.name}: {result.message}'
                 return header or lead, rows, results, failure
-            values = list(result.rates.values()) if load is None else loaded_row(scene, result)
+            values = list(result.rates.values()) if load is None else loaded_row(result)
             if header is None:
                 names = list(result.rates) if load is None else loaded_header(scene, result)
                 chosen = list(range(len(lead))) + [

@@ -20,11 +20,11 @@ from ..outputs import save_figure
 
 # The panels of plot_rates: (title, unit, test on a rate's name); a rate goes to the first
 # panel it fits (the names end in their unit: doc/kc.md).
-PANELS = (('toe per force', 'deg/kN', lambda n: n.startswith('toe_') and n.endswith('_kn')),
+PANELS = (('toe per force', 'deg/kN', lambda n: n.startswith('toe_') and n.endswith('_kN')),
           ('camber per force', 'deg/kN',
-           lambda n: n.startswith('camber_') and n.endswith('_kn')),
-          ('toe and camber per moment', 'deg/(kN m)', lambda n: n.endswith('_knm')),
-          ('displacement per force', 'mm/kN', lambda n: n.endswith('_mm_per_kn')),
+           lambda n: n.startswith('camber_') and n.endswith('_kN')),
+          ('toe and camber per moment', 'deg/(kN m)', lambda n: n.endswith('_kNm')),
+          ('displacement per force', 'mm/kN', lambda n: n.endswith('_mm_per_kN')),
           ('force per force', 'N/N', lambda n: True))
 VIEWS = (('front view (seen from ahead: + y, left, to the right)', 1),
          ('side view (seen from the left: + x, forward, to the right)', 0))

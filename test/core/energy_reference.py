@@ -423,6 +423,15 @@ class EnergyModel:
                 res.ball_joint_forces_n[name] = res.ball_joint_forces_n[name] + sp.fraction * push
                 if not self.parts[sp.part].bushing:
                     res.body_forces_n[f'{name}_base'] += (1 - sp.fraction) * push
+        for sp in self.springs:     # such a link pulls its two ends apart unequally: each
+            if sp.on != 'link':     # end's force along the link (+ = tension)
+                continue
+            part = self.parts[sp.part]
+            end, base = self.carrier_point(q, part.carrier).real, self.link_base(q, part, rack)
+            u = unit((end - base).real)
+            res.link_forces_n.pop(part.name, None)
+            res.link_forces_n[f'{part.name}_body_end'] = res.body_forces_n[f'{part.name}_base'] @ u
+            res.link_forces_n[f'{part.name}_carrier_end'] = -res.ball_joint_forces_n[part.name] @ u
         return res
 
     def _pivot_forces(self, q, part, lam, rack, res):

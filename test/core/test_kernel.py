@@ -92,6 +92,7 @@ def test_every_kernel_is_cached_under_the_one_key_of_every_kernel_source():
     # compiled function, found here by what imports define, not by compiled.py's own scan
     dispatchers = _dispatchers()
     files = {Path(inspect.getfile(d.py_func)).resolve() for d in dispatchers}
+    files |= compiled.JITABLE   # the files of functions that kernels compile in (@jitable)
     assert files | {Path(compiled.__file__).resolve()} == set(compiled.kernel_sources())
     expected = hashlib.sha256()
     for path in sorted(files | {Path(compiled.__file__).resolve()}):

@@ -23,7 +23,7 @@ import pytest
 
 PACKAGE = Path(linkage_ros.__file__).parent
 # Where the formulas live: every function of the roll-centre module, and the contact patch's.
-HOMES = {('core/axle/roll_centre.py', None), ('core/measure/alignment.py', 'patch_offset')}
+HOMES = {('core/axle/roll_centre.py', None), ('core/base/patch.py', 'patch_offset')}
 
 
 def test_the_axle_table_the_node_and_the_map_give_one_roll_centre_at_the_same_travels():

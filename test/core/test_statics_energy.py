@@ -203,12 +203,12 @@ def reference_rates(model, travel, step=STEP_N):
                 'jacking': (plus.holding_force_n - minus.holding_force_n) / (2.0 * step)}
     fy, fx = diff((0, 1, 0), 'cp'), diff((1, 0, 0), 'cp')
     fx_wc, mz = diff((1, 0, 0)), diff(moment=(0, 0, 1))
-    return {'toe_per_fy_cp_deg_per_kn': fy['toe'], 'camber_per_fy_cp_deg_per_kn': fy['camber'],
-            'wc_dy_per_fy_cp_mm_per_kn': fy['wc'][1], 'cp_dy_per_fy_cp_mm_per_kn': fy['cp'][1],
-            'jacking_per_fy_cp': fy['jacking'], 'toe_per_fx_cp_deg_per_kn': fx['toe'],
-            'camber_per_fx_cp_deg_per_kn': fx['camber'], 'wc_dx_per_fx_cp_mm_per_kn': fx['wc'][0],
-            'toe_per_fx_wc_deg_per_kn': fx_wc['toe'], 'wc_dx_per_fx_wc_mm_per_kn': fx_wc['wc'][0],
-            'toe_per_mz_deg_per_knm': mz['toe'], 'camber_per_mz_deg_per_knm': mz['camber']}
+    return {'toe_per_fy_cp_deg_per_kN': fy['toe'], 'camber_per_fy_cp_deg_per_kN': fy['camber'],
+            'wc_dy_per_fy_cp_mm_per_kN': fy['wc'][1], 'cp_dy_per_fy_cp_mm_per_kN': fy['cp'][1],
+            'jacking_per_fy_cp': fy['jacking'], 'toe_per_fx_cp_deg_per_kN': fx['toe'],
+            'camber_per_fx_cp_deg_per_kN': fx['camber'], 'wc_dx_per_fx_cp_mm_per_kN': fx['wc'][0],
+            'toe_per_fx_wc_deg_per_kN': fx_wc['toe'], 'wc_dx_per_fx_wc_mm_per_kN': fx_wc['wc'][0],
+            'toe_per_mz_deg_per_kNm': mz['toe'], 'camber_per_mz_deg_per_kNm': mz['camber']}
 
 
 @pytest.mark.parametrize('name', BUSHED)
@@ -217,7 +217,7 @@ def test_compliance_rates_agree_with_differences_of_the_energy_reference(name):
     got = core.compliance(load_scene(name), travel_mm=20.0)
     want = reference_rates(EnergyModel(scene_data(name)), 20.0)
     assert set(got.rates) == set(want)
-    scale = max(abs(v) for k, v in want.items() if k.endswith('deg_per_kn'))
+    scale = max(abs(v) for k, v in want.items() if k.endswith('deg_per_kN'))
     for key, value in want.items():
         assert got.rates[key] == pytest.approx(value, rel=1e-6, abs=1e-7 * scale), key
 

@@ -82,7 +82,7 @@ def test_a_corner_scene_that_names_no_scene_file_names_the_vehicle_field(tmp_pat
 def test_a_vehicle_that_is_no_file_and_not_bundled_lists_the_bundled_ones(name):
     # '' is said to be empty, as an empty scene name is
     with pytest.raises(SceneError, match=r"^'.*': vehicle: (.* not a bundled vehicle|empty: .*) "
-                       r'\(bundled: demo_vehicle\)$'):
+                       r'\(bundled: demo_vehicle, demo_vehicle_bushings\)$'):
         load_vehicle(name)
 
 

@@ -6,8 +6,12 @@ How the numerical kernels are compiled: one decorator, one cache key.
 
     @jit                    numba's njit(cache=True, nogil=True, error_model='numpy'), its
                             on-disk cache keyed on source_digest()
+    @bare                   the same without numba's reference counting, for kernels that
+                            allocate nothing and return no array (the statics')
+    @jitable                numba's register_jitable: a plain Python function that kernels
+                            compile in (JITABLE: the files that define such functions)
     kernel_sources()        every file of core/ that holds compiled functions (a line that
-                            starts with @jit), sorted
+                            starts with @jit, @bare or @jitable), sorted
     source_digest()         sha256 of those files (their paths under core/ and their bytes)
 
 numba keys each compiled function's cache on its own file alone, yet a kernel compiles in the
@@ -27,16 +31,36 @@ from __future__ import annotations
 
 import functools
 import hashlib
+import inspect
 from pathlib import Path
 import re
 
 from numba import njit
 from numba.core import caching
+from numba.extending import register_jitable
 
 CORE = Path(__file__).resolve().parents[1]
-_COMPILED = re.compile(r'^\s*@jit\b', re.MULTILINE)
+_COMPILED = re.compile(r'^\s*@(?:jit|bare|jitable)\b', re.MULTILINE)
 
 jit = njit(cache=True, nogil=True, error_model='numpy')
+# numba's reference counting (its private _nrt flag) off: for kernels that allocate nothing and
+# return no array (numba refuses to return a new array without it). Its atomic counts on every
+# array passed or named were a third of a statics command (core/statics: doc/benchmarks.md).
+bare = njit(cache=True, nogil=True, error_model='numpy', _nrt=False)
+JITABLE = set()   # the files of jitable functions, as they are defined
+
+
+def jitable(function=None, **options):
+    """
+    Decorate a function that stays Python's and that kernels compile in (register_jitable).
+
+    As @jitable or @jitable(inline='always'); its file is recorded in JITABLE (a kernel
+    source: the one cache key covers it).
+    """
+    def wrap(fn):
+        JITABLE.add(Path(inspect.getfile(fn)).resolve())
+        return register_jitable(**options)(fn) if options else register_jitable(fn)
+    return wrap(function) if function is not None else wrap
 
 
 def kernel_sources(root: Path = CORE) -> tuple[Path, ...]:

@@ -17,6 +17,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from . import so3
+from .patch import point_velocity  # noqa: F401 (the face's, beside the other formulas)
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
@@ -168,14 +169,3 @@ def camber_toe(spin_axis: ArrayLike,
     if axes.ndim == 1:
         return camber[0], toe[0]
     return camber.reshape(axes.shape[:-1]), toe.reshape(axes.shape[:-1])
-
-
-def point_velocity(v_center, omega, offset):
-    """
-    Return the velocity (x, y, z) of a carrier point: v_center + omega x offset.
-
-    v_center: the wheel centre's velocity, omega: the carrier's angular velocity, offset: the
-    point less the wheel centre (mm), each a triple of floats or of arrays (n,).
-    """
-    (vx, vy, vz), (wx, wy, wz), (dx, dy, dz) = v_center, omega, offset
-    return vx + (wy * dz - wz * dy), vy + (wz * dx - wx * dz), vz + (wx * dy - wy * dx)

@@ -23,6 +23,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..base.geometry import cross
+from ..base.patch import patch_offset
 from ..solve.mechanism import linearize, rack_derivative
 from ..solve.pose_newton import rack_slope_of, slope_of
 
@@ -129,21 +130,6 @@ def screw(center: np.ndarray, velocity: np.ndarray,
 def contact_patch(center: np.ndarray, axis: np.ndarray, radius: float) -> np.ndarray:
     """Return the lowest point of a wheel of radius (mm) centred at center, spin axes (n, 3)."""
     return center + np.column_stack(patch_offset(axis[:, 0], axis[:, 1], axis[:, 2], radius))
-
-
-def patch_offset(axis_x, axis_y, axis_z, radius):
-    """
-    Return the contact patch less the wheel centre, (x, y, z) mm: the one contact-patch formula.
-
-    The lowest point of a wheel of radius (mm) with the unit spin axis (axis_x, axis_y,
-    axis_z): radius along minus the up direction made square to the axis. Each component a
-    float or an array (n,): contact_patch gives arrays of positions, and suspension_node's
-    roll centre (core.axle.roll_centre.roll_centre_of_poses) floats, which cost a fraction of
-    numpy's per-call overhead on arrays of one.
-    """
-    up_x, up_y, up_z = -axis_z * axis_x, -axis_z * axis_y, 1.0 - axis_z * axis_z
-    norm = (up_x * up_x + up_y * up_y + up_z * up_z) ** 0.5
-    return -(radius * up_x / norm), -(radius * up_y / norm), -(radius * up_z / norm)
 
 
 def ground_point(point: np.ndarray, direction: np.ndarray, height: np.ndarray) -> np.ndarray:

@@ -43,11 +43,10 @@ UNITS = {
     'N/mm': ('N/m', 1e3, 1e3),
     'Nm': ('Nm', 1.0, 1.0),
     'Nm/deg': ('Nm/rad', 1.0 / DEG, 1.0),
-    # compliance rates (core/statics): per kN and per kN m, written kn as the K&C columns are
-    'deg/kn': ('rad/N', DEG * 1e-3, 1e-3),
-    'mm/kn': ('m/N', 1e-6, 1e-6),
-    'deg/knm': ('rad/Nm', DEG * 1e-3, 1e-3),
-    'n': ('N', 1.0, 1.0),   # newtons, written n as the K&C columns are (linkage-kc --load)
+    # compliance rates (core/statics): per kN and per kN m (SI: per N, per N m)
+    'deg/kN': ('rad/N', DEG * 1e-3, 1e-3),
+    'mm/kN': ('m/N', 1e-6, 1e-6),
+    'deg/kNm': ('rad/Nm', DEG * 1e-3, 1e-3),
     '%': ('1', 1e-2, 1e-2),
     'kg': ('kg', 1.0, 1.0),
     'Hz': ('Hz', 1.0, 1.0),
@@ -56,8 +55,8 @@ UNITS = {
     '1': ('1', 1.0, 1.0),
 }
 # What a template's placeholder stands for (a regular expression).
-PLACEHOLDERS = {'element': r'.+', 'side': r'left|right', 'member': r'.+',
-                'pivot': r'.+_(?:axis0|axis1|centre)', 'strut': r'.+'}
+PLACEHOLDERS = {'element': r'.+', 'side': r'left|right', 'link': r'.+', 'pickup': r'.+',
+                'bushing': r'.+'}
 SIDES = ('left', 'right')
 
 
@@ -232,48 +231,54 @@ _DECLARED = (
        "the bar's roll stiffness", 'a bar rate'),
     # compliance at one travel, travel and rack held (core/statics, linkage-kc): first-order
     # rates at the zero-load equilibrium; cp = the contact patch, wc = the wheel centre
-    _q('toe_per_fy_cp_deg_per_kn', 'deg/kn', '+ = toe-in per + y (left) force', 'kc_fy_cp',
+    _q('toe_per_fy_cp_deg_per_kN', 'deg/kN', '+ = toe-in per + y (left) force', 'kc_fy_cp',
        'toe per lateral force at the contact patch', _BUSHING_PATCH),
-    _q('camber_per_fy_cp_deg_per_kn', 'deg/kn', '+ = top outboard per + y force', 'kc_fy_cp',
+    _q('camber_per_fy_cp_deg_per_kN', 'deg/kN', '+ = top outboard per + y force', 'kc_fy_cp',
        'camber per lateral force at the contact patch', _BUSHING_PATCH),
-    _q('wc_dy_per_fy_cp_mm_per_kn', 'mm/kn', '+ = left per + y force', 'kc_fy_cp',
+    _q('wc_dy_per_fy_cp_mm_per_kN', 'mm/kN', '+ = left per + y force', 'kc_fy_cp',
        "wheel centre's lateral move per lateral force at the contact patch", _BUSHING_PATCH),
-    _q('cp_dy_per_fy_cp_mm_per_kn', 'mm/kn', '+ = left per + y force', 'kc_fy_cp',
+    _q('cp_dy_per_fy_cp_mm_per_kN', 'mm/kN', '+ = left per + y force', 'kc_fy_cp',
        "contact patch's lateral move per lateral force there", _BUSHING_PATCH),
     _q('jacking_per_fy_cp', '1', '+ = up per + y force', 'kc_fy_cp',
        'holding (jacking) force change per lateral force at the contact patch, N/N',
        _BUSHING_PATCH),
-    _q('toe_per_fx_cp_deg_per_kn', 'deg/kn', '+ = toe-in per + x (forward) force', 'kc_fx_cp',
+    _q('toe_per_fx_cp_deg_per_kN', 'deg/kN', '+ = toe-in per + x (forward) force', 'kc_fx_cp',
        'toe per longitudinal force at the contact patch (braking is -x)', _BUSHING_PATCH),
-    _q('camber_per_fx_cp_deg_per_kn', 'deg/kn', '+ = top outboard per + x force', 'kc_fx_cp',
+    _q('camber_per_fx_cp_deg_per_kN', 'deg/kN', '+ = top outboard per + x force', 'kc_fx_cp',
        'camber per longitudinal force at the contact patch', _BUSHING_PATCH),
-    _q('wc_dx_per_fx_cp_mm_per_kn', 'mm/kn', '+ = forward per + x force', 'kc_fx_cp',
+    _q('wc_dx_per_fx_cp_mm_per_kN', 'mm/kN', '+ = forward per + x force', 'kc_fx_cp',
        "wheel centre's longitudinal move per longitudinal force at the contact patch",
        _BUSHING_PATCH),
-    _q('toe_per_fx_wc_deg_per_kn', 'deg/kn', '+ = toe-in per + x force', 'kc_fx_wc',
+    _q('toe_per_fx_wc_deg_per_kN', 'deg/kN', '+ = toe-in per + x force', 'kc_fx_wc',
        'toe per longitudinal force at the wheel centre (traction)', _BUSHING),
-    _q('wc_dx_per_fx_wc_mm_per_kn', 'mm/kn', '+ = forward per + x force', 'kc_fx_wc',
+    _q('wc_dx_per_fx_wc_mm_per_kN', 'mm/kN', '+ = forward per + x force', 'kc_fx_wc',
        "wheel centre's longitudinal move per longitudinal force there", _BUSHING),
-    _q('toe_per_mz_deg_per_knm', 'deg/knm', '+ = toe-in per + z moment', 'kc_mz',
+    _q('toe_per_mz_deg_per_kNm', 'deg/kNm', '+ = toe-in per + z moment', 'kc_mz',
        'toe per moment about the z axis (aligning torque)', _BUSHING),
-    _q('camber_per_mz_deg_per_knm', 'deg/knm', '+ = top outboard per + z moment', 'kc_mz',
+    _q('camber_per_mz_deg_per_kNm', 'deg/kNm', '+ = top outboard per + z moment', 'kc_mz',
        'camber per moment about the z axis', _BUSHING),
     # a loaded solve (core/statics, linkage-kc --load): after the wheel columns, the forces
-    _q('holding_force_n', 'n', '+ = up', 'kc_loaded',
+    # (a spring's is {element}_force_N, as above)
+    _q('holding_force_N', 'N', '+ = up', 'kc_loaded',
        'vertical force at the wheel centre that holds the travel (the jacking force)'),
-    _q('{member}_force_n', 'n', '+ = tension (a link), + = compressed (a spring)', 'kc_loaded',
-       "a link's axial force, or a spring's force"),
-    _q('{pivot}_fx_n', 'n', '+ = forward', 'kc_loaded',
-       'force of an arm on the body at a pivot (<arm>_axis0, _axis1 or _centre), x'),
-    _q('{pivot}_fy_n', 'n', '+ = left', 'kc_loaded',
-       'force of an arm on the body at a pivot, y'),
-    _q('{pivot}_fz_n', 'n', '+ = up', 'kc_loaded', 'force of an arm on the body at a pivot, z'),
-    _q('{strut}_top_fx_n', 'n', '+ = forward', 'kc_loaded',
-       'force of a strut (line) on the body at its top mount, x'),
-    _q('{strut}_top_fy_n', 'n', '+ = left', 'kc_loaded',
-       'force of a strut on the body at its top mount, y'),
-    _q('{strut}_top_fz_n', 'n', '+ = up', 'kc_loaded',
-       'force of a strut on the body at its top mount, z'),
+    _q('{link}_body_end_tension_N', 'N', '+ = tension', 'kc_loaded',
+       'a link that carries a spring: its force along itself at its body end (on its base)'),
+    _q('{link}_carrier_end_tension_N', 'N', '+ = tension', 'kc_loaded',
+       'a link that carries a spring: its force along itself at its carrier end'),
+    _q('{link}_tension_N', 'N', '+ = tension', 'kc_loaded', "a link's force along itself"),
+    _q('{pickup}_fx_N', 'N', '+ = forward', 'kc_loaded',
+       "force on the body at a pickup: an arm's pivot (<arm>_axis0, _axis1 or _centre), a "
+       "link's base (<link>_base), a spring's body end (<spring>_body), a strut's top "
+       '(<strut>_top), x'),
+    _q('{pickup}_fy_N', 'N', '+ = left', 'kc_loaded', 'force on the body at a pickup, y'),
+    _q('{pickup}_fz_N', 'N', '+ = up', 'kc_loaded', 'force on the body at a pickup, z'),
+    _q('{bushing}_mx_Nm', 'Nm', '+ = about + x', 'kc_loaded',
+       'couple of a bushing on the body at its pickup (<arm>_axis0, ..., <link>_base): its '
+       "offset's d x K d and its torsion and conical torque, x"),
+    _q('{bushing}_my_Nm', 'Nm', '+ = about + y', 'kc_loaded',
+       'couple of a bushing on the body, y'),
+    _q('{bushing}_mz_Nm', 'Nm', '+ = about + z', 'kc_loaded',
+       'couple of a bushing on the body, z'),
 )
 _SHEET = 'mass, tyre_rate'
 _DECLARED += (

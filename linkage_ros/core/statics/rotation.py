@@ -14,14 +14,16 @@ Robotics, 2017, eq. 7.77b):
 
 so the energy E = phi.K phi / 2 has the gradient A^T K phi, and its Hessian in w (at w = 0)
 adds to A^T K A the term from A's own change (dA/dphi, exact, below). Compiled (numba), so
-that the statics kernel (kernel.py) calls them too; Python calls them alike.
+that the statics kernels (kernel.py, forces.py) call them without allocating (energy_into,
+log_into: they run in every Newton iteration); energy_terms and log_so3 call them from
+Python.
 """
 
 import math
 
 import numpy as np
 
-from ..base.compiled import jit
+from ..base.compiled import bare
 
 
 # Below this angle (rad) c and c'/theta come from their Taylor series (sympy, to theta^10):
@@ -29,30 +31,27 @@ from ..base.compiled import jit
 SERIES_BELOW = 0.1
 
 
-@jit
-def skew(v):
-    """Return [v]x (3, 3), the matrix of v x ."""
-    out = np.zeros((3, 3))
-    out[0, 1], out[0, 2], out[1, 2] = -v[2], v[1], -v[0]
-    out[1, 0], out[2, 0], out[2, 1] = v[2], -v[1], v[0]
+@bare
+def log_into(rotation, out):
+    """Write the rotation vector (3,) rad of a rotation matrix (angle below pi) into out."""
+    cos = min(1.0, max(-1.0, 0.5 * (rotation[0, 0] + rotation[1, 1] + rotation[2, 2] - 1.0)))
+    x = rotation[2, 1] - rotation[1, 2]   # 2 sin(theta) * unit axis
+    y = rotation[0, 2] - rotation[2, 0]
+    z = rotation[1, 0] - rotation[0, 1]
+    sin = 0.5 * math.sqrt(x * x + y * y + z * z)
+    theta = math.atan2(sin, cos)
+    scale = 0.5 / (1.0 - theta * theta / 6.0) if sin < 1e-8 else 0.5 * theta / sin
+    out[0], out[1], out[2] = scale * x, scale * y, scale * z
+
+
+def log_so3(rotation):
+    """Return the rotation vector (3,) rad of a rotation matrix (angle below pi): Python's."""
+    out = np.empty(3)
+    log_into(np.ascontiguousarray(rotation, dtype=float), out)
     return out
 
 
-@jit
-def log_so3(rotation):
-    """Return the rotation vector (3,) rad of a rotation matrix (angle below pi)."""
-    cos = min(1.0, max(-1.0, 0.5 * (rotation[0, 0] + rotation[1, 1] + rotation[2, 2] - 1.0)))
-    axis = np.empty(3)   # 2 sin(theta) * unit axis
-    axis[0] = rotation[2, 1] - rotation[1, 2]
-    axis[1] = rotation[0, 2] - rotation[2, 0]
-    axis[2] = rotation[1, 0] - rotation[0, 1]
-    sin = 0.5 * np.linalg.norm(axis)
-    theta = math.atan2(sin, cos)
-    scale = 0.5 / (1.0 - theta * theta / 6.0) if sin < 1e-8 else 0.5 * theta / sin
-    return scale * axis
-
-
-@jit
+@bare
 def coefficients(theta):
     """Return c(theta) and c'(theta) / theta of A (module docstring)."""
     t2 = theta * theta
@@ -68,44 +67,67 @@ def coefficients(theta):
     return c, dc / theta
 
 
-@jit
-def _mul(a, b):
-    """Return a @ b of (3, 3) matrices, without a BLAS call (they are small)."""
-    out = np.empty((3, 3))
+@bare
+def _skew_into(x, y, z, out):
+    out[0, 0], out[0, 1], out[0, 2] = 0.0, -z, y
+    out[1, 0], out[1, 1], out[1, 2] = z, 0.0, -x
+    out[2, 0], out[2, 1], out[2, 2] = -y, x, 0.0
+
+
+@bare
+def energy_into(phi, stiffness, grad, hess, work):
+    """
+    Write the gradient (3,) and Hessian (3, 3) in w of E = phi.K phi / 2; return E (N mm).
+
+    stiffness K (3, 3) N mm/rad, symmetric; work (5, 3, 3) scratch. Gradient A^T K phi;
+    Hessian A^T K A plus the symmetrised (K phi) . (dA/dphi_k w2) (A w1)_k, exact (module
+    docstring). Nothing is allocated: the kernel calls it in every Newton iteration.
+    """
+    big, big2, a, z, e = work[0], work[1], work[2], work[3], work[4]
+    theta = math.sqrt(phi[0] * phi[0] + phi[1] * phi[1] + phi[2] * phi[2])
+    c, dc = coefficients(theta)
+    _skew_into(phi[0], phi[1], phi[2], big)
     for i in range(3):
         for j in range(3):
-            out[i, j] = a[i, 0] * b[0, j] + a[i, 1] * b[1, j] + a[i, 2] * b[2, j]
-    return out
+            big2[i, j] = big[i, 0] * big[0, j] + big[i, 1] * big[1, j] + big[i, 2] * big[2, j]
+    for i in range(3):
+        for j in range(3):
+            a[i, j] = (1.0 if i == j else 0.0) - 0.5 * big[i, j] + c * big2[i, j]
+    k0 = stiffness[0, 0] * phi[0] + stiffness[0, 1] * phi[1] + stiffness[0, 2] * phi[2]
+    k1 = stiffness[1, 0] * phi[0] + stiffness[1, 1] * phi[1] + stiffness[1, 2] * phi[2]
+    k2 = stiffness[2, 0] * phi[0] + stiffness[2, 1] * phi[1] + stiffness[2, 2] * phi[2]
+    for k in range(3):
+        _skew_into(1.0 if k == 0 else 0.0, 1.0 if k == 1 else 0.0, 1.0 if k == 2 else 0.0, e)
+        for j in range(3):   # z[k] = (K phi)^T dA/dphi_k
+            total = 0.0
+            for i, kp in ((0, k0), (1, k1), (2, k2)):
+                eb = e[i, 0] * big[0, j] + e[i, 1] * big[1, j] + e[i, 2] * big[2, j]
+                be = big[i, 0] * e[0, j] + big[i, 1] * e[1, j] + big[i, 2] * e[2, j]
+                total += kp * (-0.5 * e[i, j] + dc * phi[k] * big2[i, j] + c * (eb + be))
+            z[k, j] = total
+    for i in range(3):
+        grad[i] = a[0, i] * k0 + a[1, i] * k1 + a[2, i] * k2
+    for i in range(3):   # A^T K A + (A^T z + z^T A) / 2
+        for j in range(i, 3):
+            total = 0.0
+            for p in range(3):
+                kaj = stiffness[p, 0] * a[0, j] + stiffness[p, 1] * a[1, j] \
+                    + stiffness[p, 2] * a[2, j]
+                total += a[p, i] * kaj
+            az_ij = a[0, i] * z[0, j] + a[1, i] * z[1, j] + a[2, i] * z[2, j]
+            az_ji = a[0, j] * z[0, i] + a[1, j] * z[1, i] + a[2, j] * z[2, i]
+            hess[i, j] = hess[j, i] = total + 0.5 * (az_ij + az_ji)
+    return 0.5 * (phi[0] * k0 + phi[1] * k1 + phi[2] * k2)
 
 
-@jit
 def energy_terms(phi, stiffness):
     """
     Return E, its gradient (3,) and Hessian (3, 3) in w of E = phi.K phi / 2 (N mm, rad).
 
-    stiffness K (3, 3) N mm/rad, symmetric. Gradient A^T K phi; Hessian A^T K A plus the
-    symmetrised (K phi) . (dA/dphi_k w2) (A w1)_k, exact (module docstring).
+    stiffness K (3, 3) N mm/rad, symmetric: energy_into for Python callers (the tests).
     """
-    theta = math.sqrt(phi[0] * phi[0] + phi[1] * phi[1] + phi[2] * phi[2])
-    c, dc = coefficients(theta)
-    big = skew(phi)
-    big2 = _mul(big, big)
-    eye = np.eye(3)
-    a = eye - 0.5 * big + c * big2
-    k_phi = np.empty(3)
-    for i in range(3):
-        k_phi[i] = stiffness[i, 0] * phi[0] + stiffness[i, 1] * phi[1] + stiffness[i, 2] * phi[2]
-    z = np.empty((3, 3))
-    for k in range(3):
-        e = skew(eye[k])
-        d_a = -0.5 * e + dc * phi[k] * big2 + c * (_mul(e, big) + _mul(big, e))
-        for j in range(3):   # (K phi)^T dA/dphi_k
-            z[k, j] = k_phi[0] * d_a[0, j] + k_phi[1] * d_a[1, j] + k_phi[2] * d_a[2, j]
-    a_t = a.T.copy()
-    az = _mul(a_t, z)
-    hess = _mul(_mul(a_t, stiffness), a) + 0.5 * (az + az.T)
-    grad = np.empty(3)
-    for i in range(3):
-        grad[i] = a[0, i] * k_phi[0] + a[1, i] * k_phi[1] + a[2, i] * k_phi[2]
-    energy = 0.5 * (phi[0] * k_phi[0] + phi[1] * k_phi[1] + phi[2] * k_phi[2])
+    grad, hess = np.empty(3), np.empty((3, 3))
+    energy = energy_into(np.ascontiguousarray(phi, dtype=float),
+                         np.ascontiguousarray(stiffness, dtype=float), grad, hess,
+                         np.empty((5, 3, 3)))
     return energy, grad, hess

@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: Apache-2.0
 
 """
-The statics of a corner as bodies, points, constraints and energies (STATICS_SPEC.md).
+The statics of a corner as bodies, points, constraints and energies (doc/kc.md, The model).
 
 Bodies and their coordinates (a pose: position c (3,) mm and rotation R from design; a body
 point at design x0 is at c + R (x0 - ref0)): the carrier (6: dM, w), an arm with a bushing (6:
@@ -13,8 +13,14 @@ R <- exp(w) R, w rad in the vehicle frame, so a point x on a body moves by dx = 
 
 Constraints (L = V + lambda . c): distance |x1 - x2| = l of a link (as (|d|^2 - l^2) / 2l);
 the ball joint x_arm = x_carrier of an arm (3 rows); a strut line (T - C) . n = 0 (2 rows);
-the held travel M_z = z. Energies: springs, bushings (translation and rotation), and the
+the held travel M_z = z, last. Energies: springs, bushings (translation and rotation), and the
 load as minus its work. Lengths mm, forces N, energies N mm.
+
+The System is the scene's, whatever the travel and rack: the held height z, the rack and the
+load are inputs of each solve. A point fixed to the body that a steering rack moves (a rack
+link's base, a bushing on the rack) is an Item with rack True: it sits rack mm along y from
+its design place. The numbers are packed for the compiled kernels by pack.py; the numpy
+formulation of the same equations is the tests' reference (test/core/statics_reference.py).
 """
 
 from __future__ import annotations
@@ -25,7 +31,6 @@ from typing import NamedTuple
 
 import numpy as np
 
-from .rotation import energy_terms, log_so3, skew
 from ..base.geometry import cross, exp_so3, N_MM_PER_NM_DEG, unit
 from ..solve.mechanism import compile_scene
 
@@ -35,19 +40,25 @@ EYE = np.eye(3)
 
 
 class Item(NamedTuple):
-    """A point (or, translates False, a direction) on body (-1: the fixed body), design x0."""
+    """
+    A point (or, translates False, a direction) on body (-1: the fixed body), design x0.
+
+    rack: a fixed point that the steering rack moves along y (by the rack, mm).
+    """
 
     body: int
     x0: np.ndarray
     translates: bool = True
+    rack: bool = False
 
 
 class Bush(NamedTuple):
     """
     One bushing of an arm or a link base.
 
-    key, constraint index, body, design point x0 on the body, where it holds B (3,) mm,
-    translational stiffness (3, 3) N/mm, rotational (3, 3) N mm/rad or None, design axis.
+    key, constraint index, body, design point x0 on the body, where it holds B (3,) mm at
+    rack 0 (rack True: B moves with the rack), translational stiffness (3, 3) N/mm,
+    rotational (3, 3) N mm/rad or None, design axis.
     """
 
     key: str
@@ -58,6 +69,7 @@ class Bush(NamedTuple):
     stiff: np.ndarray
     turn: np.ndarray | None
     axis: np.ndarray
+    rack: bool = False
 
 
 @dataclass
@@ -74,36 +86,23 @@ class Body:
         """How many coordinates the body has."""
         return SIZES[self.kind]
 
-    def blocks(self) -> tuple[np.ndarray, np.ndarray]:
-        """Return T (3, n) and W (3, n): dc = T dq, w = W dq."""
-        n = self.size
-        t, w = np.zeros((3, n)), np.zeros((3, n))
-        if self.kind in (CARRIER, ARM):
-            t[:, :3], w[:, 3:] = EYE, EYE
-        elif self.kind == BASE:
-            t[:] = EYE
-        else:
-            w[:, 0] = self.axis
-        return t, w
-
 
 @dataclass
 class System:
-    """A scene's statics at one travel and rack: bodies, terms, and the loaded point."""
+    """A scene's statics: bodies, constraint rows, energies, and the load's point."""
 
     bodies: list
     size: int
-    constraints: list        # (name, kind, points, data) rows, see residuals()
-    springs: list            # (element, body point, moving point)
+    constraints: list        # (name, kind, items, data) rows; the travel row last
+    springs: list            # (element, body point, moving point: weighted items)
     bushings: list           # Bush
     rotations: list          # (body, K_rot total (3, 3) N mm/rad) of bushed arms
-    load_item: Item
-    z: float                 # the held wheel-centre height, mm
+    load_item: Item          # the wheel centre; each solve gives its own load point x0
     body_of: dict            # constraint index -> body index (arms, bushed link bases)
 
 
-def build(scene, rack: float, z: float, load_x0: np.ndarray) -> System:
-    """Return the System of a scene at rack (mm), wheel-centre height z (mm), load point x0."""
+def build(scene) -> System:
+    """Return the System of a scene (the rack, the held height and the load are inputs)."""
     mech = compile_scene(scene)
     bodies = [Body(CARRIER, 0, mech.design_center.copy())]
     start, body_of = 6, {}
@@ -114,16 +113,16 @@ def build(scene, rack: float, z: float, load_x0: np.ndarray) -> System:
     for j, c in enumerate(scene.constraints):
         ball = Item(0, c.carrier)
         if c.type == 'line':
-            for k, (top, normal) in enumerate(line_rows[j]):
-                cons.append((f'{c.name}', 'line', (ball, Item(0, normal, False)), top))
+            for top, normal in line_rows[j]:
+                cons.append((c.name, 'line', (ball, Item(0, normal, False)), top))
             continue
-        shift = np.array([0.0, rack if c.steer == 'rack' else 0.0, 0.0])
+        on_rack = c.steer == 'rack'
         b = c.bushing
         if c.type == 'sphere':
-            base = c.base[0] + shift
             length = float(np.linalg.norm(c.carrier - c.base[0]))
             if b is None:
-                cons.append((c.name, 'link', (ball, Item(-1, base)), length))
+                cons.append((c.name, 'link', (ball, Item(-1, c.base[0], True, on_rack)),
+                             length))
                 continue
             body_of[j] = len(bodies)
             bodies.append(Body(BASE, start, c.base[0].copy()))
@@ -131,7 +130,8 @@ def build(scene, rack: float, z: float, load_x0: np.ndarray) -> System:
             cons.append((c.name, 'link', (ball, Item(body_of[j], c.base[0])), length))
             u = unit(c.carrier - c.base[0])
             stiff = b.axial * np.outer(u, u) + b.radial * (EYE - np.outer(u, u))
-            bushings.append(Bush(f'{c.name}_base', j, body_of[j], c.base[0], base, stiff, None, u))
+            bushings.append(Bush(f'{c.name}_base', j, body_of[j], c.base[0], c.base[0].copy(),
+                                 stiff, None, u, on_rack))
             continue
         a0, a1 = c.base
         axis = unit(a1 - a0)
@@ -154,14 +154,14 @@ def build(scene, rack: float, z: float, load_x0: np.ndarray) -> System:
                 rotations.append((body_of[j], len(places) * turn))
         for m in range(3):
             cons.append((c.name, 'ball', (Item(body_of[j], c.carrier), ball), m))
-    cons.append(('travel', 'travel', (Item(0, mech.design_center),), z))
-    springs = [(e, Item(-1, e.body), _moving(e, scene, bodies, body_of, rack))
+    cons.append(('travel', 'travel', (Item(0, mech.design_center),), 0.0))
+    springs = [(e, Item(-1, e.body), _moving(e, scene, body_of))
                for e in scene.elements if e.type == 'spring' and e.has_rate]
-    return System(bodies, start, cons, springs, bushings, rotations, Item(0, load_x0), z,
-                  body_of)
+    return System(bodies, start, cons, springs, bushings, rotations,
+                  Item(0, mech.design_center.copy()), body_of)
 
 
-def _moving(element, scene, bodies, body_of, rack):
+def _moving(element, scene, body_of):
     """Return the moving end of a spring as weighted items ((w, Item), ...)."""
     mount = element.mount
     if mount.kind in ('carrier', 'along'):
@@ -174,7 +174,7 @@ def _moving(element, scene, bodies, body_of, rack):
     if mount.constraint in body_of:
         base = Item(body_of[mount.constraint], c.base[0])
     else:
-        base = Item(-1, c.base[0] + np.array([0.0, rack if c.steer == 'rack' else 0.0, 0.0]))
+        base = Item(-1, c.base[0], True, c.steer == 'rack')
     return ((1.0 - s, base), (s, Item(0, c.carrier)))
 
 
@@ -201,157 +201,4 @@ def initial_pose(system: System, scene, center, rotation) -> Pose:
         u0, u1 = (p - a0 - ((p - a0) @ axis) * axis for p in (con.carrier, ball))
         angle = math.atan2(axis @ cross(u0, u1), u0 @ u1)
         r[k] = exp_so3(angle * axis)
-    return Pose(c, r)
-
-
-def position(system: System, pose: Pose, item: Item) -> tuple[np.ndarray, np.ndarray]:
-    """Return where an item is, x (a point or a direction), and v = R (x0 - ref0), (3,) mm."""
-    if item.body < 0:
-        return item.x0, np.zeros(3)
-    body = system.bodies[item.body]
-    if not item.translates:
-        v = pose.r[item.body] @ item.x0
-        return v, v
-    v = pose.r[item.body] @ (item.x0 - body.ref0)
-    return pose.c[item.body] + v, v
-
-
-def point_of(system: System, pose: Pose, weighted) -> np.ndarray:
-    """Return the position (3,) of weighted items ((w, Item), ...)."""
-    return sum(w * position(system, pose, it)[0] for w, it in weighted)
-
-
-class Assembly:
-    """Accumulates gradient (n,), Hessian (n, n), constraint values and rows at one pose."""
-
-    def __init__(self, system: System, pose: Pose) -> None:
-        self.system, self.pose = system, pose
-        n = system.size
-        self.grad, self.hess = np.zeros(n), np.zeros((n, n))
-        self.blocks = [b.blocks() for b in system.bodies]
-
-    def jac(self, weighted) -> np.ndarray:
-        """Return d x / d q (3, n) of weighted items."""
-        out = np.zeros((3, self.system.size))
-        for w, it in weighted:
-            if it.body < 0:
-                continue
-            body = self.system.bodies[it.body]
-            t, wb = self.blocks[it.body]
-            _, v = position(self.system, self.pose, it)
-            block = -skew(v) @ wb + (t if it.translates else 0.0)
-            out[:, body.start:body.start + body.size] += w * block
-        return out
-
-    def term(self, points, grads, hess, factor: float = 1.0) -> np.ndarray:
-        """
-        Add factor times a term of points; return the term's row d/dq (n,), unscaled.
-
-        points: weighted items each; grads (p, 3) its d/dx; hess (p, p, 3, 3) its d2/dx2
-        (blocks may be None), or None.
-        """
-        jacs = [self.jac(p) for p in points]
-        row = sum(g @ j for g, j in zip(grads, jacs))
-        self.grad += factor * row
-        if hess is not None:
-            for i, ji in enumerate(jacs):
-                for k, jk in enumerate(jacs):
-                    if hess[i][k] is not None:
-                        self.hess += factor * (ji.T @ hess[i][k] @ jk)
-        for p, g in zip(points, grads):
-            for w, it in p:
-                if it.body < 0:
-                    continue
-                body = self.system.bodies[it.body]
-                _, v = position(self.system, self.pose, it)
-                wb = self.blocks[it.body][1]
-                second = 0.5 * (np.outer(v, g) + np.outer(g, v)) - (g @ v) * EYE
-                s = slice(body.start, body.start + body.size)
-                self.hess[s, s] += factor * w * (wb.T @ second @ wb)
-        return row
-
-    def body_term(self, body: int, grad: np.ndarray, hess: np.ndarray | None) -> None:
-        """Add an energy's gradient (3,) and Hessian (3, 3) in a body's rotation w."""
-        b = self.system.bodies[body]
-        wb = self.blocks[body][1]
-        s = slice(b.start, b.start + b.size)
-        self.grad[s] += wb.T @ grad
-        if hess is not None:
-            self.hess[s, s] += wb.T @ hess @ wb
-
-
-def constraint_terms(kind, points, data, xs):
-    """Return c, d/dx (p, 3), d2/dx2 (p, p, 3, 3) or None of a constraint row at xs."""
-    if kind == 'link':
-        d = xs[0] - xs[1]
-        h = EYE / data
-        return (d @ d - data * data) / (2.0 * data), np.array([d / data, -d / data]), \
-            [[h, -h], [-h, h]]
-    if kind == 'ball':
-        e = EYE[data]
-        return xs[0][data] - xs[1][data], np.array([e, -e]), None
-    if kind == 'line':
-        gap = data - xs[0]
-        return gap @ xs[1], np.array([-xs[1], gap]), [[None, -EYE], [-EYE, None]]
-    return xs[0][2] - data, np.array([EYE[2]]), None
-
-
-def spring_terms(element, x_body, x_move):
-    """Return E, d/dx (2, 3), d2/dx2 of a spring between x_body and x_move (N mm)."""
-    d = x_move - x_body
-    length = float(np.linalg.norm(d))
-    u = d / length
-    pushed, stiffness, energy = element.spring_at(length)   # a rate or a force table
-    f = -pushed   # the tension, N
-    h = stiffness * np.outer(u, u) + f / length * (EYE - np.outer(u, u))
-    return energy, np.array([-f * u, f * u]), [[h, -h], [-h, h]]
-
-
-def assemble(system: System, pose: Pose, multipliers: np.ndarray, force: np.ndarray,
-             moment: np.ndarray):
-    """
-    Return (gradient of L (n,), Hessian of L (n, n), c (m,), dc/dq (m, n), energy) at a pose.
-
-    force (3,) N at the load point, moment (3,) N mm; L = V - work + multipliers . c.
-    """
-    asm = Assembly(system, pose)
-    m = len(system.constraints)
-    values, rows = np.empty(m), np.empty((m, system.size))
-    energy = 0.0
-    for i, (_, kind, items, data) in enumerate(system.constraints):
-        xs = [position(system, pose, it)[0] for it in items]
-        c, g, h = constraint_terms(kind, items, data, xs)
-        values[i] = c
-        # term() adds multiplier * row to the gradient and returns the row unscaled
-        rows[i] = asm.term([((1.0, it),) for it in items], g, h, multipliers[i])
-    for element, body, moving in system.springs:
-        e, g, h = spring_terms(element, body.x0, point_of(system, pose, moving))
-        energy += e
-        asm.term([((1.0, body),), moving], g, h)
-    for b in system.bushings:
-        d = position(system, pose, Item(b.body, b.x0))[0] - b.at
-        energy += 0.5 * d @ b.stiff @ d
-        asm.term([((1.0, Item(b.body, b.x0)),)], np.array([b.stiff @ d]), [[b.stiff]])
-    for k, turn in system.rotations:
-        e, g, h = energy_terms(log_so3(pose.r[k]), turn)
-        energy += e
-        asm.body_term(k, g, h)
-    x_load = position(system, pose, system.load_item)[0]
-    energy -= force @ x_load
-    asm.term([((1.0, system.load_item),)], np.array([-force]), None)
-    asm.body_term(0, -moment, None)
-    hess = 0.5 * (asm.hess + asm.hess.T)
-    return asm.grad, hess, values, rows, energy
-
-
-def moved(system: System, pose: Pose, step: np.ndarray) -> Pose:
-    """Return the pose moved by a coordinate step (n,): c += T dq, R <- exp(W dq) R."""
-    c, r = pose.c.copy(), pose.r.copy()
-    for k, body in enumerate(system.bodies):
-        t, w = body.blocks()
-        dq = step[body.start:body.start + body.size]
-        c[k] = c[k] + t @ dq
-        omega = w @ dq
-        if omega.any():
-            r[k] = exp_so3(omega) @ r[k]
     return Pose(c, r)

@@ -1,0 +1,37 @@
+# SPDX-FileCopyrightText: 2026 linkage_ros authors
+# SPDX-License-Identifier: Apache-2.0
+
+"""linkage-bench statics: its table (the timing itself lives in doc/benchmarks.md)."""
+
+import csv
+import io
+import math
+
+from linkage_ros.bench import statics as bench
+from linkage_ros.bench.statics import main
+
+
+def test_the_table_gives_1x_10x_and_100x_side_by_side_with_the_ratios(capsys):
+    assert main(['five_link_bushings', '--commands', '3', '--rounds', '1']) == 0
+    out, err = capsys.readouterr()
+    rows = list(csv.reader(io.StringIO(out)))
+    assert rows[0] == list(bench.COLUMNS)
+    assert [r[:2] for r in rows[1:]] == [['five_link_bushings', '3'],
+                                         ['five_link_bushings', '30'],
+                                         ['five_link_bushings', '300']]
+    for row in rows[1:]:
+        continuation, loaded, rates, loaded_ratio, rates_ratio = map(float, row[2:])
+        assert min(continuation, loaded, rates) > 0
+        # the ratios are of the times printed (3 significant digits each)
+        assert math.isclose(loaded_ratio, loaded / continuation, rel_tol=2e-2)
+        assert math.isclose(rates_ratio, rates / continuation, rel_tol=2e-2)
+    assert err.count('load average') == 2
+
+
+def test_the_commands_go_on_along_one_sine_of_the_travel_and_the_wrench():
+    """Round k takes commands k N to (k + 1) N: no jump between rounds (a cold start)."""
+    travels, loads = bench.commands(4, 10)
+    assert travels[0] == bench.AMPLITUDE_MM * math.sin(2 * math.pi * 10 / bench.RATE_HZ)
+    whole, _ = bench.commands(14)
+    assert whole[10:] == travels
+    assert loads[2].at == 'cp' and loads[2].force_n[2] == 4000.0
