@@ -6,7 +6,7 @@ An independent statics of a scene with bushings: minimum potential energy over 6
 
 Written apart from linkage_ros (EnergyModel takes the scene file's mapping as yaml.safe_load
 gives it, and uses none of the package's parsers or solvers) to check
-linkage_ros.core.statics, with the model of STATICS_SPEC.md: the carrier is a free rigid body
+linkage_ros.core.statics, with the model of doc/kc.md: the carrier is a free rigid body
 (6 DOF); an arm with a bushing is a free rigid body (6 DOF); an arm without one turns about
 its axis (1 DOF); a link with a bushing has a movable body end
 (3 DOF). Ball joints, link lengths, strut lines, the wheel centre's height and the rack are

@@ -1,7 +1,7 @@
 # SPDX-FileCopyrightText: 2026 linkage_ros authors
 # SPDX-License-Identifier: Apache-2.0
 
-"""Statics with bushings (issue 29): equilibrium, forces, rates, as STATICS_SPEC.md says."""
+"""Statics with bushings (issue 29): equilibrium, forces, rates, as doc/kc.md says."""
 
 from dataclasses import replace
 from pathlib import Path

@@ -5,9 +5,9 @@
 The statics against an independent formulation: minimum potential energy over 6-DOF bodies.
 
 energy_reference.py (next to this file) reads the scene file itself and solves the model of
-STATICS_SPEC.md with its own bodies, constraints and Newton; it shares no code with
-linkage_ros.core.statics. Its own checks come first (they need no statics), then the
-comparison on every bundled scene with bushings.
+doc/kc.md ("The model") with its own bodies, constraints and Newton; it shares no code with
+linkage_ros.core.statics. Its own checks come first (they need no statics), then the comparison
+on every bundled scene with bushings.
 """
 
 from dataclasses import replace
