@@ -68,6 +68,8 @@ kill -INT $NODE; wait $NODE; echo "node rc=$?"; ls -la run.mcap run.rrd
 step vehicle node
 .venv/bin/suspension_node --ros-args -p vehicle:=demo_vehicle > node3.log 2>&1 &
 NODE=$!; sleep 4; kill -TERM $NODE; wait $NODE; echo "vehicle node rc=$?"
+.venv/bin/suspension_node --ros-args -p vehicle:=demo_vehicle_bushings > node_bushed.log 2>&1 &
+NODE=$!; sleep 6; kill -TERM $NODE; wait $NODE; echo "bushed vehicle node rc=$?"
 step replay
 .venv/bin/linkage-replay solve bags/five_link_sweep.mcap -o solved.mcap --scene five_link; echo "rc=$?"
 .venv/bin/linkage-replay copy bags/five_link_sweep.mcap -o copy.mcap; echo "rc=$?"
@@ -150,6 +152,8 @@ if [ "${LONG:-0}" = 1 ]; then
     .venv/bin/linkage-bench statics --parts; echo "rc=$?"
     .venv/bin/linkage-bench accuracy --quick -o bench-report; echo "rc=$?"
     ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST .venv/bin/linkage-bench node --plot node_latency.png > node_bench.csv; echo "rc=$?"
+    ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST .venv/bin/linkage-bench node --only vehicle > /dev/null; echo "rc=$?"
+    for s in 1; do ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST .venv/bin/linkage-bench node --only callback --modes statics,bushings --scale $s; done > /dev/null; echo "rc=$?"
     ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST .venv/bin/linkage-bench soak > soak.csv; echo "rc=$?"
     step screenshots '(they rewrite the committed pictures: git diff bags/ shows the change)'
     RUST_LOG=error xvfb-run -a -s '-screen 0 3200x1600x24' .venv/bin/rerun --screenshot-to bags/five_link_tf.png --window-size 1400x700 five_link_tf.rrd; echo "rc=$?"

@@ -7,24 +7,28 @@ Statics of a corner for suspension_node: the loaded pose, and each pickup's forc
 The loaded pose at the last contact wrench, each body pickup's force as a
 geometry_msgs/WrenchStamped:
 
-    statics = CornerStatics(scene, frame_id='base_link', prefix='')
+    statics = CornerStatics(scene, frame_id='base_link', prefix='', continuation=None)
     statics.set_wrench(force_n, moment_nm)   the tyre's wrench at the contact patch (vehicle
                                              frame, N and N m); zero until one is set
     statics.use_frames(on)                   pickups in their own TF frames (on) or frame_id
-    loaded, outputs = statics.load(solution, stamp, continuation)
+    loaded, outputs = statics.load(solution, stamp)
         loaded: the kinematic Solution with the loaded pose put in its place (wheel centre,
         rotation, quaternion, camber, toe), or a failed Solution (Status.NOT_CARRIED) with no
         pose; outputs: [('pickup/<name>', WRENCH_TYPE, CDR bytes)], one per body pickup
+    statics.reset()                          forget the last equilibrium (after a failure)
     pickup_points(scene) -> {name: point (3,) mm}   the body pickups, design, vehicle frame
     pickup_frame(prefix, name)                      the TF frame of a pickup
 
-The loaded pose is linkage_ros.core.statics.solve_loaded's at the travel and rack that the
-corner's kinematic continuation solved, continuing from its pose, for a load at the contact
-patch (at='cp'): the node's answers are those of the core for the same commands, bit for
-bit. A pickup's wrench is the force on the body
-at that pickup (N, vehicle frame orientation), its torque the bushing's couple there (N m,
-Loaded.body_moments_nm; zero at a ball joint, a rigid pivot or a spring end). Its
-header names the pickup's frame (static TF at the design pickup point, orientation of the
+The loaded pose is that of the corner's core.statics.Statics, made once per scene (a new
+scene makes a new CornerStatics) with the corner's kinematic Continuation (continuation: the
+one that solved each command's travel, whose pose the long way starts from), at the travel
+and rack that continuation solved, for a load at the contact patch (at='cp'): one compiled
+call per command, from the last loaded equilibrium. The node's answers are those of a
+Statics given the same commands, bit for bit, and those of a fresh solve_loaded to the
+statics' round-off (1e-9 deg, 1e-8 mm, 1e-9 of the forces). A pickup's wrench is the
+force on the body at that pickup (N, vehicle frame orientation), its torque the bushing's
+couple there (N m, Loaded.body_moments_nm; zero at a ball joint, a rigid pivot or a spring
+end). Its header names the pickup's frame (static TF at the design pickup point, orientation of the
 vehicle frame; answer/frames.py publishes it on /tf_static), so that RViz's and Foxglove's wrench
 displays draw the arrow at the pickup; where those frames are not published (tf off, or
 tf2_msgs missing) it names the vehicle frame, and the pickup point is that of
@@ -81,9 +85,11 @@ def pickup_frame(prefix: str, name: str) -> str:
 class CornerStatics:
     """The contact wrench of one corner and its loaded answers (module docstring)."""
 
-    def __init__(self, scene: Scene, frame_id: str = 'base_link', prefix: str = '') -> None:
-        from ..core.statics import Load, solve_loaded
-        self._solve, self._make_load = solve_loaded, Load
+    def __init__(self, scene: Scene, frame_id: str = 'base_link', prefix: str = '',
+                 continuation: Continuation | None = None) -> None:
+        from ..core.statics import Load, Statics
+        self._make_load = Load
+        self.statics = Statics(scene, continuation)
         self.scene, self.frame_id, self.prefix = scene, frame_id, prefix
         self.points = pickup_points(scene)
         self.names = list(self.points)
@@ -110,21 +116,24 @@ class CornerStatics:
         self.frames = [pickup_frame(self.prefix, n) if on else self.frame_id
                        for n in self.names]
 
-    def load(self, solution: Solution, stamp: tuple[int, int],
-             continuation: Continuation) -> tuple[Solution, list]:
+    def reset(self) -> None:
+        """Forget the last equilibrium: the next command starts from the kinematic pose."""
+        self.statics.reset()
+
+    def load(self, solution: Solution, stamp: tuple[int, int]) -> tuple[Solution, list]:
         """
         Return (the loaded answer, its pickup outputs) of a solved kinematic command.
 
-        continuation: the corner's kinematic solver, which solved solution: the equilibrium
-        continues from its pose (the same assembly branch, and no walk from design).
+        solution: the corner's continuation's (the one given at construction) answer to the
+        command: the equilibrium continues from the last one, or where there is none near
+        enough from that continuation's pose (the same assembly branch, no walk from design).
 
         The loaded pose replaces the kinematic one in solution (travel, rack, the solver's
         counts kept); a load the linkage cannot carry gives a failed Solution
         (Status.NOT_CARRIED, the core's message naming the load and its last residual) and
         no outputs.
         """
-        loaded = self._solve(self.scene, travel_mm=solution.travel, load=self._load,
-                             rack_mm=solution.rack, continuation=continuation)
+        loaded = self.statics.solve(solution.travel, self._load, solution.rack)
         if loaded.status != Status.OK:
             failed = solution._replace(
                 success=False, message=loaded.message, wheel_center=None, rotation=None,

@@ -246,7 +246,7 @@ class Responder:
             if statics_problem(scene, statics):
                 raise LinkageError('statics', statics_problem(scene, statics))
             from .pickups import CornerStatics
-            self.statics = CornerStatics(scene, frame_id, prefix)
+            self.statics = CornerStatics(scene, frame_id, prefix, self.solver)
         self.outputs: list[Output] = []
         self._extras: list[tuple[str, str, Callable]] = []
         self.set_outputs()
@@ -299,7 +299,7 @@ class Responder:
         pickups = []
         if solution.success and self.statics is not None:   # the loaded pose in its place
             try:
-                solution, pickups = self.statics.load(solution, stamp, self.solver)
+                solution, pickups = self.statics.load(solution, stamp)
             except Exception as exc:  # noqa: B902 (a statics solve that raises: not carried)
                 return self._raised(travel, rack_mm, exc, Status.NOT_CARRIED), []
         if not solution.success:
@@ -323,6 +323,11 @@ class Responder:
         text = ' '.join(str(exc).split())[:300]
         said = f'({type(exc).__name__}: {text}): no pose'
         solver = self.solver
+        if self.statics is not None:   # its last equilibrium is not trusted either
+            try:
+                self.statics.reset()
+            except Exception:  # noqa: B902 (the answer is said; the next starts anew)
+                pass
         if status == Status.NOT_CARRIED:
             message = f'the statics solve failed {said}'
         else:

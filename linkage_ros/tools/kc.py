@@ -235,18 +235,21 @@ def solve(scene, args, travels, racks):
     the first position has named the columns, before anything is said or written.
     """
     from ..core.base import Status
-    from ..core.statics import compliance, solve_loaded
+    from ..core.statics import Statics
     lead = ['travel_mm'] + (['rack_mm'] if args.rack is not None else [])
     header, chosen, rows, results = None, None, [], []
     load = load_of(args) if args.loaded else None
+    # one Statics across the positions: each goes on from the last equilibrium (one compiled
+    # call), or the long way where that is too far; either gives the same answer to round-off
+    statics = None
     for rack in racks:
         for travel in travels:
             try:
+                statics = statics or Statics(scene)
                 if load is None:
-                    result = compliance(scene, travel_mm=float(travel), rack_mm=float(rack))
+                    result = statics.rates(float(travel), float(rack))
                 else:
-                    result = solve_loaded(scene, travel_mm=float(travel), load=load,
-                                          rack_mm=float(rack))
+                    result = statics.solve(float(travel), load, float(rack))
             except (ArithmeticError, ValueError, np.linalg.LinAlgError) as exc:
                 # a statics solve that raises: not carried, said in one line, as the node says
                 text = ' '.join(str(exc).split())[:300]

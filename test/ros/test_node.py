@@ -423,9 +423,12 @@ def test_node_bench_quick_run_prints_every_section_with_nothing_lost(domain_id):
     assert [r[0] for r in tables['core'][1:]][:1] == ['linkage_ros']
     assert [r[0] for r in tables['latency'][1:]] == ['node', 'echo'] * 2
     assert {r[4] for r in tables['rate'][1:]} == {'0'}            # nothing lost
+    # then demo_vehicle_bushings: a contact wrench per corner and a JointState per step
     assert [(r[0], r[1], r[4]) for r in tables['vehicle'][1:]] == [
         ('node', 'float64_per_corner', '0'), ('echo', 'float64_per_corner', '0'),
-        ('node', 'joint_states', '0'), ('echo', 'joint_states', '0')]
+        ('node', 'joint_states', '0'), ('echo', 'joint_states', '0'),
+        ('node', 'joint_states+contact_wrench', '0'), ('echo', 'joint_states+contact_wrench',
+                                                       '0')]
     assert [r[0] for r in tables['callback'][1:]][:4] == ['plain', 'elements', 'tf',
                                                           'alignment']
 

@@ -5,7 +5,7 @@
 No exception of a solve leaves a callback of the node (issue 36, item 1).
 
 The core's solve is made to raise, for one travel only (SENTINEL), as LinAlgError did for a
-huge wrench: the kinematic Continuation.solve, or the statics' solve_loaded. The command is
+huge wrench: the kinematic Continuation.solve, or the corner's Statics.solve. The command is
 answered with a status, not an exception: SOLVER_ERROR for the kinematics (the corner goes
 back to its design position), NOT_CARRIED for the statics, an ERROR on /diagnostics naming
 the exception, no pose; the node then answers the next good command with the pose the core
@@ -52,15 +52,15 @@ def kinematics_raise(monkeypatch):
 
 @pytest.fixture
 def statics_raise(monkeypatch):
-    """Make the statics' solve_loaded raise LinAlgError at SENTINEL_MM (before a node starts)."""
-    original = core_statics.solve_loaded
+    """Make Statics.solve (any instance) raise LinAlgError at SENTINEL_MM, else solve."""
+    original = core_statics.Statics.solve
 
-    def solve_loaded(scene, travel_mm=0.0, *args, **kwargs):
+    def solve(self, travel_mm, *args, **kwargs):
         if travel_mm == SENTINEL_MM:
             raise np.linalg.LinAlgError('Array must not contain infs or NaNs.')
-        return original(scene, travel_mm, *args, **kwargs)
+        return original(self, travel_mm, *args, **kwargs)
 
-    monkeypatch.setattr(core_statics, 'solve_loaded', solve_loaded)
+    monkeypatch.setattr(core_statics.Statics, 'solve', solve)
 
 
 def design_answer_z(scene, travel_m):

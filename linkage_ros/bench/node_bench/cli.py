@@ -23,8 +23,10 @@ Sections (all by default; --only picks some), sizes multiplied by --scale (run 1
             cache), the first of a new process (warm cache, --starts processes) and again
             after a cleanup
   vehicle   vehicle:=demo_vehicle against a four-corner echo node, four corners at --hz each
-            for --seconds: one Float64 per corner per step, then one JointState per step; the
-            step latency is from sending a step to the last of its four poses
+            for --seconds: one Float64 per corner per step, then one JointState per step;
+            then vehicle:=demo_vehicle_bushings, each step a contact_wrench per corner and a
+            JointState (the loaded pose of each corner), against the echo node taking the
+            same traffic; the step latency is from sending a step to the last of its four poses
   callback  the node's travel callback called in process (no subscribers): plain (the scene
             without its elements, tf off), with its elements (the elements topic), with TF on
             (/tf per answer: the node's default), with the alignment or markers outputs,
@@ -170,4 +172,5 @@ def main(argv: list[str] | None = None) -> int:
             bench_vehicle(args, log_dir, args.domain_id)
         if 'callback' in args.only:
             bench_callback(args)
+    progress(f'load average {os.getloadavg()[0]:.2f} (1 min) at the end')
     return 0

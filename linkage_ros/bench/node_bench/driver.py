@@ -5,7 +5,7 @@
 
 import time
 
-from geometry_msgs.msg import PoseStamped
+from geometry_msgs.msg import PoseStamped, WrenchStamped
 import numpy as np
 import rclpy
 from rclpy.experimental import EventsExecutor
@@ -23,7 +23,9 @@ class Driver:
 
     prefixes: '' for one scene, '<corner>/' for each corner of a vehicle. A step is one
     Float64 per corner, or (joint_states=True) one JointState naming every corner's travel
-    joint. Poses of a corner come in command order, so its i-th answers step i.
+    joint; with wrenches, each corner's contact_wrench first (as a simulator sends the tyre
+    forces of a step, then the travels). Poses of a corner come in command order, so its i-th
+    answers step i.
     """
 
     def __init__(self, context, prefixes=('',)):
@@ -35,6 +37,8 @@ class Driver:
         self.pubs = [self.node.create_publisher(Float64, p + 'wheel_travel', QOS)
                      for p in prefixes]
         self.joint_pub = self.node.create_publisher(JointState, 'joint_states', QOS)
+        self.wrench_pubs = [self.node.create_publisher(WrenchStamped, p + 'contact_wrench', QOS)
+                            for p in prefixes]
         # Raw (CDR) both ways: the driver must be much faster than what it measures, so it
         # neither builds nor decodes messages.
         self.subs = [self.node.create_subscription(
@@ -63,7 +67,11 @@ class Driver:
             self.executor.spin_once(timeout_sec=min(0.01, deadline - time.perf_counter()))
         return predicate()
 
-    def send(self, travel_m, joint_states=False):
+    def send(self, travel_m, joint_states=False, wrenches=None):
+        """Send one step: wrenches (CDR, one per corner) if given, then the travel (m)."""
+        if wrenches is not None:
+            for pub, wrench in zip(self.wrench_pubs, wrenches):
+                pub.publish(wrench)
         if joint_states:
             self.joint_pub.publish(self.joint_layout(travel_m))
         else:
@@ -71,13 +79,15 @@ class Driver:
             for pub in self.pubs:
                 pub.publish(data)
 
-    def connect(self, joint_states=False, timeout=20.0, ping_period=0.5):
+    def connect(self, joint_states=False, timeout=20.0, ping_period=0.5, wrenches=False):
         """
         Wait until the node answers every corner, then until no answer is in flight.
 
-        A ping goes every ping_period s until then.
+        A ping goes every ping_period s until then. wrenches: wait for the node's
+        contact_wrench subscriptions too.
         """
-        pubs = [self.joint_pub] if joint_states else self.pubs
+        pubs = ([self.joint_pub] if joint_states else self.pubs) + (
+            self.wrench_pubs if wrenches else [])
         if not self.spin_until(lambda: all(p.get_subscription_count() for p in pubs)
                                and all(s.get_publisher_count() for s in self.subs), timeout):
             raise RuntimeError('the node under test was not discovered')
@@ -106,9 +116,11 @@ class Driver:
             times.append(self.step_arrivals()[i] - start)
         return np.array(times)
 
-    def paced(self, travels, rate, joint_states=False, drain=3.0, label=''):
+    def paced(self, travels, rate, joint_states=False, drain=3.0, label='', wrenches=None):
         """
         Send one step per travel at rate (Hz); with a label, a progress line every 30 s.
+
+        wrenches: per step, the contact wrenches (CDR, one per corner) sent before its travel.
 
         Returns (steps sent, steps answered, lag of the last answer after the last step (s),
         step latencies (s)).
@@ -126,7 +138,7 @@ class Driver:
                 self.executor.spin_once(timeout_sec=due - now)
                 now = time.perf_counter()
             sent.append(time.perf_counter())
-            self.send(travel, joint_states)
+            self.send(travel, joint_states, None if wrenches is None else wrenches[i])
             due += period
         self.spin_until(lambda: self.answered() >= len(travels), drain)
         arrivals = self.step_arrivals()

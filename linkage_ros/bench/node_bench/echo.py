@@ -3,7 +3,7 @@
 
 """The bare reference of linkage-bench node: an rclpy node that only echoes, one process."""
 
-from geometry_msgs.msg import PoseStamped
+from geometry_msgs.msg import PoseStamped, WrenchStamped
 import rclpy
 from rclpy.node import Node
 from sensor_msgs.msg import JointState
@@ -21,7 +21,8 @@ class EchoNode(Node):
 
     Each wheel_travel (Float64) is answered by a PoseStamped with z = travel, under every
     corner prefix; a joint_states message naming '<corner>_travel' joints is answered by one
-    pose per corner it names.
+    pose per corner it names. A vehicle's echo takes each corner's contact_wrench too (the
+    CDR bytes kept, as the node keeps the last wrench), so that it carries the same traffic.
     """
 
     def __init__(self, prefixes=('',), **kwargs):
@@ -34,6 +35,11 @@ class EchoNode(Node):
                                      lambda msg, pub=pub: self.answer(pub, msg.data), QOS)
         if prefixes != ('',):
             self.create_subscription(JointState, 'joint_states', self.on_joint_states, QOS)
+            self.wrenches = {}
+            for prefix in prefixes:
+                self.create_subscription(
+                    WrenchStamped, prefix + 'contact_wrench',
+                    lambda data, c=prefix: self.wrenches.__setitem__(c, data), QOS, raw=True)
 
     def answer(self, pub, travel):
         out = PoseStamped()

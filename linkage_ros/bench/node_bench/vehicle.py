@@ -1,8 +1,19 @@
 # SPDX-FileCopyrightText: 2026 linkage_ros authors
 # SPDX-License-Identifier: Apache-2.0
 
-"""Section vehicle of linkage-bench node: four corners against a four-corner echo node."""
+"""
+Section vehicle of linkage-bench node: four corners against a four-corner echo node.
 
+demo_vehicle (rigid) with one Float64 per corner per step, then one JointState per step; then
+demo_vehicle_bushings (issue 37) as a simulator drives a compliant vehicle: per step a
+contact_wrench per corner (a cornering load swept as a sine, the right corners' mirrored in
+y), then one JointState with the four travels. Each corner of the node answers with its
+loaded pose (a Statics solve per corner per step); the echo node takes the same wrenches and
+echoes the travels. The step latency is from sending a step (its first wrench) to the last
+of its four poses.
+"""
+
+import math
 import sys
 
 import numpy as np
@@ -11,26 +22,41 @@ from .driver import sine
 from .echo import CORNERS
 from .processes import node_script, Target
 from .tables import progress, table, us
+from ...answer.cdr import wrench_stamped_cdr
 
 VEHICLE = 'demo_vehicle'
+BUSHED = 'demo_vehicle_bushings'
+WRENCHED = 'joint_states+contact_wrench'
 
 
-def bench_vehicle(args, log_dir, domain_id):
-    """Four corners at args.hz each: Float64 per corner, then one JointState per step."""
-    prefixes = tuple(f'{c}/' for c in CORNERS)
-    targets = [Target('node', [node_script(), '--ros-args', '-p', f'vehicle:={VEHICLE}'],
-                      domain_id, log_dir, prefixes),
-               Target('echo', [sys.executable, '-m', 'linkage_ros.bench.node_bench',
-                               '--echo-vehicle'], domain_id, log_dir, prefixes)]
-    rows, medians = [], {}
+def corner_wrenches(count, frame_id='base_link'):
+    """
+    Return per step the four corners' contact wrenches (CDR), in CORNERS order.
+
+    A cornering load swept once as a sine over the steps: lateral up to 3 kN, longitudinal
+    200 N, vertical 4 kN, an aligning moment up to 50 N m; the right corners' mirrored in y
+    (force y and moments x, z change sign).
+    """
+    steps = []
+    for p in np.linspace(0.0, 2.0 * math.pi, count):
+        force, moment = (200.0 * math.cos(p), 3000.0 * math.sin(p), 4000.0), \
+            (0.0, 0.0, 50.0 * math.sin(p))
+        mirrored = (force[0], -force[1], force[2]), (-moment[0], moment[1], -moment[2])
+        steps.append([wrench_stamped_cdr((0, 0), frame_id,
+                                         *(mirrored if c.endswith('right') else (force, moment)))
+                      for c in CORNERS])
+    return steps
+
+
+def _run(targets, steps, args, modes, rows, medians):
+    """Drive each target through each mode ((name, joint_states, wrenches)); add rows."""
     try:
-        steps = int(args.hz * args.seconds * args.scale)
-        for joint_states in (False, True):
-            mode = 'joint_states' if joint_states else 'float64_per_corner'
+        for mode, joint_states, wrenches in modes:
             for target in targets:
-                target.driver.connect(joint_states)
+                target.driver.connect(joint_states, wrenches=wrenches is not None)
                 sent, got, lag, values = target.driver.paced(
-                    sine(steps), args.hz, joint_states, label=f'vehicle: {target.name}, {mode}')
+                    sine(steps), args.hz, joint_states, label=f'vehicle: {target.name}, {mode}',
+                    wrenches=wrenches)
                 medians[target.name, mode] = np.median(values) if len(values) else np.nan
                 rows.append([target.name, mode, sent, got, sent - got, lag * 1000.0,
                              us(values), us(values, 99)])
@@ -39,6 +65,25 @@ def bench_vehicle(args, log_dir, domain_id):
     finally:
         for target in targets:
             target.close()
+
+
+def targets_of(vehicle, log_dir, domain_id):
+    """Return the node (vehicle:=vehicle) and the four-corner echo node, as Targets."""
+    prefixes = tuple(f'{c}/' for c in CORNERS)
+    return [Target('node', [node_script(), '--ros-args', '-p', f'vehicle:={vehicle}'],
+                   domain_id, log_dir, prefixes),
+            Target('echo', [sys.executable, '-m', 'linkage_ros.bench.node_bench',
+                            '--echo-vehicle'], domain_id, log_dir, prefixes)]
+
+
+def bench_vehicle(args, log_dir, domain_id):
+    """Four corners at args.hz each: rigid, Float64 then JointState; bushed, with wrenches."""
+    rows, medians = [], {}
+    steps = int(args.hz * args.seconds * args.scale)
+    _run(targets_of(VEHICLE, log_dir, domain_id), steps, args,
+         [('float64_per_corner', False, None), ('joint_states', True, None)], rows, medians)
+    _run(targets_of(BUSHED, log_dir, domain_id), steps, args,
+         [(WRENCHED, True, corner_wrenches(steps))], rows, medians)
     for row in rows:
         row.append(float(medians[row[0], row[1]] / medians['echo', row[1]]))
     table(['vehicle', 'mode', 'steps', 'answered', 'lost', 'last_answer_lag_ms',

@@ -15,8 +15,6 @@ recompile them all.
 
 import math
 
-import numpy as np
-
 from .compiled import jit
 
 
@@ -29,11 +27,13 @@ def rotate(rotation, x, y, z):
 
 
 @jit
-def exp_so3(x, y, z, out):
+def rodrigues(x, y, z):
     """
-    Write into out (3, 3) the rotation matrix of the rotation vector (x, y, z) (Rodrigues).
+    Return the rotation matrix of the rotation vector (x, y, z) as nine floats, row by row.
 
     R = I + a K + b (w w^T - |w|^2 I), K = [w]x, a = sin t / t, b = (1 - cos t) / t^2.
+    Floats, not an array: kernels compiled without numba's reference counting (compiled.bare)
+    call it, and they may allocate nothing.
     """
     t2 = x * x + y * y + z * z
     if t2 < 1e-16:
@@ -41,23 +41,31 @@ def exp_so3(x, y, z, out):
     else:
         t = math.sqrt(t2)
         a, b = math.sin(t) / t, (1.0 - math.cos(t)) / t2
-    out[0, 0], out[0, 1], out[0, 2] = (
-        1.0 - b * (y * y + z * z), b * x * y - a * z, b * x * z + a * y)
-    out[1, 0], out[1, 1], out[1, 2] = (
-        b * x * y + a * z, 1.0 - b * (x * x + z * z), b * y * z - a * x)
-    out[2, 0], out[2, 1], out[2, 2] = (
-        b * x * z - a * y, b * y * z + a * x, 1.0 - b * (x * x + y * y))
+    return (1.0 - b * (y * y + z * z), b * x * y - a * z, b * x * z + a * y,
+            b * x * y + a * z, 1.0 - b * (x * x + z * z), b * y * z - a * x,
+            b * x * z - a * y, b * y * z + a * x, 1.0 - b * (x * x + y * y))
+
+
+@jit
+def exp_so3(x, y, z, out):
+    """Write into out (3, 3) the rotation matrix of the rotation vector (x, y, z) (rodrigues)."""
+    (out[0, 0], out[0, 1], out[0, 2], out[1, 0], out[1, 1], out[1, 2],
+     out[2, 0], out[2, 1], out[2, 2]) = rodrigues(x, y, z)
 
 
 @jit
 def turn(x, y, z, rotation, out):
-    """Write exp_so3(x, y, z) @ rotation into out (3, 3); out may be rotation itself."""
-    step = np.empty((3, 3))
-    exp_so3(x, y, z, step)
+    """
+    Write exp_so3(x, y, z) @ rotation into out (3, 3); out may be rotation itself.
+
+    It allocates nothing: the statics' kernels (compiled.bare, no reference counting) call it.
+    """
+    s00, s01, s02, s10, s11, s12, s20, s21, s22 = rodrigues(x, y, z)
     for j in range(3):   # column by column, so that out may be rotation
         c0, c1, c2 = rotation[0, j], rotation[1, j], rotation[2, j]
-        for i in range(3):
-            out[i, j] = step[i, 0] * c0 + step[i, 1] * c1 + step[i, 2] * c2
+        out[0, j] = s00 * c0 + s01 * c1 + s02 * c2
+        out[1, j] = s10 * c0 + s11 * c1 + s12 * c2
+        out[2, j] = s20 * c0 + s21 * c1 + s22 * c2
 
 
 @jit
