@@ -35,6 +35,7 @@ setup(
          glob('config/interfaces/linkage_ros_interfaces/srv/*')),
         ('share/' + package_name + '/config/study', glob('config/study/*.yaml')),
         ('share/' + package_name + '/config/bench', glob('config/bench/*.yaml')),
+        ('share/' + package_name + '/config/loads', glob('config/loads/*.yaml')),
         ('share/' + package_name + '/config/chrono',
          ['config/chrono/LICENSE', 'config/chrono/README.md']),
     ] + [('share/' + package_name + '/' + folder, glob(folder + '/*.json'))
@@ -71,6 +72,7 @@ setup(
             'linkage-axle = linkage_ros.tools.axle:main',
             'linkage-vehicle = linkage_ros.tools.vehicle:main',
             'linkage-kc = linkage_ros.tools.kc:main',
+            'linkage-loads = linkage_ros.tools.loads:main',
             'suspension_node = linkage_ros.ros.entry:main',
             'suspension_lifecycle_node = linkage_ros.ros.entry:lifecycle_main',
             'linkage-replay = linkage_ros.tools.replay:main',

@@ -15,11 +15,14 @@ its tables (tables.py). Imports every layer below but vary; loaded only by a pro
 asks for load cases (linkage-loads, linkage-bench loads).
 """
 
+from . import tables
 from .answer import BarAnswer, CaseAnswer, CornerAnswer, Loads
-from .cases import built_in_cases, CornerLoad, LoadCase, parse_cases, RANGES, read_cases
+from .cases import (built_in_cases, CornerLoad, describe, LoadCase, parse_cases, RANGES,
+                    read_cases)
 from .transfer import CornerTyre, tyre_loads, TyreLoads
 from .vehicle_data import LoadsVehicle, prepare, sheet_problem
 
 __all__ = ['BarAnswer', 'built_in_cases', 'CaseAnswer', 'CornerAnswer', 'CornerLoad',
-           'CornerTyre', 'LoadCase', 'Loads', 'LoadsVehicle', 'parse_cases', 'prepare', 'RANGES',
-           'read_cases', 'sheet_problem', 'TyreLoads', 'tyre_loads']
+           'CornerTyre', 'describe', 'LoadCase', 'Loads', 'LoadsVehicle', 'parse_cases',
+           'prepare', 'RANGES', 'read_cases', 'sheet_problem', 'tables', 'TyreLoads',
+           'tyre_loads']

@@ -31,7 +31,7 @@ from .vehicle_data import prepare
 from ..axle.axle import axle_of
 from ..base.errors import LinkageError
 from ..base.status import Status
-from ..measure import element_values
+from ..measure.elements import element_values
 from ..solve.continuation import Continuation
 
 if TYPE_CHECKING:
@@ -40,7 +40,7 @@ if TYPE_CHECKING:
     from .vehicle_data import LoadsVehicle
     from ..model.scene import Scene
     from ..model.vehicle import Vehicle
-    from ..statics import Load, Loaded
+    from ..statics.loaded import Load, Loaded
 
 
 @dataclass(frozen=True)

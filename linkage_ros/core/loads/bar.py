@@ -27,7 +27,7 @@ import numpy as np
 
 from ..axle.anti_roll_bar import arm_end, bar_values
 from ..base.geometry import N_MM_PER_NM_DEG
-from ..model import Element
+from ..model.elements import Element
 
 if TYPE_CHECKING:
     from ..axle.axle import Axle

@@ -29,7 +29,9 @@ import re
 from typing import TYPE_CHECKING
 
 from ..base.finite import is_finite_number
-from ..model import config_dir, Fields, read_yaml
+from ..model.bundled import config_dir
+from ..model.fields import Fields
+from ..model.yaml_file import read_yaml
 
 if TYPE_CHECKING:
     from os import PathLike

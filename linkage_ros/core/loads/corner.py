@@ -19,15 +19,15 @@ from typing import NamedTuple, TYPE_CHECKING
 
 import numpy as np
 
-from ..measure import patch_offset
+from ..measure.alignment import patch_offset
 from ..solve.mechanism import compile_scene
-from ..statics import Load, solve_loaded
 from ..statics.forces import _pivots
+from ..statics.loaded import Load, solve_loaded
 
 if TYPE_CHECKING:
     from .transfer import CornerTyre
     from ..model.scene import Scene
-    from ..statics import Loaded
+    from ..statics.loaded import Loaded
 
 
 class KinematicPose(NamedTuple):

@@ -13,10 +13,12 @@ that the transfer is the setup sheet's. Vehicle frame, ISO 8855 (x forward, y le
 - Vertical: each axle carries vertical_g times its static load, and the longitudinal
   transfer m g a_x h / L goes from the front to the rear axle (Gillespie, Fundamentals of
   Vehicle Dynamics, ch. 2; m every mass, h the height of their centre, L the wheelbase).
-- Lateral: each axle's force is its static share of m g a_y (the car does not yaw), split
-  between its wheels in proportion to their vertical loads; its lateral load transfer is the
-  sheet's three paths (geometric, elastic, unsprung: Barton and Fieldhouse sec. 3.6, RCVD
-  ch. 18), the roll gradient taken at the case's vertical load factor.
+- Lateral: each axle's force is its static share of m g a_y (the car does not yaw), and
+  under braking or drive in a turn the share that balances the yaw moment of the sprung
+  centre's sideways shift in roll; split between its wheels in proportion to their vertical
+  loads. Its lateral load transfer is the sheet's three paths (geometric, elastic,
+  unsprung: Barton and Fieldhouse sec. 3.6, RCVD ch. 18), the roll gradient taken at the
+  case's vertical load factor.
 - Longitudinal: braking (a_x < 0) by the axles' brake shares, at the contact patch with
   outboard brakes and at the wheel centre with inboard ones; drive (a_x > 0) by the drive
   shares, at the wheel centre (doc/axle.md); equal on the two wheels of an axle.
@@ -134,13 +136,19 @@ def tyre_loads(data: LoadsVehicle, case: LoadCase, corner_keys: dict | None = No
                            'stiffness left (K <= m_s g d): it falls over')
     lateral = lateral_transfer(data, ay, roll)
     split, kind = shares(data, ax)
+    shift = np.array([0.0, -data.roll_moment_arm_mm * roll, 0.0])
+    # the sprung centre, shifted sideways in roll, turns the longitudinal inertia force into
+    # a yaw moment (N mm) that the axles' lateral forces balance: the front's grows by it / L
+    yaw = data.sprung_kg * G * float(np.cross(shift, case.accelerations_g)[2])
+    axle_lateral = {'front': ay * static['front'] + yaw / data.wheelbase_mm,
+                    'rear': ay * static['rear'] - yaw / data.wheelbase_mm}
     derived = {}
     for name, axle in data.axles.items():
         long_force = weight * ax * split[name] / 2.0
         shaft = kind == 'drive' or axle.inboard
         for side, corner in enumerate(axle.corners):
             fz = 0.5 * vertical[name] + (1.0 if side else -1.0) * lateral[name].total
-            fy = ay * static[name] * fz / vertical[name]
+            fy = axle_lateral[name] * fz / vertical[name]
             force = np.array([long_force, fy, fz])
             centre = np.array([long_force if shaft else 0.0, 0.0, 0.0])
             derived[corner] = CornerTyre(force, np.zeros(3), centre, shaft,
@@ -149,9 +157,7 @@ def tyre_loads(data: LoadsVehicle, case: LoadCase, corner_keys: dict | None = No
     for key, given in case.corners.items():
         corner = (corner_keys or {}).get(key, key)
         corners[corner] = given_tyre(data, corner, given, static, case)
-    arm = data.roll_moment_arm_mm
-    return TyreLoads(corners, derived, vertical, moved, lateral, roll,
-                     np.array([0.0, -arm * roll, 0.0]))
+    return TyreLoads(corners, derived, vertical, moved, lateral, roll, shift)
 
 
 def unsprung_force(mass_kg: float, case: LoadCase) -> np.ndarray:
