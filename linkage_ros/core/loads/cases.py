@@ -48,7 +48,7 @@ RANGES = {
     'force_n': (-1e6, 1e6), 'moment_nm': (-1e5, 1e5),
 }
 MAX_CASES = 1000   # cases per file: about a second of solving each
-NAME = re.compile(r'^[A-Za-z0-9][A-Za-z0-9_-]{0,63}$')
+NAME = re.compile(r'[A-Za-z0-9][A-Za-z0-9_-]{0,63}')   # whole: fullmatch
 BUILT_IN = 'cases.yaml'
 
 
@@ -105,8 +105,8 @@ def parse_cases(source: str, data: object) -> dict[str, LoadCase]:
 
 
 def _case(check: Fields, name: object, spec: object) -> LoadCase:
-    if not isinstance(name, str) or not NAME.match(name):
-        check.fail(f'cases.{name!r}', 'a case name is 1 to 64 ASCII letters, digits, _ or -, '
+    if not isinstance(name, str) or not NAME.fullmatch(name):
+        check.fail(f'cases.{_shown(name)}', 'a case name is 1 to 64 ASCII letters, digits, _ or -, '
                    'starting with a letter or a digit')
     where = f'cases.{name}'
     if not isinstance(spec, dict):
@@ -124,12 +124,17 @@ def _case(check: Fields, name: object, spec: object) -> LoadCase:
         check.fail(f'{where}.corners', f'expected a mapping of corner names to their load, '
                    f'got {corners!r}')
     return LoadCase(name, **values, corners={
-        str(key): _corner(check, f'{where}.corners.{key}', key, value)
+        str(key): _corner(check, f'{where}.corners.{_shown(key)}', key, value)
         for key, value in corners.items()})
 
 
+def _shown(key: object) -> str:
+    """Return a key as a field path names it: as it is if a valid name, else its repr."""
+    return key if isinstance(key, str) and NAME.fullmatch(key) else repr(key)
+
+
 def _corner(check: Fields, where: str, key: object, spec: object) -> CornerLoad:
-    if not isinstance(key, str) or not NAME.match(key):
+    if not isinstance(key, str) or not NAME.fullmatch(key):
         check.fail(where, 'a corner is named as in the vehicle file (front_left, ...)')
     if not isinstance(spec, dict):
         check.fail(where, f'expected {{vertical_g, longitudinal_g, lateral_g, at}} or '
