@@ -57,8 +57,8 @@ def one_line(exc, path, field):
 @example(key='vertical_g', value=0.0)
 @example(key='vertical_g', value=5e-324)
 @example(key='lateral_g', value=5.000000000000001)
-def test_a_case_acceleration_is_read_within_its_range_or_refused_naming_it(tmp_path, key,
-                                                                            value):
+def test_a_case_acceleration_is_read_within_its_range_or_refused_naming_it(
+        tmp_path, key, value):
     path = write(tmp_path, {'cases': {'c1': {key: value}}})
     ok = inside(value, RANGES[key]) and (key != 'vertical_g' or value > 0)
     try:
@@ -88,8 +88,8 @@ def test_a_corner_multiple_is_read_within_its_range_or_refused_naming_it(tmp_pat
 @SETTINGS
 @given(key=st.sampled_from(['force_n', 'moment_nm']), index=st.integers(0, 2),
        value=MAGNITUDES)
-def test_a_corner_wrench_is_read_within_its_range_or_refused_naming_it(tmp_path, key, index,
-                                                                      value):
+def test_a_corner_wrench_is_read_within_its_range_or_refused_naming_it(
+        tmp_path, key, index, value):
     vector = [0.0, 0.0, 0.0]
     vector[index] = value
     path = write(tmp_path, {'cases': {'kerb': {'corners': {'rear_right': {key: vector}}}}})

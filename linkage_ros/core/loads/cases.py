@@ -106,8 +106,8 @@ def parse_cases(source: str, data: object) -> dict[str, LoadCase]:
 
 def _case(check: Fields, name: object, spec: object) -> LoadCase:
     if not isinstance(name, str) or not NAME.fullmatch(name):
-        check.fail(f'cases.{_shown(name)}', 'a case name is 1 to 64 ASCII letters, digits, _ or -, '
-                   'starting with a letter or a digit')
+        check.fail(f'cases.{_shown(name)}', 'a case name is 1 to 64 ASCII letters, digits, _ '
+                   'or -, starting with a letter or a digit')
     where = f'cases.{name}'
     if not isinstance(spec, dict):
         check.fail(where, f'expected a mapping {{longitudinal_g, lateral_g, vertical_g, '
