@@ -22,12 +22,12 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .bar import bar_state, drop_element
+from .bar import bar_state, drop_element, DROP_LINK
 from .cases import resolve_corner
 from .corner import corner_load, kinematic_pose, pivot_forces, solve_corner
 from .ride_height import find_travels
 from .transfer import tyre_loads
-from .vehicle_data import prepare
+from .vehicle_data import LoadsVehicle, prepare
 from ..axle.axle import axle_of
 from ..base.errors import LinkageError
 from ..base.status import Status
@@ -37,7 +37,6 @@ from ..solve.continuation import Continuation
 if TYPE_CHECKING:
     from .cases import LoadCase
     from .transfer import CornerTyre, TyreLoads
-    from .vehicle_data import LoadsVehicle
     from ..model.scene import Scene
     from ..model.vehicle import Vehicle
     from ..statics.loaded import Load, Loaded
@@ -93,7 +92,7 @@ class Loads:
     """The load cases of one vehicle: its data from the setup sheet, its corners' solvers."""
 
     def __init__(self, vehicle: Vehicle | LoadsVehicle) -> None:
-        self.data = vehicle if hasattr(vehicle, 'sheet') else prepare(vehicle)
+        self.data = vehicle if isinstance(vehicle, LoadsVehicle) else prepare(vehicle)
         self.vehicle = self.data.vehicle
         self.axles = {name: axle_of(self.vehicle, name) for name in self.data.axles}
         self.kinematics = {c: Continuation(s) for c, s in self.vehicle.corners.items()}
@@ -223,7 +222,6 @@ class Loads:
         """Return the BarAnswer of a solved axle (None without a bar)."""
         if bar is None:
             return None
-        from .bar import DROP_LINK
         key = f'{DROP_LINK}_body'
         forces = np.array([r.body_forces_n[key] for r in loaded])   # on the bar, at E
         points = np.array(bar.axis_points, dtype=float)
