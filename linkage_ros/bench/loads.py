@@ -45,7 +45,7 @@ def scaled(cases, scale):
 
 def corner_solves(answers):
     """Solve every solved corner once more at its travel and load; return how many."""
-    from ..core.loads.corner import solve_corner
+    from ..core.loads import solve_corner
     count = 0
     for answer in answers:
         for corner in answer.corners.values():

@@ -19,10 +19,11 @@ from . import tables
 from .answer import BarAnswer, CaseAnswer, CornerAnswer, Loads
 from .cases import (built_in_cases, CornerLoad, describe, LoadCase, parse_cases, RANGES,
                     read_cases)
+from .corner import solve_corner
 from .transfer import CornerTyre, tyre_loads, TyreLoads
 from .vehicle_data import LoadsVehicle, prepare, sheet_problem
 
 __all__ = ['BarAnswer', 'built_in_cases', 'CaseAnswer', 'CornerAnswer', 'CornerLoad',
            'CornerTyre', 'describe', 'LoadCase', 'Loads', 'LoadsVehicle', 'parse_cases',
-           'prepare', 'RANGES', 'read_cases', 'sheet_problem', 'tables', 'TyreLoads',
-           'tyre_loads']
+           'prepare', 'RANGES', 'read_cases', 'sheet_problem', 'solve_corner', 'tables',
+           'TyreLoads', 'tyre_loads']
