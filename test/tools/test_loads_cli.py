@@ -133,10 +133,11 @@ def test_a_wheel_that_lifts_off_is_status_1_naming_the_case_and_corner(tmp_path,
     err = capsys.readouterr().err
     assert ('linkage-loads: cornering: front_left: NOT_CARRIED: the front axle is not solved:'
             ' a wheel lifts off, its vertical tyre load not above 0: front_left (-15.9') in err
-    assert err.endswith('linkage-loads: 4 corners not solved\n')
+    assert err.endswith('linkage-loads: 3 corners not solved\n')
     rows = read(out)
-    assert [r['status'] for r in rows] == ['NOT_CARRIED', 'NOT_CARRIED', 'OUT_OF_REACH',
-                                           'OUT_OF_REACH']   # demo_vehicle's soft rear springs
+    # demo_vehicle's soft rear springs: the outer rear wheel is beyond its travel; an axle
+    # without a bar solves its corners apart, so the inner one is answered
+    assert [r['status'] for r in rows] == ['NOT_CARRIED', 'NOT_CARRIED', 'OK', 'OUT_OF_REACH']
 
 
 def mistakes(tmp_path):

@@ -135,30 +135,44 @@ class Loads:
         scenes = [self.vehicle.corners[c] for c in corners]
         drops = [self.data.centres[c][2] - self.data.ground_z_mm - data.unsprung_height_mm
                  for c in corners]
-        low = np.array([s.travel[0] for s in scenes])
-        high = np.array([s.travel[1] for s in scenes])
+        # a bar couples the two corners: solved together; else each corner on its own
+        groups = [(0, 1)] if data.bar is not None else [(0,), (1,)]
+        answers, bar = {}, None
+        for group in groups:
+            got, state, results = self._solve_group(name, group, scenes, loads, drops)
+            answers.update(got)
+            if data.bar is not None and state is not None:
+                bar = self._bar_answer(data.bar, state, [r[2] for r in results])
+        return answers, bar
+
+    def _solve_group(self, name, group, scenes, loads, drops):
+        """Return ({corner: CornerAnswer}, bar state, results) of corners solved together."""
+        corners = [self.data.axles[name].corners[k] for k in group]
+        mine = [scenes[k] for k in group]
+        low = np.array([s.travel[0] for s in mine])
+        high = np.array([s.travel[1] for s in mine])
 
         def evaluate(z):
-            return self._evaluate(name, scenes, loads, drops, z)
+            return self._evaluate(name, group, scenes, loads, drops, z)
 
-        z0 = np.zeros(2)
-        first, _, why = self._poses(corners, scenes, z0)
+        z0 = np.zeros(len(group))
+        first, _, why = self._poses(corners, mine, z0)
         if first is None:
-            return {c: CornerAnswer(c, Status.OUT_OF_REACH, why, t)
-                    for c, t in zip(corners, loads)}, None
-        found = find_travels(evaluate, z0, self._jacobian(name, scenes, first), low, high,
+            return {c: CornerAnswer(c, Status.OUT_OF_REACH, why, loads[k])
+                    for c, k in zip(corners, group)}, None, None
+        found = find_travels(evaluate, z0, self._jacobian(name, mine, first), low, high,
                              corners)
         if found.status != Status.OK or found.payload is None:
-            return {c: CornerAnswer(c, found.status, found.message, t, float(z))
-                    for c, t, z in zip(corners, loads, found.travel_mm)}, None
-        poses, results, bar = found.payload
+            return {c: CornerAnswer(c, found.status, found.message, loads[k], float(z))
+                    for c, k, z in zip(corners, group, found.travel_mm)}, None, None
+        poses, results, state = found.payload
         answers = {}
-        for k, corner in enumerate(corners):
-            scene, load, loaded, tension = results[k]
+        for j, (corner, k) in enumerate(zip(corners, group)):
+            scene, load, loaded, tension = results[j]
             answers[corner] = CornerAnswer(corner, Status.OK, 'ok', loads[k],
-                                           float(found.travel_mm[k]), loaded, load, poses[k],
+                                           float(found.travel_mm[j]), loaded, load, poses[j],
                                            scene, tension)
-        return answers, self._bar_answer(data.bar, bar, [r[2] for r in results])
+        return answers, state, results
 
     def _poses(self, corners, scenes, z):
         """Return the kinematic poses of the corners at travels z, or (None, None, why)."""
@@ -170,10 +184,16 @@ class Loads:
             poses.append(kinematic_pose(scene, solution))
         return poses, None, ''
 
-    def _evaluate(self, name, scenes, loads, drops, z):
-        """Return (holding forces (2,) N, payload, '') at travels z, or (None, None, why)."""
+    def _evaluate(self, name, group, scenes, loads, drops, z):
+        """
+        Return (holding forces (n,) N, payload, '') of corners group at travels z.
+
+        Or (None, None, why) where a corner cannot be solved there. group: the axle's corner
+        indices solved together, (0, 1) with a bar.
+        """
         data = self.data.axles[name]
-        poses, _, why = self._poses(data.corners, scenes, z)
+        corners = [data.corners[k] for k in group]
+        poses, _, why = self._poses(corners, [scenes[k] for k in group], z)
         if poses is None:
             return None, None, why
         bar = None
@@ -181,24 +201,24 @@ class Loads:
             bar = bar_state(self.axles[name], data.bar,
                             np.array([p.centre for p in poses]),
                             np.array([p.rotation for p in poses]))
-        results, held = [], np.empty(len(scenes))
-        for k, (scene, tyre, pose) in enumerate(zip(scenes, loads, poses)):
-            tension = math.nan
+        results, held = [], np.empty(len(group))
+        for j, (k, pose) in enumerate(zip(group, poses)):
+            scene, tension = scenes[k], math.nan
             if bar is not None:
                 tension = float(bar.tension_n[k])
                 element = drop_element(data.bar.sides[k], bar.ends[k], tension)
                 scene = replace(scene, elements=scene.elements + (element,))
-            load = corner_load(tyre, pose, drops[k])
-            loaded = solve_corner(scene, z[k], load)
+            load = corner_load(loads[k], pose, drops[k])
+            loaded = solve_corner(scene, z[j], load)
             if loaded.status != Status.OK:
-                return None, None, f'{data.corners[k]}: {loaded.message}'
-            held[k] = loaded.holding_force_n
+                return None, None, f'{corners[j]}: {loaded.message}'
+            held[j] = loaded.holding_force_n
             results.append((scene, load, loaded, tension))
         return held, (poses, results, bar), ''
 
     def _jacobian(self, name, scenes, poses):
         """
-        Return the start of d holding / d travel (2, 2) N/mm: the kinematic wheel rates.
+        Return the start of d holding / d travel (n, n) N/mm: the kinematic wheel rates.
 
         The holding force (+ = up, doc/kc.md) is what the springs leave: a wheel further in
         bump is pushed down harder by them, so less is left to hold up: it grows by the
@@ -211,7 +231,7 @@ class Loads:
                              for j, e in enumerate(scene.elements) if e.has_rate))
         jac = np.diag(rates)
         data = self.data.axles[name]
-        if data.bar is not None:
+        if data.bar is not None and len(poses) == 2:
             values = bar_state(self.axles[name], data.bar,
                                np.array([p.centre for p in poses]),
                                np.array([p.rotation for p in poses]))
