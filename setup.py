@@ -23,6 +23,8 @@ setup(
          glob('config/*.yaml') + glob('config/*.xml') + glob('config/*.json')),
         ('share/' + package_name + '/config/scenes', glob('config/scenes/*.yaml')),
         ('share/' + package_name + '/config/vehicles', glob('config/vehicles/*.yaml')),
+        ('share/' + package_name + '/config/vehicles/demo_vehicle_loads',
+         glob('config/vehicles/demo_vehicle_loads/*.yaml')),
         ('share/' + package_name + '/config/stress', glob('config/stress/*.yaml')),
         ('share/' + package_name + '/config/interfaces', glob('config/interfaces/*.txt')),
         ('share/' + package_name + '/config/interfaces/tf2_msgs',

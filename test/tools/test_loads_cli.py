@@ -109,7 +109,8 @@ def test_a_rear_corner_is_what_linkage_kc_gives_at_its_travel_under_its_load(loa
     def text(values):
         return ','.join(repr(float(v)) for v in values)
 
-    done = subprocess.run([KC, 'demo_rear_bushings', '--travel', repr(corner.travel_mm),
+    scene = Path(load_vehicle(VEHICLE).source).parent / VEHICLE / 'rear.yaml'
+    done = subprocess.run([KC, str(scene), '--travel', repr(corner.travel_mm),
                            '--load', text(load.force_n), '--at', 'cp', '--moment',
                            text(load.moment_nm)], capture_output=True, text=True, timeout=300)
     assert done.returncode == 0, done.stderr
