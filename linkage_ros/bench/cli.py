@@ -43,7 +43,7 @@ EPILOG = """examples:
   linkage-bench vehicle demo_vehicle --rounds 3
   linkage-bench kc double_wishbone_bushings --travel -40:40:20 --rounds 5
   linkage-bench statics five_link_bushings --commands 200 --rounds 3
-  linkage-bench loads demo_vehicle_bushings --rounds 1
+  linkage-bench loads demo_vehicle_loads --rounds 1
 
 exit status: as the program timed; """ + EXIT_STATUS
 

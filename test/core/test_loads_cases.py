@@ -135,7 +135,7 @@ def test_a_corner_of_a_case_names_a_vehicle_corner_or_is_refused_when_solved(tmp
         keys = LOADS.corner_keys(case)
     except LinkageError as exc:
         assert name not in ('front_left', 'front_right', 'rear_left', 'rear_right')
-        assert str(exc) == (f'case c: corners.{name}: demo_vehicle_bushings has no such corner '
+        assert str(exc) == (f'case c: corners.{name}: demo_vehicle_loads has no such corner '
                             '(corners: front_left, front_right, rear_left, rear_right)')
         return
     assert keys == {name: name}
@@ -147,7 +147,7 @@ LOADS = None
 def setup_module():
     """Prepare the vehicle once (its setup sheet): the corner names are checked against it."""
     global LOADS
-    LOADS = Loads(load_vehicle('demo_vehicle_bushings'))
+    LOADS = Loads(load_vehicle('demo_vehicle_loads'))
 
 
 scalars = (st.none() | st.booleans() | st.integers(-10**400, 10**400) | st.floats()

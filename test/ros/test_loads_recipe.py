@@ -42,8 +42,8 @@ def request(name, corner):
 def test_a_load_case_is_answered_by_the_nodes_corners_as_the_core_solves_it(
         node_process, localhost_context, localhost_executor):
     import rclpy
-    answer = Loads(load_vehicle('demo_vehicle_bushings')).solve(built_in_cases()['braking'])
-    node_process('-p', 'vehicle:=demo_vehicle_bushings', '-p', 'tf:=false')
+    answer = Loads(load_vehicle('demo_vehicle_loads')).solve(built_in_cases()['braking'])
+    node_process('-p', 'vehicle:=demo_vehicle_loads', '-p', 'tf:=false')
     node = rclpy.create_node('loads_case', context=localhost_context, enable_rosout=False,
                              start_parameter_services=False)
     localhost_executor.add_node(node)
@@ -68,6 +68,6 @@ def test_a_load_case_is_answered_by_the_nodes_corners_as_the_core_solves_it(
         got = served[name]
         assert got.status == Status.OK, got.status_text
         # the node's corner has no drop link: the vehicle's corner scene, the same load
-        alone = solve_loaded(load_vehicle('demo_vehicle_bushings').corners[name],
+        alone = solve_loaded(load_vehicle('demo_vehicle_loads').corners[name],
                              corner.travel_mm, corner.load)
         assert math.degrees(got.toe) == pytest.approx(alone.toe_deg, abs=1e-9)

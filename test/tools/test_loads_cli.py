@@ -22,13 +22,13 @@ import numpy as np
 import pytest
 import yaml
 
-VEHICLE = 'demo_vehicle_bushings'
+VEHICLE = 'demo_vehicle_loads'
 KC = str(Path(sys.executable).parent / 'linkage-kc')
 
 
 @pytest.fixture(scope='module')
 def loads():
-    """Return the Loads of demo_vehicle_bushings (its setup sheet, once)."""
+    """Return the Loads of demo_vehicle_loads (its setup sheet, once)."""
     return Loads(load_vehicle(VEHICLE))
 
 
@@ -162,7 +162,7 @@ def mistakes(tmp_path):
                                            'front_left.force_n: 2000000.0 is outside -1e+06 '
                                            'to 1e+06')
     yield [VEHICLE, '--cases', str(nowhere)], ('linkage-loads: case c: corners.middle: '
-                                               'demo_vehicle_bushings has no such corner')
+                                               'demo_vehicle_loads has no such corner')
     yield [VEHICLE, '-o', str(vehicle)], f'linkage-loads: -o: {vehicle} is the input'
     yield [str(no_mass)], f'linkage-loads: {no_mass}: no mass block'
     yield [VEHICLE, '--table', 'nope'], 'linkage-loads: error: argument --table: invalid choice'
