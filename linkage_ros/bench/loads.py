@@ -21,6 +21,10 @@ import time
 
 import numpy as np
 
+from ..cli import fail
+from ..core.base import LinkageError
+from ..tools.loads import parse_args, PROG, request
+
 SCALES = (1, 10, 100)
 
 
@@ -79,3 +83,13 @@ def benchmark(loads, cases, rounds, scales=SCALES):
     if failed:
         print(f'linkage-bench loads: {failed} cases with a corner not solved', file=sys.stderr)
     return 1 if failed else 0
+
+
+def main(argv: list[str], rounds: int) -> int:
+    """Time the cases linkage-loads's arguments ask for over rounds: 0, 1 if one fails, 2."""
+    args = parse_args(argv)
+    try:
+        loads, cases = request(args)
+    except LinkageError as exc:
+        return fail(PROG, exc)
+    return benchmark(loads, cases, rounds)

@@ -14,10 +14,11 @@ doc/loads.md. The table goes to stdout (or -o), progress and notes to stderr.
 
 import sys
 
-from ..cli import (check_outputs, counted, EXIT_STATUS, fail, Parser, plot_problem, program,
-                   warn, whole_file)
+from ..cli import (check_plot, check_table, counted, EXIT_STATUS, fail, Parser, program,
+                   table_status, warn)
 from ..core.base import LinkageError
-from ..core.model import load_vehicle, SceneError
+from ..core.model import load_vehicle, Target
+from ..outputs import check_outputs, write_table
 
 PROG = 'linkage-loads'
 TABLES = ('corners', 'pickups', 'members', 'summary')
@@ -48,10 +49,10 @@ cases (built in, config/loads/cases.yaml; doc/loads.md gives their sources): sta
   -1e5 to 1e5 N m; at most 1000 cases; names of ASCII letters, digits, _ and -.
 
 examples:
-  linkage-loads demo_vehicle_bushings
-  linkage-loads demo_vehicle_bushings --table summary -o brackets.csv
-  linkage-loads demo_vehicle_bushings --case bump --case cornering --table corners
-  linkage-loads demo_vehicle_bushings --cases my_cases.yaml -o loads.parquet --plot loads.png
+  linkage-loads demo_vehicle_loads
+  linkage-loads demo_vehicle_loads --table summary -o brackets.csv
+  linkage-loads demo_vehicle_loads --case bump --case cornering --table corners
+  linkage-loads demo_vehicle_loads --cases my_cases.yaml -o loads.parquet --plot loads.png
 
 The vehicle needs the setup sheet's mass block and tyre rates, and a wheel_radius and a
 spring with a rate in every corner. Timing: linkage-bench loads.
@@ -64,7 +65,7 @@ line names the case, the corner and why; the rest is written); """ + EXIT_STATUS
 def parse_args(argv):
     """Read the command line; a mistake exits with one line and status 2."""
     parser = Parser(PROG, __doc__, EPILOG)
-    parser.add_argument('vehicle', help='bundled vehicle name (e.g. demo_vehicle_bushings) or '
+    parser.add_argument('vehicle', help='bundled vehicle name (e.g. demo_vehicle_loads) or '
                         'path to a vehicle YAML file with masses')
     parser.add_argument('--case', action='append', metavar='NAME',
                         help='solve this case only (repeat, or NAME,NAME); default: all')
@@ -95,17 +96,6 @@ def chosen_cases(args):
     return {n: cases[n] for n in dict.fromkeys(names)}
 
 
-def check_parquet(path):
-    """Raise LinkageError if -o asks for Parquet and pyarrow is missing."""
-    from ..study.tables import is_parquet
-    if is_parquet(path):
-        try:
-            import pyarrow.parquet  # noqa: F401 (only whether it is there)
-        except ImportError:
-            raise LinkageError('-o', 'a .parquet table needs the Python package pyarrow, '
-                               "which is not installed: pip install -e '.[map]'") from None
-
-
 def solve_all(loads, cases):
     """Solve every case in turn, saying each on stderr; return the CaseAnswers."""
     from ..core.loads import describe, tables
@@ -129,67 +119,51 @@ def table(answers, name):
     return tables.TABLES[name], [row for a in answers for row in make(a)]
 
 
-def write(path, columns, rows):
-    """Write the table to path (CSV, or Parquet by its suffix), whole or not at all; stdout."""
-    from ..study.tables import is_parquet, write_csv, write_parquet
-    if not path:
-        write_csv(sys.stdout, columns, rows)
-        sys.stdout.flush()
-    elif is_parquet(path):
-        with whole_file(path, 'wb', suffix='.parquet') as stream:
-            write_parquet(stream, columns, rows)
-    else:
-        with whole_file(path, newline='') as stream:
-            write_csv(stream, columns, rows)
-
-
 def failures(answers):
     """Return one line per corner that is not solved: case, corner, status and why."""
     return [f'{a.case.name}: {c.corner}: {c.status.name}: {c.message}'
             for a in answers for c in a.corners.values() if c.status.name != 'OK']
 
 
-@program(PROG)
-def main(argv: list[str] | None = None, rounds: int = 0) -> int:
+def request(args):
     """
-    Run linkage-loads: 0 when every case is solved, 1 if a corner is not, 2 for a mistake.
+    Return what parsed arguments ask to solve: (Loads, {name: LoadCase}).
 
-    rounds > 0 times the cases against one loaded solve per corner instead (linkage-bench
-    loads).
+    Raises LinkageError (a SceneError is one) for a vehicle or cases file that does not load,
+    a vehicle without a setup sheet, an output that cannot be written, or a case the vehicle
+    cannot take (its corners and shares, checked for every case before any solving).
     """
+    vehicle = load_vehicle(args.vehicle)
+    cases = chosen_cases(args)
+    inputs = Target(vehicle, vehicle.corners).files + ((args.cases,) if args.cases else ())
+    check_outputs((('-o', args.output), ('--plot', args.plot)), inputs)
+    check_plot(args.plot)
+    check_table(args.output)
+    from ..core.loads import sheet_problem
+    problem = sheet_problem(vehicle)
+    if problem:
+        raise LinkageError(vehicle.source, problem)
+    warn(PROG, vehicle.warnings)
+    from ..core.warmup import compile_if_cold
+    compile_if_cold(PROG, statics=True)   # every case is loaded solves
+    from ..core.loads import Loads, tyre_loads
+    loads = Loads(vehicle)
+    for case in cases.values():   # every case's corners and shares, before any solving
+        tyre_loads(loads.data, case, loads.corner_keys(case))
+    return loads, cases
+
+
+@program(PROG)
+def main(argv: list[str] | None = None) -> int:
+    """Run linkage-loads: 0 when every case is solved, 1 if a corner is not, 2 for a mistake."""
     args = parse_args(argv)
     try:
-        vehicle = load_vehicle(args.vehicle)
-        cases = chosen_cases(args)
-        outputs = [(o, p) for o, p in (('-o', args.output), ('--plot', args.plot)) if p]
-        check_outputs(outputs, [vehicle.source] + ([args.cases] if args.cases else []))
-        check_parquet(args.output)
-        from ..core.loads import sheet_problem
-        problem = sheet_problem(vehicle)
-        if problem:
-            raise LinkageError(vehicle.source, problem)
-    except (SceneError, LinkageError) as exc:
-        return fail(PROG, exc)
-    warn(PROG, vehicle.warnings)
-    problem = args.plot and plot_problem(args.plot)
-    if problem:
-        return fail(PROG, f'--plot: {problem}')
-    from ..core.warmup import compile_if_cold
-    compile_if_cold(PROG)
-    from ..core.loads import Loads
-    try:
-        loads = Loads(vehicle)
-        from ..core.loads import tyre_loads
-        for case in cases.values():   # every case's corners and shares, before any solving
-            tyre_loads(loads.data, case, loads.corner_keys(case))
-        if rounds:
-            from ..bench.loads import benchmark
-            return benchmark(loads, cases, rounds)
+        loads, cases = request(args)
         answers = solve_all(loads, cases)
     except LinkageError as exc:
         return fail(PROG, exc)
     columns, rows = table(answers, args.table)
-    write(args.output, columns, rows)
+    status = table_status(PROG, write_table(args.output, columns, rows), 'row')
     if args.plot:
         from .loads_plot import plot_loads
         plot_loads(loads, answers, args.plot)
@@ -200,6 +174,8 @@ def main(argv: list[str] | None = None, rounds: int = 0) -> int:
     if lost:
         print(f'{PROG}: {counted(len(lost), "corner")} not solved', file=sys.stderr)
         return 1
+    if status:
+        return status
     print(f'{PROG}: done', file=sys.stderr)
     return 0
 

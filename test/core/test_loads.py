@@ -4,7 +4,7 @@
 """
 Load cases on a vehicle (core/loads, doc/loads.md): the checks of issue 39.
 
-The seven built-in cases on demo_vehicle_bushings, each checked against an independent route:
+The seven built-in cases on demo_vehicle_loads, each checked against an independent route:
 the vehicle's equilibrium (its masses from the vehicle file), m a h / L and the setup sheet's
 lateral paths, each corner's own statics solved afresh, the holding force, the virtual work
 of kinematic solves, the bar's energy.
@@ -19,7 +19,7 @@ from linkage_ros.core.loads.bar import bar_state, DROP_LINK
 from linkage_ros.core.loads.corner import corner_load, kinematic_pose
 from linkage_ros.core.loads.transfer import ground_moment
 from linkage_ros.core.measure import element_values
-from linkage_ros.core.model import load_vehicle
+from linkage_ros.core.model import link_fraction, load_vehicle
 from linkage_ros.core.solve import Continuation
 from linkage_ros.core.solve.kernel import LENGTH
 from linkage_ros.core.solve.mechanism import compile_scene, COMPILED
@@ -28,13 +28,13 @@ from linkage_ros.core.vehicle import G
 import numpy as np
 import pytest
 
-VEHICLE = 'demo_vehicle_bushings'
+VEHICLE = 'demo_vehicle_loads'
 CASES = list(built_in_cases())
 
 
 @pytest.fixture(scope='module')
 def solved():
-    """Solve the seven built-in cases on demo_vehicle_bushings: (Loads, {case: CaseAnswer})."""
+    """Solve the seven built-in cases on demo_vehicle_loads: (Loads, {case: CaseAnswer})."""
     loads = Loads(load_vehicle(VEHICLE))
     return loads, {name: loads.solve(case) for name, case in built_in_cases().items()}
 
@@ -333,14 +333,24 @@ def test_a_rigid_corners_link_forces_are_the_virtual_work_of_kinematic_solves(co
         base = mech.equations[row, 4:7]
         pull = (base - joint) / np.linalg.norm(base - joint)   # tension pulls to the base
         carrier[con.name] = carrier.get(con.name, 0.0) + rows[row] * pull
-        if con.type == 'sphere':
+        carried = [link_fraction(e, scene.constraints) for e in scene.elements
+                   if e.mount.kind == 'link' and e.mount.constraint == int(point)
+                   and e.has_rate]
+        if con.type == 'sphere' and carried:
+            # a link that carries springs or stops at P, a fraction t from its body end B:
+            # the segment B-P holds the body end's tension, P-C the carrier end's, and a
+            # row length change dl stretches them by t dl and (1 - t) dl
+            t = carried[0]
+            assert all(f == t for f in carried)   # one point on the link here
+            forces = loaded.link_forces_n
+            assert t * forces[f'{con.name}_body_end'] + (1 - t) * forces[
+                f'{con.name}_carrier_end'] == pytest.approx(rows[row], rel=1e-6,
+                                                              abs=1e-6 * scale)
+        elif con.type == 'sphere':
             assert loaded.link_forces_n[con.name] == pytest.approx(rows[row], rel=1e-6,
                                                                    abs=1e-6 * scale)
-            carries_spring = any(e.mount.kind == 'link' and e.mount.constraint == int(point)
-                                 for e in scene.elements)
-            if not carries_spring:
-                assert loaded.body_forces_n[f'{con.name}_base'] == pytest.approx(
-                    -rows[row] * pull, rel=1e-6, abs=1e-6 * scale)
+            assert loaded.body_forces_n[f'{con.name}_base'] == pytest.approx(
+                -rows[row] * pull, rel=1e-6, abs=1e-6 * scale)
     for name, force in carrier.items():
         # a member that carries a spring, a stop or a drop link passes part of it to the
         # carrier beside its rows' forces (the statics' split, doc/kc.md): not a row's alone

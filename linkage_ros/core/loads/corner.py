@@ -21,8 +21,8 @@ import numpy as np
 
 from ..measure.alignment import patch_offset
 from ..solve.mechanism import compile_scene
-from ..statics.forces import _pivots
-from ..statics.loaded import Load, solve_loaded
+from ..statics import Load, solve_loaded
+from ..statics.forces import _rigid_arm
 
 if TYPE_CHECKING:
     from .transfer import CornerTyre
@@ -104,4 +104,11 @@ def pivot_forces(points: np.ndarray, loads: list) -> np.ndarray:
     The statics' rule (core/statics/forces.py): the forces and the moments across the axis
     balanced, the share along the axis equal.
     """
-    return np.array(_pivots(np.asarray(points, dtype=float), loads))
+    points = np.ascontiguousarray(points, dtype=float)
+    total = np.zeros(6)   # the force (3,) N and its moment about points[0] (3,) N mm
+    for point, force in loads:
+        total[:3] += force
+        total[3:] += np.cross(np.asarray(point, dtype=float) - points[0], force)
+    out = np.zeros((2, 3))
+    _rigid_arm(points, total, out[0], out[1])
+    return out
