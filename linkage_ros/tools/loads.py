@@ -24,18 +24,18 @@ PROG = 'linkage-loads'
 TABLES = ('corners', 'pickups', 'members', 'summary')
 
 EPILOG = """tables (--table; units in the column names, signs in doc/quantities.md):
-  pickups   (default) a row per case, corner, pickup and end: x_mm, y_mm, z_mm, fx_n, fy_n,
-            fz_n, force_magnitude_n, mx_nm, my_nm, mz_nm; end body: the force on the body at
+  pickups   (default) a row per case, corner, pickup and end: x_mm, y_mm, z_mm, fx_N, fy_N,
+            fz_N, force_magnitude_N, mx_Nm, my_Nm, mz_Nm; end body: the force on the body at
             <link>_base, <arm>_axis0/_axis1/_centre, <strut>_top, <spring>_body; end carrier:
             the force on the carrier at <constraint>_carrier; end bar: on an anti-roll bar
   corners   a row per case and corner: status, travel_mm, camber_deg, toe_deg,
-            wheel_center_x/y/z_mm, tyre_fx/fy/fz_n and tyre_mx/my/mz_nm (the ground's wrench
-            about the contact patch), holding_force_n (0 at the loaded ride height)
+            wheel_center_x/y/z_mm, tyre_fx/fy/fz_N and tyre_mx/my/mz_Nm (the ground's wrench
+            about the contact patch), holding_force_N (0 at the loaded ride height)
   members   a row per case, corner and member: kind (link, drop_link, spring, stop,
-            bushing, bar), force_n (+ = tension for links, + = compressed for springs and
-            stops), a bushing's deflection_mm and its x, y, z, a bar's torque_nm, twist_deg
-  summary   a row per corner, pickup and end: the largest force_magnitude_n over the cases,
-            the case, its fx/fy/fz_n and where
+            bushing, bar), force_N (+ = tension for links, + = compressed for springs and
+            stops), a bushing's deflection_mm and its x, y, z, a bar's torque_Nm, twist_deg
+  summary   a row per corner, pickup and end: the largest force_magnitude_N over the cases,
+            the case, its fx/fy/fz_N and where
 
 cases (built in, config/loads/cases.yaml; doc/loads.md gives their sources): static (1 g),
   bump (3 g vertical), braking (1 g), cornering (1 g to the left), traction (0.5 g on the

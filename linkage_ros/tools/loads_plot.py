@@ -51,7 +51,7 @@ def plot_bars(ax, answers, corner):
                 label=case, color=f'C{k}')
     ax.set_yticks(y, pickups, fontsize=8)
     ax.invert_yaxis()
-    ax.set_xlabel('force on the body, kN (force_magnitude_n / 1000)', fontsize=9)
+    ax.set_xlabel('force on the body, kN (force_magnitude_N / 1000)', fontsize=9)
     ax.set_title(f'{corner}: force at each body pickup, by case', fontsize=10)
     ax.grid(True, axis='x', alpha=0.3)
 

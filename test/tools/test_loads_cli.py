@@ -68,8 +68,8 @@ def test_a_parquet_table_holds_what_the_csv_holds(tmp_path, capsys):
     table = pq.read_table(parquet_path).to_pydict()
     assert list(table) == list(tables.MEMBER_COLUMNS)
     assert table['member'] == [r['member'] for r in rows]
-    np.testing.assert_allclose(np.array(table['force_n'], dtype=float),
-                               [float(r['force_n']) for r in rows], rtol=1e-9, atol=1e-6)
+    np.testing.assert_allclose(np.array(table['force_N'], dtype=float),
+                               [float(r['force_N']) for r in rows], rtol=1e-9, atol=1e-6)
     kinds = dict(zip(table['member'], table['kind']))
     assert kinds['tie_rod'] == 'link' and kinds['bump_stop'] == 'stop'
     assert kinds['arb_drop_link'] == 'drop_link' and kinds['anti_roll_bar'] == 'bar'
@@ -83,14 +83,14 @@ def test_the_summary_is_the_largest_pickup_force_over_the_cases(tmp_path, capsys
     capsys.readouterr()
     largest = {}
     for r in read(pickups):
-        key, size = (r['corner'], r['pickup'], r['end']), float(r['force_magnitude_n'])
+        key, size = (r['corner'], r['pickup'], r['end']), float(r['force_magnitude_N'])
         if key not in largest or size > largest[key][0]:
             largest[key] = (size, r['case'])
     rows = read(summary)
     assert len(rows) == len(largest)
     for r in rows:
         size, case = largest[(r['corner'], r['pickup'], r['end'])]
-        assert float(r['force_magnitude_n']) == pytest.approx(size, rel=1e-9)
+        assert float(r['force_magnitude_N']) == pytest.approx(size, rel=1e-9)
         assert r['case'] == case
 
 
@@ -122,7 +122,7 @@ def test_a_rear_corner_is_what_linkage_kc_gives_at_its_travel_under_its_load(loa
     assert row['toe_deg'] == pytest.approx(got.toe_deg, rel=1e-9)
     assert row['wheel_center_x_mm'] - 1400.0 == pytest.approx(got.wheel_center_mm[0],
                                                               abs=1e-6)
-    assert abs(row['holding_force_n']) <= 1e-6 + 1e-9 * scale
+    assert abs(row['holding_force_N']) <= 1e-6 + 1e-9 * scale
     for name, force in {**got.link_forces_n, **got.spring_forces_n}.items():
         assert row[f'{name}_force_n'] == pytest.approx(force, rel=1e-9, abs=1e-9 * scale)
 

@@ -30,16 +30,16 @@ if TYPE_CHECKING:
     from .answer import CaseAnswer, CornerAnswer
 
 CORNER_COLUMNS = ('case', 'corner', 'status', 'travel_mm', 'camber_deg', 'toe_deg',
-                  'wheel_center_x_mm', 'wheel_center_y_mm', 'wheel_center_z_mm', 'tyre_fx_n',
-                  'tyre_fy_n', 'tyre_fz_n', 'tyre_mx_nm', 'tyre_my_nm', 'tyre_mz_nm',
-                  'holding_force_n')
-PICKUP_COLUMNS = ('case', 'corner', 'pickup', 'end', 'x_mm', 'y_mm', 'z_mm', 'fx_n', 'fy_n',
-                  'fz_n', 'force_magnitude_n', 'mx_nm', 'my_nm', 'mz_nm')
-MEMBER_COLUMNS = ('case', 'corner', 'member', 'kind', 'force_n', 'deflection_mm',
-                  'deflection_x_mm', 'deflection_y_mm', 'deflection_z_mm', 'torque_nm',
+                  'wheel_center_x_mm', 'wheel_center_y_mm', 'wheel_center_z_mm', 'tyre_fx_N',
+                  'tyre_fy_N', 'tyre_fz_N', 'tyre_mx_Nm', 'tyre_my_Nm', 'tyre_mz_Nm',
+                  'holding_force_N')
+PICKUP_COLUMNS = ('case', 'corner', 'pickup', 'end', 'x_mm', 'y_mm', 'z_mm', 'fx_N', 'fy_N',
+                  'fz_N', 'force_magnitude_N', 'mx_Nm', 'my_Nm', 'mz_Nm')
+MEMBER_COLUMNS = ('case', 'corner', 'member', 'kind', 'force_N', 'deflection_mm',
+                  'deflection_x_mm', 'deflection_y_mm', 'deflection_z_mm', 'torque_Nm',
                   'twist_deg')
-SUMMARY_COLUMNS = ('corner', 'pickup', 'end', 'force_magnitude_n', 'case', 'fx_n', 'fy_n',
-                   'fz_n', 'x_mm', 'y_mm', 'z_mm')
+SUMMARY_COLUMNS = ('corner', 'pickup', 'end', 'force_magnitude_N', 'case', 'fx_N', 'fy_N',
+                   'fz_N', 'x_mm', 'y_mm', 'z_mm')
 TABLES = {'corners': CORNER_COLUMNS, 'pickups': PICKUP_COLUMNS, 'members': MEMBER_COLUMNS,
           'summary': SUMMARY_COLUMNS}
 NAN3 = (math.nan,) * 3
