@@ -17,8 +17,8 @@ import math
 
 import numpy as np
 
-from ..cli import save_figure
 from ..core.loads import tables
+from ..outputs import save_figure
 
 ARROW_MM = 400.0   # the longest arrow, mm of the drawing
 

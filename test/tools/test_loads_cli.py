@@ -28,7 +28,7 @@ KC = str(Path(sys.executable).parent / 'linkage-kc')
 
 @pytest.fixture(scope='module')
 def loads():
-    """Return the Loads of demo_vehicle_loads (its setup sheet, once)."""
+    """Return the Loads of demo_vehicle_loads: its setup sheet, prepared once."""
     return Loads(load_vehicle(VEHICLE))
 
 
@@ -123,8 +123,10 @@ def test_a_rear_corner_is_what_linkage_kc_gives_at_its_travel_under_its_load(loa
     assert row['wheel_center_x_mm'] - 1400.0 == pytest.approx(got.wheel_center_mm[0],
                                                               abs=1e-6)
     assert abs(row['holding_force_N']) <= 1e-6 + 1e-9 * scale
-    for name, force in {**got.link_forces_n, **got.spring_forces_n}.items():
-        assert row[f'{name}_force_n'] == pytest.approx(force, rel=1e-9, abs=1e-9 * scale)
+    columns = {**{f'{name}_tension_N': f for name, f in got.link_forces_n.items()},
+               **{f'{name}_force_N': f for name, f in got.spring_forces_n.items()}}
+    for column, force in columns.items():
+        assert row[column] == pytest.approx(force, rel=1e-9, abs=1e-9 * scale)
 
 
 def test_a_wheel_that_lifts_off_is_status_1_naming_the_case_and_corner(tmp_path, capsys):

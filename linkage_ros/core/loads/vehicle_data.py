@@ -19,8 +19,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..base.errors import LinkageError
-from ..vehicle import setup_sheet
-from ..vehicle.sheet import unsprung_heights, whole_cg_height
+from ..vehicle.sheet import setup_sheet, unsprung_heights, whole_cg_height
 
 if TYPE_CHECKING:
     from ..model.anti_roll_bar import AntiRollBar
