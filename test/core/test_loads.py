@@ -16,14 +16,15 @@ import math
 from linkage_ros.core.base import LinkageError, Status
 from linkage_ros.core.loads import built_in_cases, LoadCase, Loads, tables
 from linkage_ros.core.loads.bar import bar_state, DROP_LINK
-from linkage_ros.core.loads.corner import corner_load, kinematic_pose
+from linkage_ros.core.loads.corner import corner_load, CornerStatics, kinematic_pose, \
+    solve_corner
 from linkage_ros.core.loads.transfer import ground_moment
 from linkage_ros.core.measure import element_values
 from linkage_ros.core.model import link_fraction, load_vehicle
 from linkage_ros.core.solve import Continuation
 from linkage_ros.core.solve.kernel import LENGTH
 from linkage_ros.core.solve.mechanism import compile_scene, COMPILED
-from linkage_ros.core.statics import solve_loaded
+from linkage_ros.core.statics import Load, solve_loaded
 from linkage_ros.core.vehicle import G
 import numpy as np
 import pytest
@@ -173,6 +174,43 @@ def test_every_corners_pickups_balance_its_tyre_load_and_hold_nothing(solved, na
 def close(a, b, scale):
     """Assert a == b to 1e-9 relative, 1e-9 of scale where near zero."""
     assert np.allclose(a, b, rtol=1e-9, atol=1e-9 * scale), (a, b)
+
+
+def test_each_corner_s_statics_is_made_once_and_serves_every_case(solved):
+    """One CornerStatics per corner, kept by the Loads, made at the first case's first solve."""
+    loads, _ = solved
+    kept = dict(loads.statics)
+    assert sorted(kept) == sorted(loads.vehicle.corners)
+    loads.solve(built_in_cases()['braking'])
+    assert all(loads.statics[c] is kept[c] for c in kept)
+
+
+def test_a_drop_link_written_in_place_is_the_scene_with_that_drop_link():
+    """
+    Solve a barred corner for drop links that change between solves: as each one's own scene.
+
+    CornerStatics writes the drop link's end E and force into one Statics' arrays; each
+    answer equals solve_corner on the scene with that drop link (bar.drop_element), solved
+    alone, to 1e-9 relative (both converge to 1e-11 mm: 1e-7 N at 1e4 N/mm). Ends 20 mm
+    apart and forces of both signs, so that a stale E or force would show.
+    """
+    vehicle = load_vehicle(VEHICLE)
+    scene = vehicle.corners['front_left']
+    side = vehicle.axles.axles['front'].anti_roll_bar.sides[0]
+    statics = CornerStatics(scene, side)
+    load = Load((0.0, 2000.0, 4000.0), 'cp', (0.0, 0.0, 0.0))
+    for travel, shift, tension in ((0.0, 0.0, 800.0), (10.0, 20.0, -1500.0),
+                                   (-5.0, -20.0, 300.0)):
+        end = side.arm_end + np.array([0.0, 0.0, shift])
+        got = statics.solve(travel, load, end, tension)
+        alone = solve_corner(statics.with_drop(end, tension), travel, load)
+        assert got.status == alone.status == Status.OK
+        assert alone.spring_forces_n[DROP_LINK] == pytest.approx(-tension, rel=1e-12)
+        scale = max(abs(f) for f in load.force_n)
+        close(got.wheel_center_mm, alone.wheel_center_mm, 1000.0)
+        close(got.holding_force_n, alone.holding_force_n, scale)
+        for key, force in alone.body_forces_n.items():
+            close(got.body_forces_n[key], force, scale)
 
 
 @pytest.mark.parametrize('name', CASES)

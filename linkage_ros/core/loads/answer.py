@@ -16,15 +16,15 @@ N, N m, vehicle frame.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 import math
 from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .bar import bar_state, drop_element, DROP_LINK
+from .bar import bar_state, DROP_LINK
 from .cases import resolve_corner
-from .corner import corner_load, kinematic_pose, pivot_forces, solve_corner
+from .corner import corner_load, CornerStatics, kinematic_pose, pivot_forces
 from .ride_height import find_travels
 from .transfer import tyre_loads
 from .vehicle_data import LoadsVehicle, prepare
@@ -96,6 +96,7 @@ class Loads:
         self.vehicle = self.data.vehicle
         self.axles = {name: axle_of(self.vehicle, name) for name in self.data.axles}
         self.kinematics = {c: Continuation(s) for c, s in self.vehicle.corners.items()}
+        self.statics = {}   # {corner: CornerStatics}, made at its first solve, then reused
 
     def corner_keys(self, case: LoadCase) -> dict[str, str]:
         """Return {case corner key: vehicle corner}; LinkageError for a key naming none."""
@@ -168,7 +169,8 @@ class Loads:
         poses, results, state = found.payload
         answers = {}
         for j, (corner, k) in enumerate(zip(corners, group)):
-            scene, load, loaded, tension = results[j]
+            statics, load, loaded, tension, end = results[j]
+            scene = statics.scene if end is None else statics.with_drop(end, tension)
             answers[corner] = CornerAnswer(corner, Status.OK, 'ok', loads[k],
                                            float(found.travel_mm[j]), loaded, load, poses[j],
                                            scene, tension)
@@ -203,18 +205,22 @@ class Loads:
                             np.array([p.rotation for p in poses]))
         results, held = [], np.empty(len(group))
         for j, (k, pose) in enumerate(zip(group, poses)):
-            scene, tension = scenes[k], math.nan
-            if bar is not None:
-                tension = float(bar.tension_n[k])
-                element = drop_element(data.bar.sides[k], bar.ends[k], tension)
-                scene = replace(scene, elements=scene.elements + (element,))
+            statics = self._statics(corners[j], scenes[k], data.bar.sides[k] if bar else None)
+            end, tension = (bar.ends[k], float(bar.tension_n[k])) if bar else (None, math.nan)
             load = corner_load(loads[k], pose, drops[k])
-            loaded = solve_corner(scene, z[j], load)
+            loaded = statics.solve(z[j], load, end, tension)
             if loaded.status != Status.OK:
                 return None, None, f'{corners[j]}: {loaded.message}'
             held[j] = loaded.holding_force_n
-            results.append((scene, load, loaded, tension))
+            results.append((statics, load, loaded, tension, end))
         return held, (poses, results, bar), ''
+
+    def _statics(self, corner, scene, side):
+        """Return the corner's CornerStatics (with its bar's drop link, side), made once."""
+        statics = self.statics.get(corner)
+        if statics is None:
+            statics = self.statics[corner] = CornerStatics(scene, side)
+        return statics
 
     def _jacobian(self, name, scenes, poses):
         """

@@ -4,28 +4,37 @@
 """
 The one place where the load cases call the statics (core/statics): a corner under a load.
 
+    CornerStatics(scene, side).solve(travel_mm, load, end, tension) -> Loaded
+                                                         a corner's Statics, made once
     solve_corner(scene, travel_mm, load) -> Loaded       one loaded equilibrium, travel held
     corner_load(tyre, pose, ...) -> Load                 a tyre load as the statics takes it
     bushing_deflections(scene, loaded) -> {key: (3,)}    each bushing's deflection, mm
     pivot_forces(points, loads) -> (2, 3)                a rigid revolute's two pivot forces
 
-Switching to a Statics object (one solve per command, continued from the last) changes
-solve_corner only. N, mm, N m, vehicle frame.
+A corner's CornerStatics is one statics.Statics, made once and reused over the ride-height
+iterations and the cases: each solve goes on from the last equilibrium (one compiled call).
+N, mm, N m, vehicle frame.
 """
 
 from __future__ import annotations
 
+from dataclasses import replace
+import math
 from typing import NamedTuple, TYPE_CHECKING
 
 import numpy as np
 
+from .bar import drop_element, DROP_LINK
 from ..measure.alignment import patch_offset
 from ..solve.mechanism import compile_scene
-from ..statics import Load, solve_loaded
 from ..statics.forces import _rigid_arm
+from ..statics.kernel import SPRING, unpack
+from ..statics.loaded import Load
+from ..statics.statics import solve_loaded, Statics
 
 if TYPE_CHECKING:
     from .transfer import CornerTyre
+    from ..model.anti_roll_bar import BarSide
     from ..model.scene import Scene
     from ..statics.loaded import Loaded
 
@@ -49,8 +58,56 @@ def kinematic_pose(scene: Scene, solution) -> KinematicPose:
 
 
 def solve_corner(scene: Scene, travel_mm: float, load: Load) -> Loaded:
-    """Return the loaded equilibrium of a corner at a held travel (mm) under a Load."""
+    """Return the loaded equilibrium of a corner at a held travel (mm) under a Load, alone."""
     return solve_loaded(scene, travel_mm=float(travel_mm), load=load)
+
+
+class CornerStatics:
+    """
+    A corner's statics.Statics, made once and reused: each solve from the last equilibrium.
+
+    side: the corner's anti-roll bar side (model.anti_roll_bar.BarSide), or None. With a bar,
+    the corner carries its drop link as a constant-force spring from the arm's end E (a body
+    point) to its lower end (bar.drop_element), whose E and force change with the travels:
+    solve() writes them into the Statics' packed model in place, where pack() would put them
+    for the scene with_drop(end, tension) (its body end's point and pickup, its table's
+    forces), so that one Statics serves every E and force.
+    """
+
+    def __init__(self, scene: Scene, side: BarSide | None = None) -> None:
+        self.scene, self.side = scene, side
+        if side is not None:   # at design, 1 N until the first solve says
+            scene = self.with_drop(side.arm_end, 1.0)
+        self.statics = Statics(scene)
+        self._drop = None
+        if side is not None:
+            packed = self.statics.packed
+            model = unpack(packed.ints, packed.reals)   # views into the Statics' arrays
+            s = packed.names.springs.index(DROP_LINK)
+            term = [t for t, kind in enumerate(model.t_kind) if kind == SPRING][s]
+            start, stop = model.t_table[term]
+            self._drop = (model.it_x0[term, 0], model.p_point[model.s_body[s]],
+                          model.table[start:stop, 1])
+
+    def with_drop(self, end: np.ndarray, tension: float) -> Scene:
+        """Return the corner's scene with its drop link from end (mm) at tension (N)."""
+        element = drop_element(self.side, end, tension)
+        return replace(self.scene, elements=self.scene.elements + (element,))
+
+    def solve(self, travel_mm: float, load: Load, end: np.ndarray | None = None,
+              tension: float = math.nan) -> Loaded:
+        """
+        Return the loaded equilibrium at a held travel (mm) under a Load.
+
+        With a bar: its drop link from end (3,) mm at tension N (+ = tension), as
+        solve_corner(with_drop(end, tension), travel_mm, load) but from the last equilibrium.
+        """
+        if self._drop is not None:
+            x0, point, forces = self._drop
+            x0[:] = end
+            point[:] = end
+            forces[:] = -tension   # drop_element's table: -tension at every deflection
+        return self.statics.solve(float(travel_mm), load)
 
 
 def corner_load(tyre: CornerTyre, pose: KinematicPose, unsprung_drop_mm: float) -> Load:
