@@ -7,12 +7,13 @@ linkage-bench loads: the time of a load case, beside one loaded solve per corner
     linkage-bench loads VEHICLE [--case NAME ...] [--cases FILE] [--rounds N]
 
 A load case finds each corner's loaded ride height (core/loads: the travels where the holding
-forces are zero, each a loaded solve of the corner's statics) and its forces. Timed at 1x,
-10x and 100x the cases: the cases as given, then each at 10 and 100 load levels (its
-accelerations and its corners' multiples times 0.55 to 1, a vertical load factor v as
-1 + f (v - 1)). Beside each, one loaded solve of every corner at the travel and load found
-(what a case costs at least). The median of N rounds of this process's CPU time, after a
-first solve of the cases (compiling and preparing the vehicle's setup sheet are not timed).
+forces are zero, each a loaded solve of the corner's Statics, which goes on from its last
+equilibrium) and its forces. Timed at 1x, 10x and 100x the cases: the cases as given, then
+each at 10 and 100 load levels (its accelerations and its corners' multiples times 0.55 to
+1, a vertical load factor v as 1 + f (v - 1)). Beside each, one loaded solve of every corner
+alone at the travel and load found (solve_corner: a Statics of its own, from the kinematic
+pose). The median of N rounds of this process's CPU time, after a first solve of the cases
+(compiling and preparing the vehicle's setup sheet are not timed).
 """
 
 from dataclasses import replace
@@ -48,7 +49,7 @@ def scaled(cases, scale):
 
 
 def corner_solves(answers):
-    """Solve every solved corner once more at its travel and load; return how many."""
+    """Solve every solved corner once more, alone, at its travel and load; return how many."""
     from ..core.loads import solve_corner
     count = 0
     for answer in answers:
