@@ -381,9 +381,9 @@ def test_a_rigid_corners_link_forces_are_the_virtual_work_of_kinematic_solves(co
             t = carried[0]
             assert all(f == t for f in carried)   # one point on the link here
             forces = loaded.link_forces_n
-            assert t * forces[f'{con.name}_body_end'] + (1 - t) * forces[
-                f'{con.name}_carrier_end'] == pytest.approx(rows[row], rel=1e-6,
-                                                              abs=1e-6 * scale)
+            both = (t * forces[f'{con.name}_body_end']
+                    + (1 - t) * forces[f'{con.name}_carrier_end'])
+            assert both == pytest.approx(rows[row], rel=1e-6, abs=1e-6 * scale)
         elif con.type == 'sphere':
             assert loaded.link_forces_n[con.name] == pytest.approx(rows[row], rel=1e-6,
                                                                    abs=1e-6 * scale)
