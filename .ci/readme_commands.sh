@@ -130,6 +130,18 @@ pyblock doc/kc.md 'solve_loaded(scene' > kc_snippet.py
 .venv/bin/python kc_snippet.py; echo "rc=$?"; rm kc_snippet.py
 pyblock doc/kc.md "load_vehicle('demo_vehicle_bushings')" > kc_vehicle.py
 .venv/bin/python kc_vehicle.py; echo "rc=$?"; rm kc_vehicle.py
+step 'load cases (doc/loads.md)'
+.venv/bin/linkage-loads demo_vehicle_loads > loads.csv; echo "rc=$?"; head -2 loads.csv
+.venv/bin/linkage-loads demo_vehicle_loads --table summary -o brackets.csv; echo "rc=$?"; head -3 brackets.csv
+.venv/bin/linkage-loads demo_vehicle_loads --case bump,cornering --table corners | cut -d, -f1-5; echo "rc=${PIPESTATUS[0]}"
+.venv/bin/linkage-loads demo_vehicle_loads --table members -o members.parquet --plot loads.png; echo "rc=$?"
+pyblock doc/loads.md 'loads.solve(built_in_cases' > loads_snippet.py
+.venv/bin/python loads_snippet.py; echo "rc=$?"; rm loads_snippet.py
+.venv/bin/suspension_node --ros-args -p vehicle:=demo_vehicle_loads > node_loads.log 2>&1 &
+NODE=$!
+sed -n '/^# loads_case.py/,/^rclpy.try_shutdown()/p' doc/loads.md > loads_case.py
+.venv/bin/python loads_case.py; echo "rc=$?"
+kill -INT $NODE; wait $NODE; echo "node rc=$?"; rm -f loads_case.py
 step studies
 .venv/bin/linkage-study sensitivity five_link --travel -50 0 50 -o five_link_sensitivity.csv; echo "rc=$?"
 .venv/bin/linkage-study tolerance five_link --sigma 0.05 --samples 100000 --travel -50 -25 0 25 50 --plot tolerance.png > tolerance.csv; echo "rc=$?"
@@ -150,6 +162,7 @@ if [ "${LONG:-0}" = 1 ]; then
     .venv/bin/linkage-bench vehicle demo_vehicle --rounds 3 > /dev/null; echo "rc=$?"
     .venv/bin/linkage-bench kc double_wishbone_bushings --travel -40:40:20 --rounds 3; echo "rc=$?"
     .venv/bin/linkage-bench statics --parts; echo "rc=$?"
+    .venv/bin/linkage-bench loads demo_vehicle_loads --rounds 1; echo "rc=$?"
     .venv/bin/linkage-bench accuracy --quick -o bench-report; echo "rc=$?"
     ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST .venv/bin/linkage-bench node --plot node_latency.png > node_bench.csv; echo "rc=$?"
     ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST .venv/bin/linkage-bench node --only vehicle > /dev/null; echo "rc=$?"

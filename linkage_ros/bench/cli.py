@@ -18,11 +18,13 @@ linkage-bench: every benchmark of linkage_ros, one subcommand each.
                                        kinematic solve (kc.py)
     linkage-bench statics [SCENE...]   a loaded solve and the rates per command against a
                                        continuation step, along a sine (statics.py)
+    linkage-bench loads VEHICLE [...]  load cases at 1x, 10x, 100x beside one loaded solve
+                                       per corner (loads.py)
     linkage-bench chrono [FILE...]     import, solve and write Chrono files (chrono.py)
 
-Each subcommand takes the options of the program it times (sweep, axle, map, vehicle, kc:
-linkage-sweep's, ... parsed by that program; SUBCOMMAND --help lists them); those five take
---rounds N too, which linkage-bench reads. The timing is bench's: the programs only turn
+Each subcommand takes the options of the program it times (sweep, axle, map, vehicle, kc,
+loads: linkage-sweep's, ... parsed by that program; SUBCOMMAND --help lists them); those six
+take --rounds N too, which linkage-bench reads. The timing is bench's: the programs only turn
 their options into the work's inputs (their request()), which the benchmark times.
 """
 
@@ -31,7 +33,7 @@ import sys
 from ..cli import EXIT_STATUS, fail, program
 
 PROG = 'linkage-bench'
-ROUNDS = 5   # default --rounds of sweep, axle, map, vehicle and kc
+ROUNDS = 5   # default --rounds of sweep, axle, map, vehicle, kc and loads
 
 EPILOG = """examples:
   linkage-bench accuracy --quick -o bench-report
@@ -41,6 +43,7 @@ EPILOG = """examples:
   linkage-bench vehicle demo_vehicle --rounds 3
   linkage-bench kc double_wishbone_bushings --travel -40:40:20 --rounds 5
   linkage-bench statics five_link_bushings --commands 200 --rounds 3
+  linkage-bench loads demo_vehicle_loads --rounds 1
 
 exit status: as the program timed; """ + EXIT_STATUS
 
@@ -93,7 +96,7 @@ COMMANDS = {'accuracy': _accuracy, 'node': _node, 'soak': _soak,
             'sweep': _timed('sweep', 'sweep'), 'axle': _timed('axle', 'axle'),
             'map': _timed('map', 'map'), 'vehicle': _timed('vehicle', 'sheet'),
             'study': _study, 'replay': _replay, 'kc': _timed('kc', 'kc'), 'chrono': _chrono,
-            'statics': _statics}
+            'statics': _statics, 'loads': _timed('loads', 'loads')}
 
 
 def _rounds(argv, prog):

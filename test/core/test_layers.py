@@ -32,6 +32,7 @@ ALLOWED = {
     'vehicle': {'base', 'model', 'solve', 'measure', 'axle', 'vehicle'},
     'statics': {'base', 'model', 'solve', 'measure', 'statics'},
     'vary': {'base', 'model', 'solve', 'measure', 'vary'},
+    'loads': {'base', 'model', 'solve', 'measure', 'axle', 'vehicle', 'statics', 'loads'},
 }
 
 

@@ -5,7 +5,7 @@
 
 from pathlib import Path
 
-from linkage_ros.core.model import load_vehicle, SceneError
+from linkage_ros.core.model import load_vehicle, SceneError, vehicle_dir
 from linkage_ros.core.solve import sweep
 import numpy as np
 import pytest
@@ -81,8 +81,9 @@ def test_a_corner_scene_that_names_no_scene_file_names_the_vehicle_field(tmp_pat
 @pytest.mark.parametrize('name', ['', 'demo_vehicl', 'config'])
 def test_a_vehicle_that_is_no_file_and_not_bundled_lists_the_bundled_ones(name):
     # '' is said to be empty, as an empty scene name is
+    bundled = ', '.join(sorted(p.stem for p in vehicle_dir().glob('*.yaml')))
     with pytest.raises(SceneError, match=r"^'.*': vehicle: (.* not a bundled vehicle|empty: .*) "
-                       r'\(bundled: demo_vehicle, demo_vehicle_bushings\)$'):
+                       rf'\(bundled: {bundled}\)$'):
         load_vehicle(name)
 
 

@@ -64,6 +64,7 @@ class BarValues(NamedTuple):
     torque: np.ndarray         # (n,) N m, k twist (NaN without a rate)
     roll_moment: np.ndarray    # (n,) N m, the roll moment the bar resists with
     roll_stiffness: np.ndarray   # (n,) N m/deg
+    drop_point: np.ndarray | None = None   # (n, 2, 3) each drop link's lower end D, mm
 
 
 def bar_values(scenes: tuple[Scene, Scene], mechanisms: tuple[Mechanism, Mechanism],
@@ -80,6 +81,7 @@ def bar_values(scenes: tuple[Scene, Scene], mechanisms: tuple[Mechanism, Mechani
     """
     n = len(roll)
     angle, rate, rate2 = (np.empty((n, 2)) for _ in range(3))
+    drop = np.empty((n, 2, 3))
     for k, (scene, mech, side) in enumerate(zip(scenes, mechanisms, bar.sides)):
         poses = pose_batch(mech, np.ascontiguousarray(center[:, k]),
                            np.ascontiguousarray(rotation[:, k]), rack,
@@ -89,6 +91,7 @@ def bar_values(scenes: tuple[Scene, Scene], mechanisms: tuple[Mechanism, Mechani
                                           mount_table(scene, [side.mount]), poses))
         angle[:, k], rate[:, k], rate2[:, k] = arm_angle(bar, side, point, velocity,
                                                          acceleration)
+        drop[:, k] = point
     twist = angle[:, 0] - angle[:, 1]
     half = 0.5 * design_track
     secant2 = 1.0 / np.cos(roll) ** 2
@@ -101,7 +104,7 @@ def bar_values(scenes: tuple[Scene, Scene], mechanisms: tuple[Mechanism, Mechani
         angle=angle, angle_rate=rate, angle_rate2=rate2, twist=twist,
         ratio_travel=np.column_stack((rate[:, 0], -rate[:, 1])), ratio_roll=ratio_roll,
         ratio_roll_rate=ratio_roll_rate, torque=torque, roll_moment=torque * ratio_roll,
-        roll_stiffness=bar.rate * (ratio_roll**2 + twist * ratio_roll_rate))
+        roll_stiffness=bar.rate * (ratio_roll**2 + twist * ratio_roll_rate), drop_point=drop)
 
 
 def arm_angle(bar: AntiRollBar, side: BarSide, point: np.ndarray, velocity: np.ndarray,
@@ -113,22 +116,16 @@ def arm_angle(bar: AntiRollBar, side: BarSide, point: np.ndarray, velocity: np.n
     derivatives per travel (mm, mm/mm, 1/mm). NaN where the link cannot reach the arm.
     """
     u, a0 = bar.axis, bar.axis_point
-    q = side.arm_end - a0
-    along = q @ u
-    radial = q - along * u
-    r = float(np.linalg.norm(radial))
-    e1 = radial / r
-    e2 = np.cross(u, e1)
-    d = point - (a0 + along * u)
+    centre, r, e1, e2 = _arm_circle(bar, side)
+    d = point - centre
     a, b = d @ e1, d @ e2
     c = (r * r + np.einsum('ij,ij->i', d, d) - side.link_length**2) / (2.0 * r)
-    tangent = np.cross(u, q)
+    tangent = np.cross(u, side.arm_end - a0)
     branch = -math.copysign(1.0, (side.arm_end - side.mount.point) @ tangent)
     with np.errstate(invalid='ignore'):
         theta = np.arctan2(b, a) - branch * np.arccos(c / np.hypot(a, b))   # NaN beyond reach
     theta = (theta + math.pi) % (2.0 * math.pi) - math.pi
-    cos, sin = np.cos(theta)[:, None], np.sin(theta)[:, None]
-    end = a0 + along * u + r * (cos * e1 + sin * e2)              # E(theta)
+    end = arm_end(bar, side, theta)
     w = end - point
     t = cross(u, end - a0)
     n = cross(u, t)
@@ -138,6 +135,24 @@ def arm_angle(bar: AntiRollBar, side: BarSide, point: np.ndarray, velocity: np.n
     rate2 = (np.einsum('ij,ij->i', w, acceleration) - np.einsum('ij,ij->i', w1, w1)
              - rate**2 * np.einsum('ij,ij->i', w, n)) / wt
     return theta, rate, rate2
+
+
+def arm_end(bar: AntiRollBar, side: BarSide, theta: np.ndarray) -> np.ndarray:
+    """Return the arm's end E(theta) (n, 3) mm, the arm turned by theta (n,) rad from design."""
+    centre, r, e1, e2 = _arm_circle(bar, side)
+    cos, sin = np.cos(theta)[:, None], np.sin(theta)[:, None]
+    return centre + r * (cos * e1 + sin * e2)
+
+
+def _arm_circle(bar: AntiRollBar, side: BarSide):
+    """Return the circle of an arm's end: its centre A0 + (q . u) u, radius r, e1 and e2."""
+    u, a0 = bar.axis, bar.axis_point
+    q = side.arm_end - a0
+    along = q @ u
+    radial = q - along * u
+    r = float(np.linalg.norm(radial))
+    e1 = radial / r
+    return a0 + along * u, r, e1, np.cross(u, e1)
 
 
 def bar_notes(axle_name: str, values: BarValues) -> tuple[str, ...]:

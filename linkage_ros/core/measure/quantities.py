@@ -349,6 +349,62 @@ _DECLARED += (
     _q('pitch_centre_drive_height_mm', 'mm', '+ = up', 'setup_vehicle',
        'its height above the ground'),
 )
+_LOADS = 'mass, tyre_rate'
+_DECLARED += (
+    # load cases on a vehicle (linkage-loads; core/loads, doc/loads.md): per case and corner
+    _q('case', '1', '', 'loads_corner', 'the load case (text)'),
+    _q('corner', '1', '', 'loads_corner',
+       'the corner (text; an axle for its anti-roll bar)'),
+    _q('status', '1', '', 'loads_corner',
+       'OK, or why the corner is not solved: OUT_OF_REACH, NOT_CARRIED (text)'),
+    _q('tyre_fx_N', 'N', '+ = forward', 'loads_corner',
+       "the ground's force on the tyre, x", _LOADS),
+    _q('tyre_fy_N', 'N', '+ = left', 'loads_corner', "the ground's force on the tyre, y",
+       _LOADS),
+    _q('tyre_fz_N', 'N', '+ = up', 'loads_corner',
+       "the ground's force on the tyre, z: the vertical tyre load", _LOADS),
+    _q('tyre_mx_Nm', 'Nm', 'right-hand about + x', 'loads_corner',
+       "the ground's moment on the tyre about the contact patch, x", _LOADS),
+    _q('tyre_my_Nm', 'Nm', 'right-hand about + y', 'loads_corner',
+       "the ground's moment on the tyre about the contact patch, y", _LOADS),
+    _q('tyre_mz_Nm', 'Nm', 'right-hand about + z', 'loads_corner',
+       "the ground's moment on the tyre about the contact patch, z", _LOADS),
+    # the force at every pickup: on the body (end body), on the carrier (end carrier), on an
+    # anti-roll bar (end bar)
+    _q('pickup', '1', '', 'loads_pickup',
+       'the pickup: <link>_base, <arm>_axis0, <constraint>_carrier, ... (text)'),
+    _q('end', '1', '', 'loads_pickup',
+       'the part the force acts on: body, carrier or bar (text)'),
+    _q('x_mm', 'mm', '+ = forward', 'loads_pickup', 'where the pickup is, x (loaded pose)'),
+    _q('y_mm', 'mm', '+ = left', 'loads_pickup', 'where the pickup is, y (loaded pose)'),
+    _q('z_mm', 'mm', '+ = up', 'loads_pickup', 'where the pickup is, z (loaded pose)'),
+    _q('fx_N', 'N', '+ = forward', 'loads_pickup', 'the force on that part at the pickup, x'),
+    _q('fy_N', 'N', '+ = left', 'loads_pickup', 'the force on that part at the pickup, y'),
+    _q('fz_N', 'N', '+ = up', 'loads_pickup', 'the force on that part at the pickup, z'),
+    _q('force_magnitude_N', 'N', '', 'loads_pickup',
+       'the size of that force; in the summary, the largest over the cases'),
+    _q('mx_Nm', 'Nm', 'right-hand about + x', 'loads_pickup',
+       "a bushing's couple on the body at the pickup, x"),
+    _q('my_Nm', 'Nm', 'right-hand about + y', 'loads_pickup',
+       "a bushing's couple on the body at the pickup, y"),
+    _q('mz_Nm', 'Nm', 'right-hand about + z', 'loads_pickup',
+       "a bushing's couple on the body at the pickup, z"),
+    # what each member carries
+    _q('member', '1', '', 'loads_member', 'a link, arm bushing, spring, stop or bar (text)'),
+    _q('kind', '1', '', 'loads_member',
+       'link, drop_link, spring, stop, bushing or bar (text)'),
+    _q('force_N', 'N', '+ = tension (a link), + = compressed (a spring, a stop)',
+       'loads_member', "the member's force along itself; a bushing's force on the body, its "
+       'size'),
+    _q('deflection_mm', 'mm', '', 'loads_member',
+       "a bushing's deflection: the arm's or link's point from its body point, its size"),
+    _q('deflection_x_mm', 'mm', '+ = forward', 'loads_member', "a bushing's deflection, x"),
+    _q('deflection_y_mm', 'mm', '+ = left', 'loads_member', "a bushing's deflection, y"),
+    _q('deflection_z_mm', 'mm', '+ = up', 'loads_member', "a bushing's deflection, z"),
+    _q('torque_Nm', 'Nm', '', 'loads_member', "an anti-roll bar's torque, rate x twist"),
+    _q('twist_deg', 'deg', '+ = left arm turned further about + y', 'loads_member',
+       "an anti-roll bar's twist, left minus right arm angle"),
+)
 QUANTITIES = {q.name: q for q in _DECLARED}
 
 # The quantities each of a corner's topics carries (names relative to the corner's namespace),

@@ -65,6 +65,8 @@ class AntiRollBar:
     right: BarSide
     rate: float = math.nan   # N m per degree of twist
     mirrored: bool = False   # the right side was mirrored from the left
+    # (2, 3) mm: the two axis points as written, where the bar's bushings hold it (the loads)
+    axis_points: np.ndarray | None = None
 
     @property
     def sides(self) -> tuple[BarSide, BarSide]:
@@ -114,7 +116,8 @@ def parse_bar(source: str, where: str, spec: object, corners: tuple[Scene, Scene
         sides.append(_side(check, where, item, side, corners[k], ends[0], u, scale,
                            mirrored and side == 'right'))
     rate = check.ranged(spec, 'rate', f'{where}.rate', 'bar_rate', math.nan)   # N m/deg
-    return AntiRollBar(ends[0], u, *sides, rate=rate, mirrored=mirrored)
+    return AntiRollBar(ends[0], u, *sides, rate=rate, mirrored=mirrored,
+                       axis_points=np.array(ends))
 
 
 def _mirrored(spec):

@@ -8,8 +8,9 @@ Each is written once on arrays or jets.Jet values (equations.py says why): the s
 camber_deg, toe_deg, wheel_center_{x,y,z}_mm; the alignment set of linkage-sweep
 --alignment (alignment.py's and kingpin.py's definitions, the same names); and per element
 of the scene <name>_length_mm, <name>_ratio (d length / d travel) and, for a spring with a
-rate, <name>_force_N. The wheel rate needs the carrier's second-order motion and is left
-out. Poses: center (n, 3) mm, rotation (n, 3, 3); hardpoints (k, 3) mm.
+rate or a force table (a stop), <name>_force_N. The wheel rate needs the carrier's
+second-order motion and is left out. Poses: center (n, 3) mm, rotation (n, 3, 3); hardpoints
+(k, 3) mm.
 """
 
 from __future__ import annotations
@@ -233,9 +234,27 @@ def elements(scene, points, center, rotation, rack, motion) -> dict:
         length = jt.norm(d)
         out[f'{e.name}_length_mm'] = length
         out[f'{e.name}_ratio'] = jt.dot(d, rate) / length
-        if e.has_rate:
+        if e.force_table is not None:
+            out[f'{e.name}_force_N'] = _table_force(e, length)
+        elif e.has_rate:
             out[f'{e.name}_force_N'] = e.rate * (e.free_length - length)
     return out
+
+
+def _table_force(element, length):
+    """
+    Return a force-table spring's force (N, + = compressed) at lengths (mm; arrays or Jets).
+
+    The table's force and slope at each length's value (Element.spring_at, as linkage-sweep
+    reads it); a Jet's derivative is the slope times its deflection's: the table is linear
+    on each segment (at a row, the slope of the segment below it, as spring_at gives it).
+    """
+    deflection = element.free_length - length
+    at = np.asarray(jt.value(deflection), dtype=float)
+    force, slope = np.empty(at.shape), np.empty(at.shape)
+    for i, x in np.ndenumerate(at):
+        force[i], slope[i], _ = element.spring_at(element.free_length - float(x))
+    return force + slope * (deflection - at)
 
 
 def _arm_point(points, index, c, given, joint_at, joint_rate):

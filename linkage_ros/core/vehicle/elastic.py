@@ -66,8 +66,9 @@ def springs(axle: Axle, result: AxleResult) -> Elastic | None:
         values = element_values(scene, result.wheel_center[:, k], result.rotation[:, k],
                                 result.rack)
         for j in rated:
-            rate = scene.elements[j].rate
-            energy += 0.5 * values.force[:, j] ** 2 / rate     # k (L0 - L)^2 / 2
+            # k (L0 - L)^2 / 2, or a force table's work from its free length (a stop)
+            spring = scene.elements[j].spring_at
+            energy += np.array([spring(length)[2] for length in values.length[:, j]])
             gradient[:, k] += -values.force[:, j] * values.ratio[:, j]
             hessian[:, k, k] += values.wheel_rate[:, j]
     return Elastic('springs', energy, gradient, hessian) if found else None
