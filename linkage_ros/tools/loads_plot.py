@@ -90,7 +90,6 @@ def plot_view(ax, loads, answer, corners, axis, scale, title):
     ground = loads.data.ground_z_mm
     ax.axhline(ground, color='0.6', lw=0.8)
     ax.set_aspect('equal', adjustable='datalim')
-    ax.set_ylim(ground - 200.0, ground + 900.0)
     ax.set_title(title, fontsize=10)
     ax.set_xlabel('y, mm (+ = left)' if axis == 1 else 'x, mm (+ = forward)', fontsize=9)
     ax.set_ylabel('z, mm', fontsize=9)
