@@ -15,8 +15,6 @@ recompile them all.
 
 import math
 
-import numpy as np
-
 from .compiled import jit
 
 
@@ -52,12 +50,22 @@ def exp_so3(x, y, z, out):
 @jit
 def turn(x, y, z, rotation, out):
     """Write exp_so3(x, y, z) @ rotation into out (3, 3); out may be rotation itself."""
-    step = np.empty((3, 3))
-    exp_so3(x, y, z, step)
+    # exp_so3's entries as scalars: the bare statics kernels call this, and they allocate
+    # nothing (numba without reference counting refuses np.empty here)
+    t2 = x * x + y * y + z * z
+    if t2 < 1e-16:
+        a, b = 1.0 - t2 / 6.0, 0.5 - t2 / 24.0
+    else:
+        t = math.sqrt(t2)
+        a, b = math.sin(t) / t, (1.0 - math.cos(t)) / t2
+    s00, s01, s02 = 1.0 - b * (y * y + z * z), b * x * y - a * z, b * x * z + a * y
+    s10, s11, s12 = b * x * y + a * z, 1.0 - b * (x * x + z * z), b * y * z - a * x
+    s20, s21, s22 = b * x * z - a * y, b * y * z + a * x, 1.0 - b * (x * x + y * y)
     for j in range(3):   # column by column, so that out may be rotation
         c0, c1, c2 = rotation[0, j], rotation[1, j], rotation[2, j]
-        for i in range(3):
-            out[i, j] = step[i, 0] * c0 + step[i, 1] * c1 + step[i, 2] * c2
+        out[0, j] = s00 * c0 + s01 * c1 + s02 * c2
+        out[1, j] = s10 * c0 + s11 * c1 + s12 * c2
+        out[2, j] = s20 * c0 + s21 * c1 + s22 * c2
 
 
 @jit
