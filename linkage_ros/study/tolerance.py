@@ -143,7 +143,7 @@ def length_sigmas(design: Design, overrides: dict | None = None) -> np.ndarray:
 
 def bushing_sigmas(design: Design, overrides: dict | None = None) -> np.ndarray:
     """
-    Return the standard deviations (b,) of the bushing rates (bushing_names' order): 0 unless given.
+    Return the standard deviations (b,) of the bushing rates (bushing_names), 0 unless given.
 
     overrides' keys `<constraint>.bushing.<field>`: a number in the rate's unit (N/mm for
     axial and radial, N m/deg for torsion and conical) or a percentage of the rate ('5%'),
@@ -168,6 +168,7 @@ def bushing_sigmas(design: Design, overrides: dict | None = None) -> np.ndarray:
 def _bushing_sd(where, value, rate):
     """Return a bushing rate's sd from a number (the rate's unit) or 'P%'; LinkageError."""
     unit = 'N m/deg' if where.endswith(('torsion', 'conical')) else 'N/mm'
+    rate = float(rate)   # Python's arithmetic: 1e308% of a rate is inf, without a warning
     limit = BUSHING_SD_LIMIT * rate
     if isinstance(value, str) and value.strip().endswith('%'):
         try:
@@ -180,7 +181,7 @@ def _bushing_sd(where, value, rate):
     else:
         sd = float(value)
     if not (np.isfinite(sd) and 0.0 <= sd <= limit):
-        raise LinkageError(where, f'a bushing rate\'s standard deviation is a number of {unit} '
+        raise LinkageError(where, f"a bushing rate's standard deviation is a number of {unit} "
                            f'from 0 to {limit:g} ({100 * BUSHING_SD_LIMIT:g}% of its rate '
                            f'{rate:g}) or a percentage (5%), got {value!r}')
     return sd
