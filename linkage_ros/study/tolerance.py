@@ -159,7 +159,8 @@ def bushing_sigmas(design: Design, overrides: dict | None = None) -> np.ndarray:
         if name not in names:
             have = (f'its bushing rates: {", ".join(names)}' if names else
                     'it has no bushings')
-            raise LinkageError(name, f'not a bushing rate of the scene {scene.name} ({have})')
+            shown = name if name.isprintable() else repr(name)   # one line: \n escaped
+            raise LinkageError(shown, f'not a bushing rate of the scene {scene.name} ({have})')
         i = names.index(name)
         out[i] = _bushing_sd(name, given, rates[i])
     return out
