@@ -146,6 +146,7 @@ step studies
 .venv/bin/linkage-study sensitivity five_link --travel -50 0 50 -o five_link_sensitivity.csv; echo "rc=$?"
 .venv/bin/linkage-study tolerance five_link --sigma 0.05 --samples 100000 --travel -50 -25 0 25 50 --plot tolerance.png > tolerance.csv; echo "rc=$?"
 .venv/bin/linkage-study tolerance five_link --sigma 1 --tolerances config/study/five_link_tie_rod_length.yaml --samples 4096 --travel -50 0 50 > tolerance_lengths.csv; echo "rc=$?"; head -3 tolerance_lengths.csv
+.venv/bin/linkage-study tolerance five_link_bushings --sigma 1 --tolerances config/study/five_link_bushings_15_percent.yaml --samples 4096 --travel -25 0 25 -o bushing_tolerance.csv; echo "rc=$?"; grep -E '^0,toe_per' bushing_tolerance.csv
 .venv/bin/linkage-study fit config/study/bump_steer_targets.yaml -o double_wishbone_fitted.yaml --plot fit.png; echo "rc=$?"
 step study on a local dask cluster
 .venv/bin/dask scheduler --host 127.0.0.1 --port 8786 --no-dashboard > dask_scheduler.log 2>&1 &

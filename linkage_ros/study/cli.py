@@ -24,13 +24,17 @@ COMMANDS = ('sensitivity', 'tolerance', 'fit')
 EPILOG = """examples:
   linkage-study sensitivity five_link --travel -50:50:50 -o five_link_sensitivity.csv
   linkage-study tolerance five_link --sigma 0.05 --samples 10000 --travel -50 0 50
+  linkage-study tolerance five_link_bushings --sigma 1 --samples 2000 --travel 0 \\
+      --tolerances config/study/five_link_bushings_15_percent.yaml
   linkage-study fit targets.yaml -o fitted.yaml --plot fit.png
   linkage-study tolerance five_link --sigma 0.1 --samples 1000000 --travel -50:50:50 \\
       --scheduler tcp://127.0.0.1:8786 -o tolerance.parquet
 
 Hardpoints are named <constraint>.base, <constraint>.axis0, <constraint>.axis1,
 <constraint>.carrier, wheel_center and spin_axis_point; quantities as linkage-sweep's columns
-(camber_deg, toe_deg, wheel_center_x_mm, ..., the alignment set, <element>_length_mm, ...).
+(camber_deg, toe_deg, wheel_center_x_mm, ..., the alignment set, <element>_length_mm, ...);
+bushing rates <constraint>.bushing.<field>, and with --compliance the compliance rates
+(toe_per_fy_cp_deg_per_kN, ...) as linkage-kc names them.
 Tables go to stdout as CSV, or to -o (CSV, or Parquet for a name ending in .parquet).
 --travel takes travels and ranges FROM:TO:STEP (TO included), in any mix.
 
@@ -40,6 +44,7 @@ target with a tolerance unmet (said on stderr); """ + EXIT_STATUS
 
 def parser() -> Parser:
     """Return the parser of linkage-study and its three subcommands."""
+    from .tolerance import BUSHING_SD_LIMIT
     top = Parser(PROG, __doc__, EPILOG)
     commands = top.add_subparsers(dest='command', metavar='{sensitivity,tolerance,fit}',
                                   parser_class=Parser)
@@ -59,7 +64,8 @@ def parser() -> Parser:
     one.add_argument('--rack', type=millimetres, default=0.0,
                      help='steering rack travel, mm (default 0)')
     one.add_argument('--quantity', nargs='+', metavar='Q',
-                     help='quantities (default: every one the scene has)')
+                     help='quantities (default: every one the scene has; a compliance rate, '
+                     'toe_per_fy_cp_deg_per_kN, ..., by central differences of the statics)')
     two.add_argument('--sigma', type=float, required=True, metavar='MM',
                      help='standard deviation of every hardpoint coordinate, mm (> 0)')
     two.add_argument('--samples', type=int, required=True, metavar='N',
@@ -67,9 +73,16 @@ def parser() -> Parser:
     two.add_argument('--seed', type=int, default=0, help='random seed (default 0)')
     two.add_argument('--tolerances', metavar='FILE',
                      help='YAML of per-point standard deviations, mm: POINT: SD or '
-                     'POINT: {x: SD, y: SD, z: SD}; and of lengths (the design re-assembles): '
-                     'CONSTRAINT.length: SD')
+                     'POINT: {x: SD, y: SD, z: SD}; of lengths (the design re-assembles): '
+                     'CONSTRAINT.length: SD; of bushing rates: CONSTRAINT.bushing.FIELD: SD '
+                     f'(axial, radial N/mm; torsion, conical N m/deg; or a percentage, 5%%; '
+                     f'from 0 to {100 * BUSHING_SD_LIMIT:g}%% of the rate)')
     two.add_argument('--plot', metavar='PNG', help='draw the distributions here')
+    for p in (one, two):
+        p.add_argument('--compliance', action='store_true',
+                       help='the compliance rates (toe_per_fy_cp_deg_per_kN, ...) are '
+                       'quantities too (a scene with bushings; a tolerance study has them '
+                       'whenever a bushing rate varies)')
     three = sub('fit', 'fit free hardpoints to target curves (bounded least squares)')
     three.add_argument('targets', help='targets file (YAML: scene, free, targets)')
     three.add_argument('-o', '--output', required=True, metavar='NEW_SCENE.yaml',

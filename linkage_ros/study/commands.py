@@ -10,6 +10,7 @@ LinkageError (SceneError) for a mistake, which the program turns into one line, 
 
 from __future__ import annotations
 
+import itertools
 import os
 import sys
 
@@ -20,7 +21,7 @@ from .tables import SENSITIVITY_COLUMNS, TOLERANCE_COLUMNS
 from ..cli import counted, table_status
 from ..core.base import LinkageError, Need, refuse_if_short
 from ..core.model import read_yaml
-from ..core.vary import load_design, SWEEP_COLUMNS
+from ..core.vary import bushing_names, load_design, SWEEP_COLUMNS
 from ..outputs import check_outputs, write_table
 
 PROG = 'linkage-study'
@@ -30,6 +31,11 @@ POOL_FROM = 16   # batches (of 4096 variants, about 0.3 s each) that repay start
 # 13 us per variant at one travel (rounded up).
 VALUE_BYTES = 32
 SECONDS_PER_SOLVE = 15e-6
+# A variant's compliance (five_link_bushings, batches of 4096, one process on the shared
+# machine): 0.95 ms CPU for its scene, its Statics and its first travel, 50 us for each
+# travel after (rounded up)
+SECONDS_PER_STATICS = 1e-3
+SECONDS_PER_RATES = 60e-6
 
 
 def run_sensitivity(args, say) -> int:
@@ -41,31 +47,85 @@ def run_sensitivity(args, say) -> int:
     _finite(args.travel + [args.rack], '--travel')
     if args.rack and not scene.steered:
         raise LinkageError('--rack', f'{scene.name}: no constraint is marked steer: rack')
-    result = sensitivities(scene, args.travel, rack=args.rack,
-                           wanted=tuple(args.quantity) if args.quantity else None)
-    written = write_table(args.out, SENSITIVITY_COLUMNS, rows(result), sys.stdout)
+    wanted, rates = _split_rates(scene, args)
+    result = sensitivities(scene, args.travel, rack=args.rack, wanted=wanted)
+    table = rows(result)
+    if rates:
+        table = itertools.chain(table, compliance_rows(scene, result.travel, rates, args.rack))
+    written = write_table(args.out, SENSITIVITY_COLUMNS, table, sys.stdout)
     count = len(result.travel)
     if not result.success:
         say(f'{result.message} ({counted(count, "position")} written)')
         return 1
-    many = len(result.quantities)
+    many = len(result.quantities) + len(rates)
+    bushings = f' and {counted(len(bushing_names(scene)), "bushing rate")}' if rates else ''
     say(f'{scene.name}: {many} quantit{"y" if many == 1 else "ies"} x {len(result.points)} '
-        f'points x 3 axes at {counted(count, "travel")}')
+        f'points x 3 axes{bushings} at {counted(count, "travel")}')
     return table_status(PROG, written)
+
+
+def _split_rates(scene, args) -> tuple[tuple[str, ...] | None, tuple[str, ...]]:
+    """
+    Return the kinematic quantities asked for (None: all) and the compliance rates.
+
+    The rates: those --quantity names, or with --compliance every one the scene has (a scene
+    with bushings; LinkageError otherwise).
+    """
+    from ..core.statics import RATE_COLUMNS
+    from ..core.vary import rate_names
+    asked = tuple(args.quantity or ())
+    rates = tuple(q for q in asked if q in RATE_COLUMNS)
+    wanted = tuple(q for q in asked if q not in RATE_COLUMNS) if asked else None
+    if not (rates or args.compliance):
+        return wanted, ()
+    if not scene.has_bushings:
+        raise LinkageError(rates[0] if rates else '--compliance', f'the scene {scene.name} has '
+                           'no bushings: its compliance rates are 0')
+    have = rate_names(scene, args.travel, args.rack)
+    for name in rates:
+        if name not in have:
+            raise LinkageError(name, f'not a compliance rate of the scene {scene.name} (its '
+                               f'rates: {", ".join(have)})')
+    if args.compliance:
+        rates = have
+    return wanted, rates
+
+
+def compliance_rows(scene, travels, rates, rack):
+    """
+    Yield the sensitivity rows of the compliance rates (central differences of Statics).
+
+    By hardpoint coordinate (per mm), then by bushing rate (point `<constraint>.bushing`,
+    axis the field: per N/mm, or per N m/deg for torsion and conical).
+    """
+    from ..core.vary import bushing_names, compliance_rates
+    by_point, by_rate = compliance_rates(scene, travels, rates, rack=rack)
+    names = [name.rsplit('.', 1) for name in bushing_names(scene)]
+    for t, travel in enumerate(travels):
+        for q, quantity in enumerate(rates):
+            for k, point in enumerate(scene.point_names):
+                for a, axis in enumerate('xyz'):
+                    yield travel, quantity, point, axis, by_point[t, q, k, a]
+            for b, (point, axis) in enumerate(names):
+                yield travel, quantity, point, axis, by_rate[t, q, b]
 
 
 def run_tolerance(args, say) -> int:
     """linkage-study tolerance: the stack-up table, a progress bar, and the picture."""
-    from .tolerance import batches, length_sigmas, problem, rows, sigmas, tolerance
+    from .tolerance import (batches, bushing_sigmas, length_sigmas, problem, rows, sigmas,
+                            tolerance)
     design = load_design(args.scene)
     say('', design.scene.warnings)
     _finite(args.travel, '--travel')
     overrides = read_yaml(args.tolerances, 'tolerances') if args.tolerances else None
     if overrides is not None and not isinstance(overrides, dict):
         raise LinkageError(args.tolerances, 'expected a mapping POINT: SD or POINT: {x, y, z}')
-    prob = problem(design, sigmas(design, args.sigma, overrides), args.samples, args.travel,
-                   args.seed, length_sigmas(design, overrides))
-    hours = _check_size(args.samples, len(prob.travels), args.workers)
+    spread = sigmas(design, args.sigma, overrides)
+    lengths, bushings = length_sigmas(design, overrides), bushing_sigmas(design, overrides)
+    prob = problem(design, spread, args.samples, args.travel, args.seed, lengths, bushings,
+                   args.compliance)
+    hours = _check_size(args.samples, len(prob.travels), args.workers,
+                        len(SWEEP_COLUMNS) + len(prob.rates), bool(prob.rates))
     count = len(batches(prob))
     # without --workers, a pool of local processes only for work that repays their start
     with executor(args.scheduler, args.workers or None,
@@ -89,23 +149,26 @@ def run_tolerance(args, say) -> int:
     return status
 
 
-def _check_size(samples: int, travels: int, workers: int) -> str:
+def _check_size(samples: int, travels: int, workers: int, quantities: int = len(SWEEP_COLUMNS),
+                compliance: bool = False) -> str:
     """
     Refuse a Monte Carlo study whose values do not fit in memory (LinkageError, --samples).
 
     Returns what its time is estimated at, ' (about 3.2 h on 2 cores)', when it is a
-    minute or more ('' otherwise): told before it starts, not found out after.
+    minute or more ('' otherwise): told before it starts, not found out after. quantities:
+    per variant and travel; compliance: each variant has a Statics of its own.
     """
-    values = samples * travels * len(SWEEP_COLUMNS)
+    values = samples * travels * quantities
     refuse_if_short(Need(samples * travels, VALUE_BYTES * values, VALUE_BYTES * values),
                     '--samples', f'{samples:,} variants x {counted(travels, "travel")}',
                     'take fewer samples or travels')
     cores = workers or os.cpu_count() or 1
-    seconds = samples * travels * SECONDS_PER_SOLVE / cores
+    each = SECONDS_PER_SOLVE + (SECONDS_PER_RATES if compliance else 0.0)
+    seconds = samples * (travels * each + (SECONDS_PER_STATICS if compliance else 0.0)) / cores
     if seconds < 60:
         return ''
     took = f'{seconds / 3600:.1f} h' if seconds >= 3600 else f'{seconds / 60:.0f} min'
-    return f' (about {took} on {counted(cores, "local core")}, by {SECONDS_PER_SOLVE:g} s a solve)'
+    return f' (about {took} on {counted(cores, "local core")}, by {each:g} s a solve)'
 
 
 def run_fit(args, say) -> int:

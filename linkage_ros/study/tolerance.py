@@ -24,10 +24,20 @@ quantity (SWEEP_COLUMNS):
 The variants come in batches of BATCH; batch i draws its perturbations from
 SeedSequence(seed, spawn_key=(i,)), so the result depends on the seed alone, never on where
 or in what order the batches run (executor.py).
+
+Bushing rates (bushing_sigmas(): `<constraint>.bushing.<field>`, N/mm or N m/deg, or a
+percentage of the rate) are independent normal variables too. They move no kinematic
+quantity (the kinematics ignores bushings): a study with them, or with compliance=True, also
+has the compliance rates (statics.RATE_COLUMNS) as quantities, each variant's from a Statics
+of its own scene (the hardpoints moved, the rates changed) and their first order from
+central differences of Statics (core/vary/bushings.py). A variant's rate drawn at or below 0
+is no bushing: its rates count as out of reach. Lengths have no scene of their own and no
+compliance rates.
 """
 
 from __future__ import annotations
 
+import math
 from typing import NamedTuple, TYPE_CHECKING
 
 import numpy as np
@@ -36,14 +46,18 @@ from .executor import in_process, Items
 from ..core.base import camber_toe, LENGTH_LIMIT_MM, LinkageError
 from ..core.model import with_points
 from ..core.solve import compile_scene, Continuation
-from ..core.vary import (AXES, controls_of, Design, design_starts, length_rates, poses,
-                         solve_variants, sweep_column_rates, SWEEP_COLUMNS)
+from ..core.vary import (AXES, bushing_names, bushing_values, compliance_of, compliance_rates,
+                         controls_of, Design, design_starts, length_rates, poses, rate_names,
+                         solve_variants, sweep_column_rates, SWEEP_COLUMNS, with_bushings)
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
 
 BATCH = 4096                # variants per batch: fixed, so that a seed means one sample
 LENGTH = '.length'          # a constraint's length tolerance: `<constraint>.length`
+BUSHING = '.bushing.'       # a bushing rate's tolerance: `<constraint>.bushing.<field>`
+BUSHING_SD_LIMIT = 0.25     # a bushing rate's sd, at most this fraction of the rate: a draw
+#                             at or below 0 is then a 4-sigma event (3e-5 of the variants)
 DEG = 180.0 / np.pi
 SCALES = np.array([DEG, DEG, 1.0, 1.0, 1.0])   # kernel outputs (rad, mm) -> table units
 
@@ -59,6 +73,8 @@ class Problem(NamedTuple):
     controls: tuple         # core/vary's variant kernel's Controls (controls_of)
     starts: np.ndarray      # (T, STATE_SIZE) the design's solved states at the travels
     lengths: np.ndarray     # (c,) mm: standard deviation of each constraint's length
+    bushings: np.ndarray = np.zeros(0)   # (b,) standard deviation of each bushing rate
+    rates: tuple = ()       # the compliance rates among the quantities (none: kinematics only)
 
 
 class Tolerance(NamedTuple):
@@ -88,7 +104,7 @@ def sigmas(design: Design, sigma: float, overrides: dict | None = None) -> np.nd
         raise LinkageError('--sigma', f'must be a number of mm above 0, got {sigma:g}')
     out = np.full(design.values.shape, float(sigma))
     for name, given in (overrides or {}).items():
-        if str(name).endswith(LENGTH):   # length_sigmas reads them
+        if str(name).endswith(LENGTH) or BUSHING in str(name):   # the others' to read
             continue
         i = design.index(str(name))
         if isinstance(given, dict):
@@ -125,6 +141,53 @@ def length_sigmas(design: Design, overrides: dict | None = None) -> np.ndarray:
     return out
 
 
+def bushing_sigmas(design: Design, overrides: dict | None = None) -> np.ndarray:
+    """
+    Return the standard deviations (b,) of the bushing rates (bushing_names), 0 unless given.
+
+    overrides' keys `<constraint>.bushing.<field>`: a number in the rate's unit (N/mm for
+    axial and radial, N m/deg for torsion and conical) or a percentage of the rate ('5%'),
+    from 0 to BUSHING_SD_LIMIT of the rate. Raises LinkageError naming the mistake.
+    """
+    scene = design.scene
+    names, rates = bushing_names(scene), bushing_values(scene)
+    out = np.zeros(len(names))
+    for name, given in (overrides or {}).items():
+        name = str(name)
+        if BUSHING not in name:
+            continue
+        if name not in names:
+            have = (f'its bushing rates: {", ".join(names)}' if names else
+                    'it has no bushings')
+            shown = name if name.isprintable() else repr(name)   # one line: \n escaped
+            raise LinkageError(shown, f'not a bushing rate of the scene {scene.name} ({have})')
+        i = names.index(name)
+        out[i] = _bushing_sd(name, given, rates[i])
+    return out
+
+
+def _bushing_sd(where, value, rate):
+    """Return a bushing rate's sd from a number (the rate's unit) or 'P%'; LinkageError."""
+    unit = 'N m/deg' if where.endswith(('torsion', 'conical')) else 'N/mm'
+    rate = float(rate)   # Python's arithmetic: 1e308% of a rate is inf, without a warning
+    limit = BUSHING_SD_LIMIT * rate
+    if isinstance(value, str) and value.strip().endswith('%'):
+        try:
+            number = float(value.strip()[:-1])
+        except ValueError:
+            number = math.nan
+        sd = number / 100.0 * rate
+    elif isinstance(value, bool) or not isinstance(value, (int, float)):
+        sd = math.nan
+    else:
+        sd = float(value)
+    if not (np.isfinite(sd) and 0.0 <= sd <= limit):
+        raise LinkageError(where, f"a bushing rate's standard deviation is a number of {unit} "
+                           f'from 0 to {limit:g} ({100 * BUSHING_SD_LIMIT:g}% of its rate '
+                           f'{rate:g}) or a percentage (5%), got {value!r}')
+    return sd
+
+
 def _sd(where, value):
     if isinstance(value, bool) or not isinstance(value, (int, float)) \
             or not (np.isfinite(value) and 0 <= value <= LENGTH_LIMIT_MM):
@@ -134,19 +197,37 @@ def _sd(where, value):
 
 
 def problem(design: Design, sigma: np.ndarray, samples: int, travels: ArrayLike,
-            seed: int = 0, lengths: ArrayLike | None = None) -> Problem:
+            seed: int = 0, lengths: ArrayLike | None = None,
+            bushings: ArrayLike | None = None, compliance: bool = False) -> Problem:
     """
     Return the Problem of a study; the solver settings are the design's (Continuation).
 
-    lengths (c,) mm: length_sigmas (None: none). Solves the design at the travels (its
-    states start every variant's solve); LinkageError if it does not reach one of them.
+    lengths (c,) mm: length_sigmas (None: none); bushings (b,): bushing_sigmas (None: none);
+    compliance: the compliance rates are quantities too (they are whenever a bushing rate
+    varies). Solves the design at the travels (its states start every variant's solve);
+    LinkageError if it does not reach one of them, or for compliance rates of a scene
+    without bushings or with length tolerances.
     """
     travels = np.asarray(travels, dtype=float).ravel()
     scene = design.scene
-    starts, _ = design_starts(scene, travels)
     lengths = np.zeros(len(scene.constraints)) if lengths is None else lengths
+    lengths = np.asarray(lengths, dtype=float)
+    bushings = np.zeros(len(bushing_names(scene))) if bushings is None else bushings
+    bushings = np.asarray(bushings, dtype=float)
+    rates: tuple = ()
+    if compliance or bushings.any():
+        if not scene.has_bushings:
+            raise LinkageError('--compliance', f'the scene {scene.name} has no bushings: its '
+                               'compliance rates are 0')
+        if lengths.any():
+            raise LinkageError('--compliance', 'compliance rates and length tolerances '
+                               'cannot go together (a length variant has no scene to solve '
+                               'the statics of)')
+    starts, _ = design_starts(scene, travels)
+    if compliance or bushings.any():
+        rates = rate_names(scene, travels)
     return Problem(design, np.asarray(sigma, dtype=float), travels, int(seed), int(samples),
-                   controls_of(scene), starts, np.asarray(lengths, dtype=float))
+                   controls_of(scene), starts, lengths, bushings, rates)
 
 
 def batches(prob: Problem) -> Items:
@@ -161,24 +242,59 @@ def perturbed(prob: Problem, index: int) -> tuple[np.ndarray, np.ndarray | None]
     Hardpoints design + sigma x N(0, 1); then, if any length has a tolerance, lengths
     lengths x N(0, 1) from the same stream (a study without them draws what it always did).
     """
+    return _drawn(prob, index)[:2]
+
+
+def bushing_draws(prob: Problem, index: int) -> np.ndarray | None:
+    """Return batch index's bushing rates (n, b) (None: none vary): rate + sd x N(0, 1)."""
+    return _drawn(prob, index)[2]
+
+
+def _drawn(prob: Problem, index: int):
+    """Return a batch's hardpoints, length changes and bushing rates, in that order drawn."""
     n = min(BATCH, prob.samples - index * BATCH)
     rng = np.random.default_rng(np.random.SeedSequence(prob.seed, spawn_key=(index,)))
     points = prob.design.values + prob.sigma * rng.standard_normal((n,) + prob.sigma.shape)
-    if not prob.lengths.any():
-        return points, None
-    return points, prob.lengths * rng.standard_normal((n, len(prob.lengths)))
+    deltas = prob.lengths * rng.standard_normal((n, len(prob.lengths))) \
+        if prob.lengths.any() else None
+    rates = None
+    if prob.bushings.any():   # after the others: a study without them draws what it did
+        rates = bushing_values(prob.design.scene) + \
+            prob.bushings * rng.standard_normal((n, len(prob.bushings)))
+    return points, deltas, rates
 
 
 def solve_batch(item: tuple[Problem, int]) -> np.ndarray:
     """Return the quantities (n, T, Q) of a batch's variants, NaN where out of reach."""
     prob, index = item
-    points, deltas = perturbed(prob, index)
+    points, deltas, rates = _drawn(prob, index)
     values, solved = solve_variants(prob.design.scene.layout, points, deltas, prob.starts,
                                     prob.travels, prob.controls)
     for v in np.flatnonzero(~solved.all(axis=1)):
         if deltas is None:   # a Continuation solves a scene: a moved design has one
             values[v] = _by_continuation(prob, points[v], solved[v], values[v])
-    return values * SCALES
+    values = values * SCALES
+    if not prob.rates:
+        return values
+    return np.concatenate([values, _compliance(prob, points, rates)], axis=2)
+
+
+def _compliance(prob: Problem, points: np.ndarray, rates: np.ndarray | None) -> np.ndarray:
+    """Return the compliance rates (n, T, R) of a batch's variants, NaN where not solved."""
+    scene = prob.design.scene
+    out = np.full((len(points), len(prob.travels), len(prob.rates)), np.nan)
+    for v in range(len(points)):
+        if rates is not None and not (rates[v] > 0).all():   # no bushing: out of reach
+            continue
+        varied = with_points(scene, points[v])
+        if rates is not None:
+            varied = with_bushings(varied, rates[v])
+        with np.errstate(invalid='ignore', divide='ignore'):
+            try:
+                out[v] = compliance_of(varied, prob.travels, prob.rates)
+            except LinkageError:   # the variant is not a mechanism
+                pass
+    return out
 
 
 def _by_continuation(prob, points, solved, values):
@@ -210,9 +326,16 @@ def tolerance(prob: Problem, run=None, progress=None) -> Tolerance:
     spread = np.sum((rates * prob.sigma) ** 2, axis=(2, 3))
     if prob.lengths.any():
         spread += np.sum((length_rates(scene, center, rotation) * prob.lengths) ** 2, axis=2)
-    rss = np.sqrt(spread)
     camber, toe = camber_toe(rotation @ compile_scene(scene).spin_axis, scene.side_sign)
     table = np.column_stack([np.degrees(camber), np.degrees(toe), center])
+    if prob.rates:   # the kinematic quantities' spread from the bushings is 0
+        by_point, by_rate = compliance_rates(scene, prob.travels, prob.rates, prob.sigma,
+                                             prob.bushings)
+        spread = np.concatenate([spread, np.sum((by_point * prob.sigma) ** 2, axis=(2, 3))
+                                 + np.sum((by_rate * prob.bushings) ** 2, axis=2)], axis=1)
+        table = np.concatenate([table, compliance_of(scene, prob.travels, prob.rates)],
+                               axis=1)
+    rss = np.sqrt(spread)
     items = batches(prob)
     results = (run or in_process)(solve_batch, items, progress)
     values = np.concatenate(results) if results else np.empty((0,) + rss.shape)
@@ -225,8 +348,8 @@ def tolerance(prob: Problem, run=None, progress=None) -> Tolerance:
     low, high = (np.full(rss.shape, np.nan) for _ in range(2))
     if count.size and count.min() > 0:
         low, high = np.nanpercentile(values, [1, 99], axis=0)
-    return Tolerance(prob.travels, SWEEP_COLUMNS, table, mean, std, rss, low, high,
-                     len(values) - count, values)
+    return Tolerance(prob.travels, SWEEP_COLUMNS + prob.rates, table, mean, std, rss, low,
+                     high, len(values) - count, values)
 
 
 def rows(result: Tolerance):

@@ -31,7 +31,7 @@ ALLOWED = {
     'axle': {'base', 'model', 'solve', 'measure', 'axle'},
     'vehicle': {'base', 'model', 'solve', 'measure', 'axle', 'vehicle'},
     'statics': {'base', 'model', 'solve', 'measure', 'statics'},
-    'vary': {'base', 'model', 'solve', 'measure', 'vary'},
+    'vary': {'base', 'model', 'solve', 'measure', 'statics', 'vary'},
     'loads': {'base', 'model', 'solve', 'measure', 'axle', 'vehicle', 'statics', 'loads'},
 }
 

@@ -55,6 +55,22 @@ def test_a_tolerance_study_on_the_cluster_writes_the_local_runs_bytes(scheduler,
     assert np.array_equal(table['std'], [float(r[4]) for r in rows])
 
 
+def test_a_bushing_study_on_the_cluster_writes_the_local_runs_bytes(scheduler, tmp_path):
+    # each variant's compliance rates from a Statics on a worker: the same bits as here
+    (tmp_path / 'sd.yaml').write_text('{tie_rod.bushing.radial: 5%, lower_rear.bushing.axial: '
+                                      '200, upper_front.base: {x: 0.2}}\n')
+    args = ['tolerance', 'five_link_bushings', '--sigma', '0.05', '--samples', '4100',
+            '--travel', '-20', '20', '--seed', '3', '--tolerances', 'sd.yaml']
+    status, _, err = run(*args, '--scheduler', scheduler, '-o', 'dask.csv', cwd=tmp_path)
+    assert status == 0, err
+    assert f'in 2 batches on {scheduler}' in err
+    status, _, err = run(*args, '-o', 'local.csv', cwd=tmp_path)
+    assert status == 0, err
+    dask = (tmp_path / 'dask.csv').read_bytes()
+    assert dask == (tmp_path / 'local.csv').read_bytes()
+    assert dask.count(b'\n') == 1 + 2 * (5 + 12) and b',toe_per_fy_cp_deg_per_kN,' in dask
+
+
 def test_a_fit_with_several_starts_on_the_cluster_writes_the_local_runs_scene(
         scheduler, tmp_path):
     (tmp_path / 'targets.yaml').write_text("""scene: double_wishbone
