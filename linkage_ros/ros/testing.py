@@ -172,9 +172,12 @@ class Probe:
         return [s for s in self.statuses[since:] if s.level == DiagnosticStatus.ERROR
                 and _same_travel(status_values(s)['travel_m'], travel_m)]
 
-    def ask(self, travel_m, timeout=5.0):
+    def ask(self, travel_m, timeout=3 * WAIT):
         """
         Send one travel (m) and wait (at most timeout s) for its Answer.
+
+        The bound is reached only by a failure: a first loaded answer on a busy 2-core machine
+        (its statics built, the other core taken) took over 5 s once, so it is generous.
 
         The Answer holds pose, camber and toe for a solved command, the ERROR status for one
         that cannot be solved. Raises TimeoutError if neither arrives in time.
