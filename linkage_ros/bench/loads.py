@@ -29,23 +29,28 @@ from ..tools.loads import parse_args, PROG, request
 SCALES = (1, 10, 100)
 
 
+def scaled_case(case, f):
+    """
+    Return a case at f (0 to 1) of its load, named NAME_F (F to three decimals).
+
+    Its accelerations and its corners' multiples times f, a vertical load factor v as
+    1 + f (v - 1): at f = 0 the car standing still, at 1 the case.
+    """
+    corners = {k: replace(c, g=(c.g[0] * f, c.g[1] * f, 1.0 + f * (c.g[2] - 1.0)))
+               if c.g is not None else replace(
+                   c, force_n=tuple(f * v for v in c.force_n),
+                   moment_nm=tuple(f * v for v in c.moment_nm))
+               for k, c in case.corners.items()}
+    return replace(case, name=f'{case.name}_{f:.3f}', longitudinal_g=f * case.longitudinal_g,
+                   lateral_g=f * case.lateral_g,
+                   vertical_g=1.0 + f * (case.vertical_g - 1.0), corners=corners)
+
+
 def scaled(cases, scale):
     """Return the cases at scale load levels each (scale 1: as given), as a list."""
     if scale == 1:
         return list(cases.values())
-    out = []
-    for case in cases.values():
-        for f in np.linspace(0.55, 1.0, scale):
-            corners = {k: replace(c, g=(c.g[0] * f, c.g[1] * f, 1.0 + f * (c.g[2] - 1.0)))
-                       if c.g is not None else replace(
-                           c, force_n=tuple(f * v for v in c.force_n),
-                           moment_nm=tuple(f * v for v in c.moment_nm))
-                       for k, c in case.corners.items()}
-            out.append(replace(case, name=f'{case.name}_{f:.3f}',
-                               longitudinal_g=f * case.longitudinal_g,
-                               lateral_g=f * case.lateral_g,
-                               vertical_g=1.0 + f * (case.vertical_g - 1.0), corners=corners))
-    return out
+    return [scaled_case(case, f) for case in cases.values() for f in np.linspace(0.55, 1.0, scale)]
 
 
 def corner_solves(answers):

@@ -56,6 +56,7 @@ class CornerAnswer:
     pose: object = None              # corner.KinematicPose at the travel
     scene: Scene | None = None       # the corner as solved (with its drop link, if any)
     drop_tension_n: float = math.nan  # the anti-roll bar's drop link, + = tension
+    holding_n: float = math.nan      # the holding force at the travel, N (+ = up)
 
 
 @dataclass(frozen=True)
@@ -164,8 +165,10 @@ class Loads:
         found = find_travels(evaluate, z0, self._jacobian(name, mine, first), low, high,
                              corners)
         if found.status != Status.OK or found.payload is None:
-            return {c: CornerAnswer(c, found.status, found.message, loads[k], float(z))
-                    for c, k, z in zip(corners, group, found.travel_mm)}, None, None
+            return {c: CornerAnswer(c, found.status, found.message, loads[k], float(z),
+                                    holding_n=float(h))
+                    for c, k, z, h in zip(corners, group, found.travel_mm, found.holding_n)
+                    }, None, None
         poses, results, state = found.payload
         answers = {}
         for j, (corner, k) in enumerate(zip(corners, group)):
@@ -173,7 +176,7 @@ class Loads:
             scene = statics.scene if end is None else statics.with_drop(end, tension)
             answers[corner] = CornerAnswer(corner, Status.OK, 'ok', loads[k],
                                            float(found.travel_mm[j]), loaded, load, poses[j],
-                                           scene, tension)
+                                           scene, tension, loaded.holding_force_n)
         return answers, state, results
 
     def _poses(self, corners, scenes, z):
