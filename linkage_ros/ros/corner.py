@@ -22,9 +22,9 @@ the topic and the byte count, with no pose, instead of an exception in the execu
 
 While the node runs, its parameters may change (ros/runtime.py): the corner then takes new
 solver settings at the pose it holds (configure), a new scene from that scene's design
-position (set_scene), or turns its alignment and markers on or off (set_outputs); its topics
-stay, and its elements topic follows the scene (a scene with elements has one). With TF on,
-the node gives it frames (ros/tf.CornerFrames): every answer then also sends the frames of its
+position (set_scene), or turns its alignment, markers and pickups on or off (set_outputs); its
+topics stay, and its elements topic follows the scene (a scene with elements has one). With TF
+on, the node gives it frames (ros/tf.CornerFrames): every answer then also sends the frames of its
 bodies to the outlet's transforms().
 
 What a solved command publishes is its Responder's list (protocol.OUTPUTS, outputs_of: the
@@ -217,8 +217,9 @@ class Corner:
         self.health = self.responder.health
 
     def set_outputs(self, params: dict) -> None:
-        """Turn the alignment and markers outputs on or off, as params say."""
-        self.responder.set_outputs(alignment=params['alignment'], markers=params['markers'])
+        """Turn the alignment, markers and pickups outputs on or off, as params say."""
+        self.responder.set_outputs(alignment=params['alignment'], markers=params['markers'],
+                                   pickups=params['pickups'])
         self._set_publishers()
 
     def _set_publishers(self) -> None:

@@ -415,10 +415,10 @@ class SuspensionNode(Node):
         Return {resolved topic: (entity, default QoS)} of the node's topics.
 
         corners as load_corners gives them; every: also those the node may make while it runs
-        (alignment, markers, TF, steering_rack), whatever the parameters say now.
+        (alignment, markers, pickups, TF, steering_rack), whatever the parameters say now.
         """
         if every:
-            params = {**params, 'alignment': True, 'markers': True}
+            params = {**params, 'alignment': True, 'markers': True, 'pickups': True}
         names = {'/diagnostics': 'publisher'}
         for prefix, (scene, *joints) in corners.scenes.items():
             names.update(corner_outputs(scene, params, prefix))
