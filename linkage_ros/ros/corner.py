@@ -34,7 +34,6 @@ publisher of that name ('/tf' through the outlet's transforms()).
 
 from __future__ import annotations
 
-from functools import partial
 from typing import Callable, Protocol, TYPE_CHECKING
 
 from geometry_msgs.msg import PoseStamped, WrenchStamped
@@ -83,6 +82,9 @@ class Outlet(Protocol):
 
     def publish(self, publisher: Publisher, msg: bytes | object) -> None:
         """Publish msg (CDR bytes or an rclpy message) on publisher."""
+
+    def sender(self, publisher: Publisher) -> Callable[[bytes | object], None]:
+        """Return send(msg): publish(publisher, msg), or as cheap a function that does it."""
 
     def bad_command(self, sent: str, kind: object, why: str) -> None:
         """Say on the console that a command sent as sent could not be answered, and why."""
@@ -241,7 +243,7 @@ class Corner:
                 self.publishers[name] = publisher(self.node, MESSAGES[output.type_name],
                                                   self.prefix + name, self.qos)
         self.sends = {name: self.outlet.transforms if name == TF
-                      else partial(self.outlet.publish, self.publishers[name])
+                      else self.outlet.sender(self.publishers[name])
                       for name in outputs}
 
     def on_travel(self, data: bytes) -> None:

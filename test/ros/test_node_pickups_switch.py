@@ -106,3 +106,14 @@ def test_a_pickups_value_that_is_not_a_bool_is_refused_in_one_line(suspension_no
     from linkage_ros.core.base import LinkageError
     with pytest.raises(LinkageError, match='pickups: expected true or false'):
         suspension_node(pickups=value)
+
+
+@pytest.mark.parametrize('pickups', [True, False])
+def test_the_pickup_frames_warning_is_said_only_where_pickup_forces_go_out(
+        suspension_node, capfd, tmp_path, pickups):
+    # tf off: the pickup wrenches name the vehicle frame, which the node says once; with no
+    # pickup wrenches published there is nothing to say (rcutils logs to stderr: fd 2)
+    suspension_node(scene=str(bushing_scene(tmp_path)), tf=False, pickups=pickups)
+    said = [line for line in capfd.readouterr().err.splitlines()
+            if 'the pickup frames are unavailable' in line]
+    assert len(said) == (1 if pickups else 0)
