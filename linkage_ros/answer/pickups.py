@@ -120,9 +120,13 @@ class CornerStatics:
         """Forget the last equilibrium: the next command starts from the kinematic pose."""
         self.statics.reset()
 
-    def load(self, solution: Solution, stamp: tuple[int, int]) -> tuple[Solution, list]:
+    def load(self, solution: Solution, stamp: tuple[int, int],
+             pickups: bool = True) -> tuple[Solution, list]:
         """
         Return (the loaded answer, its pickup outputs) of a solved kinematic command.
+
+        pickups: False leaves the pickup outputs out ([]): their forces are then neither
+        read from the solve's answer nor built into messages (the node's parameter pickups).
 
         solution: the corner's continuation's (the one given at construction) answer to the
         command: the equilibrium continues from the last one, or where there is none near
@@ -144,6 +148,8 @@ class CornerStatics:
             wheel_center=np.asarray(loaded.wheel_center_mm), rotation=rotation,
             quaternion=quaternion_from_matrix(rotation),
             camber=math.radians(loaded.camber_deg), toe=math.radians(loaded.toe_deg))
+        if not pickups:
+            return answer, []
         forces, moments = loaded.body_forces_n, loaded.body_moments_nm
         outputs = [(f'{PICKUP}/{name}', WRENCH_TYPE, wrench_stamped_cdr(
                     stamp, frame, forces[name].tolist(),

@@ -30,7 +30,8 @@ The roll centre of a vehicle's axle is not a corner's output: it needs both corn
 With statics on (statics_on: a scene with bushings, or statics=True), a solved command is
 answered with the loaded pose at the last contact wrench (responder.statics.set_wrench;
 answer/pickups.CornerStatics, which alone imports the statics core) in place of the kinematic
-one, then with every body pickup's force (pickup/<name>, after the extras); a load the
+one, then with every body pickup's force (pickup/<name>, after the extras; switch pickups,
+on unless set False: off, the forces are neither read nor built); a load the
 linkage cannot carry is a failed command (Status.NOT_CARRIED), with no answer. No exception
 of a solve leaves answer(): the statics' is NOT_CARRIED, the kinematics' (or an output
 builder's) Status.SOLVER_ERROR, after which the corner restarts from its design position;
@@ -90,7 +91,7 @@ OUTPUTS = (
            "the scene's elements: lengths (m) and motion ratios (answer/elements.py)"),
     Output('/tf', 'tf2_msgs/msg/TFMessage', 'tf',
            "the frames of the corner's bodies (answer/frames.py)"),
-    Output('pickup', 'geometry_msgs/msg/WrenchStamped', 'statics',
+    Output('pickup', 'geometry_msgs/msg/WrenchStamped', 'pickups',
            "each body pickup's force on the body, N, one topic pickup/<name> each "
            '(answer/pickups.py)'),
 )
@@ -135,12 +136,14 @@ def outputs_of(scene: Scene, switches: dict[str, Any]) -> list[Output]:
     """
     Return the outputs a solved command of scene publishes, in publishing order.
 
-    switches: {'alignment': bool, 'markers': bool, 'tf': bool, 'statics': bool} (the node's
-    parameters of those names; a missing one is off). elements: on for a scene with
-    elements; statics: also on for a scene with bushings (statics_on).
+    switches: {'alignment': bool, 'markers': bool, 'tf': bool, 'statics': bool, 'pickups':
+    bool} (the node's parameters of those names; a missing one is off, but for pickups,
+    which is on unless False). elements: on for a scene with elements; statics: also on for
+    a scene with bushings (statics_on); pickups (the pickup/<name> forces): only with statics.
     """
-    on = {**switches, SOLVED: True, 'elements': bool(scene.elements),
-          'statics': statics_on(scene, switches.get('statics'))}
+    statics = statics_on(scene, switches.get('statics'))
+    on = {**switches, SOLVED: True, 'elements': bool(scene.elements), 'statics': statics,
+          'pickups': statics and switches.get('pickups', True) is not False}
     return [output for output in OUTPUTS if on.get(output.when)]
 
 
@@ -239,7 +242,7 @@ class Responder:
         if self.period <= 0:
             raise ValueError(f'period_ns must be above 0, got {period_ns!r}')
         self._next = None if start_ns is None else int(start_ns) + self.period
-        self.switches = {'alignment': False, 'markers': False}
+        self.switches = {'alignment': False, 'markers': False, 'pickups': True}
         self.frames: CornerFrames | None = None
         self.statics = None
         if statics_on(scene, statics):   # the statics core is imported only here
@@ -252,15 +255,18 @@ class Responder:
         self.set_outputs()
 
     def set_outputs(self, alignment: bool | None = None, markers: bool | None = None,
-                    frames: CornerFrames | None | bool = False) -> None:
+                    frames: CornerFrames | None | bool = False,
+                    pickups: bool | None = None) -> None:
         """
         Turn the extra outputs on or off (None, or frames False: as they are).
 
-        alignment, markers: the node's parameters of those names; frames: the corner's TF
-        frames (ros/tf.CornerFrames, in the corner's namespace), or None for no /tf. The
-        scene's elements are published for a scene with elements.
+        alignment, markers, pickups: the node's parameters of those names (pickups: with
+        statics, each pickup's force; off, they are neither read nor built); frames: the
+        corner's TF frames (ros/tf.CornerFrames, in the corner's namespace), or None for no
+        /tf. The scene's elements are published for a scene with elements.
         """
-        for name, value in (('alignment', alignment), ('markers', markers)):
+        for name, value in (('alignment', alignment), ('markers', markers),
+                            ('pickups', pickups)):
             if value is not None:
                 self.switches[name] = bool(value)
         if frames is not False:
@@ -268,7 +274,8 @@ class Responder:
         self.outputs = outputs_of(self.scene, {**self.switches, 'tf': self.frames is not None,
                                                'statics': self.statics is not None})
         self._extras = [(o.name, o.type_name, extra_builder(o.name, self))
-                        for o in self.outputs if o.when not in (SOLVED, 'statics')]
+                        for o in self.outputs if o.when not in (SOLVED, 'pickups')]
+        self._pickups = any(o.when == 'pickups' for o in self.outputs)
         if self.statics is not None:   # pickups in their TF frames where /tf_static has them
             self.statics.use_frames(bool(getattr(self.frames, 'pickups', False)))
 
@@ -299,7 +306,7 @@ class Responder:
         pickups = []
         if solution.success and self.statics is not None:   # the loaded pose in its place
             try:
-                solution, pickups = self.statics.load(solution, stamp)
+                solution, pickups = self.statics.load(solution, stamp, self._pickups)
             except Exception as exc:  # noqa: B902 (a statics solve that raises: not carried)
                 return self._raised(travel, rack_mm, exc, Status.NOT_CARRIED), []
         if not solution.success:

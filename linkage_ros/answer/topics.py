@@ -61,9 +61,10 @@ _ANSWER = {
     '/tf': 'with `tf` (on by default): per answer, the frames of the carrier and of every '
            'link, arm and strut, children of `frame_id`, stamped as the answer '
            '([TF](#tf-and-the-robot-description))',
-    'pickup': 'with statics, per answer: the force (N) on the body at each pickup '
-              '(`<link>_base`, `<arm>_axis0`, `<arm>_axis1` or `<arm>_centre`, `<strut>_top`, '
-              "`<spring>_body`) and a bushing's couple (N m), in the pickup's frame",
+    'pickup': 'with statics and `pickups` (on by default), per answer: the force (N) on the '
+              'body at each pickup (`<link>_base`, `<arm>_axis0`, `<arm>_axis1` or '
+              "`<arm>_centre`, `<strut>_top`, `<spring>_body`) and a bushing's couple (N m), in "
+              "the pickup's frame",
 }
 NODE_OUTPUTS = (
     Topic('/diagnostics', 'diagnostic_msgs/msg/DiagnosticArray', 'out',

@@ -22,9 +22,9 @@ the topic and the byte count, with no pose, instead of an exception in the execu
 
 While the node runs, its parameters may change (ros/runtime.py): the corner then takes new
 solver settings at the pose it holds (configure), a new scene from that scene's design
-position (set_scene), or turns its alignment and markers on or off (set_outputs); its topics
-stay, and its elements topic follows the scene (a scene with elements has one). With TF on,
-the node gives it frames (ros/tf.CornerFrames): every answer then also sends the frames of its
+position (set_scene), or turns its alignment, markers and pickups on or off (set_outputs); its
+topics stay, and its elements topic follows the scene (a scene with elements has one). With TF
+on, the node gives it frames (ros/tf.CornerFrames): every answer then also sends the frames of its
 bodies to the outlet's transforms().
 
 What a solved command publishes is its Responder's list (protocol.OUTPUTS, outputs_of: the
@@ -34,7 +34,6 @@ publisher of that name ('/tf' through the outlet's transforms()).
 
 from __future__ import annotations
 
-from functools import partial
 from typing import Callable, Protocol, TYPE_CHECKING
 
 from geometry_msgs.msg import PoseStamped, WrenchStamped
@@ -83,6 +82,9 @@ class Outlet(Protocol):
 
     def publish(self, publisher: Publisher, msg: bytes | object) -> None:
         """Publish msg (CDR bytes or an rclpy message) on publisher."""
+
+    def sender(self, publisher: Publisher) -> Callable[[bytes | object], None]:
+        """Return send(msg): publish(publisher, msg), or as cheap a function that does it."""
 
     def bad_command(self, sent: str, kind: object, why: str) -> None:
         """Say on the console that a command sent as sent could not be answered, and why."""
@@ -217,8 +219,9 @@ class Corner:
         self.health = self.responder.health
 
     def set_outputs(self, params: dict) -> None:
-        """Turn the alignment and markers outputs on or off, as params say."""
-        self.responder.set_outputs(alignment=params['alignment'], markers=params['markers'])
+        """Turn the alignment, markers and pickups outputs on or off, as params say."""
+        self.responder.set_outputs(alignment=params['alignment'], markers=params['markers'],
+                                   pickups=params['pickups'])
         self._set_publishers()
 
     def _set_publishers(self) -> None:
@@ -240,7 +243,7 @@ class Corner:
                 self.publishers[name] = publisher(self.node, MESSAGES[output.type_name],
                                                   self.prefix + name, self.qos)
         self.sends = {name: self.outlet.transforms if name == TF
-                      else partial(self.outlet.publish, self.publishers[name])
+                      else self.outlet.sender(self.publishers[name])
                       for name in outputs}
 
     def on_travel(self, data: bytes) -> None:

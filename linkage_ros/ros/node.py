@@ -34,6 +34,7 @@ ros/runtime.py; process entry: ros/entry.py.
 from __future__ import annotations
 
 import contextlib
+from functools import partial
 import math
 import time
 from typing import Callable, NamedTuple
@@ -224,6 +225,16 @@ class SuspensionNode(Node):
                               published, published)
         publisher.publish(msg)
 
+    def sender(self, publisher):
+        """
+        Return send(msg): publish(publisher, msg); without sinks, publisher.publish itself.
+
+        The sinks are opened before the corners (they never grow; a failed one is dropped),
+        so a node without them records nothing: its answers skip publish()'s check, one
+        Python call per message (ros/corner.py: 18 to 46 a bushed vehicle's step).
+        """
+        return partial(self.publish, publisher) if self.sinks else publisher.publish
+
     def bad_command(self, sent, kind, why):
         """
         Say on the console that a command could not be answered (kind: a Status, say).
@@ -278,8 +289,9 @@ class SuspensionNode(Node):
             self.tf_outputs = None
 
     def _say_pickup_frames(self):
-        """Say once, with statics on, when the pickups' TF frames are not published."""
-        if not any(c.statics is not None for c in self.corners.values()):
+        """Say once, with pickup forces published, when their TF frames are not."""
+        if not any(c.statics is not None and c.responder.switches['pickups']
+                   for c in self.corners.values()):
             return
         why = ('parameter tf is false' if self.tf_outputs is None else
                'tf2_msgs is missing' if self.tf_outputs.missing else '')
@@ -415,10 +427,10 @@ class SuspensionNode(Node):
         Return {resolved topic: (entity, default QoS)} of the node's topics.
 
         corners as load_corners gives them; every: also those the node may make while it runs
-        (alignment, markers, TF, steering_rack), whatever the parameters say now.
+        (alignment, markers, pickups, TF, steering_rack), whatever the parameters say now.
         """
         if every:
-            params = {**params, 'alignment': True, 'markers': True}
+            params = {**params, 'alignment': True, 'markers': True, 'pickups': True}
         names = {'/diagnostics': 'publisher'}
         for prefix, (scene, *joints) in corners.scenes.items():
             names.update(corner_outputs(scene, params, prefix))

@@ -83,6 +83,9 @@ PARAMETERS = {
     'statics': Spec(False, 'take contact_wrench (geometry_msgs/WrenchStamped) and answer the '
                     "loaded pose at the last one, with each pickup's force on pickup/<name>; "
                     'on anyway for a scene with bushings'),
+    'pickups': Spec(True, "with statics, publish each body pickup's force on pickup/<name> per "
+                    'answer; false: no pickup topics, and the forces are neither read nor '
+                    'built (a simulator that needs only the loaded pose)'),
     'vehicle': Spec('', 'vehicle file (bundled name or path): one corner per wheel, topics '
                     'under the corner name; empty = the single scene of parameter scene'),
     # Each subscription holds at most this many samples: memory up to depth times the largest
@@ -94,7 +97,7 @@ PARAMETERS = {
 
 # The parameters a SetParameters request may change while the node runs (ros/runtime.py).
 RUNTIME = ('scene', 'method', 'max_step_mm', 'condition_warn', 'diagnostic_period',
-           'alignment', 'markers', 'tf')
+           'alignment', 'markers', 'tf', 'pickups')
 # Why each other parameter is fixed once the node runs (the reason a change is refused with).
 FIXED = {
     'frame_id': 'every published pose and frame names it from the start',

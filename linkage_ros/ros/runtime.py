@@ -24,7 +24,7 @@ record_mcap, rerun_rrd, frame_id, ...: why it is fixed), scene on a vehicle node
 Applied, once rclpy has stored the values (the post-set callback):
     method, max_step_mm, condition_warn   every corner's solver, at the pose it holds
     diagnostic_period                     the report timer, from now on
-    alignment, markers                    the outputs, made or removed
+    alignment, markers, pickups           the outputs, made or removed
     tf                                    /tf, /tf_static, robot_description on or off
     scene                                 the corner serves the new scene from its design
                                           position, its topics kept; /diagnostics says so at
@@ -219,7 +219,7 @@ class RuntimeParameters:
                 corner.configure(values)
         if 'diagnostic_period' in changed:
             node.set_diagnostic_period(values['diagnostic_period'])
-        if 'alignment' in changed or 'markers' in changed:
+        if 'alignment' in changed or 'markers' in changed or 'pickups' in changed:
             for corner in node.corners.values():
                 corner.set_outputs(values)
         if 'tf' in changed:

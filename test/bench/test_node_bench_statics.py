@@ -40,3 +40,18 @@ def test_without_modes_the_callback_section_leaves_statics_out(capsys):
 def test_an_unknown_mode_is_named():
     with pytest.raises(LinkageError, match="unknown mode 'statix'"):
         main(['--only', 'callback', '--quick', '--modes', 'statix'])
+
+
+def test_the_step_section_times_every_bushed_step_in_three_configurations(capsys):
+    # one bushed vehicle step in process: lean, the node's defaults, every output on; every
+    # step answered (a refused one would be timed as a cheap refusal)
+    assert main(['--only', 'step', '--quick']) == 0
+    lines = [line.split(',') for line in capsys.readouterr()[0].splitlines() if line]
+    assert lines[0] == ['step', 'steps', 'median_us', 'mean_us', 'ratio_to_lean', 'failures',
+                        'load_average']
+    rows = {cells[0]: cells for cells in lines[1:]}
+    assert list(rows) == ['node_lean', 'node_defaults', 'node_all']
+    assert {row[1] for row in rows.values()} == {'200'}
+    assert {row[5] for row in rows.values()} == {'0'}
+    # more outputs cost more: the defaults add TF and a WrenchStamped per pickup to lean
+    assert float(rows['node_all'][4]) > 1.0

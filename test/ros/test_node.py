@@ -427,8 +427,10 @@ def test_node_bench_quick_run_prints_every_section_with_nothing_lost(domain_id):
     assert [(r[0], r[1], r[4]) for r in tables['vehicle'][1:]] == [
         ('node', 'float64_per_corner', '0'), ('echo', 'float64_per_corner', '0'),
         ('node', 'joint_states', '0'), ('echo', 'joint_states', '0'),
-        ('node', 'joint_states+contact_wrench', '0'), ('echo', 'joint_states+contact_wrench',
-                                                       '0')]
+        *((name, 'joint_states+contact_wrench', '0')
+          for name in ('node_lean', 'node_defaults', 'node_all', 'echo'))]
+    # each row ends with the load average after its run, then the ratio to the echo's
+    assert tables['vehicle'][0][-2:] == ['load_average', 'ratio_to_echo']
     assert [r[0] for r in tables['callback'][1:]][:4] == ['plain', 'elements', 'tf',
                                                           'alignment']
 

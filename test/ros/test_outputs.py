@@ -53,7 +53,7 @@ def test_a_responder_builds_every_output_turned_on_in_the_tables_order():
     reply = corner.answer(30.0, None, (4, 5))
     solution = reply.solution
     assert [(n, t) for n, t, _ in reply.outputs] == [(o.name, o.type_name) for o in OUTPUTS
-                                                     if o.when != 'statics']
+                                                     if o.when != 'pickups']
     out = {name: data for name, _, data in reply.outputs}
     pose = from_cdr('geometry_msgs/msg/PoseStamped', out['wheel_carrier_pose'])
     position = pose.pose.position

@@ -25,8 +25,14 @@ Sections (all by default; --only picks some), sizes multiplied by --scale (run 1
   vehicle   vehicle:=demo_vehicle against a four-corner echo node, four corners at --hz each
             for --seconds: one Float64 per corner per step, then one JointState per step;
             then vehicle:=demo_vehicle_bushings, each step a contact_wrench per corner and a
-            JointState (the loaded pose of each corner), against the echo node taking the
-            same traffic; the step latency is from sending a step to the last of its four poses
+            JointState (the loaded pose of each corner), lean (tf:=false pickups:=false, as
+            a simulator needs it), with the node's defaults (TF, pickup forces) and with every
+            output on, against the echo node taking the same traffic; the step latency is
+            from sending a step to the last of its four poses; each row ends with the load
+            average
+  step      one step of the bushed vehicle in process (no DDS): its four contact_wrench
+            callbacks and its joint_states callback called directly, lean, with the node's
+            defaults and with every output on (the vehicle section's three nodes)
   callback  the node's travel callback called in process (no subscribers): plain (the scene
             without its elements, tf off), with its elements (the elements topic), with TF on
             (/tf per answer: the node's default), with the alignment or markers outputs,
@@ -56,6 +62,7 @@ from .latency import bench_latency
 from .service import bench_lifecycle, bench_service
 from .solver import bench_core, bench_sweep
 from .start import bench_start, start_once
+from .step import bench_step
 from .tables import progress
 from .vehicle import bench_vehicle
 from ...cli import EXIT_STATUS, Parser, plot_problem, program
@@ -66,7 +73,8 @@ from ...ros.isolation import environment_domain_id
 
 PROG = 'linkage-bench node'
 
-SECTIONS = ('core', 'sweep', 'start', 'latency', 'service', 'lifecycle', 'vehicle', 'callback')
+SECTIONS = ('core', 'sweep', 'start', 'latency', 'service', 'lifecycle', 'vehicle', 'step',
+            'callback')
 DEFAULT_RATES = (250, 500, 1000, 2000, 4000)
 
 
@@ -149,7 +157,9 @@ def main(argv: list[str] | None = None) -> int:
              f'{",".join(args.only)}, scale {args.scale}; ROS domain {args.domain_id}, '
              f'discovery {os.environ["ROS_AUTOMATIC_DISCOVERY_RANGE"]}, topics under '
              f'/linkage_node_bench_{os.getpid()}')
-    compile_if_cold(PROG)   # not within a timed section
+    # not within a timed section; the statics kernels too for the bushed vehicle, else each of
+    # its node processes compiles them at start, beyond the driver's wait for discovery
+    compile_if_cold(PROG, statics=bool({'vehicle', 'step', 'callback'} & set(args.only)))
     with tempfile.TemporaryDirectory(prefix='linkage-bench-node-') as log_dir:
         if 'core' in args.only:
             bench_core(args)
@@ -170,6 +180,8 @@ def main(argv: list[str] | None = None) -> int:
             bench_lifecycle(args, log_dir, args.domain_id)
         if 'vehicle' in args.only:
             bench_vehicle(args, log_dir, args.domain_id)
+        if 'step' in args.only:
+            bench_step(args)
         if 'callback' in args.only:
             bench_callback(args)
     progress(f'load average {os.getloadavg()[0]:.2f} (1 min) at the end')

@@ -9,11 +9,16 @@ demo_vehicle_bushings (issue 37) as a simulator drives a compliant vehicle: per 
 contact_wrench per corner (a cornering load swept as a sine, the right corners' mirrored in
 y), then one JointState with the four travels. Each corner of the node answers with its
 loaded pose (a Statics solve per corner per step); the echo node takes the same wrenches and
-echoes the travels. The step latency is from sending a step (its first wrench) to the last
-of its four poses.
+echoes the travels. The bushed node runs three ways, side by side with the echo node in one
+run (BUSHED_NODES): lean, as a simulator needs it (the poses, camber, toe, elements and roll
+centres: tf:=false pickups:=false); the node's defaults (TF and a WrenchStamped per pickup
+on); and every output on (alignment and markers too). The step latency is from sending a
+step (its first wrench) to the last of its four poses. Each row ends with the 1-minute load
+average after its run (a shared machine: read the ratios).
 """
 
 import math
+import os
 import sys
 
 import numpy as np
@@ -27,6 +32,10 @@ from ...answer.cdr import wrench_stamped_cdr
 VEHICLE = 'demo_vehicle'
 BUSHED = 'demo_vehicle_bushings'
 WRENCHED = 'joint_states+contact_wrench'
+# The bushed node's configurations: (target name, its parameters)
+BUSHED_NODES = (('node_lean', {'tf': False, 'pickups': False}),
+                ('node_defaults', {}),
+                ('node_all', {'alignment': True, 'markers': True}))
 
 
 def corner_wrenches(count, frame_id='base_link'):
@@ -58,20 +67,28 @@ def _run(targets, steps, args, modes, rows, medians):
                     sine(steps), args.hz, joint_states, label=f'vehicle: {target.name}, {mode}',
                     wrenches=wrenches)
                 medians[target.name, mode] = np.median(values) if len(values) else np.nan
+                load = os.getloadavg()[0]
                 rows.append([target.name, mode, sent, got, sent - got, lag * 1000.0,
-                             us(values), us(values, 99)])
+                             us(values), us(values, 99), load])
                 progress(f'vehicle: {target.name}, {mode}: {got}/{sent} steps answered, last '
-                         f'{lag * 1000.0:.1f} ms after the last step')
+                         f'{lag * 1000.0:.1f} ms after the last step, median '
+                         f'{us(values):.0f} us; load average {load:.2f}')
     finally:
         for target in targets:
             target.close()
 
 
-def targets_of(vehicle, log_dir, domain_id):
-    """Return the node (vehicle:=vehicle) and the four-corner echo node, as Targets."""
+def targets_of(vehicle, log_dir, domain_id, nodes=(('node', {}),)):
+    """
+    Return the node (vehicle:=vehicle) and the four-corner echo node, as Targets.
+
+    nodes: (name, {parameter: value}) of each node process to run, in that order.
+    """
     prefixes = tuple(f'{c}/' for c in CORNERS)
-    return [Target('node', [node_script(), '--ros-args', '-p', f'vehicle:={vehicle}'],
-                   domain_id, log_dir, prefixes),
+    return [*(Target(name, [node_script(), '--ros-args', '-p', f'vehicle:={vehicle}',
+                            *(a for k, v in params.items()
+                              for a in ('-p', f'{k}:={str(v).lower()}'))],
+                     domain_id, log_dir, prefixes) for name, params in nodes),
             Target('echo', [sys.executable, '-m', 'linkage_ros.bench.node_bench',
                             '--echo-vehicle'], domain_id, log_dir, prefixes)]
 
@@ -82,9 +99,9 @@ def bench_vehicle(args, log_dir, domain_id):
     steps = int(args.hz * args.seconds * args.scale)
     _run(targets_of(VEHICLE, log_dir, domain_id), steps, args,
          [('float64_per_corner', False, None), ('joint_states', True, None)], rows, medians)
-    _run(targets_of(BUSHED, log_dir, domain_id), steps, args,
+    _run(targets_of(BUSHED, log_dir, domain_id, BUSHED_NODES), steps, args,
          [(WRENCHED, True, corner_wrenches(steps))], rows, medians)
     for row in rows:
         row.append(float(medians[row[0], row[1]] / medians['echo', row[1]]))
     table(['vehicle', 'mode', 'steps', 'answered', 'lost', 'last_answer_lag_ms',
-           'step_median_us', 'step_p99_us', 'ratio_to_echo'], rows)
+           'step_median_us', 'step_p99_us', 'load_average', 'ratio_to_echo'], rows)
