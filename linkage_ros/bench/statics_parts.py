@@ -40,16 +40,22 @@ def _views(ints, reals, floats, integers, count):
 
 
 @jit
-def _assemble(ints, reals, state, io, floats, integers, what, count):
-    model = kernel.model_of(ints, reals)
-    w = newton.work_of(model, floats, integers)
+def _last_loaded(model, state, io):
+    """Return the views of the last loaded equilibrium and its command's Inputs."""
     done = command.views(state, len(model.b_kind), model.m, 1)
     x_load = np.empty(3)
     command.load_point(model, command.views(state, len(model.b_kind), model.m, 0).r[0],
                        io[command.AT_CP] != 0.0, x_load)
-    inputs = kernel.Inputs(done.head[0], done.head[1], x_load,
-                           io[command.FORCE:command.FORCE + 3],
-                           io[command.MOMENT:command.MOMENT + 3])
+    return done, kernel.Inputs(done.head[0], done.head[1], x_load,
+                               io[command.FORCE:command.FORCE + 3],
+                               io[command.MOMENT:command.MOMENT + 3])
+
+
+@jit
+def _assemble(ints, reals, state, io, floats, integers, what, count):
+    model = kernel.model_of(ints, reals)
+    w = newton.work_of(model, floats, integers)
+    done, inputs = _last_loaded(model, state, io)
     for _ in range(count):
         kernel.assemble(model, done.c, done.r, done.lam, inputs, what, w)
     return w.grad[0]
@@ -82,13 +88,7 @@ def _solve(ints, reals, state, io, floats, integers, count):
 def _pickups(ints, reals, state, io, floats, integers, count):
     model = kernel.model_of(ints, reals)
     w = newton.work_of(model, floats, integers)
-    done = command.views(state, len(model.b_kind), model.m, 1)
-    x_load = np.empty(3)
-    command.load_point(model, command.views(state, len(model.b_kind), model.m, 0).r[0],
-                       io[command.AT_CP] != 0.0, x_load)
-    inputs = kernel.Inputs(done.head[0], done.head[1], x_load,
-                           io[command.FORCE:command.FORCE + 3],
-                           io[command.MOMENT:command.MOMENT + 3])
+    done, inputs = _last_loaded(model, state, io)
     out = np.empty(len(io))
     for _ in range(count):
         forces.pickups(model, done.c, done.r, done.lam, inputs, out, w.scratch)

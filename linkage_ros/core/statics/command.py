@@ -115,20 +115,17 @@ def extra_of(model, floats):
 
 
 @jitable(inline='always')
-def _views(state, bodies, m, which):
+def views(state, bodies, m, which):
+    """Return the Equilibrium views of a state: which 0 the zero-load one, 1 the loaded one."""
     o = state_offset(bodies, 0, m, 0, which)
     c = state[o + 3:o + 3 + 3 * bodies].reshape((bodies, 3))
     r = state[o + 3 + 3 * bodies:o + 3 + 12 * bodies].reshape((bodies, 3, 3))
     return Equilibrium(state[o:o + 3], c, r, state[o + 3 + 12 * bodies:o + 3 + 12 * bodies + m])
 
 
-def views(state, bodies, m, which):
-    """Return the Equilibrium views of a state: which 0 the zero-load one, 1 the loaded one."""
-    return _views(state, bodies, m, which)
-
-
 @jitable(inline='always')
-def _factor_views(state, model, which):
+def factor_views(state, model, which):
+    """Return the newton.Factor views of a state's factorisation which (0 zero, 1 loaded)."""
     n, m, size = model.n, model.m, len(model.perm)
     o = state_offset(len(model.b_kind), n, m, size, 2 + which)
     a = state[o + 3:o + 3 + size * size].reshape((size, size))
@@ -137,11 +134,6 @@ def _factor_views(state, model, which):
     return newton.Factor(head, a, state[o:o + 2 * size], state[o + 2 * size:o + 2 * size + n],
                          state[o + 2 * size + n:o + 2 * size + 2 * n],
                          state[o + 2 * size + 2 * n:o + 2 * size + 2 * n + m])
-
-
-def factor_views(state, model, which):
-    """Return the newton.Factor views of a state's factorisation which (0 zero, 1 loaded)."""
-    return _factor_views(state, model, which)
 
 
 @bare
@@ -160,7 +152,7 @@ def _zero_load(model, state, io, w, extra, finish):
     w holds of it then (newton.newton's).
     """
     z, rack = io[Z], io[RACK]
-    zero = _views(state, len(model.b_kind), model.m, 0)
+    zero = views(state, len(model.b_kind), model.m, 0)
     same = zero.head[2] == 1.0 and zero.head[0] == z and zero.head[1] == rack
     if same and io[ZERO_FROM] == WARM:
         io[ZERO_ITERATIONS] = 0.0
@@ -169,7 +161,7 @@ def _zero_load(model, state, io, w, extra, finish):
     newton.copy_pose(zero.c, zero.r, zero.lam, c, r, lam)
     center = model.consts[kernel.CENTER:kernel.CENTER + 3]
     inputs = kernel.Inputs(z, rack, center, extra.zero, extra.zero)
-    kept = _factor_views(state, model, 0)
+    kept = factor_views(state, model, 0)
     last = 0.0
     if io[ZERO_FROM] == WARM and kept.head[0] == 1.0:   # the tangent, then Newton
         last = newton.chord(model, c, r, lam, inputs, kept, w)
@@ -219,11 +211,11 @@ def solve(ints, reals, state, io, floats, integers):
     """
     model = kernel.model_of(ints, reals)
     bodies = len(model.b_kind)
-    if io[ZERO_FROM] == WARM and not _near(_views(state, bodies, model.m, 0).head, io[Z],
+    if io[ZERO_FROM] == WARM and not _near(views(state, bodies, model.m, 0).head, io[Z],
                                            io[RACK]):
         io[CODE] = COLD
         return COLD
-    if io[LOADED_FROM] == WARM and not _near(_views(state, bodies, model.m, 1).head, io[Z],
+    if io[LOADED_FROM] == WARM and not _near(views(state, bodies, model.m, 1).head, io[Z],
                                              io[RACK]):
         io[LOADED_FROM] = ZERO
     w = newton.work_of(model, floats, integers)
@@ -233,13 +225,13 @@ def solve(ints, reals, state, io, floats, integers):
             model, state, io, w, extra, newton.POSE_ONLY):
         io[RESIDUAL] = io[ZERO_RESIDUAL]
         return ZERO_FAILED
-    start = _views(state, bodies, model.m, 0 if io[LOADED_FROM] != WARM else 1)
+    start = views(state, bodies, model.m, 0 if io[LOADED_FROM] != WARM else 1)
     c, r, lam = extra.c, extra.r, extra.lam
     newton.copy_pose(start.c, start.r, start.lam, c, r, lam)
-    load_point(model, _views(state, bodies, model.m, 0).r[0], io[AT_CP] != 0.0, extra.x_load)
+    load_point(model, views(state, bodies, model.m, 0).r[0], io[AT_CP] != 0.0, extra.x_load)
     inputs = kernel.Inputs(io[Z], io[RACK], extra.x_load, io[FORCE:FORCE + 3],
                            io[MOMENT:MOMENT + 3])
-    kept = _factor_views(state, model, 1)
+    kept = factor_views(state, model, 1)
     if io[LOADED_FROM] == WARM:
         last = newton.chord(model, c, r, lam, inputs, kept, w) if kept.head[0] == 1.0 else 0.0
         ok, iterations, residual = newton.newton(model, c, r, lam, inputs, newton.MAX_ITER, w,
@@ -258,7 +250,7 @@ def solve(ints, reals, state, io, floats, integers):
     if answer[forces.VALIDITY] != forces.VALID:
         io[CODE] = BEYOND
         return BEYOND
-    done = _views(state, bodies, model.m, 1)
+    done = views(state, bodies, model.m, 1)
     done.head[0], done.head[1], done.head[2] = io[Z], io[RACK], 1.0
     newton.copy_pose(c, r, lam, done.c, done.r, done.lam)
     newton.keep(w, kept)
@@ -295,7 +287,7 @@ def rates(ints, reals, state, io, floats, integers):
     floats, integers: the work, as solve's.
     """
     model = kernel.model_of(ints, reals)
-    zero = _views(state, len(model.b_kind), model.m, 0)
+    zero = views(state, len(model.b_kind), model.m, 0)
     if io[ZERO_FROM] == WARM and not _near(zero.head, io[Z], io[RACK]):
         io[CODE] = COLD
         return COLD
@@ -314,7 +306,7 @@ def rates(ints, reals, state, io, floats, integers):
     if mode == kkt.FAILED:
         return ZERO_FAILED
     bounds = w.dense if dense else model.bounds
-    newton.keep(w, _factor_views(state, model, 0))   # the next command's tangent
+    newton.keep(w, factor_views(state, model, 0))   # the next command's tangent
     rot, spin, rhs, sol = zero.r[0], model.consts[kernel.SPIN:kernel.SPIN + 3], w.rhs, w.sol
     ax = rot[0, 0] * spin[0] + rot[0, 1] * spin[1] + rot[0, 2] * spin[2]
     ay = rot[1, 0] * spin[0] + rot[1, 1] * spin[1] + rot[1, 2] * spin[2]
