@@ -37,12 +37,13 @@ def test_the_commands_go_on_along_one_sine_of_the_travel_and_the_wrench():
     assert loads[2].at == 'cp' and loads[2].force_n[2] == 4000.0
 
 
-def test_the_parts_of_a_loaded_command_compile_and_each_takes_time():
+def test_the_parts_of_a_loaded_command_compile_and_are_timed():
     # --parts times the kernels' pieces: each compiles from the statics' own kernels (a piece
-    # that no longer compiled broke --parts unseen once) and takes some CPU time
+    # that no longer compiled broke --parts unseen once). Only that is asserted: the times are
+    # the benchmark's, and a piece taken as a difference of two times may be < 0 under load
     from linkage_ros.bench.statics_parts import parts
     from linkage_ros.core.model import load_scene
     pieces = parts(load_scene('five_link_bushings'), bench.commands(4), bench.commands(4, 4))
     assert {'Statics.solve', 'its compiled call', 'exact assembly (x2)', 'factorisation (x2)',
             'KKT solve (x4)', 'pickup forces (x1)'} <= set(pieces)
-    assert all(math.isfinite(us) and us > 0 for us in pieces.values()), pieces
+    assert all(math.isfinite(us) for us in pieces.values()), pieces
