@@ -13,17 +13,16 @@ from ..core.base import LinkageError
 from ..core.warmup import compile_if_cold
 
 
-def asked(program: ModuleType, argv: list[str], warnings_of: Callable[[Any], list],
+def asked(program: ModuleType, args: Any, warnings_of: Callable[[Any], list],
           statics: bool = False) -> Any:
     """
-    Return program's request for argv, as the program itself reads it, or its exit status.
+    Return program's request for its parsed args, as the program makes it, or an exit status.
 
-    program: a tools module with PROG, parse_args(argv) and request(args) (linkage-sweep's,
-    ...). A mistake is its one line and status 2 (an int returned); else the request's
-    warnings (warnings_of(request)) are said and the kernels compiled (statics: those of the
-    statics too) before any timing.
+    program: a tools module with PROG and request(args) (linkage-sweep's, ...); args: what its
+    parse_args(argv) returned. A mistake is its one line and status 2 (an int returned); else
+    the request's warnings (warnings_of(request)) are said and the kernels compiled (statics:
+    those of the statics too) before any timing.
     """
-    args = program.parse_args(argv)
     try:
         request = program.request(args)
     except LinkageError as exc:

@@ -63,7 +63,8 @@ def benchmark(axle, heave, roll, rack, rounds):
 
 def main(argv: list[str], rounds: int) -> int:
     """Time the axle linkage-axle's arguments ask for over rounds: 0, or 2 for a mistake."""
-    request = asked(program, argv, lambda request: request[0].vehicle.warnings)
+    request = asked(program, program.parse_args(argv),
+                    lambda request: request[0].vehicle.warnings)
     if isinstance(request, int):
         return request
     _, axle, (heave, roll, rack) = request

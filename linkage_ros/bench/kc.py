@@ -91,7 +91,7 @@ def main(argv: list[str], rounds: int) -> int:
     """Time the positions linkage-kc's arguments ask for over rounds: 0, 1 if one fails, 2."""
     args = kc.parse_args(argv)
     # every answer timed here is a statics solve
-    request = asked(kc, argv, lambda request: request[0].warnings, statics=True)
+    request = asked(kc, args, lambda request: request[0].warnings, statics=True)
     if isinstance(request, int):
         return request
     scene, travels, racks = request

@@ -93,7 +93,8 @@ def benchmark(corners, rounds):
 def main(argv: list[str], rounds: int) -> int:
     """Time the corners linkage-map's arguments name over rounds: 0, 1 out of reach, 2."""
     # the grid and axle checked, as linkage-map does
-    request = asked(program, argv, lambda request: request[0].warnings)
+    request = asked(program, program.parse_args(argv),
+                    lambda request: request[0].warnings)
     if isinstance(request, int):
         return request
     return benchmark(request[1], rounds)

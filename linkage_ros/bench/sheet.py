@@ -47,7 +47,8 @@ def benchmark(vehicle, setup_sheet, rounds, scales=SCALES):
 
 def main(argv: list[str], rounds: int) -> int:
     """Time the sheet of the vehicle linkage-vehicle's arguments name: 0, or 2 for a mistake."""
-    vehicle = asked(program, argv, lambda vehicle: vehicle.warnings)
+    vehicle = asked(program, program.parse_args(argv),
+                    lambda vehicle: vehicle.warnings)
     if isinstance(vehicle, int):
         return vehicle
     benchmark(vehicle, setup_sheet, rounds)

@@ -66,7 +66,8 @@ def benchmark(scene, travels, rounds):
 
 def main(argv: list[str], rounds: int) -> int:
     """Time the sweep linkage-sweep's arguments ask for over rounds: 0, 1 out of reach, 2."""
-    request = asked(program, argv, lambda request: request[0].warnings)
+    request = asked(program, program.parse_args(argv),
+                    lambda request: request[0].warnings)
     if isinstance(request, int):
         return request
     scene, travels, _ = request
