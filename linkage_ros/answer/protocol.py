@@ -27,7 +27,7 @@ period (period_ns) of the clock the caller gives: the node's timer, or a recordi
 The roll centre of a vehicle's axle is not a corner's output: it needs both corners' poses
 (ros/roll_centres.py listens to both).
 
-With statics on (statics_on: a scene with bushings, or statics=True), a solved command is
+With statics on (wants_statics: a scene with bushings, or statics=True), a solved command is
 answered with the loaded pose at the last contact wrench (responder.statics.set_wrench;
 answer/pickups.CornerStatics, which alone imports the statics core) in place of the kinematic
 one, then with every body pickup's force (pickup/<name>, after the extras; switch pickups,
@@ -119,14 +119,9 @@ def wrench_problem(frame_id: str, force: tuple, torque: tuple, vehicle_frame: st
     return ''
 
 
-def statics_on(scene: Scene, switch: bool) -> bool:
-    """Tell whether a corner answers loaded poses: a scene with bushings, or statics:=true."""
-    return wants_statics(scene, switch)   # the rule every program follows (core/warmup.py)
-
-
 def statics_problem(scene: Scene, switch: bool) -> str:
     """Say why a corner of scene cannot answer loaded poses though statics is on, or ''."""
-    if statics_on(scene, switch) and not scene.wheel_radius > 0:
+    if wants_statics(scene, switch) and not scene.wheel_radius > 0:
         return (f'scene {scene.name} ({scene.source}): statics needs wheel_radius: the '
                 'contact wrench acts at the contact patch')
     return ''
@@ -139,9 +134,9 @@ def outputs_of(scene: Scene, switches: dict[str, Any]) -> list[Output]:
     switches: {'alignment': bool, 'markers': bool, 'tf': bool, 'statics': bool, 'pickups':
     bool} (the node's parameters of those names; a missing one is off, but for pickups,
     which is on unless False). elements: on for a scene with elements; statics: also on for
-    a scene with bushings (statics_on); pickups (the pickup/<name> forces): only with statics.
+    a scene with bushings (wants_statics); pickups (the pickup/<name> forces): only with statics.
     """
-    statics = statics_on(scene, switches.get('statics'))
+    statics = wants_statics(scene, switches.get('statics'))
     on = {**switches, SOLVED: True, 'elements': bool(scene.elements), 'statics': statics,
           'pickups': statics and switches.get('pickups', True) is not False}
     return [output for output in OUTPUTS if on.get(output.when)]
@@ -227,7 +222,7 @@ class Responder:
         status_name: the DiagnosticStatus name ('suspension_kinematics: five_link').
         period_ns: the diagnostic period; start_ns: when its first period starts (the node:
         its clock at start), or None for the time of the first call of due(). statics: answer
-        the loaded pose at the last contact wrench (statics_on; answer/pickups.CornerStatics,
+        the loaded pose at the last contact wrench (wants_statics; answer/pickups.CornerStatics,
         whose set_wrench takes it), with the pickups' forces; prefix: the corner's TF
         prefix ('' or 'front_left/'), which names its pickups' frames. builders: {output name:
         make(responder) -> build(solution, stamp)} of the outputs whose messages are rclpy's
@@ -245,7 +240,7 @@ class Responder:
         self.switches = {'alignment': False, 'markers': False, 'pickups': True}
         self.frames: CornerFrames | None = None
         self.statics = None
-        if statics_on(scene, statics):   # the statics core is imported only here
+        if wants_statics(scene, statics):   # the statics core is imported only here
             if statics_problem(scene, statics):
                 raise LinkageError('statics', statics_problem(scene, statics))
             from .pickups import CornerStatics

@@ -83,7 +83,7 @@ def main(argv: list[str]) -> int:
         commands, scene, status, _ = request(args, given_scene(args), 'timing', PROG)
     except (Mistake, LinkageError) as exc:   # SceneError, RecordingError, ReplayError
         return fail(PROG, exc)
-    # a corner of a scene with bushings answers loaded poses (protocol.statics_on)
+    # a corner of a scene with bushings answers loaded poses (warmup.wants_statics)
     compile_if_cold(PROG, statics=wants_statics(scene))
     if not commands:
         print(f'{PROG}: nothing to time: no commands', file=sys.stderr)

@@ -46,7 +46,8 @@ from .inbox import Inbox
 from .qos import publisher, subscription, topic_qos
 from ..answer.cdr import CdrError, float64_of, from_cdr, wrench_of
 from ..answer.protocol import CONTACT_WRENCH, OUTPUTS, outputs_of, Reply, Responder, SOLVED, \
-    statics_on, wrench_problem, WRENCH_TYPE
+    wrench_problem, WRENCH_TYPE
+from ..core.warmup import wants_statics
 
 if TYPE_CHECKING:
     from rclpy.node import Node
@@ -155,7 +156,7 @@ class Corner:
             condition_warn=params['condition_warn'], frame_id=self.frame_id,
             status_name=messages.status_name(self.node.get_fully_qualified_name(), scene.name),
             period_ns=round(params['diagnostic_period'] * 1e9),
-            statics=statics_on(scene, params['statics']), prefix=self.prefix,
+            statics=wants_statics(scene, params['statics']), prefix=self.prefix,
             builders=messages.BUILDERS)
         self.solver, self.health = responder.solver, responder.health
         self.status_name = responder.status_name
@@ -169,7 +170,7 @@ class Corner:
 
     def _listen_to_wrench(self, params: dict) -> None:
         """Subscribe contact_wrench if statics is on and it is not subscribed yet."""
-        if statics_on(self.scene, params['statics']) and self.wrench_topic is None:
+        if wants_statics(self.scene, params['statics']) and self.wrench_topic is None:
             self.wrench_topic = self._subscribe(WrenchStamped, CONTACT_WRENCH, self.on_wrench)
             self.listening.append(f'{self.wrench_topic} (N, N m at the contact patch, '
                                   f'{self.frame_id})')
@@ -363,7 +364,7 @@ def corner_topics(scene: Scene, params: dict, prefix: str = '') -> list[str]:
         names.append('joint_states')
     if scene.steered:
         names.append('steering_rack')
-    if statics_on(scene, params.get('statics')):
+    if wants_statics(scene, params.get('statics')):
         names.append(CONTACT_WRENCH)
     names += [name for name in outputs if name not in always and name != PICKUP]
     if PICKUP in outputs:

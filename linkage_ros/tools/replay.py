@@ -142,7 +142,7 @@ def run(args):
     if args.command == 'publish':   # the Float64 commands: travel and rack
         from .replay_commands import WRENCH
         return _publish(args, [c for c in commands if c.kind != WRENCH], source, status)
-    # a corner of a scene with bushings answers loaded poses (protocol.statics_on)
+    # a corner of a scene with bushings answers loaded poses (warmup.wants_statics)
     compile_if_cold(PROG, statics=any(wants_statics(s) for s in (scene, *scenes.values())))
     return _solve(args, commands, scene, source, output, stored, status, (changes, scenes))
 
