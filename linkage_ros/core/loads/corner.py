@@ -28,7 +28,6 @@ from .bar import drop_element, DROP_LINK
 from ..measure.alignment import patch_offset
 from ..solve.mechanism import compile_scene
 from ..statics.forces import _rigid_arm
-from ..statics.kernel import SPRING, unpack
 from ..statics.loaded import Load
 from ..statics.statics import solve_loaded, Statics
 
@@ -69,7 +68,7 @@ class CornerStatics:
     side: the corner's anti-roll bar side (model.anti_roll_bar.BarSide), or None. With a bar,
     the corner carries its drop link as a constant-force spring from the arm's end E (a body
     point) to its lower end (bar.drop_element), whose E and force change with the travels:
-    solve() writes them into the Statics' packed model in place, where pack() would put them
+    solve() writes them into the Statics in place (Statics.spring_in_place), as pack() would
     for the scene with_drop(end, tension) (its body end's point and pickup, its table's
     forces), so that one Statics serves every E and force.
     """
@@ -81,13 +80,7 @@ class CornerStatics:
         self.statics = Statics(scene)
         self._drop = None
         if side is not None:
-            packed = self.statics.packed
-            model = unpack(packed.ints, packed.reals)   # views into the Statics' arrays
-            s = packed.names.springs.index(DROP_LINK)
-            term = [t for t, kind in enumerate(model.t_kind) if kind == SPRING][s]
-            start, stop = model.t_table[term]
-            self._drop = (model.it_x0[term, 0], model.p_point[model.s_body[s]],
-                          model.table[start:stop, 1])
+            self._drop = self.statics.spring_in_place(DROP_LINK)
 
     def with_drop(self, end: np.ndarray, tension: float) -> Scene:
         """Return the corner's scene with its drop link from end (mm) at tension (N)."""

@@ -85,6 +85,23 @@ class Statics:
         """Forget the last equilibria: the next command starts from the kinematic pose."""
         self._state[:] = 0.0
 
+    def spring_in_place(self, name: str) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """
+        Return writable views of spring name in this Statics' packed model: (x0, point, forces).
+
+        x0 (3,) mm: its first end as packed (its it_x0); point (3,) mm: its body end's pickup;
+        forces (k,) N: its force table's forces. Written between commands, they change the
+        spring as pack() would for a scene with it so moved or loaded, without a new Statics
+        (core/loads: a drop link whose end and force follow the travels); the next command
+        still starts from the last equilibrium.
+        """
+        model = kernel.unpack(self._ints, self._reals)   # views into the packed arrays
+        s = self._names.springs.index(name)
+        term = [t for t, kind in enumerate(model.t_kind) if kind == kernel.SPRING][s]
+        start, stop = model.t_table[term]
+        return (model.it_x0[term, 0], model.p_point[model.s_body[s]],
+                model.table[start:stop, 1])
+
     def solve(self, travel_mm: float, load: Load = NO_LOAD, rack_mm: float = 0.0) -> Loaded:
         """
         Solve the loaded equilibrium at travel and rack (mm); returns a Loaded.
