@@ -27,7 +27,7 @@ import numpy as np
 from .bar import drop_element, DROP_LINK
 from ..measure.alignment import patch_offset
 from ..solve.mechanism import compile_scene
-from ..statics.forces import _rigid_arm
+from ..statics.forces import rigid_arm
 from ..statics.loaded import Load
 from ..statics.statics import solve_loaded, Statics
 
@@ -160,5 +160,5 @@ def pivot_forces(points: np.ndarray, loads: list) -> np.ndarray:
         total[:3] += force
         total[3:] += np.cross(np.asarray(point, dtype=float) - points[0], force)
     out = np.zeros((2, 3))
-    _rigid_arm(points, total, out[0], out[1])
+    rigid_arm(points, total, out[0], out[1])
     return out

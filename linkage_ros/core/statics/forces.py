@@ -243,7 +243,7 @@ def pickups(model, c, r, lam, inputs, out, work):
             _validity(b_kind[body] == kernel.ARM, r[body], u_axis[b], b, d0, d1,
                       d2, out, phi)
     for h in range(len(h_slot)):
-        _rigid_arm(h_axis[h], rigid[h], force[h_slot[h, 0]], force[h_slot[h, 1]])
+        rigid_arm(h_axis[h], rigid[h], force[h_slot[h, 0]], force[h_slot[h, 1]])
     for j in range(l_count):
         i = l_row[j]
         d0, d1, d2 = at[i, 0, 0] - at[i, 1, 0], at[i, 0, 1] - at[i, 1, 1], at[i, 0, 2] - at[
@@ -259,7 +259,7 @@ def pickups(model, c, r, lam, inputs, out, work):
 
 
 @bare
-def _rigid_arm(axis, loads, p0, p1):
+def rigid_arm(axis, loads, p0, p1):
     """
     Add to p0, p1 the forces (3,) N a rigid revolute's pivots exert on the body.
 
