@@ -82,6 +82,25 @@ def test_a_failed_warm_step_falls_back_to_the_kinematic_pose_and_gives_the_same(
     assert len(kinematic) == len(travels)   # each command took the long way
 
 
+@pytest.mark.parametrize('at', ['cp', 'wc'])
+def test_commands_along_a_sine_take_the_long_way_only_at_the_first(at):
+    """
+    Each command within command.WARM_MM of the last continues from it (one compiled call).
+
+    A load at the wheel centre needs no zero-load equilibrium: before, its commands asked for
+    one near enough, found the one of the first command left behind, and went the long way.
+    """
+    scene = load_scene(BUSHED)
+    statics = Statics(scene)
+    travels, loads = sine(count=80)   # 4.7 mm steps at most, 30 mm from the first
+    for travel, load in zip(travels, loads):
+        got = statics.solve(travel, Load(load.force_n, at, load.moment_nm))
+        assert got.status == Status.OK, got.message
+    assert statics.long_ways == 1
+    assert_same_answer(got, solve_loaded(scene, travels[-1],
+                                         Load(loads[-1].force_n, at, loads[-1].moment_nm)))
+
+
 def test_rates_continued_from_the_last_equilibrium_equal_fresh_ones():
     scene = load_scene(BUSHED)
     statics = Statics(scene)

@@ -211,18 +211,22 @@ def solve(ints, reals, state, io, floats, integers):
     """
     model = kernel.model_of(ints, reals)
     bodies = len(model.b_kind)
-    if io[ZERO_FROM] == WARM and not _near(views(state, bodies, model.m, 0).head, io[Z],
-                                           io[RACK]):
-        io[CODE] = COLD
-        return COLD
     if io[LOADED_FROM] == WARM and not _near(views(state, bodies, model.m, 1).head, io[Z],
                                              io[RACK]):
         io[LOADED_FROM] = ZERO
+    # the zero-load equilibrium: for the patch's place, or to start from; a load at the
+    # wheel centre continued from the last loaded equilibrium needs none
+    zero_load = io[AT_CP] != 0.0 or io[LOADED_FROM] != WARM
+    if zero_load and io[ZERO_FROM] == WARM and not _near(views(state, bodies, model.m, 0).head,
+                                                         io[Z], io[RACK]):
+        io[CODE] = COLD
+        return COLD
     w = newton.work_of(model, floats, integers)
     extra = extra_of(model, floats[newton.work_size(model)[0]:])
     io[CODE] = ZERO_FAILED
-    if (io[AT_CP] != 0.0 or io[LOADED_FROM] != WARM) and not _zero_load(
-            model, state, io, w, extra, newton.POSE_ONLY):
+    if not zero_load:
+        io[ZERO_ITERATIONS] = 0.0
+    elif not _zero_load(model, state, io, w, extra, newton.POSE_ONLY):
         io[RESIDUAL] = io[ZERO_RESIDUAL]
         return ZERO_FAILED
     start = views(state, bodies, model.m, 0 if io[LOADED_FROM] != WARM else 1)

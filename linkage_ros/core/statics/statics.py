@@ -80,6 +80,7 @@ class Statics:
         self._ints, self._reals, self._names = packed.ints, packed.reals, packed.names
         self._load = None   # the last Load given: its numbers are in io
         self._patch = scene.wheel_radius > 0   # a load at the contact patch is possible
+        self.long_ways = 0   # commands that started from the kinematic pose (_kinematic)
 
     def reset(self) -> None:
         """Forget the last equilibria: the next command starts from the kinematic pose."""
@@ -196,6 +197,7 @@ class Statics:
         Returns None, or the failed kinematic Solution (out of reach, not finite).
         """
         scene = self.scene
+        self.long_ways += 1
         kin = self.continuation.solve(travel, rack if scene.steered else None)
         if not kin.success:
             return kin
