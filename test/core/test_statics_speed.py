@@ -3,6 +3,7 @@
 
 """A Statics' shortcuts (core/statics/statics.py) give the answers of the long way."""
 
+import importlib
 import math
 from pathlib import Path
 
@@ -122,6 +123,19 @@ def test_rates_asked_again_at_the_same_travel_solve_nothing_and_are_a_copy():
     expected = Statics(load_scene(BUSHED)).rates(15.0)
     assert again.rates == pytest.approx(expected.rates, rel=1e-12)
     assert np.abs(again.matrix - expected.matrix).max() <= 1e-12 * np.abs(expected.matrix).max()
+
+
+def test_the_compiled_rates_write_the_layout_a_compliance_reads():
+    """command.rates' offsets are compliance.py's: rates, the matrix, the matrix in SI."""
+    layout = importlib.import_module('linkage_ros.core.statics.compliance')  # (the package's
+    assert (command.MATRIX, command.MATRIX_SI, command.RATES_SIZE) == (   # compliance() hides it)
+        layout.MATRIX, layout.MATRIX_SI, layout.SIZE)
+    got = Statics(load_scene(BUSHED)).rates(5.0)
+    # the SI matrix from the table's: mm -> m and deg -> rad per kN -> per N (exact scalings
+    # of the same numbers: a few ulp)
+    scale = np.array([1e-6] * 3 + [math.radians(1.0) * 1e-3] * 3)[:, None]
+    assert np.allclose(got.matrix * scale, got.matrix_si, rtol=1e-14, atol=0.0)
+    assert got.rates['toe_per_fy_cp_deg_per_kN'] == got.values[0]
 
 
 def test_a_statics_keeps_nothing_in_the_frozen_scene():

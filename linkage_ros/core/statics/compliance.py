@@ -32,18 +32,44 @@ from ..measure.quantities import names
 RATE_COLUMNS = tuple(names('kc_fy_cp', 'kc_fx_cp', 'kc_fx_wc', 'kc_mz'))
 
 
+# the layout of a Compliance's values (command.rates writes it): the rates (RATE_COLUMNS'
+# order, NaN where the scene has none), the 6x6 matrix in the table's units, then in SI
+MATRIX = len(RATE_COLUMNS)
+MATRIX_SI = MATRIX + 36
+SIZE = MATRIX_SI + 36
+
+
 class Compliance(NamedTuple):
-    """The rates at one travel and rack (registry units), the 6x6 matrices; NaN on failure."""
+    """
+    The rates at one travel and rack (registry units), the 6x6 matrices; NaN on failure.
+
+    A NamedTuple over its own array of values (SIZE floats, the layout above: cheap to make,
+    one per command); the rates dict and the matrices are read from it when asked for, the
+    dict made anew at each read, the matrices views into the values.
+    """
 
     status: Status
     message: str
     travel_mm: float
-    rates: dict            # name (RATE_COLUMNS) -> value; empty on failure
-    matrix: np.ndarray     # (6, 6) mm, deg per kN, kN m
-    matrix_si: np.ndarray  # (6, 6) m, rad per N, N m
+    values: np.ndarray     # (SIZE,)
+
+    @property
+    def rates(self) -> dict:
+        """Name (RATE_COLUMNS) -> value, those the scene has; empty on failure."""
+        return {k: v for k, v in zip(RATE_COLUMNS, self.values[:MATRIX].tolist())
+                if not math.isnan(v)}
+
+    @property
+    def matrix(self) -> np.ndarray:
+        """The (6, 6) compliance, mm, deg per kN, kN m."""
+        return self.values[MATRIX:MATRIX_SI].reshape(6, 6)
+
+    @property
+    def matrix_si(self) -> np.ndarray:
+        """The (6, 6) compliance, m, rad per N, N m."""
+        return self.values[MATRIX_SI:SIZE].reshape(6, 6)
 
 
 def failed(status: Status, message: str, travel_mm: float) -> Compliance:
     """Return the Compliance of a position that failed: no rates, matrices of NaN."""
-    return Compliance(status, message, float(travel_mm), {}, np.full((6, 6), math.nan),
-                      np.full((6, 6), math.nan))
+    return Compliance(status, message, float(travel_mm), np.full(SIZE, math.nan))

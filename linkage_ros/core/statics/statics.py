@@ -27,14 +27,13 @@ patch without a wheel radius, a load that is not finite) raises LinkageError.
 
 from __future__ import annotations
 
-import math
 from math import isfinite
 from typing import TYPE_CHECKING
 
 import numpy as np
 
 from . import command, forces, kernel
-from .compliance import Compliance, failed, RATE_COLUMNS
+from .compliance import Compliance, failed
 from .loaded import check_load, Load, Loaded
 from .pack import pack
 from .pickups import Pickups
@@ -147,12 +146,8 @@ class Statics:
             code = command.rates(self._ints, self._reals, self._state, io, *self._work)
         if code != command.OK:
             return failed(Status.NOT_CARRIED, self._zero_message(travel), travel)
-        out = io[command.ANSWER:command.ANSWER + command.RATES_SIZE]
-        values = out[:len(RATE_COLUMNS)].tolist()
-        rates = {k: v for k, v in zip(RATE_COLUMNS, values) if not math.isnan(v)}
-        return Compliance(Status.OK, 'ok', travel, rates,
-                          out[command.MATRIX:command.MATRIX_SI].reshape(6, 6).copy(),
-                          out[command.MATRIX_SI:command.RATES_SIZE].reshape(6, 6).copy())
+        return Compliance(Status.OK, 'ok', travel,
+                          io[command.ANSWER:command.ANSWER + command.RATES_SIZE].copy())
 
     def _take_load(self, load: Load) -> None:
         """
