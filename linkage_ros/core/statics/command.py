@@ -162,9 +162,11 @@ def _zero_load(model, state, io, w, extra, finish):
     center = model.consts[kernel.CENTER:kernel.CENTER + 3]
     inputs = kernel.Inputs(z, rack, center, extra.zero, extra.zero)
     kept = factor_views(state, model, 0)
+    w = newton.over(w, kept)   # (Newton factorises into the kept arrays: not kept till keep)
     last = 0.0
     if io[ZERO_FROM] == WARM and kept.head[0] == 1.0:   # the tangent, then Newton
         last = newton.chord(model, c, r, lam, inputs, kept, w)
+    kept.head[0] = 0.0
     ok, iterations, residual = newton.newton(model, c, r, lam, inputs, newton.MAX_ITER, w,
                                              finish, last)
     io[ZERO_ITERATIONS], io[ZERO_RESIDUAL] = iterations, residual
@@ -236,11 +238,13 @@ def solve(ints, reals, state, io, floats, integers):
     inputs = kernel.Inputs(io[Z], io[RACK], extra.x_load, io[FORCE:FORCE + 3],
                            io[MOMENT:MOMENT + 3])
     kept = factor_views(state, model, 1)
+    w = newton.over(w, kept)
     if io[LOADED_FROM] == WARM:
         last = newton.chord(model, c, r, lam, inputs, kept, w) if kept.head[0] == 1.0 else 0.0
         ok, iterations, residual = newton.newton(model, c, r, lam, inputs, newton.MAX_ITER, w,
                                                  kernel.RESIDUAL, last)
     else:
+        kept.head[0] = 0.0
         ok, iterations, residual = newton.loaded(model, c, r, lam, inputs, w, extra.c0,
                                                  extra.r0, extra.lam0, extra.force,
                                                  extra.moment)
@@ -306,11 +310,14 @@ def rates(ints, reals, state, io, floats, integers):
     if io[ZERO_ITERATIONS] == 0.0:   # kept as it was: its matrix again
         kernel.assemble(model, zero.c, zero.r, zero.lam, kernel.Inputs(
             io[Z], io[RACK], center, extra.zero, extra.zero), kernel.SYMMETRIC, w)
+    kept = factor_views(state, model, 0)
+    w = newton.over(w, kept)
+    kept.head[0] = 0.0
     mode, dense = newton.factorise(model, w)
     if mode == kkt.FAILED:
         return ZERO_FAILED
     bounds = w.dense if dense else model.bounds
-    newton.keep(w, factor_views(state, model, 0))   # the next command's tangent
+    newton.keep(w, kept)   # the next command's tangent
     rot, spin, rhs, sol = zero.r[0], model.consts[kernel.SPIN:kernel.SPIN + 3], w.rhs, w.sol
     ax = rot[0, 0] * spin[0] + rot[0, 1] * spin[1] + rot[0, 2] * spin[2]
     ay = rot[1, 0] * spin[0] + rot[1, 1] * spin[1] + rot[1, 2] * spin[2]

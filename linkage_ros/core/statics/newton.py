@@ -192,27 +192,24 @@ def _take(model, c, r, lam, w):
     return size
 
 
+@jitable(inline='always')
+def over(w, factor):
+    """
+    Return w factorising into factor's arrays (a, column, row, jcol; the pivots stay w's).
+
+    A solve with a kept factorisation (chord) and the Newton after it then copy nothing but
+    the pivots (keep): the state's float array cannot hold them as integers.
+    """
+    return Work(w.grad, w.hess, w.values, w.rows, factor.a, w.piv, factor.column, factor.row,
+                factor.rows, w.b, w.spare, w.rhs, w.sol, w.dense, w.steps, w.info, w.scratch)
+
+
 @bare
 def keep(w, factor):
-    """Keep w's last factorisation (a, piv, column, row, jcol, info) in factor."""
+    """Keep w's last factorisation in factor, whose arrays w factorised into (over(w, factor))."""
     factor.head[0], factor.head[1], factor.head[2] = 1.0, w.info[0], w.info[1]
-    _copy(w.a, w.piv, w.column, w.row, w.jcol, factor.a, factor.piv, factor.column,
-          factor.row, factor.rows)
-
-
-@bare
-def _copy(a, piv, column, row, jcol, to_a, to_piv, to_column, to_row, to_jcol):
-    """Copy a factorisation (a, piv, column, row, jcol) to another's arrays."""
-    size = a.shape[0]
-    for i in range(size):
-        for j in range(size):
-            to_a[i, j] = a[i, j]
-    for k in range(len(piv)):
-        to_piv[k] = piv[k]
-    for i in range(len(column)):
-        to_column[i], to_row[i] = column[i], row[i]
-    for k in range(len(jcol)):
-        to_jcol[k] = jcol[k]
+    for k in range(len(w.piv)):
+        factor.piv[k] = w.piv[k]
 
 
 @bare
@@ -222,14 +219,17 @@ def chord(model, c, r, lam, inputs, factor, w):
 
     From the last command's equilibrium, with that command's matrix, this is the tangent
     prediction of the new one: the next Newton step is of second order in the change. A step
-    that is not finite or longer than a thousand levers is not taken (0.0).
+    that is not finite or longer than a thousand levers is not taken (0.0). w: over(work,
+    factor); factor is marked not kept (head[0] 0) after it: the Newton that follows
+    factorises into its arrays (keep marks it again).
     """
     kernel.assemble(model, c, r, lam, inputs, kernel.RESIDUAL, w)
     _rhs(model, lam, w)
-    _copy(factor.a, factor.piv, factor.column, factor.row, factor.rows, w.a, w.piv, w.column,
-          w.row, w.jcol)
+    for k in range(len(w.piv)):
+        w.piv[k] = int(factor.piv[k])
     kkt.solve_full(w, model.perm, w.dense if factor.head[2] == 1.0 else model.bounds,
                    int(factor.head[1]))
+    factor.head[0] = 0.0
     step = _take(model, c, r, lam, w)
     return step if step < 1e3 * model.consts[kernel.LEVER] else 0.0
 
