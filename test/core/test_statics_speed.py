@@ -161,9 +161,11 @@ def test_newton_stops_when_its_next_step_is_predicted_below_round_off():
 
 def test_newton_after_a_chord_step_stops_when_the_next_is_below_a_tenth_of_tolerance():
     """
-    A chord step of 0.2 mm (a 1 kHz command), then 1.63e-4 mm: the next is predicted at
-    1.63e-4^3 / 0.2^2 = 1.08e-10 mm, 0.05 of the tolerance (1e-11 x the 216 mm lever): not
-    taken (it moves the pose by 5e-13 rad at most). Before, it was (one command in five).
+    Converged: a chord step of 0.2 mm (a 1 kHz command), then 1.63e-4 mm.
+
+    The next is predicted at 1.63e-4^3 / 0.2^2 = 1.08e-10 mm, 0.05 of the tolerance (1e-11 x
+    the 216 mm lever): not taken (it moves the pose by 5e-13 rad at most). Before, it was
+    (one command in five).
     """
     tol = 1e-11 * 216.0
     assert newton.converged(1.63e-4, 0.2, tol)
