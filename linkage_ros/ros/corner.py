@@ -82,6 +82,13 @@ class Outlet(Protocol):
         no more commands (it is shutting down): the input is then dropped unread.
         """
 
+    def taking(self, topic: str, type_name: str, data: bytes) -> bool:
+        """
+        Take an input whose time of receipt is not used (a contact wrench), as received().
+
+        False once the node takes no more commands (the input is then dropped unread).
+        """
+
     def publish(self, publisher: Publisher, msg: bytes | object) -> None:
         """Publish msg (CDR bytes or an rclpy message) on publisher."""
 
@@ -271,7 +278,7 @@ class Corner:
     def on_wrench(self, data: bytes) -> None:
         """Take the tyre's wrench at the contact patch for the next answers; answer nothing."""
         topic = self.wrench_topic
-        if self.outlet.received(topic, WRENCH_TYPE, data) is None:
+        if not self.outlet.taking(topic, WRENCH_TYPE, data):   # no clock read: not stamped
             return
         try:
             frame_id, force, torque = wrench_of(data)

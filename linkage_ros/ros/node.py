@@ -216,6 +216,20 @@ class SuspensionNode(Node):
             self.sinks.record(topic, type_name, data, now, now)
         return divmod(now, S)
 
+    def taking(self, topic, type_name, data):
+        """
+        Take an input whose time of receipt is not used: record it; False once stopping.
+
+        A contact wrench answers nothing and is stamped by nothing, so the node clock is
+        read only to record it (a few us a wrench, four a vehicle's step, without sinks).
+        """
+        if not self.taking_commands:
+            return False
+        if self.sinks:
+            now = self.clock.now().nanoseconds
+            self.sinks.record(topic, type_name, data, now, now)
+        return True
+
     def publish(self, publisher, msg):
         """Publish msg (CDR bytes or an rclpy message) and hand it to the sinks."""
         # Recorded first: should publish() fail, the recording still holds the attempt.
