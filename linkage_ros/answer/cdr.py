@@ -236,25 +236,36 @@ class _Reader:
 
     def __init__(self, what, data, order):
         self.what, self.data, self.order, self.at = what, data, order, 4
+        self.size = len(data)
+        self._count = _layout(order + 'I').unpack_from    # a sequence's or string's length
 
     def unpack(self, fmt, align):
         self.at += -(self.at - 4) % align
         layout = _layout(self.order + fmt)
         end = self.at + layout.size
-        if end > len(self.data):
+        if end > self.size:
             raise CdrError(self.what, self.data, f'too short: it needs at least {end} bytes')
         values = layout.unpack_from(self.data, self.at)
         self.at = end
         return values
 
+    def count(self):
+        """Read a uint32 (a sequence's or a string's length): unpack('I', 4)[0], inline."""
+        at = self.at + -(self.at - 4) % 4
+        self.at = at + 4
+        if self.at > self.size:
+            raise CdrError(self.what, self.data, f'too short: it needs at least {self.at} '
+                           'bytes')
+        return self._count(self.data, at)[0]
+
     def doubles(self, keep=True):
         """Read a sequence<double> (a tuple; () if keep is False: only checked, skipped)."""
-        (count,) = self.unpack('I', 4)
+        count = self.count()
         if not count:      # no values, no alignment: the next field follows the count
             return ()
         self.at += -(self.at - 4) % 8
         end = self.at + 8 * count
-        if end > len(self.data):
+        if end > self.size:
             raise CdrError(self.what, self.data, f'too short: {count} doubles at byte '
                            f'{self.at} need {end} bytes')
         values = struct.unpack_from(f'{self.order}{count}d', self.data, self.at) if keep else ()
@@ -262,13 +273,13 @@ class _Reader:
         return values
 
     def string(self):
-        length = self.unpack('I', 4)[0]
-        if length == 0 or self.at + length > len(self.data):
+        length = self.count()
+        at = self.at
+        if length == 0 or at + length > self.size:
             raise CdrError(self.what, self.data, f'a string of {length} bytes at byte '
-                           f'{self.at} does not fit')
-        raw = bytes(self.data[self.at:self.at + length - 1])
-        self.at += length
-        return raw.decode('utf-8', errors='replace')
+                           f'{at} does not fit')
+        self.at = at + length
+        return str(self.data[at:at + length - 1], 'utf-8', 'replace')
 
 
 def pose_of(data: bytes) -> tuple[tuple[float, ...], tuple[float, ...]]:
@@ -327,8 +338,7 @@ def joint_state_of(data: bytes) -> JointStateRead:
     reader = _Reader(JOINT_STATE, data, _order(JOINT_STATE, data, 16))
     stamp = reader.unpack('iI', 4)
     reader.string()                                    # header.frame_id
-    (count,) = reader.unpack('I', 4)
-    name = tuple(reader.string() for _ in range(count))
+    name = tuple(reader.string() for _ in range(reader.count()))
     position = reader.doubles()
     reader.doubles(keep=False)                         # velocity
     reader.doubles(keep=False)                         # effort
