@@ -44,7 +44,8 @@ from visualization_msgs.msg import MarkerArray
 from . import messages
 from .inbox import Inbox
 from .qos import publisher, subscription, topic_qos
-from ..answer.cdr import CdrError, float64_of, from_cdr, wrench_of
+from ..answer.cdr import CdrError, float64_of, joint_state_of, JointStateRead, \
+    wrench_of
 from ..answer.protocol import CONTACT_WRENCH, OUTPUTS, outputs_of, Reply, Responder, SOLVED, \
     wrench_problem, WRENCH_TYPE
 from ..core.warmup import wants_statics
@@ -79,6 +80,13 @@ class Outlet(Protocol):
 
         Returns the node clock's time of receipt (sec, nanosec), or None once the node takes
         no more commands (it is shutting down): the input is then dropped unread.
+        """
+
+    def taking(self, topic: str, type_name: str, data: bytes) -> bool:
+        """
+        Take an input whose time of receipt is not used (a contact wrench), as received().
+
+        False once the node takes no more commands (the input is then dropped unread).
         """
 
     def publish(self, publisher: Publisher, msg: bytes | object) -> None:
@@ -270,7 +278,7 @@ class Corner:
     def on_wrench(self, data: bytes) -> None:
         """Take the tyre's wrench at the contact patch for the next answers; answer nothing."""
         topic = self.wrench_topic
-        if self.outlet.received(topic, WRENCH_TYPE, data) is None:
+        if not self.outlet.taking(topic, WRENCH_TYPE, data):   # no clock read: not stamped
             return
         try:
             frame_id, force, torque = wrench_of(data)
@@ -292,14 +300,13 @@ class Corner:
         if self.outlet.received(topic, JOINT_STATE, data) is None:
             return
         try:
-            msg = from_cdr(JOINT_STATE, data)
+            msg = joint_state_of(data)
         except CdrError as exc:
             self.refuse(topic, exc)
             return
         travel_mm = messages.joint_travel_mm(msg, self.joint)
         if travel_mm is not None:   # other joints' messages are not commands: no answer
-            self.answer(travel_mm, None, (msg.header.stamp.sec, msg.header.stamp.nanosec),
-                        lambda: joints_sent(topic, msg, [self.joint]))
+            self.answer(travel_mm, None, msg.stamp, lambda: joints_sent(topic, msg, [self.joint]))
 
     def answer(self, travel_mm: float | None, rack_mm: float | None, stamp: tuple[int, int],
                sent: Callable[[], str]) -> Reply:
@@ -381,8 +388,12 @@ def corner_outputs(scene: Scene, params: dict, prefix: str = '') -> dict[str, st
             for name in corner_topics(scene, params, prefix)}
 
 
-def joints_sent(topic: str, msg: JointState, joints: list[str]) -> str:
-    """Say what a JointState sent for joints: '/joint_states front_left_travel 0.02 m'."""
+def joints_sent(topic: str, msg: JointStateRead | JointState, joints: list[str]) -> str:
+    """
+    Say what a JointState sent for joints: '/joint_states front_left_travel 0.02 m'.
+
+    msg: as answer/cdr.joint_state_of reads it, or an rclpy JointState.
+    """
     positions = dict(zip(msg.name, msg.position))
     return f'{topic} ' + ', '.join(f'{joint} {positions[joint]!r} m' for joint in joints
                                    if joint in positions)

@@ -11,6 +11,7 @@ conversion happens here and only here:
                                                           + = to the left); CdrError for
                                                           bytes that are not a Float64
     joint_travel_mm(JointState, joint)                 -> float mm of that joint, or None
+                                                          (cdr.JointStateRead or rclpy's)
     status_name(node, corner)                          -> a corner's status name
     health_status(health, name, hardware_id, method)   -> DiagnosticStatus of a corner
     diagnostics(statuses, stamp)                       -> DiagnosticArray
@@ -44,6 +45,7 @@ if TYPE_CHECKING:
     from builtin_interfaces.msg import Time
     from sensor_msgs.msg import JointState
 
+    from ..answer.cdr import JointStateRead
     from ..answer.health import Health
     from ..core.measure import Alignment
 
@@ -57,16 +59,18 @@ def command_mm(data: bytes) -> float:
     return float64_of(data) * MM_PER_M
 
 
-def joint_travel_mm(msg: JointState, joint: str) -> float | None:
+def joint_travel_mm(msg: JointStateRead | JointState, joint: str) -> float | None:
     """
     Return the wheel travel (mm, + = bump) of a sensor_msgs/JointState.
+
+    msg: as answer/cdr.joint_state_of reads it (the node's), or an rclpy JointState.
 
     That is the position (m) of the joint named joint. None if the message has no such joint
     or no position for it (not an error: joint_states carries many joints, often in separate
     messages).
     """
     try:
-        index = list(msg.name).index(joint)
+        index = msg.name.index(joint)     # a tuple's or a list's
     except ValueError:
         return None
     if index >= len(msg.position):

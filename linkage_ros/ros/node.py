@@ -53,7 +53,7 @@ from .qos import clock_qos, latched_qos, offered, publisher, QOS, QOS_DEPTH, sub
 from .runtime import RuntimeParameters
 from .sinks import check_outputs, open_sinks, recording_metadata, Sinks
 from .solve_service import serve_corners
-from ..answer.cdr import CdrError, from_cdr, to_cdr, type_name
+from ..answer.cdr import CdrError, joint_state_of, to_cdr, type_name
 from ..core.base import LinkageError
 from ..core.model import load_target
 from ..core.warmup import wants_statics
@@ -216,6 +216,20 @@ class SuspensionNode(Node):
             self.sinks.record(topic, type_name, data, now, now)
         return divmod(now, S)
 
+    def taking(self, topic, type_name, data):
+        """
+        Take an input whose time of receipt is not used: record it; False once stopping.
+
+        A contact wrench answers nothing and is stamped by nothing, so the node clock is
+        read only to record it (a few us a wrench, four a vehicle's step, without sinks).
+        """
+        if not self.taking_commands:
+            return False
+        if self.sinks:
+            now = self.clock.now().nanoseconds
+            self.sinks.record(topic, type_name, data, now, now)
+        return True
+
     def publish(self, publisher, msg):
         """Publish msg (CDR bytes or an rclpy message) and hand it to the sinks."""
         # Recorded first: should publish() fail, the recording still holds the attempt.
@@ -343,13 +357,13 @@ class SuspensionNode(Node):
         topic = self.joint_states_topic
         if self.received(topic, JOINT_STATE, data) is None:
             return
-        try:
-            msg = from_cdr(JOINT_STATE, data)
+        try:     # in place: a fraction of rclpy's JointState (answer/cdr.py)
+            msg = joint_state_of(data)
         except CdrError as exc:
             for corner in self.joint_corners:
                 corner.refuse(topic, exc)
             return
-        stamp = msg.header.stamp.sec, msg.header.stamp.nanosec
+        stamp = msg.stamp
         # The axles' roll centres once per step, after all of its corners' answers.
         with self.roll_centres.step() if self.roll_centres else contextlib.nullcontext():
             for corner in self.joint_corners:

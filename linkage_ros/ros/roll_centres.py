@@ -34,7 +34,7 @@ import numpy as np
 
 from .qos import publisher
 from ..answer.cdr import point_stamped_cdr
-from ..core.axle import roll_centre_of_poses
+from ..core.axle import roll_centre_of_states
 from ..core.base import M_PER_MM
 
 if TYPE_CHECKING:
@@ -65,17 +65,21 @@ class AxleRollCentre:
     def __init__(self, name: str, left: Corner, right: Corner, publisher) -> None:
         self.name, self.corners, self.publisher = name, (left, right), publisher
         self.posed: set[int] = set()     # 0 left, 1 right: answered with a pose
-        self.radius = [c.scene.wheel_radius for c in self.corners]
-        self.spin_axis = [c.solver.mech.spin_axis for c in self.corners]
-        self.solvers = [c.solver for c in self.corners]
-        self.jacobians = np.empty((2, 5, 6))   # copied into: a new array costs more
+        self.radius = np.array([c.scene.wheel_radius for c in self.corners], dtype=float)
+        self.spin_axis = np.array([c.solver.mech.spin_axis for c in self.corners], dtype=float)
+        self.out = np.empty(3)     # written into: a new array costs more
 
     def point_mm(self) -> np.ndarray:
-        """Return the roll centre (3,) mm of the corners' last poses (NaN if at infinity)."""
-        left, right = self.solvers
-        self.jacobians[0], self.jacobians[1] = left.jacobian, right.jacobian
-        return roll_centre_of_poses(self.radius, self.spin_axis, (left.center, right.center),
-                                    (left.rotation, right.rotation), self.jacobians)
+        """
+        Return the roll centre (3,) mm of the corners' last kinematic poses (NaN: at infinity).
+
+        One compiled call on the corners' Continuation states (core.axle); the array
+        returned is overwritten by the next call.
+        """
+        left, right = self.corners
+        roll_centre_of_states(self.radius, self.spin_axis, left.solver.state,
+                              right.solver.state, self.out)
+        return self.out
 
 
 class RollCentres:
@@ -135,8 +139,8 @@ class RollCentres:
         """Publish axle's roll centre at stamp, once both corners have a pose and it is finite."""
         if len(axle.posed) < 2:
             return
-        point = axle.point_mm()
-        if not all(math.isfinite(v) for v in point):
+        x, y, z = axle.point_mm().tolist()
+        if not (math.isfinite(x) and math.isfinite(y) and math.isfinite(z)):
             return
         self.outlet.publish(axle.publisher, point_stamped_cdr(
-            stamp, self.frame_id, (point * M_PER_MM).tolist()))
+            stamp, self.frame_id, (x * M_PER_MM, y * M_PER_MM, z * M_PER_MM)))

@@ -14,9 +14,10 @@ import ast
 from pathlib import Path
 
 import linkage_ros
-from linkage_ros.core.axle import axle_of, roll_centre_of_poses, solve_axle
+from linkage_ros.core.axle import axle_of, patch_motion, roll_centre, roll_centre_of_poses, \
+    roll_centre_of_states, solve_axle
 from linkage_ros.core.model import load_vehicle
-from linkage_ros.core.solve import linearize
+from linkage_ros.core.solve import Continuation, jacobian_kernel, linearize
 from linkage_ros.tools.map_grid import axle_grid_map
 import numpy as np
 import pytest
@@ -112,3 +113,50 @@ def table(axis, omega, patch, center):
     found = [_formulas(f) for f in ast.parse(source).body]
     assert found == [{'contact patch', 'intersection or velocity of contact patches'},
                      {'contact patch', "a contact patch's velocity"}]
+
+
+EPS = np.finfo(float).eps
+
+
+@pytest.mark.parametrize('vehicle, axle_name', [('demo_vehicle_bushings', 'front'),
+                                                ('demo_vehicle_bushings', 'rear'),
+                                                ('demo_vehicle', 'front')])
+def test_the_nodes_compiled_roll_centre_is_the_array_formulas_to_round_off(vehicle, axle_name):
+    # suspension_node's roll centre is one compiled call on the two corners' kinematic states
+    # (roll_centre_of_states); the axle table's is the numpy array path (patch_motion,
+    # roll_centre). The same operations on the same poses: they differ by round-off only.
+    # y = (a_r b_z - b_r a_z) / det (meet): each term carries some 16 roundings of eps
+    # relative (contact patch 7, velocity 3, a_r 2, products and difference 3; a generous
+    # count), so |error| <= 16 eps (|a_r b_z| + |b_r a_z| + |y| (|a_y b_z| + |b_y a_z|)) /
+    # |det|; x, a mean of patch positions of mm, within 16 eps of their magnitudes.
+    axle = axle_of(load_vehicle(vehicle), axle_name)
+    solvers = [Continuation(scene) for scene in axle.scenes]
+    radius = np.array([scene.wheel_radius for scene in axle.scenes])
+    spin = np.array([m.spin_axis for m in axle.mechanisms])
+    out, compared, moved = np.empty(3), 0, []
+    for left, right in [(-50.0, 40.0), (-20.0, -20.0), (0.0, 0.0), (15.0, -35.0), (45.0, 45.0),
+                        (30.0, 5.0)]:
+        assert all(s.solve(t).success for s, t in zip(solvers, (left, right)))
+        roll_centre_of_states(radius, spin, solvers[0].state, solvers[1].state, out)
+        jac = np.array([s.jacobian for s in solvers])
+        free = np.empty((2, 5))
+        jacobian_kernel.slope_many(jac, free)       # (v_x, v_y, omega) per mm of travel
+        patch, velocity = zip(*(patch_motion(
+            s.center[None], (s.rotation @ m.spin_axis)[None], r,
+            np.array([[free[k, 0], free[k, 1], 1.0]]), free[k, 2:][None])
+            for k, (s, m, r) in enumerate(zip(solvers, axle.mechanisms, radius))))
+        patch, velocity = np.stack(patch, axis=1), np.stack(velocity, axis=1)   # (1, 2, 3)
+        y, z = roll_centre(patch, velocity)[0]
+        (ay, az), (by, bz) = velocity[0, :, 1:]
+        ar, br = (velocity[0, k, 1:] @ patch[0, k, 1:] for k in range(2))
+        det = abs(ay * bz - by * az)
+        scale = abs(ay * bz) + abs(by * az)
+        tol_y = 16 * EPS * (abs(ar * bz) + abs(br * az) + abs(y) * scale) / det
+        tol_z = 16 * EPS * (abs(ay * br) + abs(by * ar) + abs(z) * scale) / det
+        assert out[1] == pytest.approx(y, rel=0, abs=tol_y)
+        assert out[2] == pytest.approx(z, rel=0, abs=tol_z)
+        x = patch[0, :, 0].mean()
+        assert out[0] == pytest.approx(x, rel=0, abs=16 * EPS * np.abs(patch[0, :, 0]).sum())
+        compared += 1
+        moved.append(out[2])
+    assert compared == 6 and np.ptp(moved) > 1.0      # the travels move it: a real comparison

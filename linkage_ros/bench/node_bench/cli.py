@@ -28,8 +28,9 @@ Sections (all by default; --only picks some), sizes multiplied by --scale (run 1
             JointState (the loaded pose of each corner), lean (tf:=false pickups:=false, as
             a simulator needs it), with the node's defaults (TF, pickup forces) and with every
             output on, against the echo node taking the same traffic; the step latency is
-            from sending a step to the last of its four poses; each row ends with the load
-            average
+            from sending a step to the last of its four poses, and each process's CPU time
+            per step answered (executor and DDS threads included); each row ends with the
+            load average
   step      one step of the bushed vehicle in process (no DDS): its four contact_wrench
             callbacks and its joint_states callback called directly, lean, with the node's
             defaults and with every output on (the vehicle section's three nodes)

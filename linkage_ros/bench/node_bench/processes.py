@@ -31,6 +31,17 @@ class Target:
                    domain_id=domain_id)
         self.driver = Driver(self.context, prefixes)
 
+    def cpu_seconds(self):
+        """
+        Return the CPU time (s, user + system, every thread) the process has used so far.
+
+        Read from /proc/<pid>/stat (Linux): what the node's executor and its DDS threads
+        cost, wherever the time goes.
+        """
+        with open(f'/proc/{self.process.pid}/stat', encoding='ascii') as stat:
+            fields = stat.read().rsplit(')', 1)[1].split()   # after the command's name
+        return (int(fields[11]) + int(fields[12])) / os.sysconf('SC_CLK_TCK')
+
     def close(self):
         self.driver.destroy()
         rclpy.try_shutdown(context=self.context)

@@ -13,8 +13,10 @@ echoes the travels. The bushed node runs three ways, side by side with the echo 
 run (BUSHED_NODES): lean, as a simulator needs it (the poses, camber, toe, elements and roll
 centres: tf:=false pickups:=false); the node's defaults (TF and a WrenchStamped per pickup
 on); and every output on (alignment and markers too). The step latency is from sending a
-step (its first wrench) to the last of its four poses. Each row ends with the 1-minute load
-average after its run (a shared machine: read the ratios).
+step (its first wrench) to the last of its four poses. cpu_us_per_step: the CPU time the
+target's process used over the run (every thread: the executor's and DDS's; /proc), per step
+answered. Each row ends with the 1-minute load average after its run (a shared machine: read
+the ratios).
 """
 
 import math
@@ -63,16 +65,19 @@ def _run(targets, steps, args, modes, rows, medians):
         for mode, joint_states, wrenches in modes:
             for target in targets:
                 target.driver.connect(joint_states, wrenches=wrenches is not None)
+                cpu = target.cpu_seconds()
                 sent, got, lag, values = target.driver.paced(
                     sine(steps), args.hz, joint_states, label=f'vehicle: {target.name}, {mode}',
                     wrenches=wrenches)
+                cpu = (target.cpu_seconds() - cpu) / max(got, 1) * 1e6   # us a step answered
                 medians[target.name, mode] = np.median(values) if len(values) else np.nan
                 load = os.getloadavg()[0]
                 rows.append([target.name, mode, sent, got, sent - got, lag * 1000.0,
-                             us(values), us(values, 99), load])
+                             us(values), us(values, 99), cpu, load])
                 progress(f'vehicle: {target.name}, {mode}: {got}/{sent} steps answered, last '
                          f'{lag * 1000.0:.1f} ms after the last step, median '
-                         f'{us(values):.0f} us; load average {load:.2f}')
+                         f'{us(values):.0f} us, process CPU {cpu:.0f} us a step; load average '
+                         f'{load:.2f}')
     finally:
         for target in targets:
             target.close()
@@ -104,4 +109,5 @@ def bench_vehicle(args, log_dir, domain_id):
     for row in rows:
         row.append(float(medians[row[0], row[1]] / medians['echo', row[1]]))
     table(['vehicle', 'mode', 'steps', 'answered', 'lost', 'last_answer_lag_ms',
-           'step_median_us', 'step_p99_us', 'load_average', 'ratio_to_echo'], rows)
+           'step_median_us', 'step_p99_us', 'cpu_us_per_step', 'load_average',
+           'ratio_to_echo'], rows)

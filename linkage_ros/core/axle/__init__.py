@@ -12,8 +12,9 @@ loaded only for an axle with a bar, so not from here). Imports every layer below
 from .axle import (ackermann, ACKERMANN_MIN_STEER, Axle, axle_of, axle_quantities, AxleResult,
                    slopes, solve_axle, wheel_travels)
 from .roll_centre import (height_above_ground, patch_motion, roll_centre,
-                          roll_centre_of_poses)
+                          roll_centre_of_poses, roll_centre_of_states)
 
 __all__ = ['ackermann', 'ACKERMANN_MIN_STEER', 'Axle', 'axle_of', 'axle_quantities', 'AxleResult',
-           'height_above_ground', 'patch_motion', 'roll_centre', 'roll_centre_of_poses', 'slopes',
+           'height_above_ground', 'patch_motion', 'roll_centre', 'roll_centre_of_poses',
+           'roll_centre_of_states', 'slopes',
            'solve_axle', 'wheel_travels']

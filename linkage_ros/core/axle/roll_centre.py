@@ -7,6 +7,8 @@ The roll centre of an axle: one formula for the axle table, suspension_node and 
     patch_motion(center, axis, radius, v_center, omega) -> patch, velocity     (n, 3) each
     roll_centre(patch, velocity) -> (n, 2)            (y, z) of n positions of both wheels
     roll_centre_of_poses(radius, spin_axis, center, rotation, jac) -> (3,)    one pose each
+    roll_centre_of_states(radius, spin_axis, left, right, out)       the same, of two kernel
+                                                                      states, compiled
     height_above_ground(point, patch) -> (n,)
 
 The roll centre is the front-view intersection of the two lines through the contact patches
@@ -14,9 +16,11 @@ square to the patches' velocities under their own wheel's travel (the patch take
 of the carrier; doc/axle.md). Three pieces, each written once and each taking floats or
 arrays alike: the contact patch (measure.alignment.patch_offset), the velocity of a carrier
 point (point_velocity) and the front-view intersection (meet). The array functions serve the
-axle table (axle.axle_quantities) and the maps (tools/map_grid.py), roll_centre_of_poses
-serves the node per answer with Python floats (ros/roll_centres.py): numpy costs several
-microseconds per call on arrays of two, a float operation tens of nanoseconds.
+axle table (axle.axle_quantities) and the maps (tools/map_grid.py); the node's, per answer
+(ros/roll_centres.py), is one compiled call on the two corners' kinematic states
+(roll_centre_of_states, which compiles the same three pieces in): numpy costs several
+microseconds per call on arrays of two, and the same formulas in Python floats cost about 15
+us an axle in the node's step, against about 2 compiled.
 Units: mm, vehicle frame (x forward, y left, z up); column 0 the left wheel, 1 the right.
 """
 
@@ -26,9 +30,23 @@ import math
 
 import numpy as np
 
+from ..base.compiled import jit, jitable
 from ..base.geometry import point_velocity
 from ..measure.alignment import contact_patch, patch_offset
-from ..solve import jacobian_kernel
+from ..solve import jacobian_kernel, state
+from ..solve.kernel import CENTER, JACOBIAN, N_EQUATIONS, ROTATION
+
+
+@jitable
+def meet_terms(left, right):
+    """
+    Return (y det, z det, det) of the two wheels' front-view lines (meet divides them).
+
+    left, right as meet takes them; floats, arrays (n,), or in a compiled kernel floats.
+    """
+    (ay, az, apy, apz), (by, bz, bpy, bpz) = left, right
+    ar, br = ay * apy + az * apz, by * bpy + bz * bpz
+    return ar * bz - br * az, ay * br - by * ar, ay * bz - by * az
 
 
 def meet(left, right):
@@ -40,10 +58,7 @@ def meet(left, right):
     v_y (y - p_y) + v_z (z - p_z) = 0. Parallel lines meet at NaN for floats, at an infinity
     or NaN for arrays.
     """
-    (ay, az, apy, apz), (by, bz, bpy, bpz) = left, right
-    ar, br = ay * apy + az * apz, by * bpy + bz * bpz
-    det = ay * bz - by * az
-    y, z = ar * bz - br * az, ay * br - by * ar
+    y, z, det = meet_terms(left, right)
     if isinstance(det, float):
         return (math.nan, math.nan) if det == 0.0 else (y / det, z / det)
     with np.errstate(divide='ignore', invalid='ignore'):
@@ -77,30 +92,62 @@ def roll_centre(patch: np.ndarray, velocity: np.ndarray) -> np.ndarray:
 
 def roll_centre_of_poses(radius, spin_axis, center, rotation, jac: np.ndarray) -> np.ndarray:
     """
-    Return the roll centre (3,) mm of one pose of each wheel: suspension_node's, per answer.
+    Return the roll centre (3,) mm of one pose of each wheel.
 
     x midway between the two contact patches, (y, z) as roll_centre gives them (NaN for
     parallel lines); the patches' velocities from the Jacobians (jacobian_kernel.slope_many), as
     axle_quantities has them. radius (2,) mm; spin_axis (2, 3): the design unit spin axes
     (Mechanism.spin_axis); center (2, 3) mm, rotation (2, 3, 3) (or each a pair of arrays),
-    jac (2, 5, 6) C-contiguous: the wheels' poses and Jacobians (Continuation.jacobian), left
-    then right. The same formulas as roll_centre, in floats.
+    jac (2, 5, 6): the wheels' poses and Jacobians (Continuation.jacobian), left then right.
+    Packed into kernel states for roll_centre_of_states, suspension_node's.
     """
-    free = np.empty((2, 5))
+    out = np.empty(3)
+    roll_centre_of_states(np.asarray(radius, dtype=float),
+                          np.ascontiguousarray(spin_axis, dtype=float),
+                          *(state.pack(0.0, 0.0, center[k], rotation[k], jac[k])
+                            for k in range(2)), out)
+    return out
+
+
+@jit
+def roll_centre_of_states(radius, spin_axis, left, right, out):
+    """
+    Write the roll centre (3,) mm of two wheels' solved kernel states into out.
+
+    As roll_centre_of_poses: suspension_node's, per answer (ros/roll_centres.py), one
+    compiled call on the two Continuations' states (left, right: (STATE_SIZE,), the pose and
+    its Jacobian). radius (2,) mm; spin_axis (2, 3) C-contiguous, left then right.
+    """
+    jac = np.empty((2, N_EQUATIONS, 6))
+    for i in range(N_EQUATIONS):
+        for j in range(6):
+            jac[0, i, j] = left[JACOBIAN + 6 * i + j]
+            jac[1, i, j] = right[JACOBIAN + 6 * i + j]
+    free = np.empty((2, N_EQUATIONS))
     jacobian_kernel.slope_many(jac, free)
-    x, lines = 0.0, []
-    for k in range(2):
-        cx, cy, cz = center[k].tolist()
-        (r0, r1, r2), s = rotation[k].tolist(), spin_axis[k].tolist()
-        offset = patch_offset(r0[0] * s[0] + r0[1] * s[1] + r0[2] * s[2],
-                              r1[0] * s[0] + r1[1] * s[1] + r1[2] * s[2],
-                              r2[0] * s[0] + r2[1] * s[1] + r2[2] * s[2], radius[k])
-        vx, vy, wx, wy, wz = free[k].tolist()                     # v_z = 1 per mm of travel
-        _, velocity_y, velocity_z = point_velocity((vx, vy, 1.0), (wx, wy, wz), offset)
-        x += 0.5 * (cx + offset[0])
-        lines.append((velocity_y, velocity_z, cy + offset[1], cz + offset[2]))
-    y, z = meet(*lines)
-    return np.array([x, y, z])
+    x0, line0 = _patch_line(radius[0], spin_axis[0], left, free[0])
+    x1, line1 = _patch_line(radius[1], spin_axis[1], right, free[1])
+    out[0] = 0.0 + x0 + x1
+    y, z, det = meet_terms(line0, line1)
+    if det == 0.0:
+        out[1], out[2] = np.nan, np.nan
+    else:
+        out[1], out[2] = y / det, z / det
+
+
+@jitable
+def _patch_line(radius, s, one, free):
+    """Return half the contact patch's x, and its front-view line (meet's), of one wheel."""
+    r = ROTATION
+    offset = patch_offset(one[r] * s[0] + one[r + 1] * s[1] + one[r + 2] * s[2],
+                          one[r + 3] * s[0] + one[r + 4] * s[1] + one[r + 5] * s[2],
+                          one[r + 6] * s[0] + one[r + 7] * s[1] + one[r + 8] * s[2], radius)
+    # v_z = 1 per mm of travel; free: (v_x, v_y, omega) of the wheel centre per mm
+    _, velocity_y, velocity_z = point_velocity((free[0], free[1], 1.0),
+                                               (free[2], free[3], free[4]), offset)
+    c = CENTER
+    return 0.5 * (one[c] + offset[0]), (velocity_y, velocity_z, one[c + 1] + offset[1],
+                                        one[c + 2] + offset[2])
 
 
 def height_above_ground(point: np.ndarray, patch: np.ndarray) -> np.ndarray:
