@@ -55,18 +55,18 @@ class Compliance(NamedTuple):
 
     @property
     def rates(self) -> dict:
-        """Name (RATE_COLUMNS) -> value, those the scene has; empty on failure."""
+        """Return {name (RATE_COLUMNS): value} of the rates the scene has; {} on failure."""
         return {k: v for k, v in zip(RATE_COLUMNS, self.values[:MATRIX].tolist())
                 if not math.isnan(v)}
 
     @property
     def matrix(self) -> np.ndarray:
-        """The (6, 6) compliance, mm, deg per kN, kN m."""
+        """Return the (6, 6) compliance, mm, deg per kN, kN m."""
         return self.values[MATRIX:MATRIX_SI].reshape(6, 6)
 
     @property
     def matrix_si(self) -> np.ndarray:
-        """The (6, 6) compliance, m, rad per N, N m."""
+        """Return the (6, 6) compliance, m, rad per N, N m."""
         return self.values[MATRIX_SI:SIZE].reshape(6, 6)
 
 
