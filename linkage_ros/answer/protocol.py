@@ -8,6 +8,7 @@ How suspension_node answers a corner's commands, without ROS: the node and linka
                           frame_id='base_link', status_name='suspension_kinematics: five_link',
                           period_ns=10**9)
     responder.set_outputs(alignment=False, markers=False, frames=None)   # the extras turned on
+    responder.set_outputs(angles=False, elements=False)    # camber, toe, elements left out
     responder.outputs                     # [Output]: what a solved command publishes, in order
     due = responder.due(now_ns)           # a periodic report due by now? (its time, or None)
     reply = responder.answer(travel_mm, rack_mm, stamp, sent)
@@ -18,8 +19,9 @@ How suspension_node answers a corner's commands, without ROS: the node and linka
 One command: solved by continuation from the last good pose (Continuation); a solved command
 is answered by every output of OUTPUTS that its scene and switches turn on (outputs_of), in
 the table's order: wheel_carrier_pose (geometry_msgs/PoseStamped: wheel centre in m, carrier
-rotation relative to design), camber and toe (std_msgs/Float64, rad), then the extras:
-alignment, markers, the scene's elements, the corner's TF frames, all stamped with stamp. A
+rotation relative to design), always; camber and toe (std_msgs/Float64, rad), unless switch
+angles is False; then the extras: alignment, markers, the scene's elements (unless switch
+elements is False: then not computed), the corner's TF frames, all stamped with stamp. A
 command that cannot be solved (NaN, infinite, out of reach) gets no answer and keeps the last
 good pose. Every command is counted into the corner's Health (linkage_ros.answer.health), whose
 status goes to /diagnostics at once for a failure or a change of level, and every diagnostic
@@ -63,7 +65,8 @@ if TYPE_CHECKING:
     from .frames import CornerFrames
     from ..core.model import Scene
 
-SOLVED = 'solved'       # Output.when of the outputs of every solved command
+SOLVED = 'solved'       # Output.when of the output of every solved command: the pose
+ANGLES = 'angles'       # Output.when of camber and toe: on unless switch angles is False
 
 
 class Output(NamedTuple):
@@ -71,18 +74,21 @@ class Output(NamedTuple):
 
     name: str           # relative to the corner's namespace, or absolute ('/tf')
     type_name: str      # the ROS 2 type
-    when: str           # SOLVED: always; 'elements': a scene with elements; else the switch
+    # SOLVED: always; 'elements': a scene with elements, unless switched off; else the
+    # switch (angles, pickups: on unless False)
+    when: str
     content: str        # what it holds
 
 
 # Every output of a solved command, in publishing order: the pose first (what a controller
-# waits for), then camber and toe, then the extras. Read by the node (ros/corner.py: its
-# publishers and topic list), linkage-replay (tools/replay_solve.py) and the Responder.
+# waits for, and all a simulator may need), then camber and toe, then the extras. Read by the
+# node (ros/corner.py: its publishers and topic list), linkage-replay (tools/replay_solve.py)
+# and the Responder.
 OUTPUTS = (
     Output('wheel_carrier_pose', 'geometry_msgs/msg/PoseStamped', SOLVED,
            'wheel centre (m, frame_id), carrier rotation relative to design'),
-    Output('camber', 'std_msgs/msg/Float64', SOLVED, 'rad, + = top outboard'),
-    Output('toe', 'std_msgs/msg/Float64', SOLVED, 'rad, + = toe-in'),
+    Output('camber', 'std_msgs/msg/Float64', ANGLES, 'rad, + = top outboard'),
+    Output('toe', 'std_msgs/msg/Float64', ANGLES, 'rad, + = toe-in'),
     Output('alignment', 'std_msgs/msg/Float64MultiArray', 'alignment',
            'the alignment set in SI (ros/messages.alignment_array)'),
     Output('markers', 'visualization_msgs/msg/MarkerArray', 'markers',
@@ -98,8 +104,8 @@ OUTPUTS = (
 # The input of a corner with statics on: the tyre's wrench at the contact patch.
 CONTACT_WRENCH = 'contact_wrench'
 WRENCH_TYPE = 'geometry_msgs/msg/WrenchStamped'
-# output name: ROS 2 type, of the outputs of every solved command
-ANSWER_TYPES = {o.name: o.type_name for o in OUTPUTS if o.when == SOLVED}
+# output name: ROS 2 type, of the answer proper (answer_outputs): the pose, camber and toe
+ANSWER_TYPES = {o.name: o.type_name for o in OUTPUTS if o.when in (SOLVED, ANGLES)}
 
 
 def wrench_problem(frame_id: str, force: tuple, torque: tuple, vehicle_frame: str) -> str:
@@ -132,34 +138,40 @@ def outputs_of(scene: Scene, switches: dict[str, Any]) -> list[Output]:
     Return the outputs a solved command of scene publishes, in publishing order.
 
     switches: {'alignment': bool, 'markers': bool, 'tf': bool, 'statics': bool, 'pickups':
-    bool} (the node's parameters of those names; a missing one is off, but for pickups,
-    which is on unless False). elements: on for a scene with elements; statics: also on for
-    a scene with bushings (wants_statics); pickups (the pickup/<name> forces): only with statics.
+    bool, 'angles': bool, 'elements': bool} (the node's parameters of those names; a missing
+    one is off, but for pickups, angles and elements, which are on unless False). elements:
+    only for a scene with elements; statics: also on for a scene with bushings
+    (wants_statics); pickups (the pickup/<name> forces): only with statics; angles: camber
+    and toe. The pose (SOLVED) is always on.
     """
     statics = wants_statics(scene, switches.get('statics'))
-    on = {**switches, SOLVED: True, 'elements': bool(scene.elements), 'statics': statics,
-          'pickups': statics and switches.get('pickups', True) is not False}
+    on = {**switches, SOLVED: True, ANGLES: switches.get(ANGLES, True) is not False,
+          'elements': bool(scene.elements) and switches.get('elements', True) is not False,
+          'statics': statics, 'pickups': statics and switches.get('pickups', True) is not False}
     return [output for output in OUTPUTS if on.get(output.when)]
 
 
-def answer_outputs(solution: Solution, stamp: tuple[int, int],
-                   frame_id: str) -> list[tuple[str, str, bytes]]:
+def answer_outputs(solution: Solution, stamp: tuple[int, int], frame_id: str,
+                   angles: bool = True) -> list[tuple[str, str, bytes]]:
     """
-    Return the messages answering every solved command: [(output name, type name, CDR bytes)].
+    Return the messages answering a solved command: [(output name, type name, CDR bytes)].
 
     In publishing order, the pose first (what a controller waits for): wheel_carrier_pose
     (geometry_msgs/PoseStamped: the wheel centre in m in frame_id, the carrier's rotation
-    relative to design as a unit quaternion, so that design reads (0, 0, 0, 1)), camber and
-    toe (std_msgs/Float64, rad), at stamp (sec, nanosec). Names are relative to the corner's
-    namespace. A solution without a pose raises ValueError saying why it has none.
+    relative to design as a unit quaternion, so that design reads (0, 0, 0, 1)), then, with
+    angles (the node's parameter of that name), camber and toe (std_msgs/Float64, rad), at
+    stamp (sec, nanosec). Names are relative to the corner's namespace. A solution without a
+    pose raises ValueError saying why it has none.
     """
     if not solution.success:
         raise ValueError(f'no pose for travel {solution.travel!r} mm: {solution.message}')
     x, y, z = solution.wheel_center.tolist()
-    return [('wheel_carrier_pose', ANSWER_TYPES['wheel_carrier_pose'], pose_stamped_cdr(
-                stamp, frame_id, (x * M_PER_MM, y * M_PER_MM, z * M_PER_MM),
-                solution.quaternion.tolist())),
-            ('camber', ANSWER_TYPES['camber'], float64_cdr(solution.camber)),
+    pose = ('wheel_carrier_pose', ANSWER_TYPES['wheel_carrier_pose'], pose_stamped_cdr(
+        stamp, frame_id, (x * M_PER_MM, y * M_PER_MM, z * M_PER_MM),
+        solution.quaternion.tolist()))
+    if not angles:
+        return [pose]
+    return [pose, ('camber', ANSWER_TYPES['camber'], float64_cdr(solution.camber)),
             ('toe', ANSWER_TYPES['toe'], float64_cdr(solution.toe))]
 
 
@@ -237,7 +249,8 @@ class Responder:
         if self.period <= 0:
             raise ValueError(f'period_ns must be above 0, got {period_ns!r}')
         self._next = None if start_ns is None else int(start_ns) + self.period
-        self.switches = {'alignment': False, 'markers': False, 'pickups': True}
+        self.switches = {'alignment': False, 'markers': False, 'pickups': True,
+                         ANGLES: True, 'elements': True}
         self.frames: CornerFrames | None = None
         self.statics = None
         if wants_statics(scene, statics):   # the statics core is imported only here
@@ -251,17 +264,19 @@ class Responder:
 
     def set_outputs(self, alignment: bool | None = None, markers: bool | None = None,
                     frames: CornerFrames | None | bool = False,
-                    pickups: bool | None = None) -> None:
+                    pickups: bool | None = None, angles: bool | None = None,
+                    elements: bool | None = None) -> None:
         """
-        Turn the extra outputs on or off (None, or frames False: as they are).
+        Turn the outputs other than the pose on or off (None, or frames False: as they are).
 
-        alignment, markers, pickups: the node's parameters of those names (pickups: with
-        statics, each pickup's force; off, they are neither read nor built); frames: the
+        alignment, markers, pickups, angles, elements: the node's parameters of those names
+        (pickups: with statics, each pickup's force; off, they are neither read nor built;
+        angles: camber and toe; elements: a scene's elements, off: not computed); frames: the
         corner's TF frames (ros/tf.CornerFrames, in the corner's namespace), or None for no
-        /tf. The scene's elements are published for a scene with elements.
+        /tf. The scene's elements are published only for a scene with elements.
         """
         for name, value in (('alignment', alignment), ('markers', markers),
-                            ('pickups', pickups)):
+                            ('pickups', pickups), (ANGLES, angles), ('elements', elements)):
             if value is not None:
                 self.switches[name] = bool(value)
         if frames is not False:
@@ -269,8 +284,9 @@ class Responder:
         self.outputs = outputs_of(self.scene, {**self.switches, 'tf': self.frames is not None,
                                                'statics': self.statics is not None})
         self._extras = [(o.name, o.type_name, extra_builder(o.name, self))
-                        for o in self.outputs if o.when not in (SOLVED, 'pickups')]
+                        for o in self.outputs if o.when not in (SOLVED, ANGLES, 'pickups')]
         self._pickups = any(o.when == 'pickups' for o in self.outputs)
+        self._angles = any(o.when == ANGLES for o in self.outputs)
         if self.statics is not None:   # pickups in their TF frames where /tf_static has them
             self.statics.use_frames(bool(getattr(self.frames, 'pickups', False)))
 
@@ -306,7 +322,7 @@ class Responder:
                 return self._raised(travel, rack_mm, exc, Status.NOT_CARRIED), []
         if not solution.success:
             return solution, []
-        outputs = answer_outputs(solution, stamp, self.frame_id)
+        outputs = answer_outputs(solution, stamp, self.frame_id, self._angles)
         for name, type_name, build in self._extras:
             outputs.append((name, type_name, build(solution, stamp)))
         return solution, outputs + pickups

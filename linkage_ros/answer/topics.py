@@ -50,14 +50,15 @@ INPUTS = (
 _ANSWER = {
     'wheel_carrier_pose': 'wheel centre (m) in `frame_id`; carrier orientation relative to its '
                           'design position (identity at design)',
-    'camber': 'rad, + = top of the wheel outboard',
-    'toe': 'rad, + = toe-in',
+    'camber': 'with `angles` (on by default): rad, + = top of the wheel outboard',
+    'toe': 'with `angles` (on by default): rad, + = toe-in',
     'alignment': 'with `-p alignment:=true`: 14 fields of the alignment set in SI '
                  '([doc/alignment.md](alignment.md))',
     'markers': 'with `-p markers:=true`: links (LINE_LIST) and joints (SPHERE_LIST) for RViz',
-    'elements': 'only for a scene with `elements`: `name` the element names, `position` each '
-                'length (m), `velocity` each motion ratio d length / d travel (m/m, + = '
-                'lengthens in bump: not a speed) ([doc/elements.md](elements.md))',
+    'elements': 'only for a scene with `elements`, with `elements` (on by default): `name` the '
+                'element names, `position` each length (m), `velocity` each motion ratio d '
+                'length / d travel (m/m, + = lengthens in bump: not a speed) '
+                '([doc/elements.md](elements.md))',
     '/tf': 'with `tf` (on by default): per answer, the frames of the carrier and of every '
            'link, arm and strut, children of `frame_id`, stamped as the answer '
            '([TF](#tf-and-the-robot-description))',
@@ -77,8 +78,8 @@ NODE_OUTPUTS = (
           'with `tf`: the URDF of the scene or vehicle (`linkage-urdf` writes the same); '
           'transient local, depth 1'),
     Topic('<axle>/roll_centre', 'geometry_msgs/msg/PointStamped', 'out',
-          "only with a vehicle file that has axles: the axle's roll centre in `frame_id`, m "
-          '([doc/axle.md](axle.md#roll-centre))'),
+          'only with a vehicle file that has axles, with `roll_centres` (on by default): the '
+          "axle's roll centre in `frame_id`, m ([doc/axle.md](axle.md#roll-centre))"),
 )
 TOPICS = (*INPUTS,
           *(Topic('pickup/<name>' if o.name == 'pickup' else o.name, o.type_name, 'out',

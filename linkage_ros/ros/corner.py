@@ -22,13 +22,15 @@ the topic and the byte count, with no pose, instead of an exception in the execu
 
 While the node runs, its parameters may change (ros/runtime.py): the corner then takes new
 solver settings at the pose it holds (configure), a new scene from that scene's design
-position (set_scene), or turns its alignment, markers and pickups on or off (set_outputs); its
-topics stay, and its elements topic follows the scene (a scene with elements has one). With TF
+position (set_scene), or turns its alignment, markers, pickups, camber and toe (angles) and
+elements on or off (set_outputs); its topics stay, and its elements topic follows the scene (a
+scene with elements has one, unless parameter elements is false). With TF
 on, the node gives it frames (ros/tf.CornerFrames): every answer then also sends the frames of its
 bodies to the outlet's transforms().
 
 What a solved command publishes is its Responder's list (protocol.OUTPUTS, outputs_of: the
-pose, camber, toe, then the extras turned on), published in that order, each on the corner's
+pose, camber and toe unless angles is off, then the extras turned on), published in that
+order, each on the corner's
 publisher of that name ('/tf' through the outlet's transforms()).
 """
 
@@ -46,7 +48,7 @@ from .inbox import Inbox
 from .qos import publisher, subscription, topic_qos
 from ..answer.cdr import CdrError, float64_of, joint_state_of, JointStateRead, \
     wrench_of
-from ..answer.protocol import CONTACT_WRENCH, OUTPUTS, outputs_of, Reply, Responder, SOLVED, \
+from ..answer.protocol import ANSWER_TYPES, CONTACT_WRENCH, outputs_of, Reply, Responder, \
     wrench_problem, WRENCH_TYPE
 from ..core.warmup import wants_statics
 
@@ -228,9 +230,10 @@ class Corner:
         self.health = self.responder.health
 
     def set_outputs(self, params: dict) -> None:
-        """Turn the alignment, markers and pickups outputs on or off, as params say."""
+        """Turn the outputs other than the pose on or off, as params (the node's) say."""
         self.responder.set_outputs(alignment=params['alignment'], markers=params['markers'],
-                                   pickups=params['pickups'])
+                                   pickups=params['pickups'], angles=params['angles'],
+                                   elements=params['elements'])
         self._set_publishers()
 
     def _set_publishers(self) -> None:
@@ -316,7 +319,7 @@ class Corner:
         travel_mm and rack_mm: the command (None = unchanged); stamp: (sec, nanosec) of the
         answer; sent: a function that says what was sent where (e.g. '/wheel_travel 0.5 m'),
         called for the messages about a bad command. A solved command publishes the
-        Responder's outputs in its order (the pose, camber and toe, then the extras turned
+        Responder's outputs in its order (the pose, then camber, toe and the extras turned
         on); a failed one publishes nothing and goes to the console (the outlet throttles it).
         A failure or a change of level goes to /diagnostics at once. The Reply (protocol.py)
         holds the Solution and the outputs published (the solve service reads them back).
@@ -365,15 +368,15 @@ def corner_topics(scene: Scene, params: dict, prefix: str = '') -> list[str]:
     /diagnostics and the vehicle's joint_states are not among them.
     """
     outputs = [o.name for o in outputs_of(scene, params) if o.name != TF]
-    always = [o.name for o in OUTPUTS if o.when == SOLVED]
-    names = ['wheel_travel', *always]
+    answer = [name for name in outputs if name in ANSWER_TYPES]   # the pose, camber, toe
+    names = ['wheel_travel', *answer]
     if params['travel_joint']:
         names.append('joint_states')
     if scene.steered:
         names.append('steering_rack')
     if wants_statics(scene, params.get('statics')):
         names.append(CONTACT_WRENCH)
-    names += [name for name in outputs if name not in always and name != PICKUP]
+    names += [name for name in outputs if name not in answer and name != PICKUP]
     if PICKUP in outputs:
         from ..answer.pickups import pickup_points
         names += [f'{PICKUP}/{name}' for name in pickup_points(scene)]

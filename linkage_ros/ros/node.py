@@ -137,6 +137,7 @@ class SuspensionNode(Node):
         self.taking_commands = True
         self.clock = self.get_clock()
         self.tf_outputs = None
+        self.roll_centres, self._axles, self._said_axles = None, None, False
 
     def _wire(self, sinks, before_solving, clock=True):
         """
@@ -162,12 +163,8 @@ class SuspensionNode(Node):
         self.diagnostics_pub = publisher(self, DiagnosticArray, '/diagnostics', self.qos)
         self.corners = {prefix.rstrip('/'): Corner(self, self, scene, params, prefix, *joints)
                         for prefix, (scene, *joints) in corners.scenes.items()}
-        self.roll_centres = None
-        if corners.axles is not None:   # a vehicle without axles imports none of it
-            from .roll_centres import RollCentres
-            self.roll_centres = RollCentres(self, self, corners.axles, self.corners,
-                                            self.qos, self.frame_id,
-                                            self.get_logger().warning)
+        self._axles = corners.axles
+        self.set_roll_centres(params['roll_centres'])
         self.robot_name, self.tf_outputs = corners.name, None
         self.joint_corners = [c for c in self.corners.values()
                               if c.travel_joint or c.rack_joint]
@@ -301,6 +298,23 @@ class SuspensionNode(Node):
         elif not on and self.tf_outputs is not None:
             self.tf_outputs.close()
             self.tf_outputs = None
+
+    def set_roll_centres(self, on):
+        """
+        Turn each axle's roll-centre topic on (made) or off (removed, none computed).
+
+        A vehicle without axles imports none of it (ros/roll_centres.py). Turned on again,
+        an axle's roll centre is published once both its corners have answered again.
+        """
+        if on and self.roll_centres is None and self._axles is not None:
+            from .roll_centres import RollCentres
+            self.roll_centres = RollCentres(     # an axle without patches: said once
+                self, self, self._axles, self.corners, self.qos, self.frame_id,
+                (lambda line: None) if self._said_axles else self.get_logger().warning)
+            self._said_axles = True
+        elif not on and self.roll_centres is not None:
+            self.roll_centres.close()
+            self.roll_centres = None
 
     def _say_pickup_frames(self):
         """Say once, with pickup forces published, when their TF frames are not."""
@@ -441,10 +455,12 @@ class SuspensionNode(Node):
         Return {resolved topic: (entity, default QoS)} of the node's topics.
 
         corners as load_corners gives them; every: also those the node may make while it runs
-        (alignment, markers, pickups, TF, steering_rack), whatever the parameters say now.
+        (alignment, markers, pickups, camber and toe, elements, roll centres, TF,
+        steering_rack), whatever the parameters say now.
         """
         if every:
-            params = {**params, 'alignment': True, 'markers': True, 'pickups': True}
+            params = {**params, 'alignment': True, 'markers': True, 'pickups': True,
+                      'angles': True, 'elements': True, 'roll_centres': True}
         names = {'/diagnostics': 'publisher'}
         for prefix, (scene, *joints) in corners.scenes.items():
             names.update(corner_outputs(scene, params, prefix))
@@ -452,7 +468,7 @@ class SuspensionNode(Node):
                 names[prefix + 'steering_rack'] = 'subscription'
             if any(joints):
                 names['joint_states'] = 'subscription'
-        if corners.axles is not None:
+        if corners.axles is not None and params['roll_centres']:
             from .roll_centres import roll_centre_topics
             names.update(dict.fromkeys(roll_centre_topics(corners.axles, {
                 prefix.rstrip('/'): scene for prefix, (scene, *_) in corners.scenes.items()}),

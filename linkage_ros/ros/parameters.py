@@ -86,6 +86,15 @@ PARAMETERS = {
     'pickups': Spec(True, "with statics, publish each body pickup's force on pickup/<name> per "
                     'answer; false: no pickup topics, and the forces are neither read nor '
                     'built (a simulator that needs only the loaded pose)'),
+    'angles': Spec(True, 'publish camber and toe (std_msgs/Float64, rad) per answer; false: '
+                   'neither topic, the pose alone (a simulator that needs only the loaded '
+                   'pose)'),
+    'elements': Spec(True, 'for a scene with elements, publish their lengths and motion ratios '
+                     '(sensor_msgs/JointState) on elements per answer; false: no elements '
+                     'topic, nothing of them computed'),
+    'roll_centres': Spec(True, "with a vehicle file that has axles, publish each axle's roll "
+                         'centre on <axle>/roll_centre; false: no roll-centre topics, none '
+                         'computed'),
     'vehicle': Spec('', 'vehicle file (bundled name or path): one corner per wheel, topics '
                     'under the corner name; empty = the single scene of parameter scene'),
     # Each subscription holds at most this many samples: memory up to depth times the largest
@@ -97,7 +106,7 @@ PARAMETERS = {
 
 # The parameters a SetParameters request may change while the node runs (ros/runtime.py).
 RUNTIME = ('scene', 'method', 'max_step_mm', 'condition_warn', 'diagnostic_period',
-           'alignment', 'markers', 'tf', 'pickups')
+           'alignment', 'markers', 'tf', 'pickups', 'angles', 'elements', 'roll_centres')
 # Why each other parameter is fixed once the node runs (the reason a change is refused with).
 FIXED = {
     'frame_id': 'every published pose and frame names it from the start',

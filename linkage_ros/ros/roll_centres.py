@@ -20,7 +20,9 @@ each corner:
       failed (no roll centre that mixes a pose of this step with an older one in its place).
 A failed command publishes none; nor does an axle whose lines are parallel (the roll centre at
 infinity, never NaN). An axle whose corners lack wheel_radius (no contact patch) has no topic,
-and the node says so once at start. A vehicle without axles never imports this module.
+and the node says so once at start. A vehicle without axles never imports this module. With
+parameter roll_centres false there are none (RollCentres.close: the publishers destroyed, the
+corners no longer listened to, nothing computed).
 """
 
 from __future__ import annotations
@@ -94,8 +96,9 @@ class RollCentres:
     def __init__(self, node: Node, outlet: Outlet, axles: VehicleAxles,
                  corners: dict[str, Corner], qos: QoSProfile, frame_id: str,
                  say: Callable[[str], None]) -> None:
-        self.outlet, self.frame_id = outlet, frame_id
+        self.node, self.outlet, self.frame_id = node, outlet, frame_id
         self.axles = []
+        self._listening: list[tuple[Corner, Callable]] = []    # (corner, its listener)
         self._step: dict | None = None     # during a JointState step: {axle: [posed, failed]}
         for name, spec in axles.axles.items():
             left, right = corners[spec.left], corners[spec.right]
@@ -107,9 +110,19 @@ class RollCentres:
                 node, PointStamped, f'{name}/{TOPIC}', qos))
             self.axles.append(axle)
             for k, corner in enumerate(axle.corners):
-                corner.listeners.append(
-                    lambda corner, solution, stamp, axle=axle, k=k:
-                    self.answered(axle, k, solution, stamp))
+                listener = (lambda corner, solution, stamp, axle=axle, k=k:
+                            self.answered(axle, k, solution, stamp))
+                corner.listeners.append(listener)
+                self._listening.append((corner, listener))
+
+    def close(self) -> None:
+        """Stop: no corner listened to, every roll-centre publisher destroyed."""
+        for corner, listener in self._listening:
+            corner.listeners.remove(listener)
+        self._listening = []
+        for axle in self.axles:
+            self.node.destroy_publisher(axle.publisher)
+        self.axles = []
 
     def answered(self, axle: AxleRollCentre, k: int, solution: Solution,
                  stamp: tuple[int, int]) -> None:

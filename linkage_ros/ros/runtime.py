@@ -24,7 +24,9 @@ record_mcap, rerun_rrd, frame_id, ...: why it is fixed), scene on a vehicle node
 Applied, once rclpy has stored the values (the post-set callback):
     method, max_step_mm, condition_warn   every corner's solver, at the pose it holds
     diagnostic_period                     the report timer, from now on
-    alignment, markers, pickups           the outputs, made or removed
+    alignment, markers, pickups, angles,  the outputs, made or removed
+    elements
+    roll_centres                          each axle's roll-centre topic, made or removed
     tf                                    /tf, /tf_static, robot_description on or off
     scene                                 the corner serves the new scene from its design
                                           position, its topics kept; /diagnostics says so at
@@ -54,6 +56,7 @@ if TYPE_CHECKING:
 
 PARAMETER_EVENT = 'rcl_interfaces/msg/ParameterEvent'
 SOLVER = ('method', 'max_step_mm', 'condition_warn')
+OUTPUTS = ('alignment', 'markers', 'pickups', 'angles', 'elements')   # a corner's switches
 LOAD_POLL = 0.01   # s: how often the executor looks whether a scene being loaded is ready
 
 
@@ -219,9 +222,11 @@ class RuntimeParameters:
                 corner.configure(values)
         if 'diagnostic_period' in changed:
             node.set_diagnostic_period(values['diagnostic_period'])
-        if 'alignment' in changed or 'markers' in changed or 'pickups' in changed:
+        if any(name in changed for name in OUTPUTS):
             for corner in node.corners.values():
                 corner.set_outputs(values)
+        if 'roll_centres' in changed:
+            node.set_roll_centres(values['roll_centres'])
         if 'tf' in changed:
             node.set_tf(values['tf'])
         elif scene is not None:

@@ -16,19 +16,20 @@ camber and toe (rad), status (linkage_ros.core.base.Status, or REFUSED), status_
 A request is answered by the corner itself (ros/corner.Corner.answer, its Responder): it is
 solved from the corner's last good pose, moves it, and publishes the same answer on the
 corner's topics (the pose, camber, toe and the extras turned on), so that recordings and TF see
-every step. The response's pose, camber and toe are read back from the very CDR bytes
-published (cdr.pose_of, cdr.float64_of): a service answer and the topic answer to the same
-command are equal, bit for bit. A request with use_wrench sets the corner's contact wrench
-(the tyre's force and moment at the contact patch, vehicle frame), as a contact_wrench message
-does, and is answered with the loaded pose: it needs statics on (a scene with bushings, or
-parameter statics). A request the solver cannot take (a corner of another name, a wrench on a
-corner without statics, not finite or beyond the bound core.base.FORCE_LIMIT_N and
-MOMENT_LIMIT_NM, a node that is not active, more requests waiting than qos_depth) is refused
-with status REFUSED and no pose (NaN), the corner untouched, and counted in its /diagnostics
-(refused, refused_total; a bad wrench is also an ERROR, as on contact_wrench); a command that
-cannot be solved (NaN travel, out of reach, a load not carried) has its Status and no pose, as
-on the topics. Never an exception, and never silence: every request is answered, in order
-(ros/service_queue.py).
+every step. The response's pose, camber and toe are read back from the very CDR bytes published
+(cdr.pose_of, cdr.float64_of): a service answer and the topic answer to the same command are
+equal, bit for bit. With parameter angles false, camber and toe are not published but still
+answered (the solution's own, the same floats). A request with use_wrench sets the corner's
+contact wrench (the tyre's force and moment at the contact patch, vehicle frame), as a
+contact_wrench message does, and is answered with the loaded pose: it needs statics on (a scene
+with bushings, or parameter statics). A request the solver cannot take (a corner of another
+name, a wrench on a corner without statics, not finite or beyond the bound
+core.base.FORCE_LIMIT_N and MOMENT_LIMIT_NM, a node that is not active, more requests waiting
+than qos_depth) is refused with status REFUSED and no pose (NaN), the corner untouched, and
+counted in its /diagnostics (refused, refused_total; a bad wrench is also an ERROR, as on
+contact_wrench); a command that cannot be solved (NaN travel, out of reach, a load not carried)
+has its Status and no pose, as on the topics. Never an exception, and never silence: every
+request is answered, in order (ros/service_queue.py).
 
 A request taken (not refused) is an input like the topics' commands: recorded, at receipt, on
 the service's name (<corner>/solve) as the request itself (type
@@ -176,8 +177,11 @@ def fill(response, reply):
     outputs = {name: data for name, _, data in reply.outputs}
     if solution.success:
         (x, y, z), (qx, qy, qz, qw) = pose_of(outputs['wheel_carrier_pose'])
-        response.camber = float64_of(outputs['camber'])
-        response.toe = float64_of(outputs['toe'])
+        # with parameter angles false no camber or toe is published: the solution's own
+        # floats, which a Float64's CDR holds unchanged (8 bytes, the same bits)
+        response.camber = float64_of(outputs['camber']) if 'camber' in outputs \
+            else solution.camber
+        response.toe = float64_of(outputs['toe']) if 'toe' in outputs else solution.toe
     else:
         x = y = z = qx = qy = qz = qw = response.camber = response.toe = math.nan
     pose.position.x, pose.position.y, pose.position.z = x, y, z
