@@ -25,9 +25,9 @@ Sections (all by default; --only picks some), sizes multiplied by --scale (run 1
   vehicle   vehicle:=demo_vehicle against a four-corner echo node, four corners at --hz each
             for --seconds: one Float64 per corner per step, then one JointState per step;
             then vehicle:=demo_vehicle_bushings, each step a contact_wrench per corner and a
-            JointState (the loaded pose of each corner), lean (tf:=false pickups:=false, as
-            a simulator needs it), with the node's defaults (TF, pickup forces) and with every
-            output on, against the echo node taking the same traffic; the step latency is
+            JointState (the loaded pose of each corner), lean (tf, pickups, angles, elements
+            and roll_centres false: the poses alone, as a simulator needs them), with the
+            node's defaults (TF, pickup forces, ...) and with every output on, against the echo node taking the same traffic; the step latency is
             from sending a step to the last of its four poses, and each process's CPU time
             per step answered (executor and DDS threads included); each row ends with the
             load average

@@ -10,9 +10,10 @@ contact_wrench per corner (a cornering load swept as a sine, the right corners' 
 y), then one JointState with the four travels. Each corner of the node answers with its
 loaded pose (a Statics solve per corner per step); the echo node takes the same wrenches and
 echoes the travels. The bushed node runs three ways, side by side with the echo node in one
-run (BUSHED_NODES): lean, as a simulator needs it (the poses, camber, toe, elements and roll
-centres: tf:=false pickups:=false); the node's defaults (TF and a WrenchStamped per pickup
-on); and every output on (alignment and markers too). The step latency is from sending a
+run (BUSHED_NODES): lean, as a simulator needs it (the loaded poses alone, one PoseStamped
+per corner per step, the echo node's traffic: tf, pickups, angles, elements and roll_centres
+false); the node's defaults (camber, toe, elements, roll centres, TF and a WrenchStamped per
+pickup); and every output on (alignment and markers too). The step latency is from sending a
 step (its first wrench) to the last of its four poses. cpu_us_per_step: the CPU time the
 target's process used over the run (every thread: the executor's and DDS's; /proc), per step
 answered. Each row ends with the 1-minute load average after its run (a shared machine: read
@@ -35,7 +36,8 @@ VEHICLE = 'demo_vehicle'
 BUSHED = 'demo_vehicle_bushings'
 WRENCHED = 'joint_states+contact_wrench'
 # The bushed node's configurations: (target name, its parameters)
-BUSHED_NODES = (('node_lean', {'tf': False, 'pickups': False}),
+BUSHED_NODES = (('node_lean', {'tf': False, 'pickups': False, 'angles': False,
+                               'elements': False, 'roll_centres': False}),
                 ('node_defaults', {}),
                 ('node_all', {'alignment': True, 'markers': True}))
 
