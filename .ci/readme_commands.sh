@@ -70,6 +70,8 @@ step vehicle node
 NODE=$!; sleep 4; kill -TERM $NODE; wait $NODE; echo "vehicle node rc=$?"
 .venv/bin/suspension_node --ros-args -p vehicle:=demo_vehicle_bushings > node_bushed.log 2>&1 &
 NODE=$!; sleep 6; kill -TERM $NODE; wait $NODE; echo "bushed vehicle node rc=$?"
+.venv/bin/suspension_node --ros-args -p vehicle:=demo_vehicle_bushings -p pickups:=false -p tf:=false -p angles:=false -p elements:=false -p roll_centres:=false > node_lean.log 2>&1 &
+NODE=$!; sleep 6; kill -TERM $NODE; wait $NODE; echo "lean bushed vehicle node rc=$?"
 step replay
 .venv/bin/linkage-replay solve bags/five_link_sweep.mcap -o solved.mcap --scene five_link; echo "rc=$?"
 .venv/bin/linkage-replay copy bags/five_link_sweep.mcap -o copy.mcap; echo "rc=$?"
