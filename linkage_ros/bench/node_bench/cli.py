@@ -27,10 +27,10 @@ Sections (all by default; --only picks some), sizes multiplied by --scale (run 1
             then vehicle:=demo_vehicle_bushings, each step a contact_wrench per corner and a
             JointState (the loaded pose of each corner), lean (tf, pickups, angles, elements
             and roll_centres false: the poses alone, as a simulator needs them), with the
-            node's defaults (TF, pickup forces, ...) and with every output on, against the echo node taking the same traffic; the step latency is
-            from sending a step to the last of its four poses, and each process's CPU time
-            per step answered (executor and DDS threads included); each row ends with the
-            load average
+            node's defaults (TF, pickup forces, ...) and with every output on, against the
+            echo node taking the same traffic; the step latency is from sending a step to
+            the last of its four poses, and each process's CPU time per step answered
+            (executor and DDS threads included); each row ends with the load average
   step      one step of the bushed vehicle in process (no DDS): its four contact_wrench
             callbacks and its joint_states callback called directly, lean, with the node's
             defaults and with every output on (the vehicle section's three nodes)
