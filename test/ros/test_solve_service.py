@@ -222,3 +222,27 @@ def test_the_srv_comment_names_every_status_the_service_answers():
         assert f'{status.value} {status.name}' in comment, status
     for reason in ('corner', 'not active', 'wrench', 'overloaded'):
         assert reason in comment.split('REFUSED', 1)[1], reason
+
+
+@needs_interfaces
+def test_with_angles_off_the_service_still_answers_camber_and_toe(
+        ros_context, executor, suspension_node):
+    # angles:=false publishes no camber or toe; the response's are the solution's own floats,
+    # which a Float64's CDR would hold unchanged: the core's Continuation, fed the same
+    # command from design, gives the same bits
+    from linkage_ros.core.model import load_scene
+    from linkage_ros.core.solve import Continuation
+    import rclpy
+    node = suspension_node(angles=False, tf=False)
+    assert node.corners[''].sends.keys() == {'wheel_carrier_pose', 'elements'}
+    client_node = rclpy.create_node('client', context=ros_context)
+    client = client_node.create_client(Solve, 'solve')
+    executor.add_node(client_node)
+    assert spin_until(executor, client.service_is_ready, WAIT)
+    future = client.call_async(Solve.Request(travel=0.02))
+    assert spin_until(executor, future.done, WAIT)
+    answer = future.result()
+    assert answer.status == Status.OK, answer.status_text
+    want = Continuation(load_scene('five_link')).solve(0.02 * 1000.0)
+    assert (answer.camber, answer.toe) == (want.camber, want.toe)
+    assert answer.pose.position.z == want.wheel_center[2] * 1e-3
