@@ -163,7 +163,8 @@ class SuspensionNode(Node):
         self.diagnostics_pub = publisher(self, DiagnosticArray, '/diagnostics', self.qos)
         self.corners = {prefix.rstrip('/'): Corner(self, self, scene, params, prefix, *joints)
                         for prefix, (scene, *joints) in corners.scenes.items()}
-        self._axles = corners.axles
+        # made anew (a managed node's configure after a cleanup, whose entities are gone)
+        self.roll_centres, self._axles = None, corners.axles
         self.set_roll_centres(params['roll_centres'])
         self.robot_name, self.tf_outputs = corners.name, None
         self.joint_corners = [c for c in self.corners.values()

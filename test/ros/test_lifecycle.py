@@ -129,6 +129,24 @@ def test_cleanup_releases_what_configure_made_and_configure_works_again(
         node.destroy_node()
 
 
+def test_configure_after_cleanup_makes_a_vehicle_s_roll_centres_anew(ros_context):
+    # cleanup destroys the roll-centre publishers with the corners: configure again makes
+    # them again, listening to the new corners (parameter roll_centres, on by default)
+    node = ManagedSuspensionNode(context=ros_context, parameter_overrides=[
+        Parameter('vehicle', value='demo_vehicle'), Parameter('tf', value=False)])
+    try:
+        for _ in range(2):
+            assert node.trigger_configure() == TransitionCallbackReturn.SUCCESS
+            assert {'/front/roll_centre', '/rear/roll_centre'} <= set(entity_names(node))
+            front = node.roll_centres.axles[0]
+            assert front.corners == (node.corners['front_left'], node.corners['front_right'])
+            assert len(node.corners['front_left'].listeners) == 1
+            assert node.trigger_cleanup() == TransitionCallbackReturn.SUCCESS
+            assert '/front/roll_centre' not in entity_names(node)
+    finally:
+        node.destroy_node()
+
+
 def test_each_transition_is_one_line_on_the_log(ros_context, capfd):
     node = ManagedSuspensionNode(context=ros_context)
     try:
