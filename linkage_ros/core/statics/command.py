@@ -238,13 +238,15 @@ def solve(ints, reals, state, io, floats, integers):
     inputs = kernel.Inputs(io[Z], io[RACK], extra.x_load, io[FORCE:FORCE + 3],
                            io[MOMENT:MOMENT + 3])
     kept = factor_views(state, model, 1)
-    w = newton.over(w, kept)
+    w = newton.over(w, kept)   # (Newton factorises into the kept arrays: not kept till keep)
+    last = 0.0
+    if io[LOADED_FROM] == WARM and kept.head[0] == 1.0:   # the tangent, then Newton
+        last = newton.chord(model, c, r, lam, inputs, kept, w)
+    kept.head[0] = 0.0
     if io[LOADED_FROM] == WARM:
-        last = newton.chord(model, c, r, lam, inputs, kept, w) if kept.head[0] == 1.0 else 0.0
         ok, iterations, residual = newton.newton(model, c, r, lam, inputs, newton.MAX_ITER, w,
                                                  kernel.RESIDUAL, last)
     else:
-        kept.head[0] = 0.0
         ok, iterations, residual = newton.loaded(model, c, r, lam, inputs, w, extra.c0,
                                                  extra.r0, extra.lam0, extra.force,
                                                  extra.moment)

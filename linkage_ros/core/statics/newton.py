@@ -220,8 +220,8 @@ def chord(model, c, r, lam, inputs, factor, w):
     From the last command's equilibrium, with that command's matrix, this is the tangent
     prediction of the new one: the next Newton step is of second order in the change. A step
     that is not finite or longer than a thousand levers is not taken (0.0). w: over(work,
-    factor); factor is marked not kept (head[0] 0) after it: the Newton that follows
-    factorises into its arrays (keep marks it again).
+    factor), so that the Newton that follows factorises into factor's arrays: the caller
+    marks factor not kept (head[0] 0) before it, keep marks it again.
     """
     kernel.assemble(model, c, r, lam, inputs, kernel.RESIDUAL, w)
     _rhs(model, lam, w)
@@ -229,7 +229,6 @@ def chord(model, c, r, lam, inputs, factor, w):
         w.piv[k] = int(factor.piv[k])
     kkt.solve_full(w, model.perm, w.dense if factor.head[2] == 1.0 else model.bounds,
                    int(factor.head[1]))
-    factor.head[0] = 0.0
     step = _take(model, c, r, lam, w)
     return step if step < 1e3 * model.consts[kernel.LEVER] else 0.0
 
