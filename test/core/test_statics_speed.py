@@ -3,14 +3,14 @@
 
 """A Statics' shortcuts (core/statics/statics.py) give the answers of the long way."""
 
-import importlib
 import math
 from pathlib import Path
 
 from linkage_ros.core.base import exp_so3, Status
 from linkage_ros.core.model import load_scene
 from linkage_ros.core.solve import Continuation
-from linkage_ros.core.statics import command, forces, Load, newton, solve_loaded, Statics
+from linkage_ros.core.statics import command, forces, Load, newton, RATE_COLUMNS, \
+    solve_loaded, Statics
 import numpy as np
 import pytest
 
@@ -126,10 +126,9 @@ def test_rates_asked_again_at_the_same_travel_solve_nothing_and_are_a_copy():
 
 
 def test_the_compiled_rates_write_the_layout_a_compliance_reads():
-    """command.rates' offsets are compliance.py's: rates, the matrix, the matrix in SI."""
-    layout = importlib.import_module('linkage_ros.core.statics.compliance')  # (the package's
-    assert (command.MATRIX, command.MATRIX_SI, command.RATES_SIZE) == (   # compliance() hides it)
-        layout.MATRIX, layout.MATRIX_SI, layout.SIZE)
+    """command.rates writes one value per rate column, then the matrix, the matrix in SI."""
+    assert command.MATRIX == len(RATE_COLUMNS)
+    assert (command.MATRIX_SI, command.RATES_SIZE) == (command.MATRIX + 36, command.MATRIX + 72)
     got = Statics(load_scene(BUSHED)).rates(5.0)
     # the SI matrix from the table's: mm -> m and deg -> rad per kN -> per N (exact scalings
     # of the same numbers: a few ulp)

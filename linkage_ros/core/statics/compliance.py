@@ -26,32 +26,28 @@ from typing import NamedTuple
 
 import numpy as np
 
+from .command import MATRIX, MATRIX_SI, RATES_SIZE
 from ..base.status import Status
 from ..measure.quantities import names
 
 RATE_COLUMNS = tuple(names('kc_fy_cp', 'kc_fx_cp', 'kc_fx_wc', 'kc_mz'))
 
 
-# the layout of a Compliance's values (command.rates writes it): the rates (RATE_COLUMNS'
-# order, NaN where the scene has none), the 6x6 matrix in the table's units, then in SI
-MATRIX = len(RATE_COLUMNS)
-MATRIX_SI = MATRIX + 36
-SIZE = MATRIX_SI + 36
-
-
 class Compliance(NamedTuple):
     """
     The rates at one travel and rack (registry units), the 6x6 matrices; NaN on failure.
 
-    A NamedTuple over its own array of values (SIZE floats, the layout above: cheap to make,
-    one per command); the rates dict and the matrices are read from it when asked for, the
-    dict made anew at each read, the matrices views into the values.
+    A NamedTuple over its own array of values (command.RATES_SIZE floats, as command.rates
+    writes them: the rates in RATE_COLUMNS' order, NaN where the scene has none, the 6x6
+    matrix in the table's units, then in SI; cheap to make, one per command). The rates
+    dict and the matrices are read from it when asked for: the dict made anew at each
+    read, the matrices views into the values.
     """
 
     status: Status
     message: str
     travel_mm: float
-    values: np.ndarray     # (SIZE,)
+    values: np.ndarray     # (RATES_SIZE,)
 
     @property
     def rates(self) -> dict:
@@ -67,9 +63,9 @@ class Compliance(NamedTuple):
     @property
     def matrix_si(self) -> np.ndarray:
         """Return the (6, 6) compliance, m, rad per N, N m."""
-        return self.values[MATRIX_SI:SIZE].reshape(6, 6)
+        return self.values[MATRIX_SI:RATES_SIZE].reshape(6, 6)
 
 
 def failed(status: Status, message: str, travel_mm: float) -> Compliance:
     """Return the Compliance of a position that failed: no rates, matrices of NaN."""
-    return Compliance(status, message, float(travel_mm), np.full(SIZE, math.nan))
+    return Compliance(status, message, float(travel_mm), np.full(RATES_SIZE, math.nan))
