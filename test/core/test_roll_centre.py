@@ -4,7 +4,7 @@
 """
 One roll centre: the axle table, suspension_node and the maps compute it by one formula.
 
-The three callers (core.axle.solve_axle's table, the node's roll_centre_of_poses per answer,
+The three callers (core.axle.solve_axle's table, the node's roll_centre_of_states per answer,
 tools/map_grid's axle map) give the same roll centre at the same wheel travels, and no module
 of the package but core/axle/roll_centre.py writes the roll-centre geometry again, nor any
 but measure/alignment.patch_offset the contact patch (a second copy of a formula is a defect).

@@ -19,8 +19,7 @@ def patch_offset(axis_x, axis_y, axis_z, radius):
     The lowest point of a wheel of radius (mm) with the unit spin axis (axis_x, axis_y,
     axis_z): radius along minus the up direction made square to the axis. Each component a
     float or an array (n,): contact_patch gives arrays of positions, and suspension_node's
-    roll centre (core.axle.roll_centre.roll_centre_of_poses) floats, which cost a fraction of
-    numpy's per-call overhead on arrays of one.
+    roll centre (core.axle.roll_centre.roll_centre_of_states, compiled) floats.
     """
     up_x, up_y, up_z = -axis_z * axis_x, -axis_z * axis_y, 1.0 - axis_z * axis_z
     norm = (up_x * up_x + up_y * up_y + up_z * up_z) ** 0.5
